@@ -1,0 +1,53 @@
+#pragma once
+// Physical and numerical parameters of one PlateImpact run, with their validation.
+#include <stdexcept>
+#include <string>
+
+#include "FiniteElementSpace.h"
+
+namespace plate {
+
+struct PlateParameters {
+    double length = 1.2;           // m
+    double width = 0.4;            // m
+    double thickness = 0.01;       // m
+    double youngsModulus = 2.1e11; // Pa
+    double poissonRatio = 0.3;
+    double density = 7770.0;       // kg/m^3
+    int nx = 14;
+    int ny = 5;
+    ElementType element = ElementType::Argyris;
+    double obstacleLower = -0.1;   // m
+    double obstacleUpper = 0.1;    // m
+    bool obstacleLowerEnabled = true;
+    bool obstacleUpperEnabled = true;
+    double dt = 1e-5;              // s
+    double beta = 0.5;
+    double initialLoad = 0.0;      // Pa
+    int modes = 0;                 // 0 = full space (exact)
+
+    double bendingStiffness() const {
+        return youngsModulus * thickness * thickness * thickness /
+               (12.0 * (1.0 - poissonRatio * poissonRatio));
+    }
+    double surfaceDensity() const { return density * thickness; }
+};
+
+// A parameter or input outside its allowed range. what() names the parameter, its value and
+// the allowed range, ready for the FMU's log.
+class ParameterError : public std::invalid_argument {
+public:
+    using std::invalid_argument::invalid_argument;
+};
+
+// A time step that cannot be taken (input past an obstacle, non-finite input, QP failure).
+class StepError : public std::runtime_error {
+public:
+    using std::runtime_error::runtime_error;
+};
+
+// Checks everything that can be checked without assembling (throws ParameterError).
+// The β < 1/4 stability bound needs κ_h and is checked by PlateSimulation.
+void validate(const PlateParameters& p);
+
+}  // namespace plate

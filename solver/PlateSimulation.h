@@ -1,0 +1,70 @@
+#pragma once
+// The plate as a co-simulation component: parameters in, the Newmark–contact scheme (3.3)
+// advanced at a fixed Δt, probe values and energies out. No FMI knowledge here.
+#include <memory>
+#include <string>
+#include <vector>
+
+#include "PlateParameters.h"
+
+namespace plate {
+
+// An input over one communication step: value and time derivatives at its start; inside the
+// step it follows value + d1 s + d2 s^2 / 2 (FMI input-derivative interpolation).
+struct InputSignal {
+    double value = 0.0, d1 = 0.0, d2 = 0.0;
+    double at(double s) const { return value + s * (d1 + 0.5 * s * d2); }
+};
+
+struct PlateOutputs {
+    double corner1 = 0, corner2 = 0, freeEdgeMid = 0;  // w at (L,0), (L,W), (L,W/2), m
+    double energy = 0;             // discrete energy E^{n-1/2} (NOTES.md), J
+    double energyDissipated = 0;   // cumulative contact loss, J
+    double energyInput = 0;        // cumulative work of base motion and load, J
+    int contactVertices = 0;       // vertices on an obstacle after the last step
+    double maxKktResidual = 0;     // largest relative KKT residual of all QPs so far
+    int qpIterations = 0;          // active-set iterations of the last step
+    long long qpIterationsTotal = 0;
+    int qpIterationsMax = 0;
+};
+
+class PlateSimulation {
+public:
+    // Builds the discretization, factors A, and computes the initial static state
+    // (equilibrium under initialLoad between the obstacles, clamp at baseDisplacement0).
+    // Throws ParameterError with a message naming the parameter, value and allowed range.
+    PlateSimulation(const PlateParameters& parameters, double baseDisplacement0);
+    ~PlateSimulation();
+    PlateSimulation(const PlateSimulation&) = delete;
+    PlateSimulation& operator=(const PlateSimulation&) = delete;
+
+    const PlateParameters& parameters() const;
+    double time() const;           // t_n = n Δt
+    long long stepCount() const;
+
+    // Advances `steps` internal steps; inside, base and load follow the given signals with
+    // s = t - time() at the call. Throws StepError (state left at the last good step).
+    void advance(long long steps, const InputSignal& base, const InputSignal& load);
+
+    PlateOutputs outputs() const;
+
+    // Displacement field at any point of the plate at t_n (absolute, includes the base).
+    double displacement(double x, double y) const;
+    // Vertex values of the absolute displacement at t_n (for plots and checks).
+    std::vector<double> vertexDisplacements() const;
+
+    // Largest eigenvalue of M^{-1} K of the clamped plate (κ_h, NOTES.md), s^-2.
+    double kappa() const;
+    // Time of one solve with the factor of A, measured now (median of repeats), s.
+    double measureFloorSolveSeconds(int repeats = 2000) const;
+
+    // Full mutable state: serialize for FMU states (bit-identical continuation).
+    std::vector<double> saveState() const;
+    void restoreState(const std::vector<double>& state);  // throws std::invalid_argument
+
+private:
+    struct Impl;
+    std::unique_ptr<Impl> impl_;
+};
+
+}  // namespace plate

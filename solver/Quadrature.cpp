@@ -1,0 +1,59 @@
+#include "Quadrature.h"
+
+#include <cmath>
+
+namespace plate {
+
+void gaussLegendre01(int n, std::vector<double>& nodes, std::vector<double>& weights) {
+    nodes.assign(n, 0.0);
+    weights.assign(n, 0.0);
+    // Newton on P_n from the Chebyshev-like initial guess; converges to machine precision
+    // in a handful of iterations for the small n used here.
+    for (int k = 0; k < n; ++k) {
+        double x = std::cos(M_PI * (k + 0.75) / (n + 0.5));
+        double dp = 1.0;
+        for (int it = 0; it < 100; ++it) {
+            double p0 = 1.0, p1 = x;
+            for (int m = 2; m <= n; ++m) {
+                const double p2 = ((2.0 * m - 1.0) * x * p1 - (m - 1.0) * p0) / m;
+                p0 = p1;
+                p1 = p2;
+            }
+            dp = n * (x * p1 - p0) / (x * x - 1.0);
+            const double dx = p1 / dp;
+            x -= dx;
+            if (std::abs(dx) < 1e-16) break;
+        }
+        // Recompute the derivative at the converged node for the weight.
+        double p0 = 1.0, p1 = x;
+        for (int m = 2; m <= n; ++m) {
+            const double p2 = ((2.0 * m - 1.0) * x * p1 - (m - 1.0) * p0) / m;
+            p0 = p1;
+            p1 = p2;
+        }
+        dp = n * (x * p1 - p0) / (x * x - 1.0);
+        nodes[k] = 0.5 * (1.0 + x);
+        weights[k] = 1.0 / ((1.0 - x * x) * dp * dp);  // 2/((1-x^2)P'^2) scaled by 1/2
+    }
+}
+
+std::vector<QuadratureNode> triangleRule(const Eigen::Vector2d& a, const Eigen::Vector2d& b,
+                                         const Eigen::Vector2d& c, int degree) {
+    const int n = (degree + 3) / 2;  // ceil((degree + 2) / 2)
+    std::vector<double> x, w;
+    gaussLegendre01(n, x, w);
+    const Eigen::Vector2d e1 = b - a, e2 = c - a;
+    const double area2 = std::abs(e1.x() * e2.y() - e1.y() * e2.x());
+    std::vector<QuadratureNode> rule;
+    rule.reserve(n * n);
+    for (int i = 0; i < n; ++i) {
+        for (int j = 0; j < n; ++j) {
+            // Reference triangle (s, r) = (u, v (1 - u)), Jacobian (1 - u).
+            const double s = x[i], r = x[j] * (1.0 - x[i]);
+            rule.push_back({a + s * e1 + r * e2, w[i] * w[j] * (1.0 - x[i]) * area2});
+        }
+    }
+    return rule;
+}
+
+}  // namespace plate
