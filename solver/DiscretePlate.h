@@ -1,0 +1,33 @@
+#pragma once
+// What the Newmark–contact stepper needs of a discretized clamped plate: the linear algebra of
+// (3.6) in some coordinates w (the full FE space, or a modal basis), nothing about elements.
+#include <Eigen/Core>
+
+#include "Assembly.h"
+
+namespace plate {
+
+class DiscretePlate {
+public:
+    virtual ~DiscretePlate() = default;
+
+    virtual Eigen::Index size() const = 0;
+    virtual void applyStiffness(const Eigen::VectorXd& w, Eigen::VectorXd& out) const = 0;
+    virtual void applyMass(const Eigen::VectorXd& w, Eigen::VectorXd& out) const = 0;
+    // x = A⁻¹ b with A = M + βΔt²K, factored once (NOTES.md: never a refactorization per step).
+    virtual void solveStepMatrix(const Eigen::VectorXd& b, Eigen::VectorXd& x) const = 0;
+
+    // Contact: vertex values y = C w of the vertices carrying a bound, and A⁻¹Cᵀe_j.
+    virtual int contactCount() const = 0;
+    virtual void gatherContact(const Eigen::VectorXd& w, Eigen::VectorXd& y) const = 0;
+    virtual void stepMatrixContactColumn(int j, Eigen::VectorXd& z) const = 0;
+
+    virtual const Eigen::VectorXd& pressureLoad() const = 0;  // F (unit pressure)
+    virtual const Eigen::VectorXd& baseInertia() const = 0;   // (M·1)_free
+    virtual double totalMass() const = 0;                     // 1ᵀM1
+
+    // Point evaluation of w (relative to the base) in these coordinates.
+    virtual PointProbe probe(double x, double y) const = 0;
+};
+
+}  // namespace plate

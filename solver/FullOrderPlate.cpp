@@ -1,0 +1,36 @@
+#include "FullOrderPlate.h"
+
+namespace plate {
+
+FullOrderPlate::FullOrderPlate(std::shared_ptr<const FiniteElementSpace> space,
+                               std::shared_ptr<const ClampedPlate> plate, double dt, double beta)
+    : space_(std::move(space)),
+      plate_(std::move(plate)),
+      stepFactor_(Eigen::SparseMatrix<double>(plate_->mass + (beta * dt * dt) * plate_->stiffness)),
+      stiffnessRows_(plate_->stiffness) {}
+
+void FullOrderPlate::applyStiffness(const Eigen::VectorXd& w, Eigen::VectorXd& out) const {
+    out.noalias() = stiffnessRows_ * w;
+}
+
+void FullOrderPlate::applyMass(const Eigen::VectorXd& w, Eigen::VectorXd& out) const {
+    out.noalias() = plate_->mass * w;
+}
+
+void FullOrderPlate::solveStepMatrix(const Eigen::VectorXd& b, Eigen::VectorXd& x) const {
+    stepFactor_.solve(b, x);
+}
+
+void FullOrderPlate::gatherContact(const Eigen::VectorXd& w, Eigen::VectorXd& y) const {
+    const auto& dofs = plate_->contactDofs;
+    y.resize(static_cast<Eigen::Index>(dofs.size()));
+    for (std::size_t i = 0; i < dofs.size(); ++i) y[i] = w[dofs[i]];
+}
+
+void FullOrderPlate::stepMatrixContactColumn(int j, Eigen::VectorXd& z) const {
+    Eigen::VectorXd e = Eigen::VectorXd::Zero(size());
+    e[plate_->contactDofs[j]] = 1.0;
+    stepFactor_.solve(e, z);
+}
+
+}  // namespace plate

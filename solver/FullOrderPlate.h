@@ -1,0 +1,38 @@
+#pragma once
+// The plate in the full C1 finite element space (exact mode, modes = 0).
+#include <memory>
+
+#include "Assembly.h"
+#include "CholmodFactor.h"
+#include "DiscretePlate.h"
+
+namespace plate {
+
+class FullOrderPlate : public DiscretePlate {
+public:
+    FullOrderPlate(std::shared_ptr<const FiniteElementSpace> space,
+                   std::shared_ptr<const ClampedPlate> plate, double dt, double beta);
+
+    Eigen::Index size() const override { return plate_->mass.rows(); }
+    void applyStiffness(const Eigen::VectorXd& w, Eigen::VectorXd& out) const override;
+    void applyMass(const Eigen::VectorXd& w, Eigen::VectorXd& out) const override;
+    void solveStepMatrix(const Eigen::VectorXd& b, Eigen::VectorXd& x) const override;
+    int contactCount() const override { return static_cast<int>(plate_->contactDofs.size()); }
+    void gatherContact(const Eigen::VectorXd& w, Eigen::VectorXd& y) const override;
+    void stepMatrixContactColumn(int j, Eigen::VectorXd& z) const override;
+    const Eigen::VectorXd& pressureLoad() const override { return plate_->pressureLoad; }
+    const Eigen::VectorXd& baseInertia() const override { return plate_->baseInertia; }
+    double totalMass() const override { return plate_->totalMass; }
+    PointProbe probe(double x, double y) const override { return plate_->probe(*space_, x, y); }
+
+    const CholmodFactor& stepFactor() const { return stepFactor_; }
+
+private:
+    std::shared_ptr<const FiniteElementSpace> space_;
+    std::shared_ptr<const ClampedPlate> plate_;
+    CholmodFactor stepFactor_;
+    // Row-major copy of K: the per-step product K w streams rows (faster than column-major).
+    Eigen::SparseMatrix<double, Eigen::RowMajor> stiffnessRows_;
+};
+
+}  // namespace plate

@@ -1,0 +1,180 @@
+#include "NewmarkContactStepper.h"
+
+#include <cmath>
+#include <sstream>
+
+#include "PlateParameters.h"
+
+namespace plate {
+
+NewmarkContactStepper::NewmarkContactStepper(std::shared_ptr<const DiscretePlate> plate,
+                                             double dt, double beta, Obstacles obstacles)
+    : plate_(std::move(plate)), dt_(dt), beta_(beta), obstacles_(obstacles) {
+    const auto n = plate_->size();
+    const int m = plate_->contactCount();
+    rhs_.resize(n);
+    d_.resize(n);
+    wNext_.resize(n);
+    kwNext_.resize(n);
+    if (obstacles_.any()) {
+        const DiscretePlate* p = plate_.get();
+        columns_ = std::make_unique<ContactColumns>(
+            m, [p](int j, Eigen::VectorXd& z) { p->stepMatrixContactColumn(j, z); },
+            [p](const Eigen::VectorXd& z, Eigen::VectorXd& y) { p->gatherContact(z, y); });
+        qp_ = std::make_unique<BoxQP>(*columns_);
+        yFree_.resize(m);
+        y_.resize(m);
+        yPrev_.resize(m);
+        mu_ = Eigen::VectorXd::Zero(m);
+        lowerBound_.resize(m);
+        upperBound_.resize(m);
+        trialState_.assign(m, 0);
+    }
+}
+
+void NewmarkContactStepper::initialize(const Eigen::VectorXd& w0, double z0, double p0) {
+    NewmarkState& s = state_;
+    s = NewmarkState{};
+    s.w = w0;
+    s.wPrev = w0;
+    plate_->applyStiffness(w0, s.kw);
+    s.kwPrev = s.kw;
+    s.z = s.zPrev = z0;
+    s.p = s.pPrev = p0;
+    s.s = s.sPrev = plate_->pressureLoad().dot(w0);
+    s.t = s.tPrev = plate_->baseInertia().dot(w0);
+    s.contactState.assign(obstacles_.any() ? plate_->contactCount() : 0, 0);
+    if (obstacles_.any()) {
+        plate_->gatherContact(w0, y_);
+        for (int i = 0; i < y_.size(); ++i) {
+            const double u = y_[i] + z0;
+            if (u <= obstacles_.lower) s.contactState[i] = -1;
+            if (u >= obstacles_.upper) s.contactState[i] = +1;
+            s.contactVertices += s.contactState[i] != 0;
+        }
+    }
+}
+
+void NewmarkContactStepper::step(double zNext, double pNext) {
+    NewmarkState& s = state_;
+    if (!std::isfinite(zNext) || !std::isfinite(pNext)) {
+        std::ostringstream msg;
+        msg << "non-finite input at t = " << (s.step + 1) * dt_ << ": base_displacement = "
+            << zNext << ", load = " << pNext;
+        throw StepError(msg.str());
+    }
+    if (zNext < obstacles_.lower || zNext > obstacles_.upper) {
+        std::ostringstream msg;
+        msg.precision(17);
+        msg << "base_displacement = " << zNext << " at t = " << (s.step + 1) * dt_
+            << " puts the clamped edge past "
+            << (zNext < obstacles_.lower ? "obstacle_lower = " : "obstacle_upper = ")
+            << (zNext < obstacles_.lower ? obstacles_.lower : obstacles_.upper)
+            << " (allowed: obstacle_lower <= base_displacement <= obstacle_upper)";
+        throw StepError(msg.str());
+    }
+    const double dt2 = dt_ * dt_;
+    const double baseJump = zNext - 2.0 * s.z + s.zPrev;  // Δt² z̈_n
+    const double pBeta = beta_ * pNext + (1.0 - 2.0 * beta_) * s.p + beta_ * s.pPrev;  // f^{nβ}
+    // (3.6) as A d = Δt²(f^{nβ} − K w) − (M·1) Δt² z̈  for d = w⁺ − 2w + w⁻.
+    rhs_.noalias() = (dt2 * pBeta) * plate_->pressureLoad() - dt2 * s.kw;
+    rhs_.noalias() -= baseJump * plate_->baseInertia();
+    plate_->solveStepMatrix(rhs_, d_);
+    wNext_.noalias() = 2.0 * s.w - s.wPrev + d_;
+
+    double dissipated = 0.0, contactWorkOnBase = 0.0;
+    int contactCount = 0;
+    int iterations = 0;
+    double kkt = 0.0;
+    if (qp_) {
+        plate_->gatherContact(wNext_, yFree_);
+        bool violated = false;
+        const double lo = obstacles_.lower - zNext, hi = obstacles_.upper - zNext;
+        for (int i = 0; i < yFree_.size(); ++i) violated |= (yFree_[i] < lo) | (yFree_[i] > hi);
+        if (violated) {
+            lowerBound_.setConstant(lo);
+            upperBound_.setConstant(hi);
+            trialState_ = s.contactState;
+            const QPResult r = qp_->solve(yFree_, lowerBound_, upperBound_, trialState_, mu_, y_);
+            iterations = r.iterations;
+            kkt = r.kktResidual;
+            if (!r.converged || !(kkt <= 1e-10)) {
+                std::ostringstream msg;
+                msg << "contact QP did not converge at t = " << (s.step + 1) * dt_ << " ("
+                    << r.iterations << " iterations, relative KKT residual " << kkt << ")";
+                throw StepError(msg.str());
+            }
+            plate_->gatherContact(s.wPrev, yPrev_);
+            double muSum = 0.0;
+            for (int i : qp_->active()) {
+                wNext_.noalias() += mu_[i] * columns_->column(i);
+                muSum += mu_[i];
+                // Loss ½ λᵀ(u⁻ − u⁺) on the active vertices (NOTES.md), absolute heights.
+                dissipated += mu_[i] * ((yPrev_[i] + s.zPrev) - (y_[i] + zNext));
+            }
+            dissipated /= 2.0 * dt2;
+            contactWorkOnBase = -muSum * (zNext - s.zPrev) / (2.0 * dt2);
+            contactCount = static_cast<int>(qp_->active().size());
+        } else {
+            std::fill(trialState_.begin(), trialState_.end(), 0);
+        }
+    }
+    plate_->applyStiffness(wNext_, kwNext_);
+    const double sNext = plate_->pressureLoad().dot(wNext_);
+    const double tNext = plate_->baseInertia().dot(wNext_);
+    if (!std::isfinite(sNext) || !std::isfinite(tNext)) {
+        std::ostringstream msg;
+        msg << "the step to t = " << (s.step + 1) * dt_ << " produced a non-finite displacement";
+        throw StepError(msg.str());
+    }
+
+    // Discrete work of the inputs in this step, from the scheme (see energy()): pressure and
+    // base inertia on w⁺ − w⁻, the contact force on the moving frame, and the change of the
+    // cross term ż vᵀ(M·1) + ½ ż² 1ᵀM1 that turns the relative energy into the absolute one.
+    const double zDotNext = (zNext - s.z) / dt_, zDot = (s.z - s.zPrev) / dt_;
+    const double mass = plate_->totalMass();
+    const double crossNext = zDotNext * (tNext - s.t) / dt_ + 0.5 * zDotNext * zDotNext * mass;
+    const double cross = zDot * (s.t - s.tPrev) / dt_ + 0.5 * zDot * zDot * mass;
+    const double work = 0.5 * pBeta * (sNext - s.sPrev) - 0.5 * (baseJump / dt2) * (tNext - s.tPrev) +
+                        contactWorkOnBase + crossNext - cross;
+
+    // Commit.
+    s.wPrev.swap(s.w);
+    s.w.swap(wNext_);
+    s.kwPrev.swap(s.kw);
+    s.kw.swap(kwNext_);
+    s.zPrev = s.z;
+    s.z = zNext;
+    s.pPrev = s.p;
+    s.p = pNext;
+    s.sPrev = s.s;
+    s.s = sNext;
+    s.tPrev = s.t;
+    s.t = tNext;
+    ++s.step;
+    s.energyInput += work;
+    s.energyDissipated += dissipated;
+    if (qp_) s.contactState.swap(trialState_);
+    s.contactVertices = contactCount;
+    s.qpIterationsLast = iterations;
+    s.qpIterationsTotal += iterations;
+    s.qpIterationsMax = std::max(s.qpIterationsMax, iterations);
+    s.maxKktResidual = std::max(s.maxKktResidual, kkt);
+}
+
+double NewmarkContactStepper::energy() const {
+    // E = ½ vᵀ(M + (β−¼)Δt²K) v + ½ ūᵀKū with v the absolute velocity (w − w⁻)/Δt + ż·1 and
+    // ū = (w + w⁻)/2; K·1 = 0, so only the mass sees the base (NOTES.md).
+    const NewmarkState& s = state_;
+    const Eigen::VectorXd dw = s.w - s.wPrev;
+    plate_->applyMass(dw, scratch_);
+    const double dt2 = dt_ * dt_;
+    const double zDot = (s.z - s.zPrev) / dt_;
+    const double kinetic = 0.5 * dw.dot(scratch_) / dt2 +
+                           0.5 * (beta_ - 0.25) * dw.dot(s.kw - s.kwPrev) +
+                           zDot * (s.t - s.tPrev) / dt_ + 0.5 * zDot * zDot * plate_->totalMass();
+    const double potential = 0.125 * (s.w + s.wPrev).dot(s.kw + s.kwPrev);
+    return kinetic + potential;
+}
+
+}  // namespace plate

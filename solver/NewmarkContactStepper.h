@@ -1,0 +1,82 @@
+#pragma once
+// The Newmark (γ = ½, β) scheme with contact of §3.2, three-level form (3.3)/(3.6), in the
+// relative displacement w = u − z(t)·1 of the clamped plate (NOTES.md "Time scheme"):
+//
+//   M d + Δt² K (w + β d) = Δt² p^{nβ} F − (M·1)(z⁺ − 2z + z⁻) + Cᵀμ,   d = w⁺ − 2w + w⁻,
+//   lower − z⁺ ≤ C w⁺ ≤ upper − z⁺,  μ the contact multipliers of the step's QP.
+//
+// Each step: one solve with the factor of A = M + βΔt²K for the free solution, a look at the
+// contact vertices, and the contact-space QP (BoxQP) only where an obstacle is violated.
+#include <Eigen/Core>
+#include <limits>
+#include <memory>
+#include <vector>
+
+#include "BoxQP.h"
+#include "DiscretePlate.h"
+
+namespace plate {
+
+struct Obstacles {
+    double lower = -std::numeric_limits<double>::infinity();  // absolute height, m
+    double upper = std::numeric_limits<double>::infinity();
+    bool any() const { return std::isfinite(lower) || std::isfinite(upper); }
+};
+
+// The full mutable state of the scheme: two time levels plus the bookkeeping that makes the
+// energy ledger and the warm start exact. Saving and restoring it continues bit-identically.
+struct NewmarkState {
+    Eigen::VectorXd w, wPrev;        // w_n, w_{n−1}
+    Eigen::VectorXd kw, kwPrev;      // K w_n, K w_{n−1} (reused by the next step and the energy)
+    double z = 0, zPrev = 0;         // base z_n, z_{n−1}
+    double p = 0, pPrev = 0;         // pressure p_n, p_{n−1}
+    double s = 0, sPrev = 0;         // Fᵀw (work of the pressure)
+    double t = 0, tPrev = 0;         // (M·1)ᵀw (coupling of base and plate inertia)
+    long long step = 0;
+    double energyInput = 0, energyDissipated = 0;
+    double maxKktResidual = 0;
+    long long qpIterationsTotal = 0;
+    int qpIterationsMax = 0, qpIterationsLast = 0;
+    int contactVertices = 0;
+    std::vector<signed char> contactState;  // −1 on lower, +1 on upper, 0 free (warm start)
+};
+
+class NewmarkContactStepper {
+public:
+    NewmarkContactStepper(std::shared_ptr<const DiscretePlate> plate, double dt, double beta,
+                          Obstacles obstacles);
+
+    // The plate at rest for t ≤ 0 in the shape w0 with the clamp at z0, pressure p0.
+    void initialize(const Eigen::VectorXd& w0, double z0, double p0);
+
+    // One step to t_{n+1} with the base at zNext and the pressure at pNext there.
+    // Throws StepError without changing the state if the step cannot be taken.
+    void step(double zNext, double pNext);
+
+    // Discrete energy E^{n−½} (NOTES.md), absolute velocity in the kinetic part.
+    double energy() const;
+
+    const NewmarkState& state() const { return state_; }
+    void setState(const NewmarkState& s) { state_ = s; }
+    const DiscretePlate& plate() const { return *plate_; }
+    double dt() const { return dt_; }
+    double beta() const { return beta_; }
+    const Obstacles& obstacles() const { return obstacles_; }
+    int computedContactColumns() const { return columns_ ? columns_->computedColumns() : 0; }
+
+private:
+    std::shared_ptr<const DiscretePlate> plate_;
+    double dt_, beta_;
+    Obstacles obstacles_;
+    NewmarkState state_;
+    // Contact machinery exists only when an obstacle does (no obstacle → no QP).
+    std::unique_ptr<ContactColumns> columns_;
+    std::unique_ptr<BoxQP> qp_;
+    // Step buffers, allocated once.
+    Eigen::VectorXd rhs_, d_, wNext_, kwNext_, yFree_, y_, mu_, lowerBound_, upperBound_,
+        yPrev_;
+    std::vector<signed char> trialState_;
+    mutable Eigen::VectorXd scratch_;
+};
+
+}  // namespace plate
