@@ -1,0 +1,83 @@
+// Measures, in one run, the floor of an exact step (one solve with the factor of
+// A = M + βΔt²K, NOTES.md) and the average cost of a stepper step on a scene, and prints both
+// as one JSON object. Usage:
+//   plate_bench [key=value ...]   keys: element=argyris|fvs nx ny dt beta steps amplitude
+//                                 frequency gap (both obstacles at ±gap; gap=0 disables them)
+//                                 modes initial_load lower_only=0|1
+#include <chrono>
+#include <cmath>
+#include <cstdio>
+#include <cstdlib>
+#include <map>
+#include <string>
+
+#include "PlateSimulation.h"
+
+int main(int argc, char** argv) {
+    std::map<std::string, std::string> args;
+    for (int i = 1; i < argc; ++i) {
+        const std::string a = argv[i];
+        const auto eq = a.find('=');
+        if (eq == std::string::npos) {
+            std::fprintf(stderr, "argument '%s' is not key=value\n", argv[i]);
+            return 2;
+        }
+        args[a.substr(0, eq)] = a.substr(eq + 1);
+    }
+    auto num = [&](const char* key, double fallback) {
+        const auto it = args.find(key);
+        return it == args.end() ? fallback : std::atof(it->second.c_str());
+    };
+    plate::PlateParameters p;
+    p.element = args.count("element") && args["element"] == "fvs" ? plate::ElementType::Fvs
+                                                                   : plate::ElementType::Argyris;
+    p.nx = static_cast<int>(num("nx", p.nx));
+    p.ny = static_cast<int>(num("ny", p.ny));
+    p.dt = num("dt", p.dt);
+    p.beta = num("beta", p.beta);
+    p.modes = static_cast<int>(num("modes", 0));
+    p.initialLoad = num("initial_load", 0.0);
+    const double gap = num("gap", 0.1);
+    p.obstacleLowerEnabled = p.obstacleUpperEnabled = gap > 0.0;
+    if (gap > 0.0) p.obstacleLower = -gap, p.obstacleUpper = gap;
+    if (num("lower_only", 0) != 0) p.obstacleUpperEnabled = false;
+    const long long steps = static_cast<long long>(num("steps", 100000));
+    const double amplitude = num("amplitude", 0.09), frequency = num("frequency", 10.0);
+    try {
+        const auto t0 = std::chrono::steady_clock::now();
+        plate::PlateSimulation sim(p, 0.0);
+        const auto t1 = std::chrono::steady_clock::now();
+        const double floorBefore = sim.measureFloorSolveSeconds();
+        // Communication step 1e-4 s (or dt if larger), input derivatives as the FMU gets them.
+        const long long perComm = std::max(1LL, std::llround(1e-4 / p.dt));
+        const double omega = 2.0 * M_PI * frequency;
+        double energySum = 0.0;
+        const auto t2 = std::chrono::steady_clock::now();
+        for (long long done = 0; done < steps; done += perComm) {
+            const double t = sim.time();
+            const plate::InputSignal base{amplitude * std::sin(omega * t),
+                                          amplitude * omega * std::cos(omega * t),
+                                          -amplitude * omega * omega * std::sin(omega * t)};
+            sim.advance(std::min(perComm, steps - done), base, plate::InputSignal{});
+            energySum += sim.outputs().energy;  // outputs are read every communication step
+        }
+        const auto t3 = std::chrono::steady_clock::now();
+        const double floorAfter = sim.measureFloorSolveSeconds();
+        const double floor = std::min(floorBefore, floorAfter);
+        const double perStep = std::chrono::duration<double>(t3 - t2).count() / steps;
+        const auto o = sim.outputs();
+        std::printf(
+            "{\"element\": \"%s\", \"nx\": %d, \"ny\": %d, \"dt\": %g, \"beta\": %g, \"modes\": %d, "
+            "\"steps\": %lld, \"setup_s\": %.6g, \"wall_s\": %.6g, \"step_s\": %.6g, "
+            "\"floor_solve_s\": %.6g, \"step_over_floor\": %.4g, \"qp_iterations_total\": %lld, "
+            "\"energy_dissipated\": %.10g, \"checksum\": %.10g}\n",
+            p.element == plate::ElementType::Fvs ? "fvs" : "argyris", p.nx, p.ny, p.dt, p.beta,
+            p.modes, steps, std::chrono::duration<double>(t1 - t0).count(),
+            std::chrono::duration<double>(t3 - t2).count(), perStep, floor, perStep / floor,
+            o.qpIterationsTotal, o.energyDissipated, energySum);
+    } catch (const std::exception& e) {
+        std::fprintf(stderr, "plate_bench: %s\n", e.what());
+        return 1;
+    }
+    return 0;
+}
