@@ -2,6 +2,7 @@
 // What the Newmark–contact stepper needs of a discretized clamped plate: the linear algebra of
 // (3.6) in some coordinates w (the full FE space, or a modal basis), nothing about elements.
 #include <Eigen/Core>
+#include <functional>
 
 #include "Assembly.h"
 
@@ -17,10 +18,16 @@ public:
     // x = A⁻¹ b with A = M + βΔt²K, factored once (NOTES.md: never a refactorization per step).
     virtual void solveStepMatrix(const Eigen::VectorXd& b, Eigen::VectorXd& x) const = 0;
 
+    // A solver x = K⁻¹ b for the static problem of the initial state (§5.2); it owns whatever
+    // factor it needs, used a few times at initialization and then dropped.
+    using Solver = std::function<void(const Eigen::VectorXd& b, Eigen::VectorXd& x)>;
+    virtual Solver stiffnessSolver() const = 0;
+
     // Contact: vertex values y = C w of the vertices carrying a bound, and A⁻¹Cᵀe_j.
     virtual int contactCount() const = 0;
     virtual void gatherContact(const Eigen::VectorXd& w, Eigen::VectorXd& y) const = 0;
     virtual void stepMatrixContactColumn(int j, Eigen::VectorXd& z) const = 0;
+    virtual void contactDirection(int j, Eigen::VectorXd& c) const = 0;  // Cᵀ e_j
 
     virtual const Eigen::VectorXd& pressureLoad() const = 0;  // F (unit pressure)
     virtual const Eigen::VectorXd& baseInertia() const = 0;   // (M·1)_free

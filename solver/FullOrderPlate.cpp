@@ -21,16 +21,26 @@ void FullOrderPlate::solveStepMatrix(const Eigen::VectorXd& b, Eigen::VectorXd& 
     stepFactor_.solve(b, x);
 }
 
+DiscretePlate::Solver FullOrderPlate::stiffnessSolver() const {
+    auto factor = std::make_shared<const CholmodFactor>(plate_->stiffness);
+    return [factor](const Eigen::VectorXd& b, Eigen::VectorXd& x) { factor->solve(b, x); };
+}
+
 void FullOrderPlate::gatherContact(const Eigen::VectorXd& w, Eigen::VectorXd& y) const {
     const auto& dofs = plate_->contactDofs;
     y.resize(static_cast<Eigen::Index>(dofs.size()));
     for (std::size_t i = 0; i < dofs.size(); ++i) y[i] = w[dofs[i]];
 }
 
+void FullOrderPlate::contactDirection(int j, Eigen::VectorXd& c) const {
+    c = Eigen::VectorXd::Zero(size());
+    c[plate_->contactDofs[j]] = 1.0;
+}
+
 void FullOrderPlate::stepMatrixContactColumn(int j, Eigen::VectorXd& z) const {
-    Eigen::VectorXd e = Eigen::VectorXd::Zero(size());
-    e[plate_->contactDofs[j]] = 1.0;
-    stepFactor_.solve(e, z);
+    Eigen::VectorXd c;
+    contactDirection(j, c);
+    stepFactor_.solve(c, z);
 }
 
 }  // namespace plate

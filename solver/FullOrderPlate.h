@@ -17,9 +17,11 @@ public:
     void applyStiffness(const Eigen::VectorXd& w, Eigen::VectorXd& out) const override;
     void applyMass(const Eigen::VectorXd& w, Eigen::VectorXd& out) const override;
     void solveStepMatrix(const Eigen::VectorXd& b, Eigen::VectorXd& x) const override;
+    Solver stiffnessSolver() const override;
     int contactCount() const override { return static_cast<int>(plate_->contactDofs.size()); }
     void gatherContact(const Eigen::VectorXd& w, Eigen::VectorXd& y) const override;
     void stepMatrixContactColumn(int j, Eigen::VectorXd& z) const override;
+    void contactDirection(int j, Eigen::VectorXd& c) const override;
     const Eigen::VectorXd& pressureLoad() const override { return plate_->pressureLoad; }
     const Eigen::VectorXd& baseInertia() const override { return plate_->baseInertia; }
     double totalMass() const override { return plate_->totalMass; }

@@ -25,6 +25,9 @@ struct PlateParameters {
     double beta = 0.5;
     double initialLoad = 0.0;      // Pa
     int modes = 0;                 // 0 = full space (exact)
+    // How exact mode runs (not an FMU parameter: the result is the same scheme either way;
+    // benchmarks and tests pin it to compare the two).
+    enum class Engine { Auto, SparseFactor, CompleteModal } engine = Engine::Auto;
 
     double bendingStiffness() const {
         return youngsModulus * thickness * thickness * thickness /

@@ -9,6 +9,7 @@
 #include "BoxQP.h"
 #include "CholmodFactor.h"
 #include "FullOrderPlate.h"
+#include "ModalPlate.h"
 #include "NewmarkContactStepper.h"
 
 namespace plate {
@@ -47,28 +48,25 @@ Obstacles obstaclesOf(const PlateParameters& p) {
 }
 
 // Static equilibrium K w = p0 F between the obstacles (the initial state of §5.2), with the
-// clamp at z0: the same contact-space QP as a time step, with S = K.
-Eigen::VectorXd staticEquilibrium(const ClampedPlate& plate, const Obstacles& obstacles,
+// clamp at z0: the same contact-space QP as a time step, with S = K, in the plate's own
+// coordinates.
+Eigen::VectorXd staticEquilibrium(const DiscretePlate& plate, const Obstacles& obstacles,
                                   double z0, double p0) {
-    const CholmodFactor stiffnessFactor(plate.stiffness);
+    const DiscretePlate::Solver solveK = plate.stiffnessSolver();
     Eigen::VectorXd w;
-    stiffnessFactor.solve(Eigen::VectorXd(p0 * plate.pressureLoad), w);
+    solveK(Eigen::VectorXd(p0 * plate.pressureLoad()), w);
     if (!obstacles.any()) return w;
-    const int m = static_cast<int>(plate.contactDofs.size());
-    auto gather = [&plate](const Eigen::VectorXd& z, Eigen::VectorXd& y) {
-        y.resize(static_cast<Eigen::Index>(plate.contactDofs.size()));
-        for (std::size_t i = 0; i < plate.contactDofs.size(); ++i) y[i] = z[plate.contactDofs[i]];
-    };
+    const int m = plate.contactCount();
     ContactColumns columns(
         m,
         [&](int j, Eigen::VectorXd& z) {
-            Eigen::VectorXd e = Eigen::VectorXd::Zero(plate.stiffness.rows());
-            e[plate.contactDofs[j]] = 1.0;
-            stiffnessFactor.solve(e, z);
+            Eigen::VectorXd c;
+            plate.contactDirection(j, c);
+            solveK(c, z);
         },
-        gather);
+        [&plate](const Eigen::VectorXd& z, Eigen::VectorXd& y) { plate.gatherContact(z, y); });
     Eigen::VectorXd yFree, y, mu = Eigen::VectorXd::Zero(m);
-    gather(w, yFree);
+    plate.gatherContact(w, yFree);
     const Eigen::VectorXd lower = Eigen::VectorXd::Constant(m, obstacles.lower - z0);
     const Eigen::VectorXd upper = Eigen::VectorXd::Constant(m, obstacles.upper - z0);
     std::vector<signed char> state(m, 0);
@@ -85,13 +83,19 @@ Eigen::VectorXd staticEquilibrium(const ClampedPlate& plate, const Obstacles& ob
     return w;
 }
 
+// Exact mode (modes = 0) runs the complete modal basis where it is cheaper per step than the
+// sparse factor of A — small spaces, where CΦ is a small dense product (both are the same
+// scheme (3.6) in other coordinates) — and the sparse factor beyond.
+constexpr Eigen::Index kCompleteModalLimit = 1200;
+
 }  // namespace
 
 struct PlateSimulation::Impl {
     PlateParameters parameters;
     std::shared_ptr<const FiniteElementSpace> space;
     std::shared_ptr<const ClampedPlate> clamped;
-    std::shared_ptr<const FullOrderPlate> discrete;
+    std::shared_ptr<const DiscretePlate> discrete;
+    mutable std::unique_ptr<CholmodFactor> floorFactor;  // sparse A, for the floor measurement
     std::unique_ptr<NewmarkContactStepper> stepper;
     PointProbe corner1, corner2, freeEdgeMid;
     mutable double kappa = -1.0;
@@ -132,9 +136,16 @@ PlateSimulation::PlateSimulation(const PlateParameters& p, double baseDisplaceme
             throw ParameterError(msg.str());
         }
     }
-    s.discrete = std::make_shared<const FullOrderPlate>(s.space, s.clamped, p.dt, p.beta);
+    const Eigen::Index n = s.clamped->mass.rows();
+    using Engine = PlateParameters::Engine;
+    const bool modal = p.modes > 0 || p.engine == Engine::CompleteModal ||
+                       (p.engine == Engine::Auto && n <= kCompleteModalLimit);
+    if (modal)
+        s.discrete = std::make_shared<const ModalPlate>(s.space, s.clamped, p.dt, p.beta, p.modes);
+    else
+        s.discrete = std::make_shared<const FullOrderPlate>(s.space, s.clamped, p.dt, p.beta);
     s.stepper = std::make_unique<NewmarkContactStepper>(s.discrete, p.dt, p.beta, obstacles);
-    const Eigen::VectorXd w0 = staticEquilibrium(*s.clamped, obstacles, baseDisplacement0,
+    const Eigen::VectorXd w0 = staticEquilibrium(*s.discrete, obstacles, baseDisplacement0,
                                                  p.initialLoad);
     s.stepper->initialize(w0, baseDisplacement0, 0.0);
     s.corner1 = s.discrete->probe(p.length, 0.0);
@@ -187,20 +198,32 @@ std::vector<double> PlateSimulation::vertexDisplacements() const {
     const Impl& s = *impl_;
     const NewmarkState& st = s.stepper->state();
     std::vector<double> u(s.space->mesh().vertexCount(), st.z);
+    Eigen::VectorXd y;
+    s.discrete->gatherContact(st.w, y);
     for (std::size_t i = 0; i < s.clamped->contactVertices.size(); ++i)
-        u[s.clamped->contactVertices[i]] += st.w[s.clamped->contactDofs[i]];
+        u[s.clamped->contactVertices[i]] += y[static_cast<Eigen::Index>(i)];
     return u;
 }
 
 double PlateSimulation::kappa() const {
-    if (impl_->kappa < 0.0) impl_->kappa = largestEigenvalue(*impl_->clamped);
+    if (impl_->kappa < 0.0) {
+        const auto* modal = dynamic_cast<const ModalPlate*>(impl_->discrete.get());
+        impl_->kappa = modal && modal->complete() ? modal->omega2().maxCoeff()
+                                                  : largestEigenvalue(*impl_->clamped);
+    }
     return impl_->kappa;
 }
 
 double PlateSimulation::measureFloorSolveSeconds(int repeats) const {
-    const auto& factor = impl_->discrete->stepFactor();
-    Eigen::VectorXd b = impl_->stepper->state().kw, x(b.size());
-    b += Eigen::VectorXd::Constant(b.size(), 1e-3);
+    // The floor is one solve with the sparse factor of A = M + βΔt²K (NOTES.md), whatever
+    // coordinates the stepper runs in.
+    const Impl& s = *impl_;
+    if (!s.floorFactor)
+        s.floorFactor = std::make_unique<CholmodFactor>(Eigen::SparseMatrix<double>(
+            s.clamped->mass + (s.parameters.beta * s.parameters.dt * s.parameters.dt) *
+                                  s.clamped->stiffness));
+    const CholmodFactor& factor = *s.floorFactor;
+    Eigen::VectorXd b = s.clamped->pressureLoad, x(b.size());
     std::vector<double> batches;
     const int perBatch = std::max(1, repeats / 20);
     for (int batch = 0; batch < 21; ++batch) {
