@@ -1,5 +1,7 @@
 #include "FullOrderPlate.h"
 
+#include "Kernels.h"
+
 namespace plate {
 
 FullOrderPlate::FullOrderPlate(std::shared_ptr<const FiniteElementSpace> space,
@@ -7,14 +9,15 @@ FullOrderPlate::FullOrderPlate(std::shared_ptr<const FiniteElementSpace> space,
     : space_(std::move(space)),
       plate_(std::move(plate)),
       stepFactor_(Eigen::SparseMatrix<double>(plate_->mass + (beta * dt * dt) * plate_->stiffness)),
-      stiffnessRows_(plate_->stiffness) {}
+      stiffnessRows_(plate_->stiffness),
+      massRows_(plate_->mass) {}
 
 void FullOrderPlate::applyStiffness(const Eigen::VectorXd& w, Eigen::VectorXd& out) const {
-    out.noalias() = stiffnessRows_ * w;
+    multiplyRows(stiffnessRows_, w, out);
 }
 
 void FullOrderPlate::applyMass(const Eigen::VectorXd& w, Eigen::VectorXd& out) const {
-    out.noalias() = plate_->mass * w;
+    multiplyRows(massRows_, w, out);
 }
 
 void FullOrderPlate::solveStepMatrix(const Eigen::VectorXd& b, Eigen::VectorXd& x) const {

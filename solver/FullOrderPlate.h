@@ -33,8 +33,8 @@ private:
     std::shared_ptr<const FiniteElementSpace> space_;
     std::shared_ptr<const ClampedPlate> plate_;
     CholmodFactor stepFactor_;
-    // Row-major copy of K: the per-step product K w streams rows (faster than column-major).
-    Eigen::SparseMatrix<double, Eigen::RowMajor> stiffnessRows_;
+    // Row-major copies for the per-step product K w and the energy's M v (Kernels.h).
+    Eigen::SparseMatrix<double, Eigen::RowMajor> stiffnessRows_, massRows_;
 };
 
 }  // namespace plate

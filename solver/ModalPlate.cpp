@@ -4,6 +4,7 @@
 #include <stdexcept>
 
 #include "CholmodFactor.h"
+#include "Kernels.h"
 
 namespace plate {
 
@@ -74,9 +75,8 @@ ModalPlate::ModalPlate(std::shared_ptr<const FiniteElementSpace> space,
     complete_ = phi_.cols() == plate_->mass.rows();
     inverseStep_ = (1.0 + beta * dt * dt * omega2_.array()).inverse().matrix();
     const auto& dofs = plate_->contactDofs;
-    contactModes_.resize(static_cast<Eigen::Index>(dofs.size()), phi_.cols());
-    for (std::size_t i = 0; i < dofs.size(); ++i) contactModes_.row(i) = phi_.row(dofs[i]);
-    contactModesT_ = contactModes_.transpose();
+    contactModesT_.resize(phi_.cols(), static_cast<Eigen::Index>(dofs.size()));
+    for (std::size_t i = 0; i < dofs.size(); ++i) contactModesT_.col(i) = phi_.row(dofs[i]).transpose();
     pressureLoad_ = phi_.transpose() * plate_->pressureLoad;
     baseInertia_ = phi_.transpose() * plate_->baseInertia;
 }
@@ -98,7 +98,7 @@ DiscretePlate::Solver ModalPlate::stiffnessSolver() const {
 }
 
 void ModalPlate::gatherContact(const Eigen::VectorXd& w, Eigen::VectorXd& y) const {
-    y.noalias() = contactModes_ * w;
+    multiplyTransposed(contactModesT_, w, y);
 }
 
 void ModalPlate::stepMatrixContactColumn(int j, Eigen::VectorXd& z) const {

@@ -25,7 +25,7 @@ public:
     void applyMass(const Eigen::VectorXd& w, Eigen::VectorXd& out) const override;
     void solveStepMatrix(const Eigen::VectorXd& b, Eigen::VectorXd& x) const override;
     Solver stiffnessSolver() const override;
-    int contactCount() const override { return static_cast<int>(contactModes_.rows()); }
+    int contactCount() const override { return static_cast<int>(contactModesT_.cols()); }
     void gatherContact(const Eigen::VectorXd& w, Eigen::VectorXd& y) const override;
     void stepMatrixContactColumn(int j, Eigen::VectorXd& z) const override;
     void contactDirection(int j, Eigen::VectorXd& c) const override { c = contactModesT_.col(j); }
@@ -48,8 +48,7 @@ private:
     Eigen::MatrixXd phi_;           // free dofs x modes
     Eigen::VectorXd omega2_;        // Ω²
     Eigen::VectorXd inverseStep_;   // 1 / (1 + βΔt²ω²)
-    Eigen::MatrixXd contactModes_;  // CΦ: contact vertices x modes, row-major use via transpose
-    Eigen::MatrixXd contactModesT_; // (CΦ)ᵀ, so y = (CΦ)α reads contiguous columns
+    Eigen::MatrixXd contactModesT_;  // (CΦ)ᵀ: column j = mode shapes at contact vertex j
     Eigen::VectorXd pressureLoad_, baseInertia_;
 };
 

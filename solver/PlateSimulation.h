@@ -1,6 +1,7 @@
 #pragma once
 // The plate as a co-simulation component: parameters in, the Newmark–contact scheme (3.3)
 // advanced at a fixed Δt, probe values and energies out. No FMI knowledge here.
+#include <Eigen/Core>
 #include <memory>
 #include <string>
 #include <vector>
@@ -52,6 +53,10 @@ public:
     double displacement(double x, double y) const;
     // Vertex values of the absolute displacement at t_n (for plots and checks).
     std::vector<double> vertexDisplacements() const;
+
+    // "sparse" (factor of A), "modal-complete" (exact, all modes) or "modal-<m>" (reduced).
+    std::string engine() const;
+    Eigen::Index dofCount() const;  // free dofs of the FE space
 
     // Largest eigenvalue of M^{-1} K of the clamped plate (κ_h, NOTES.md), s^-2.
     double kappa() const;

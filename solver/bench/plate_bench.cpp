@@ -4,14 +4,55 @@
 //   plate_bench [key=value ...]   keys: element=argyris|fvs nx ny dt beta steps amplitude
 //                                 frequency gap (both obstacles at ±gap; gap=0 disables them)
 //                                 modes initial_load lower_only=0|1
+//                                 engine=auto|sparse|modal (how exact mode runs)
+//                                 export=DIR (write M, K, F, M·1 and the contact dofs of the
+//                                 clamped plate as Matrix Market / text files, then exit)
 #include <chrono>
 #include <cmath>
 #include <cstdio>
 #include <cstdlib>
+#include <fstream>
 #include <map>
 #include <string>
 
+#include <unsupported/Eigen/SparseExtra>
+
+#include "Assembly.h"
 #include "PlateSimulation.h"
+
+namespace {
+
+// The clamped plate's matrices for independent checks and the plain Python/SciPy baseline.
+int exportMatrices(const plate::PlateParameters& p, const std::string& dir) {
+    const plate::Mesh mesh(p.length, p.width, p.nx, p.ny);
+    const auto space = plate::makeSpace(p.element, mesh);
+    const auto matrices =
+        plate::assemble(*space, p.surfaceDensity(), p.bendingStiffness(), p.poissonRatio);
+    const auto clamped = plate::clamp(*space, matrices);
+    Eigen::saveMarket(clamped.mass, dir + "/mass.mtx");
+    Eigen::saveMarket(clamped.stiffness, dir + "/stiffness.mtx");
+    std::ofstream vectors(dir + "/vectors.txt");
+    vectors.precision(17);
+    vectors << "# pressure_load base_inertia (free dofs); total_mass " << clamped.totalMass << "\n";
+    for (Eigen::Index i = 0; i < clamped.pressureLoad.size(); ++i)
+        vectors << clamped.pressureLoad[i] << " " << clamped.baseInertia[i] << "\n";
+    std::ofstream contact(dir + "/contact_dofs.txt");
+    for (auto d : clamped.contactDofs) contact << d << "\n";
+    std::ofstream probes(dir + "/probes.txt");
+    probes.precision(17);
+    for (const auto& xy : {std::pair{p.length, 0.0}, std::pair{p.length, p.width},
+                           std::pair{p.length, 0.5 * p.width}}) {
+        const auto probe = clamped.probe(*space, xy.first, xy.second);
+        for (std::size_t k = 0; k < probe.dofs.size(); ++k)
+            probes << probe.dofs[k] << ":" << probe.coefficients[k] << " ";
+        probes << "\n";
+    }
+    std::printf("{\"exported\": \"%s\", \"dofs\": %ld, \"total_mass\": %.17g}\n", dir.c_str(),
+                static_cast<long>(clamped.mass.rows()), clamped.totalMass);
+    return 0;
+}
+
+}  // namespace
 
 int main(int argc, char** argv) {
     std::map<std::string, std::string> args;
@@ -41,6 +82,13 @@ int main(int argc, char** argv) {
     p.obstacleLowerEnabled = p.obstacleUpperEnabled = gap > 0.0;
     if (gap > 0.0) p.obstacleLower = -gap, p.obstacleUpper = gap;
     if (num("lower_only", 0) != 0) p.obstacleUpperEnabled = false;
+    if (args.count("engine")) {
+        const std::string e = args["engine"];
+        p.engine = e == "sparse"  ? plate::PlateParameters::Engine::SparseFactor
+                   : e == "modal" ? plate::PlateParameters::Engine::CompleteModal
+                                  : plate::PlateParameters::Engine::Auto;
+    }
+    if (args.count("export")) return exportMatrices(p, args["export"]);
     const long long steps = static_cast<long long>(num("steps", 100000));
     const double amplitude = num("amplitude", 0.09), frequency = num("frequency", 10.0);
     try {
@@ -68,11 +116,11 @@ int main(int argc, char** argv) {
         const auto o = sim.outputs();
         std::printf(
             "{\"element\": \"%s\", \"nx\": %d, \"ny\": %d, \"dt\": %g, \"beta\": %g, \"modes\": %d, "
-            "\"steps\": %lld, \"setup_s\": %.6g, \"wall_s\": %.6g, \"step_s\": %.6g, "
+            "\"engine\": \"%s\", \"dofs\": %ld, \"steps\": %lld, \"setup_s\": %.6g, \"wall_s\": %.6g, \"step_s\": %.6g, "
             "\"floor_solve_s\": %.6g, \"step_over_floor\": %.4g, \"qp_iterations_total\": %lld, "
             "\"energy_dissipated\": %.10g, \"checksum\": %.10g}\n",
             p.element == plate::ElementType::Fvs ? "fvs" : "argyris", p.nx, p.ny, p.dt, p.beta,
-            p.modes, steps, std::chrono::duration<double>(t1 - t0).count(),
+            p.modes, sim.engine().c_str(), static_cast<long>(sim.dofCount()), steps, std::chrono::duration<double>(t1 - t0).count(),
             std::chrono::duration<double>(t3 - t2).count(), perStep, floor, perStep / floor,
             o.qpIterationsTotal, o.energyDissipated, energySum);
     } catch (const std::exception& e) {
