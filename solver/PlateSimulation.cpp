@@ -222,6 +222,20 @@ std::string PlateSimulation::engine() const {
 
 Eigen::Index PlateSimulation::dofCount() const { return impl_->clamped->mass.rows(); }
 
+double PlateSimulation::firstFrequency() const {
+    const auto* modal = dynamic_cast<const ModalPlate*>(impl_->discrete.get());
+    double omega2;
+    if (modal) {
+        omega2 = modal->omega2()[0];
+    } else {
+        Eigen::MatrixXd phi;
+        Eigen::VectorXd w2;
+        lowestModes(*impl_->clamped, 1, phi, w2);
+        omega2 = w2[0];
+    }
+    return std::sqrt(omega2) / (2.0 * M_PI);
+}
+
 double PlateSimulation::kappa() const {
     if (impl_->kappa < 0.0) {
         const auto* modal = dynamic_cast<const ModalPlate*>(impl_->discrete.get());

@@ -58,6 +58,9 @@ public:
     std::string engine() const;
     Eigen::Index dofCount() const;  // free dofs of the FE space
 
+    // Lowest natural frequency of the clamped plate, Hz (the accuracy yardstick of a mesh).
+    double firstFrequency() const;
+
     // Largest eigenvalue of M^{-1} K of the clamped plate (κ_h, NOTES.md), s^-2.
     double kappa() const;
     // Time of one solve with the factor of A, measured now (median of repeats), s.

@@ -8,6 +8,7 @@
 //                                 series=FILE (CSV of the outputs every communication step;
 //                                 its writing is outside the timed loop's cost only roughly)
 //                                 comm=SECONDS (communication step, default 1e-4)
+//                                 spectrum=1 (also print the first frequency and κ_h)
 //                                 export=DIR (write M, K, F, M·1 and the contact dofs of the
 //                                 clamped plate as Matrix Market / text files, then exit)
 #include <chrono>
@@ -131,15 +132,23 @@ int main(int argc, char** argv) {
         const double floor = std::min(floorBefore, floorAfter);
         const double perStep = std::chrono::duration<double>(t3 - t2).count() / steps;
         const auto o = sim.outputs();
+        // spectrum=1: the lowest frequency and κ_h = λ_max(M⁻¹K) (outside the timed loop).
+        std::string spectrum;
+        if (num("spectrum", 0) != 0) {
+            char buffer[128];
+            std::snprintf(buffer, sizeof buffer, ", \"first_frequency_hz\": %.10g, \"kappa\": %.6g",
+                          sim.firstFrequency(), sim.kappa());
+            spectrum = buffer;
+        }
         std::printf(
             "{\"element\": \"%s\", \"nx\": %d, \"ny\": %d, \"dt\": %g, \"beta\": %g, \"modes\": %d, "
             "\"engine\": \"%s\", \"dofs\": %ld, \"steps\": %lld, \"setup_s\": %.6g, \"wall_s\": %.6g, \"step_s\": %.6g, "
             "\"floor_solve_s\": %.6g, \"step_over_floor\": %.4g, \"qp_iterations_total\": %lld, "
-            "\"energy_dissipated\": %.10g, \"checksum\": %.10g}\n",
+            "\"energy_dissipated\": %.10g, \"checksum\": %.10g%s}\n",
             p.element == plate::ElementType::Fvs ? "fvs" : "argyris", p.nx, p.ny, p.dt, p.beta,
             p.modes, sim.engine().c_str(), static_cast<long>(sim.dofCount()), steps, std::chrono::duration<double>(t1 - t0).count(),
             std::chrono::duration<double>(t3 - t2).count(), perStep, floor, perStep / floor,
-            o.qpIterationsTotal, o.energyDissipated, energySum);
+            o.qpIterationsTotal, o.energyDissipated, energySum, spectrum.c_str());
     } catch (const std::exception& e) {
         std::fprintf(stderr, "plate_bench: %s\n", e.what());
         return 1;
