@@ -17,8 +17,9 @@ void ContactColumns::ensure(int j) {
     ++computed_;
 }
 
-BoxQP::BoxQP(ContactColumns& columns)
+BoxQP::BoxQP(ContactColumns& columns, int maxPdasIterations)
     : columns_(columns),
+      maxPdasIterations_(maxPdasIterations),
       wss_(columns.count(), columns.count()),
       rhs_(columns.count()),
       residualOnActive_(columns.count()),
@@ -51,7 +52,16 @@ void BoxQP::solveOnActive(const Eigen::VectorXd& yFree, const Eigen::VectorXd& l
         }
         Eigen::Ref<Eigen::MatrixXd> block = wss_.topLeftCorner(na, na);
         Eigen::LLT<Eigen::Ref<Eigen::MatrixXd>> llt(block);  // in place: no allocation
-        factoredSet_ = llt.info() == Eigen::Success ? active_ : std::vector<int>{};
+        if (llt.info() == Eigen::Success)
+            factoredSet_.assign(active_.begin(), active_.end());  // within reserved capacity
+        else
+            factoredSet_.clear();
+    }
+    if (factoredSet_ != active_) {
+        // W_SS is SPD in exact arithmetic; if roundoff broke that, make the failure visible
+        // (NaN multipliers fail the KKT check and the step is refused), never guess.
+        for (int i : active_) mu[i] = std::numeric_limits<double>::quiet_NaN();
+        return;
     }
     for (int a = 0; a < na; ++a) {
         const int i = active_[a];
@@ -81,8 +91,7 @@ QPResult BoxQP::solve(const Eigen::VectorXd& yFree, const Eigen::VectorXd& lower
     const int m = columns_.count();
     for (int i : active_) mu[i] = 0.0;  // mu is zero off the active set: clear the old one
     QPResult result;
-    constexpr int kMaxPdas = 30;
-    for (int it = 1; it <= kMaxPdas; ++it) {
+    for (int it = 1; it <= maxPdasIterations_; ++it) {
         active_.clear();
         for (int i = 0; i < m; ++i)
             if (state[i] != 0) active_.push_back(i);

@@ -46,7 +46,8 @@ struct QPResult {
 // the fallback if the PDAS iteration cycles.
 class BoxQP {
 public:
-    explicit BoxQP(ContactColumns& columns);
+    // maxPdasIterations = 0 runs the primal active-set method alone (tests check both paths).
+    explicit BoxQP(ContactColumns& columns, int maxPdasIterations = 30);
 
     // state[i]: −1 on the lower bound, +1 on the upper bound, 0 free. In: warm start; out: the
     // solution's set. mu and y are overwritten (mu zero off the active set).
@@ -70,6 +71,7 @@ private:
                        const Eigen::VectorXd& mu, const Eigen::VectorXd& y) const;
 
     ContactColumns& columns_;
+    int maxPdasIterations_;
     std::vector<int> active_;
     std::vector<int> factoredSet_;       // the set whose W_SS is factored in wss_
     Eigen::MatrixXd wss_;                // capacity count x count; top-left block in use
