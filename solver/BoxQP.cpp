@@ -38,12 +38,12 @@ inline double target(int i, signed char s, const Eigen::VectorXd& lower,
 inline double slack(double bound) { return 1e-15 * (1.0 + std::abs(bound)); }
 }  // namespace
 
-void BoxQP::solveOnActive(const Eigen::VectorXd& yFree, const Eigen::VectorXd& lower,
+bool BoxQP::solveOnActive(const Eigen::VectorXd& yFree, const Eigen::VectorXd& lower,
                           const Eigen::VectorXd& upper, const std::vector<signed char>& state,
                           Eigen::VectorXd& mu, Eigen::VectorXd& y) {
     const int na = static_cast<int>(active_.size());
     y = yFree;
-    if (na == 0) return;
+    if (na == 0) return true;
     // W_SS only changes with the set: in sustained contact it is factored once.
     if (factoredSet_ != active_) {
         for (int b = 0; b < na; ++b) {
@@ -52,17 +52,15 @@ void BoxQP::solveOnActive(const Eigen::VectorXd& yFree, const Eigen::VectorXd& l
         }
         Eigen::Ref<Eigen::MatrixXd> block = wss_.topLeftCorner(na, na);
         Eigen::LLT<Eigen::Ref<Eigen::MatrixXd>> llt(block);  // in place: no allocation
-        if (llt.info() == Eigen::Success)
+        // A reduced (modal) plate has rank(W) ≤ modes: a set of more, or of dependent,
+        // vertices gives a singular W_SS. Treat a pivot below 1e-12 of the largest as that.
+        const auto d = block.diagonal().cwiseAbs2();
+        if (llt.info() == Eigen::Success && d.minCoeff() > 1e-12 * d.maxCoeff())
             factoredSet_.assign(active_.begin(), active_.end());  // within reserved capacity
         else
             factoredSet_.clear();
     }
-    if (factoredSet_ != active_) {
-        // W_SS is SPD in exact arithmetic; if roundoff broke that, make the failure visible
-        // (NaN multipliers fail the KKT check and the step is refused), never guess.
-        for (int i : active_) mu[i] = std::numeric_limits<double>::quiet_NaN();
-        return;
-    }
+    if (factoredSet_ != active_) return false;  // singular on this set: the caller decides
     for (int a = 0; a < na; ++a) {
         const int i = active_[a];
         rhs_[a] = target(i, state[i], lower, upper) - yFree[i];
@@ -83,6 +81,7 @@ void BoxQP::solveOnActive(const Eigen::VectorXd& yFree, const Eigen::VectorXd& l
         residualOnActive_[a] = y[i] - t;
         y[i] = t;  // on the obstacle exactly, not up to the roundoff of y_free + Wμ
     }
+    return true;
 }
 
 QPResult BoxQP::solve(const Eigen::VectorXd& yFree, const Eigen::VectorXd& lower,
@@ -96,7 +95,7 @@ QPResult BoxQP::solve(const Eigen::VectorXd& yFree, const Eigen::VectorXd& lower
         for (int i = 0; i < m; ++i)
             if (state[i] != 0) active_.push_back(i);
         for (int i : active_) mu[i] = 0.0;
-        solveOnActive(yFree, lower, upper, state, mu, y);
+        if (!solveOnActive(yFree, lower, upper, state, mu, y)) break;  // dependent set: fallback
         bool changed = false;
         for (int i : active_) {
             if ((state[i] < 0 && mu[i] < 0.0) || (state[i] > 0 && mu[i] > 0.0)) {
@@ -139,16 +138,22 @@ bool BoxQP::primalActiveSet(const Eigen::VectorXd& yFree, const Eigen::VectorXd&
     // drop a bound whose multiplier has the wrong sign. Finite for SPD W.
     const int m = columns_.count();
     for (int i : active_) mu[i] = 0.0;
-    Eigen::VectorXd current = yFree.cwiseMax(lower).cwiseMin(upper);
+    // Start from w = 0 (y = 0) with an empty working set when it is feasible — it is in every
+    // time step, the clamp lying between the obstacles. Then every iterate stays in the range
+    // of C (y = C w) and a blocking bound is always independent of the working set, so W_SS
+    // stays nonsingular even for a reduced plate where rank(W) < count.
+    const bool zeroFeasible = (lower.array() <= 0.0).all() && (upper.array() >= 0.0).all();
+    Eigen::VectorXd current = zeroFeasible ? Eigen::VectorXd::Zero(m)
+                                           : Eigen::VectorXd(yFree.cwiseMax(lower).cwiseMin(upper));
     for (int i = 0; i < m; ++i)
-        state[i] = yFree[i] < lower[i] ? -1 : (yFree[i] > upper[i] ? +1 : 0);
+        state[i] = zeroFeasible ? 0 : (yFree[i] < lower[i] ? -1 : (yFree[i] > upper[i] ? +1 : 0));
     const int maxIterations = 10 * m + 100;
     for (iterations = 1; iterations <= maxIterations; ++iterations) {
         active_.clear();
         for (int i = 0; i < m; ++i)
             if (state[i] != 0) active_.push_back(i);
         for (int i = 0; i < m; ++i) mu[i] = 0.0;
-        solveOnActive(yFree, lower, upper, state, mu, yTrial_);
+        if (!solveOnActive(yFree, lower, upper, state, mu, yTrial_)) break;
         double alpha = 1.0;
         int blocking = -1;
         bool moved = false;

@@ -60,7 +60,8 @@ public:
 
 private:
     // Solves W_SS μ_S = target_S − yFree_S on the current active list; fills y (all entries).
-    void solveOnActive(const Eigen::VectorXd& yFree, const Eigen::VectorXd& lower,
+    // False if W_SS is singular (dependent constraints, possible only for a reduced plate).
+    bool solveOnActive(const Eigen::VectorXd& yFree, const Eigen::VectorXd& lower,
                        const Eigen::VectorXd& upper, const std::vector<signed char>& state,
                        Eigen::VectorXd& mu, Eigen::VectorXd& y);
     bool primalActiveSet(const Eigen::VectorXd& yFree, const Eigen::VectorXd& lower,

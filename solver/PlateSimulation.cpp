@@ -154,8 +154,18 @@ PlateSimulation::PlateSimulation(const PlateParameters& p, double baseDisplaceme
     else
         s.discrete = std::make_shared<const FullOrderPlate>(s.space, s.clamped, p.dt, p.beta);
     s.stepper = std::make_unique<NewmarkContactStepper>(s.discrete, p.dt, p.beta, obstacles);
-    const Eigen::VectorXd w0 = staticEquilibrium(*s.discrete, obstacles, baseDisplacement0,
-                                                 p.initialLoad);
+    Eigen::VectorXd w0;
+    const auto* modalPlate = dynamic_cast<const ModalPlate*>(s.discrete.get());
+    if (modalPlate && modalPlate->complete()) {
+        // Exact mode in modal coordinates: solve the static problem with the sparse factor of
+        // K (roundoff ~eps·cond(K) rather than the dense eigen solution's eps·λ_max/λ_1) and
+        // change coordinates, α0 = ΦᵀM w0, exact for the complete basis.
+        const FullOrderPlate full(s.space, s.clamped, p.dt, p.beta);
+        w0 = modalPlate->fromFullSpace(
+            staticEquilibrium(full, obstacles, baseDisplacement0, p.initialLoad));
+    } else {
+        w0 = staticEquilibrium(*s.discrete, obstacles, baseDisplacement0, p.initialLoad);
+    }
     s.stepper->initialize(w0, baseDisplacement0, 0.0);
     s.corner1 = s.discrete->probe(p.length, 0.0);
     s.corner2 = s.discrete->probe(p.length, p.width);

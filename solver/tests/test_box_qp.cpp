@@ -183,3 +183,50 @@ TEST(BoxQP, WarmStartFromTheSolutionTakesOneIteration) {
     EXPECT_TRUE(cold.converged);
     EXPECT_EQ(warm.iterations, 1);  // the previous step's set is the answer: verified, not searched
 }
+
+// A reduced (modal) plate: more contact vertices than coordinates, so W = G S⁻¹ Gᵀ is
+// singular. The solution must still satisfy the full KKT conditions exactly.
+TEST(BoxQP, RankDeficientContactOperatorOfAReducedPlate) {
+    std::mt19937 rng(5);
+    std::normal_distribution<double> g;
+    int withContact = 0;
+    for (int trial = 0; trial < 200; ++trial) {
+        const int n = 6, m = 15;
+        Eigen::MatrixXd a(n, n), gm(m, n);
+        for (int i = 0; i < n; ++i)
+            for (int j = 0; j < n; ++j) a(i, j) = g(rng);
+        for (int i = 0; i < m; ++i)
+            for (int j = 0; j < n; ++j) gm(i, j) = g(rng);
+        const Eigen::MatrixXd s = a * a.transpose() + Eigen::MatrixXd::Identity(n, n);
+        const Eigen::VectorXd b = Eigen::VectorXd::NullaryExpr(n, [&] { return 4.0 * g(rng); });
+        const Eigen::VectorXd lower = Eigen::VectorXd::Constant(m, -0.5);
+        const Eigen::VectorXd upper = trial % 2 ? Eigen::VectorXd::Constant(m, 0.7)
+                                                : Eigen::VectorXd::Constant(m, INFINITY);
+        const Eigen::LLT<Eigen::MatrixXd> llt(s);
+        plate::ContactColumns columns(
+            m, [&](int j, Eigen::VectorXd& z) { z = llt.solve(Eigen::VectorXd(gm.row(j).transpose())); },
+            [&](const Eigen::VectorXd& z, Eigen::VectorXd& y) { y = gm * z; });
+        plate::BoxQP qp(columns);
+        Eigen::VectorXd w = llt.solve(b), yFree = gm * w, mu = Eigen::VectorXd::Zero(m), y;
+        std::vector<signed char> state(m, 0);
+        const auto r = qp.solve(yFree, lower, upper, state, mu, y);
+        ASSERT_TRUE(r.converged) << "trial " << trial;
+        for (int i : qp.active()) w += mu[i] * columns.column(i);
+        const Eigen::VectorXd gw = gm * w;
+        const double scale = s.norm() * w.norm() + b.norm();
+        EXPECT_LE((s * w - b - gm.transpose() * mu).norm(), 1e-10 * scale) << "trial " << trial;
+        const double muScale = std::max(1e-300, mu.cwiseAbs().maxCoeff());
+        for (int i = 0; i < m; ++i) {
+            EXPECT_GE(gw[i], lower[i] - 1e-10);
+            EXPECT_LE(gw[i], upper[i] + 1e-10);
+            if (mu[i] > 0) EXPECT_NEAR(gw[i], lower[i], 1e-10) << "trial " << trial;
+            if (mu[i] < 0) EXPECT_NEAR(gw[i], upper[i], 1e-10) << "trial " << trial;
+            if (state[i] == 0) EXPECT_EQ(mu[i], 0.0);
+            if (state[i] < 0) EXPECT_GE(mu[i], -1e-12 * muScale);
+            if (state[i] > 0) EXPECT_LE(mu[i], 1e-12 * muScale);
+        }
+        withContact += !qp.active().empty();
+        EXPECT_LE(static_cast<int>(qp.active().size()), n);  // independent working set
+    }
+    EXPECT_GT(withContact, 100);
+}
