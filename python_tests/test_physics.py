@@ -349,19 +349,13 @@ def test_energy_ledger_with_base_load_and_both_obstacles(fmu_path, element):
     assert_ledger(forced_run(fmu_path, element, nx, ny))
 
 
-REDUCED_QP_BUG = pytest.mark.xfail(
-    strict=True,
-    reason="modes > 0: the contact operator W = CΦ(I+βΔt²Ω²)⁻¹ΦᵀCᵀ has rank ≤ modes < number "
-           "of contact vertices, but BoxQP assumes W SPD; once more vertices are active than W_SS "
-           "has rank, the active-set iteration fails ('contact QP did not converge', 1731 "
-           "iterations) or returns a non-finite displacement.")
-
-
 @pytest.mark.parametrize("element,modes", [
     ("argyris", 6),
     ("argyris", 20),
-    pytest.param("fvs", 6, marks=REDUCED_QP_BUG),   # fails at t = 0.1236 s (KKT residual 0.75)
-    pytest.param("fvs", 20, marks=REDUCED_QP_BUG),  # fails at t = 0.1809 s (KKT residual 3e5)
+    # More vertices touch than the reduced contact operator has rank here (it used to make the
+    # active set singular: 'contact QP did not converge' at t = 0.1236 s / 0.1809 s).
+    ("fvs", 6),
+    ("fvs", 20),
 ])
 def test_energy_ledger_of_the_reduced_model(fmu_path, element, modes):
     """The reduced model (modes > 0) is the same scheme (3.6) in the span of the lowest modes,
