@@ -1,5 +1,6 @@
 #include "NewmarkContactStepper.h"
 
+#include <algorithm>
 #include <cmath>
 #include <sstream>
 
@@ -105,22 +106,21 @@ void NewmarkContactStepper::step(double zNext, double pNext) {
                 throw StepError(msg.str());
             }
             plate_->gatherContact(s.wPrev, yPrev_);
-            double muSum = 0.0, roundoffWork = 0.0;
+            double muSum = 0.0;
             for (int i : qp_->active()) {
                 wNext_.noalias() += mu_[i] * columns_->column(i);
                 muSum += mu_[i];
-                // Loss ½ λᵀ(u⁻ − u⁺) on the active vertices (NOTES.md), absolute heights.
-                // Each term is ≥ 0 in exact arithmetic (u⁺ on the obstacle, u⁻ not past it),
-                // but the stored u⁻ of a vertex that stays on an obstacle sits there only up to
-                // the roundoff of w + Σ μ_j A⁻¹Cᵀe_j (a few 1e-17 m past it), which makes the
-                // term a few 1e-13 J negative. That is work of the obstacle pushing the vertex
-                // back out of a roundoff penetration, not a negative loss: it is booked as
-                // input work, so energy_dissipated never decreases and the ledger stays exact.
-                const double term = mu_[i] * ((yPrev_[i] + s.zPrev) - (y_[i] + zNext));
-                (term >= 0.0 ? dissipated : roundoffWork) += term;
+                // Loss ½ λᵀ(u⁻ − u⁺) on the active vertices (NOTES.md), absolute heights. Each
+                // term is ≥ 0 in exact arithmetic (u⁺ on the obstacle, u⁻ not past it). A vertex
+                // that stays on the obstacle has u⁻ there only up to the roundoff of
+                // w + Σ μ_j A⁻¹Cᵀe_j (~1e-17 m), which can make its term ~1e-13 J negative: that
+                // is no physical work at all, so it is dropped — energy_dissipated never
+                // decreases, energy_input stays exactly 0 without inputs, and the ledger keeps
+                // closing to roundoff (the dropped amounts are of that size).
+                dissipated += std::max(0.0, mu_[i] * ((yPrev_[i] + s.zPrev) - (y_[i] + zNext)));
             }
             dissipated /= 2.0 * dt2;
-            contactWorkOnBase = (-muSum * (zNext - s.zPrev) - roundoffWork) / (2.0 * dt2);
+            contactWorkOnBase = -muSum * (zNext - s.zPrev) / (2.0 * dt2);
             contactCount = static_cast<int>(qp_->active().size());
         } else {
             std::fill(trialState_.begin(), trialState_.end(), 0);
@@ -136,9 +136,8 @@ void NewmarkContactStepper::step(double zNext, double pNext) {
     }
 
     // Discrete work of the inputs in this step, from the scheme (see energy()): pressure and
-    // base inertia on w⁺ − w⁻, the contact force on the moving frame (and on roundoff
-    // penetrations, above), and the change of the cross term ż vᵀ(M·1) + ½ ż² 1ᵀM1 that turns
-    // the relative energy into the absolute one.
+    // base inertia on w⁺ − w⁻, the contact force on the moving frame, and the change of the
+    // cross term ż vᵀ(M·1) + ½ ż² 1ᵀM1 that turns the relative energy into the absolute one.
     const double zDotNext = (zNext - s.z) / dt_, zDot = (s.z - s.zPrev) / dt_;
     const double mass = plate_->totalMass();
     const double crossNext = zDotNext * (tNext - s.t) / dt_ + 0.5 * zDotNext * zDotNext * mass;
