@@ -1,0 +1,59 @@
+#pragma once
+// The one table of model variables of the PlateImpact FMU: value reference, name, type,
+// causality and accessors. fmi2Get*/fmi2Set* go through this table only; it must agree with
+// modelDescription/modelDescription.xml.in (python_tests/test_fmi_conformance.py checks that).
+#include <cstddef>
+#include <stdexcept>
+
+#include "PlateSimulation.h"
+#include "fmi2Functions.h"
+
+namespace plateimpact {
+
+// Everything an importer can set or read, as plain values.
+struct ModelValues {
+    plate::PlateParameters parameters;  // defaults = the start values in modelDescription.xml
+    plate::InputSignal baseDisplacement;  // value + derivatives (fmi2SetRealInputDerivatives)
+    plate::InputSignal load;
+    plate::PlateOutputs outputs;          // copy of PlateSimulation::outputs() after each change
+};
+
+enum class VariableType { Real, Integer, Boolean, Enumeration };
+enum class Causality { Parameter, Input, Output };
+
+// A value an accessor rejects (e.g. an enumeration value without an item). The message names
+// the variable, the value and what is allowed.
+class VariableError : public std::runtime_error {
+public:
+    using std::runtime_error::runtime_error;
+};
+
+struct Variable {
+    fmi2ValueReference vr;
+    const char* name;
+    VariableType type;
+    Causality causality;
+    // true if a new value changes the initial state of the simulation (parameters and the
+    // base displacement, which places the clamp at t = 0)
+    bool shapesInitialState;
+    // Accessors: the pair matching `type` is set (Enumeration uses the Integer pair); the
+    // setters are null for outputs.
+    double (*getReal)(const ModelValues&);
+    void (*setReal)(ModelValues&, double);
+    int (*getInteger)(const ModelValues&);
+    void (*setInteger)(ModelValues&, int);
+    bool (*getBoolean)(const ModelValues&);
+    void (*setBoolean)(ModelValues&, bool);
+};
+
+// nullptr if no variable has this value reference.
+const Variable* findVariable(fmi2ValueReference vr);
+
+const char* typeName(VariableType type);
+const char* causalityName(Causality causality);
+
+// Value references of the inputs (also used by fmi2SetRealInputDerivatives).
+constexpr fmi2ValueReference kVrBaseDisplacement = 20;
+constexpr fmi2ValueReference kVrLoad = 21;
+
+}  // namespace plateimpact

@@ -1,0 +1,113 @@
+"""The binary of PlateImpact.fmu runs where SuiteSparse is not installed: it needs only glibc
+and the libraries shipped in binaries/linux64, finds them through RPATH=$ORIGIN, links
+libstdc++/libgcc statically and exports nothing but the fmi2* functions."""
+import os
+import re
+import shutil
+import subprocess
+import zipfile
+from pathlib import Path
+
+import pytest
+
+# glibc's libraries: present on every Linux target, never shipped.
+GLIBC = re.compile(r"^(ld-linux.*|linux-vdso.*|libc|libm|libmvec|libpthread|libdl|librt|libutil|libresolv|"
+                   r"libanl|libnsl)\.so(\.[0-9]+)*$")
+
+FMI2_FUNCTIONS = """
+fmi2GetTypesPlatform fmi2GetVersion fmi2SetDebugLogging fmi2Instantiate fmi2FreeInstance
+fmi2SetupExperiment fmi2EnterInitializationMode fmi2ExitInitializationMode fmi2Terminate fmi2Reset
+fmi2GetReal fmi2GetInteger fmi2GetBoolean fmi2GetString fmi2SetReal fmi2SetInteger fmi2SetBoolean
+fmi2SetString fmi2GetFMUstate fmi2SetFMUstate fmi2FreeFMUstate fmi2SerializedFMUstateSize
+fmi2SerializeFMUstate fmi2DeSerializeFMUstate fmi2GetDirectionalDerivative fmi2EnterEventMode
+fmi2NewDiscreteStates fmi2EnterContinuousTimeMode fmi2CompletedIntegratorStep fmi2SetTime
+fmi2SetContinuousStates fmi2GetDerivatives fmi2GetEventIndicators fmi2GetContinuousStates
+fmi2GetNominalsOfContinuousStates fmi2SetRealInputDerivatives fmi2GetRealOutputDerivatives
+fmi2DoStep fmi2CancelStep fmi2GetStatus fmi2GetRealStatus fmi2GetIntegerStatus
+fmi2GetBooleanStatus fmi2GetStringStatus
+""".split()
+
+
+def run(*command):
+    tool = shutil.which(command[0])
+    if tool is None:
+        pytest.skip(f"{command[0]} not installed")
+    return subprocess.run([tool, *command[1:]], capture_output=True, text=True, check=True).stdout
+
+
+@pytest.fixture(scope="module")
+def binaries(fmu_path, tmp_path_factory):
+    assert fmu_path.is_file(), f"FMU not built: {fmu_path} (build it or set PLATEIMPACT_FMU)"
+    target = tmp_path_factory.mktemp("fmu_binaries")
+    with zipfile.ZipFile(fmu_path) as archive:
+        names = archive.namelist()
+        archive.extractall(target)
+    assert "modelDescription.xml" in names
+    folder = target / "binaries" / "linux64"
+    assert (folder / "PlateImpact.so").is_file()
+    return folder
+
+
+def dynamic_section(path):
+    text = run("readelf", "-d", str(path))
+    needed = re.findall(r"\(NEEDED\)\s+Shared library: \[([^\]]+)\]", text)
+    rpath = re.findall(r"\(RPATH\)\s+Library rpath: \[([^\]]*)\]", text)
+    runpath = re.findall(r"\(RUNPATH\)\s+Library runpath: \[([^\]]*)\]", text)
+    return needed, rpath, runpath
+
+
+def test_archive_holds_only_the_fmu_files(fmu_path):
+    with zipfile.ZipFile(fmu_path) as archive:
+        files = [n for n in archive.namelist() if not n.endswith("/")]
+    assert "modelDescription.xml" in files
+    assert "binaries/linux64/PlateImpact.so" in files
+    assert all(f == "modelDescription.xml" or f.startswith("binaries/linux64/") for f in files), files
+
+
+def test_needed_libraries_are_glibc_or_shipped_and_rpath_is_origin(binaries):
+    needed, rpath, runpath = dynamic_section(binaries / "PlateImpact.so")
+    shipped = {p.name for p in binaries.iterdir()}
+    assert needed
+    for name in needed:
+        assert GLIBC.match(name) or name in shipped, f"{name} is neither glibc nor in binaries/linux64"
+    assert not any(n.startswith(("libstdc++", "libgcc_s")) for n in needed), needed  # linked statically
+    assert rpath and "$ORIGIN" in rpath[0].split(":"), rpath
+    assert runpath == [], "DT_RUNPATH would not apply to the dependencies of the dependencies"
+
+
+def test_shipped_libraries_need_only_glibc_or_each_other(binaries):
+    shipped = {p.name for p in binaries.iterdir()}
+    assert any(n.startswith("libcholmod") for n in shipped), shipped
+    for library in binaries.iterdir():
+        needed, _, runpath = dynamic_section(library)
+        # a RUNPATH of a shipped library may only point into its own folder (Debian's COLAMD
+        # carries $ORIGIN); anything else would bypass the FMU's copies
+        for entry in runpath:
+            assert set(entry.split(":")) <= {"$ORIGIN"}, f"{library.name} has RUNPATH {entry}"
+        for name in needed:
+            assert GLIBC.match(name) or name in shipped, f"{library.name} needs {name}, not shipped"
+
+
+def test_only_fmi2_symbols_are_exported(binaries):
+    text = run("nm", "-D", "--defined-only", str(binaries / "PlateImpact.so"))
+    symbols = [line.split()[-1] for line in text.splitlines() if line.strip()]
+    assert [s for s in symbols if not s.startswith("fmi2")] == []
+    assert set(FMI2_FUNCTIONS) <= set(symbols), set(FMI2_FUNCTIONS) - set(symbols)
+
+
+def test_ldd_resolves_everything_into_the_fmu(binaries):
+    # a clean environment: no LD_LIBRARY_PATH that could hide a missing library
+    env = {k: v for k, v in os.environ.items() if k != "LD_LIBRARY_PATH"}
+    text = subprocess.run([shutil.which("ldd") or pytest.skip("ldd not installed"), str(binaries / "PlateImpact.so")],
+                          capture_output=True, text=True, check=True, env=env).stdout
+    assert "not found" not in text, text
+    folder = binaries.resolve()
+    resolved = re.findall(r"^\s*(\S+) => (\S+) \(0x", text, re.MULTILINE)
+    assert resolved
+    bundled = 0
+    for name, path in resolved:
+        if GLIBC.match(name):
+            continue
+        assert Path(path).resolve().parent == folder, f"{name} resolves to {path}, outside the FMU"
+        bundled += 1
+    assert bundled >= 1
