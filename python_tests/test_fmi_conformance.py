@@ -99,7 +99,7 @@ CONFIGS = {
     "argyris": SCENE,
     "argyris_fine": dict(SCENE, nx=28, ny=10),
     "fvs": dict(SCENE, element=2, nx=20, ny=7),
-    "reduced_modal": dict(SCENE, modes=20, initial_load=0.0),
+    "reduced_modal": dict(SCENE, modes=20),
 }
 # A coarse mesh for the checks of the FMI layer that do not depend on the discretization.
 FAST = {"nx": 4, "ny": 2}
