@@ -56,6 +56,10 @@ void NewmarkContactStepper::initialize(const Eigen::VectorXd& w0, double z0, dou
     }
 }
 
+void NewmarkContactStepper::setLoadAtStart(double p0) {
+    if (state_.step == 0) state_.p = state_.pPrev = p0;
+}
+
 void NewmarkContactStepper::step(double zNext, double pNext) {
     NewmarkState& s = state_;
     if (!std::isfinite(zNext) || !std::isfinite(pNext)) {

@@ -49,6 +49,11 @@ public:
     // The plate at rest for t ≤ 0 in the shape w0 with the clamp at z0, pressure p0.
     void initialize(const Eigen::VectorXd& w0, double z0, double p0);
 
+    // The load input at t = 0, known only when the master starts stepping: the history holds
+    // it for t ≤ 0 (NOTES.md: the load acts from t = 0 on; the initial load only shapes u⁰).
+    // Only before the first step.
+    void setLoadAtStart(double p0);
+
     // One step to t_{n+1} with the base at zNext and the pressure at pNext there.
     // Throws StepError without changing the state if the step cannot be taken.
     void step(double zNext, double pNext);

@@ -180,6 +180,8 @@ long long PlateSimulation::stepCount() const { return impl_->stepper->state().st
 
 void PlateSimulation::advance(long long steps, const InputSignal& base, const InputSignal& load) {
     const double dt = impl_->parameters.dt;
+    if (!std::isfinite(load.value)) throw StepError("non-finite load input at the step start");
+    impl_->stepper->setLoadAtStart(load.value);
     for (long long k = 1; k <= steps; ++k) {
         const double s = k * dt;
         impl_->stepper->step(base.at(s), load.at(s));
