@@ -14,8 +14,9 @@ import math
 import shutil
 from pathlib import Path
 
-from fmpy import extract, read_model_description
-from fmpy.fmi2 import FMU2Slave
+from fmpy import calloc, extract, free, read_model_description
+from fmpy.fmi2 import (FMU2Slave, fmi2CallbackAllocateMemoryTYPE, fmi2CallbackFreeMemoryTYPE,
+                       fmi2CallbackFunctions, fmi2CallbackLoggerTYPE)
 
 OUTPUTS = ("corner_1", "corner_2", "free_edge_mid", "energy", "energy_dissipated",
            "energy_input", "contact_vertices", "qp_kkt_residual_max",
@@ -35,10 +36,17 @@ class PlateImpactFMU:
         self.fmu = FMU2Slave(guid=self.md.guid, unzipDirectory=self.unzip_dir,
                              modelIdentifier=self.md.coSimulation.modelIdentifier,
                              instanceName=instance_name)
-        kwargs = {"loggingOn": logger is not None}
+        callbacks = None
         if logger is not None:
-            kwargs["logMessage"] = logger
-        self.fmu.instantiate(**kwargs)
+            # logger(componentEnvironment, instanceName, status, category, message), as fmpy's
+            # printLogMessage; the ctypes objects must outlive the instance: keep them here.
+            self._logger = fmi2CallbackLoggerTYPE(logger)
+            callbacks = fmi2CallbackFunctions()
+            callbacks.logger = self._logger
+            callbacks.allocateMemory = fmi2CallbackAllocateMemoryTYPE(calloc)
+            callbacks.freeMemory = fmi2CallbackFreeMemoryTYPE(free)
+        self._callbacks = callbacks
+        self.fmu.instantiate(callbacks=callbacks, loggingOn=logger is not None)
         self.time = start_time
         self.fmu.setupExperiment(startTime=start_time)
         self.fmu.enterInitializationMode()

@@ -70,7 +70,7 @@ void NewmarkContactStepper::step(double zNext, double pNext) {
     }
     if (zNext < obstacles_.lower || zNext > obstacles_.upper) {
         std::ostringstream msg;
-        msg.precision(17);
+        msg.precision(15);  // round-trips what users type (0.7, not 0.69999999999999996)
         msg << "base_displacement = " << zNext << " at t = " << (s.step + 1) * dt_
             << " puts the clamped edge past "
             << (zNext < obstacles_.lower ? "obstacle_lower = " : "obstacle_upper = ")

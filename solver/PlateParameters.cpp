@@ -10,7 +10,7 @@ namespace {
 template <class T>
 [[noreturn]] void reject(const char* name, T value, const char* allowed) {
     std::ostringstream msg;
-    msg.precision(17);
+    msg.precision(15);  // round-trips what users type (0.7, not 0.69999999999999996)
     msg << "invalid parameter " << name << " = " << value << " (allowed: " << allowed << ")";
     throw ParameterError(msg.str());
 }

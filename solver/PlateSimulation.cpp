@@ -120,7 +120,7 @@ PlateSimulation::PlateSimulation(const PlateParameters& p, double baseDisplaceme
     if (!std::isfinite(baseDisplacement0) || baseDisplacement0 < obstacles.lower ||
         baseDisplacement0 > obstacles.upper) {
         std::ostringstream msg;
-        msg.precision(17);
+        msg.precision(15);  // round-trips what users type (0.7, not 0.69999999999999996)
         msg << "invalid initial state: base_displacement = " << baseDisplacement0
             << " puts the clamped edge outside the obstacles (allowed: obstacle_lower = "
             << obstacles.lower << " <= base_displacement <= obstacle_upper = " << obstacles.upper
