@@ -2,6 +2,8 @@
 
 #include "Kernels.h"
 
+#include <stdexcept>
+
 namespace plate {
 
 FullOrderPlate::FullOrderPlate(std::shared_ptr<const FiniteElementSpace> space,
@@ -9,15 +11,22 @@ FullOrderPlate::FullOrderPlate(std::shared_ptr<const FiniteElementSpace> space,
     : space_(std::move(space)),
       plate_(std::move(plate)),
       stepFactor_(Eigen::SparseMatrix<double>(plate_->mass + (beta * dt * dt) * plate_->stiffness)),
-      stiffnessRows_(plate_->stiffness),
-      massRows_(plate_->mass) {}
+      stiffnessUpper_(plate_->stiffness.triangularView<Eigen::Upper>()),
+      massUpper_(plate_->mass.triangularView<Eigen::Upper>()) {
+    // The kernel reads each row's diagonal first: it must be stored, even where it is zero.
+    for (const auto* m : {&stiffnessUpper_, &massUpper_})
+        for (Eigen::Index i = 0; i < m->rows(); ++i)
+            if (m->outerIndexPtr()[i] == m->outerIndexPtr()[i + 1] ||
+                m->innerIndexPtr()[m->outerIndexPtr()[i]] != i)
+                throw std::runtime_error("sparse matrix without a stored diagonal");
+}
 
 void FullOrderPlate::applyStiffness(const Eigen::VectorXd& w, Eigen::VectorXd& out) const {
-    multiplyRows(stiffnessRows_, w, out);
+    multiplySymmetricUpper(stiffnessUpper_, w, out);
 }
 
 void FullOrderPlate::applyMass(const Eigen::VectorXd& w, Eigen::VectorXd& out) const {
-    multiplyRows(massRows_, w, out);
+    multiplySymmetricUpper(massUpper_, w, out);
 }
 
 void FullOrderPlate::solveStepMatrix(const Eigen::VectorXd& b, Eigen::VectorXd& x) const {

@@ -33,8 +33,9 @@ private:
     std::shared_ptr<const FiniteElementSpace> space_;
     std::shared_ptr<const ClampedPlate> plate_;
     CholmodFactor stepFactor_;
-    // Row-major copies for the per-step product K w and the energy's M v (Kernels.h).
-    Eigen::SparseMatrix<double, Eigen::RowMajor> stiffnessRows_, massRows_;
+    // Upper triangles in row storage for the per-step product K w and the energy's M v
+    // (Kernels.h); every row starts with its diagonal entry.
+    Eigen::SparseMatrix<double, Eigen::RowMajor> stiffnessUpper_, massUpper_;
 };
 
 }  // namespace plate

@@ -30,6 +30,31 @@ inline void multiplyRows(const Eigen::SparseMatrix<double, Eigen::RowMajor>& a,
     }
 }
 
+// y = K x for symmetric K from its upper triangle in compressed row storage: each stored
+// off-diagonal entry serves row i and, mirrored, row j, so the product reads half the matrix
+// (on large meshes K no longer fits in cache and the product is bandwidth-bound).
+inline void multiplySymmetricUpper(const Eigen::SparseMatrix<double, Eigen::RowMajor>& upper,
+                                   const Eigen::VectorXd& x, Eigen::VectorXd& y) {
+    const int* outer = upper.outerIndexPtr();
+    const int* inner = upper.innerIndexPtr();
+    const double* value = upper.valuePtr();
+    const double* xs = x.data();
+    y.setZero(upper.rows());
+    double* ys = y.data();
+    for (Eigen::Index i = 0; i < upper.rows(); ++i) {
+        int k = outer[i];
+        const int end = outer[i + 1];
+        const double xi = xs[i];
+        double s = value[k] * xi;  // the diagonal entry comes first in each upper row
+        for (++k; k < end; ++k) {
+            const int j = inner[k];
+            s += value[k] * xs[j];
+            ys[j] += value[k] * xi;
+        }
+        ys[i] += s;
+    }
+}
+
 // y_i = rows.col(i) · x: the vertex values y = (CΦ) α of ModalPlate, with CΦ stored
 // transposed so each dot product reads contiguous memory. Cloned for x86-64-v3 (AVX2 + FMA)
 // and the baseline, chosen at load time: the FMU stays portable and uses the wide units
