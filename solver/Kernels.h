@@ -1,38 +1,15 @@
 #pragma once
-// The two hot loops of a time step, written out.
+// The two hot loops of a time step, written out (Eigen's generic sparse products cost
+// ~1.5–2× the instructions on the per-step product K w, measured with callgrind).
 //
-// y = A x for a compressed row-major sparse matrix, written out so the compiler keeps two
-// independent accumulators per row (Eigen's generic sparse products cost ~1.5–2× the
-// instructions on the per-step product K w, measured with callgrind on the default mesh).
+// y = K x for symmetric K from its upper triangle in compressed row storage: each stored
+// off-diagonal entry serves row i and, mirrored, row j, so the product reads half the matrix
+// (on large meshes K no longer fits in cache and the product is bandwidth-bound).
 #include <Eigen/Core>
 #include <Eigen/Sparse>
 
 namespace plate {
 
-inline void multiplyRows(const Eigen::SparseMatrix<double, Eigen::RowMajor>& a,
-                         const Eigen::VectorXd& x, Eigen::VectorXd& y) {
-    const int* outer = a.outerIndexPtr();
-    const int* inner = a.innerIndexPtr();
-    const double* value = a.valuePtr();
-    const double* xs = x.data();
-    y.resize(a.rows());
-    double* ys = y.data();
-    for (Eigen::Index i = 0; i < a.rows(); ++i) {
-        double s0 = 0.0, s1 = 0.0;
-        int k = outer[i];
-        const int end = outer[i + 1];
-        for (; k + 1 < end; k += 2) {
-            s0 += value[k] * xs[inner[k]];
-            s1 += value[k + 1] * xs[inner[k + 1]];
-        }
-        if (k < end) s0 += value[k] * xs[inner[k]];
-        ys[i] = s0 + s1;
-    }
-}
-
-// y = K x for symmetric K from its upper triangle in compressed row storage: each stored
-// off-diagonal entry serves row i and, mirrored, row j, so the product reads half the matrix
-// (on large meshes K no longer fits in cache and the product is bandwidth-bound).
 inline void multiplySymmetricUpper(const Eigen::SparseMatrix<double, Eigen::RowMajor>& upper,
                                    const Eigen::VectorXd& x, Eigen::VectorXd& y) {
     const int* outer = upper.outerIndexPtr();

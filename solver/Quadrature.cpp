@@ -4,34 +4,36 @@
 
 namespace plate {
 
+namespace {
+
+// P_n(x) by the three-term recurrence, and P_n'(x) from P_n and P_{n−1}.
+void legendre(int n, double x, double& value, double& derivative) {
+    double p0 = 1.0, p1 = x;
+    for (int m = 2; m <= n; ++m) {
+        const double p2 = ((2.0 * m - 1.0) * x * p1 - (m - 1.0) * p0) / m;
+        p0 = p1;
+        p1 = p2;
+    }
+    value = p1;
+    derivative = n * (x * p1 - p0) / (x * x - 1.0);
+}
+
+}  // namespace
+
 void gaussLegendre01(int n, std::vector<double>& nodes, std::vector<double>& weights) {
     nodes.assign(n, 0.0);
     weights.assign(n, 0.0);
     // Newton on P_n from the Chebyshev-like initial guess; converges to machine precision
     // in a handful of iterations for the small n used here.
     for (int k = 0; k < n; ++k) {
-        double x = std::cos(M_PI * (k + 0.75) / (n + 0.5));
-        double dp = 1.0;
+        double x = std::cos(M_PI * (k + 0.75) / (n + 0.5)), p, dp;
         for (int it = 0; it < 100; ++it) {
-            double p0 = 1.0, p1 = x;
-            for (int m = 2; m <= n; ++m) {
-                const double p2 = ((2.0 * m - 1.0) * x * p1 - (m - 1.0) * p0) / m;
-                p0 = p1;
-                p1 = p2;
-            }
-            dp = n * (x * p1 - p0) / (x * x - 1.0);
-            const double dx = p1 / dp;
+            legendre(n, x, p, dp);
+            const double dx = p / dp;
             x -= dx;
             if (std::abs(dx) < 1e-16) break;
         }
-        // Recompute the derivative at the converged node for the weight.
-        double p0 = 1.0, p1 = x;
-        for (int m = 2; m <= n; ++m) {
-            const double p2 = ((2.0 * m - 1.0) * x * p1 - (m - 1.0) * p0) / m;
-            p0 = p1;
-            p1 = p2;
-        }
-        dp = n * (x * p1 - p0) / (x * x - 1.0);
+        legendre(n, x, p, dp);  // the derivative at the converged node, for the weight
         nodes[k] = 0.5 * (1.0 + x);
         weights[k] = 1.0 / ((1.0 - x * x) * dp * dp);  // 2/((1-x^2)P'^2) scaled by 1/2
     }

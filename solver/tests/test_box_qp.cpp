@@ -42,26 +42,32 @@ Problem randomProblem(std::mt19937& rng, int n, int m, bool twoSided) {
     return p;
 }
 
+// C picks the constrained entries of w: the contact operator of the full FE space.
+plate::ContactColumns selectionColumns(const Problem& p, const Eigen::LLT<Eigen::MatrixXd>& llt) {
+    const int n = static_cast<int>(p.s.rows()), m = static_cast<int>(p.constrained.size());
+    return plate::ContactColumns(
+        m,
+        [&p, &llt, n](int j, Eigen::VectorXd& z) {
+            Eigen::VectorXd e = Eigen::VectorXd::Zero(n);
+            e[p.constrained[j]] = 1.0;
+            z = llt.solve(e);
+        },
+        [&p, m](const Eigen::VectorXd& z, Eigen::VectorXd& y) {
+            y.resize(m);
+            for (int i = 0; i < m; ++i) y[i] = z[p.constrained[i]];
+        });
+}
+
 struct Solution {
     Eigen::VectorXd w, mu, y;
     plate::QPResult result;
 };
 
 Solution solveWithBoxQP(const Problem& p, int maxPdas) {
-    const int n = static_cast<int>(p.s.rows()), m = static_cast<int>(p.constrained.size());
     const Eigen::LLT<Eigen::MatrixXd> llt(p.s);
-    plate::ContactColumns columns(
-        m,
-        [&](int j, Eigen::VectorXd& z) {
-            Eigen::VectorXd e = Eigen::VectorXd::Zero(n);
-            e[p.constrained[j]] = 1.0;
-            z = llt.solve(e);
-        },
-        [&](const Eigen::VectorXd& z, Eigen::VectorXd& y) {
-            y.resize(m);
-            for (int i = 0; i < m; ++i) y[i] = z[p.constrained[i]];
-        });
+    plate::ContactColumns columns = selectionColumns(p, llt);
     plate::BoxQP qp(columns, maxPdas);
+    const int m = static_cast<int>(p.constrained.size());
     Solution s;
     s.w = llt.solve(p.b);
     Eigen::VectorXd yFree(m);
@@ -160,19 +166,9 @@ TEST(BoxQP, BothPathsAgreeWithBruteForceOverAllActiveSets) {
 TEST(BoxQP, WarmStartFromTheSolutionTakesOneIteration) {
     std::mt19937 rng(3);
     const Problem p = randomProblem(rng, 30, 12, true);
-    const int n = 30, m = 12;
+    const int m = 12;
     const Eigen::LLT<Eigen::MatrixXd> llt(p.s);
-    plate::ContactColumns columns(
-        m,
-        [&](int j, Eigen::VectorXd& z) {
-            Eigen::VectorXd e = Eigen::VectorXd::Zero(n);
-            e[p.constrained[j]] = 1.0;
-            z = llt.solve(e);
-        },
-        [&](const Eigen::VectorXd& z, Eigen::VectorXd& y) {
-            y.resize(m);
-            for (int i = 0; i < m; ++i) y[i] = z[p.constrained[i]];
-        });
+    plate::ContactColumns columns = selectionColumns(p, llt);
     plate::BoxQP qp(columns);
     const Eigen::VectorXd w = llt.solve(p.b);
     Eigen::VectorXd yFree(m), mu = Eigen::VectorXd::Zero(m), y;
