@@ -1,15 +1,20 @@
-"""A thin driver for PlateImpact.fmu on top of fmpy's FMU2Slave.
+"""A thin driver for PlateImpact.fmu on top of fmpy's FMU2Slave — the one the examples and
+the tests use.
 
 Users copy this: it shows how to set the parameters by name, feed inputs *with* their time
 derivatives (fmpy's simulate_fmu cannot: its input-derivative path crashes, NOTES.md) and
 read the outputs every communication step.
 
     with PlateImpactFMU("build/PlateImpact.fmu", nx=14, ny=5, dt=1e-5) as plate:
-        plate.step(1e-4, base=(z, zdot, zddot))
-        print(plate.outputs()["corner_1"])
+        out = plate.step(1e-4, base=(z, zdot, zddot))
+        print(out["corner_1"])
+
+The FMU's log messages (status, category, message) are kept in `plate.log`; pass
+`logger=callable(status, category, message)` to see them as they come.
 """
 from __future__ import annotations
 
+import atexit
 import math
 import shutil
 from pathlib import Path
@@ -22,38 +27,82 @@ OUTPUTS = ("corner_1", "corner_2", "free_edge_mid", "energy", "energy_dissipated
            "energy_input", "contact_vertices", "qp_kkt_residual_max",
            "qp_iterations_total", "qp_iterations_max")
 
+_extracted = {}  # (resolved path, mtime) -> (unzip directory, model description)
+
+
+def unzipped(fmu_path):
+    """Extract an FMU once per process (and file version); removed at exit."""
+    path = Path(fmu_path).resolve()
+    if not path.is_file():
+        raise FileNotFoundError(f"FMU not found: {path} (build it, or set PLATEIMPACT_FMU)")
+    key = (str(path), path.stat().st_mtime_ns)
+    if key not in _extracted:
+        unzip_dir = extract(str(path))
+        atexit.register(shutil.rmtree, unzip_dir, ignore_errors=True)
+        _extracted[key] = (unzip_dir, read_model_description(str(path)))
+    return _extracted[key]
+
+
+def signal(x):
+    """An input given as a value or (value[, d1[, d2]]) -> (value, d1, d2)."""
+    if isinstance(x, (tuple, list)):
+        x = tuple(float(v) for v in x) + (0.0,) * (3 - len(x))
+        return x[:3]
+    return (float(x), 0.0, 0.0)
+
 
 class PlateImpactFMU:
-    """One PlateImpact instance: parameters at construction, then step() and outputs()."""
+    """One PlateImpact instance: instantiate(), initialize(parameters), then step() and
+    outputs(). The constructor does both first steps unless `initialize=False`."""
 
     def __init__(self, fmu_path, start_time=0.0, instance_name="plate", logger=None,
-                 unzip_dir=None, **parameters):
-        self.fmu_path = str(fmu_path)
-        self.md = read_model_description(self.fmu_path)
+                 unzip_dir=None, base0=0.0, load0=0.0, initialize=True, **parameters):
+        if unzip_dir is None:
+            self.unzip_dir, self.md = unzipped(fmu_path)
+        else:
+            self.unzip_dir, self.md = unzip_dir, read_model_description(str(fmu_path))
         self.vars = {v.name: v for v in self.md.modelVariables}
-        self._own_dir = unzip_dir is None
-        self.unzip_dir = unzip_dir or extract(self.fmu_path)
+        self.log = []
+        self._user_logger = logger
+        # The ctypes objects must outlive the instance: keep them on it.
+        self._logger = fmi2CallbackLoggerTYPE(self._on_log)
+        self._callbacks = fmi2CallbackFunctions()
+        self._callbacks.logger = self._logger
+        self._callbacks.allocateMemory = fmi2CallbackAllocateMemoryTYPE(calloc)
+        self._callbacks.freeMemory = fmi2CallbackFreeMemoryTYPE(free)
         self.fmu = FMU2Slave(guid=self.md.guid, unzipDirectory=self.unzip_dir,
                              modelIdentifier=self.md.coSimulation.modelIdentifier,
                              instanceName=instance_name)
-        callbacks = None
-        if logger is not None:
-            # logger(componentEnvironment, instanceName, status, category, message), as fmpy's
-            # printLogMessage; the ctypes objects must outlive the instance: keep them here.
-            self._logger = fmi2CallbackLoggerTYPE(logger)
-            callbacks = fmi2CallbackFunctions()
-            callbacks.logger = self._logger
-            callbacks.allocateMemory = fmi2CallbackAllocateMemoryTYPE(calloc)
-            callbacks.freeMemory = fmi2CallbackFreeMemoryTYPE(free)
-        self._callbacks = callbacks
-        self.fmu.instantiate(callbacks=callbacks, loggingOn=logger is not None)
+        self.fmu.instantiate(callbacks=self._callbacks, loggingOn=logger is not None)
         self.time = start_time
-        self.fmu.setupExperiment(startTime=start_time)
+        self._initialized = False
+        self._out_refs = [(n, self.vars[n]) for n in OUTPUTS if n in self.vars]
+        if initialize:
+            try:
+                self.initialize(parameters, base0, load0)
+            except BaseException:
+                self.close()
+                raise
+
+    def _on_log(self, env, instance, status, category, message):
+        entry = (status, category.decode(errors="replace"), message.decode(errors="replace"))
+        self.log.append(entry)
+        if self._user_logger is not None:
+            self._user_logger(*entry)
+
+    def errors(self):
+        """The messages logged with status fmi2Error or worse."""
+        return [m for s, _, m in self.log if s >= 3]
+
+    def initialize(self, parameters, base0=0.0, load0=0.0):
+        self.fmu.setupExperiment(startTime=self.time)
         self.fmu.enterInitializationMode()
         for name, value in parameters.items():
             self.set(name, value)
+        self.set("base_displacement", base0)
+        self.set("load", load0)
         self.fmu.exitInitializationMode()
-        self._out_refs = [(n, self.vars[n]) for n in OUTPUTS if n in self.vars]
+        self._initialized = True
 
     # -- variables by name ------------------------------------------------------------------
     def set(self, name, value):
@@ -75,29 +124,41 @@ class PlateImpactFMU:
         ints = [(n, v) for n, v in self._out_refs if v.type == "Integer"]
         out = dict(zip((n for n, _ in real), self.fmu.getReal([v.valueReference for _, v in real])))
         out.update(zip((n for n, _ in ints), self.fmu.getInteger([v.valueReference for _, v in ints])))
+        out["time"] = self.time
         return out
 
     # -- time stepping ----------------------------------------------------------------------
     def step(self, h, base=None, load=None):
-        """Advance by h. base/load: value or (value, first derivative, second derivative)."""
-        for name, signal in (("base_displacement", base), ("load", load)):
-            if signal is None:
+        """Advance by h from self.time; the outputs after the step. base/load: a value or
+        (value, first derivative, second derivative) at the step start; None keeps the input
+        as it was (held, derivatives zero)."""
+        refs, values, orders, derivatives = [], [], [], []
+        for name, given in (("base_displacement", base), ("load", load)):
+            if given is None:
                 continue
-            value, *derivatives = signal if isinstance(signal, (tuple, list)) else (signal,)
+            value, d1, d2 = signal(given)
             vr = self.vars[name].valueReference
-            self.fmu.setReal([vr], [float(value)])
-            for order, d in enumerate(derivatives, start=1):
-                self.fmu.setRealInputDerivatives([vr], [order], [float(d)])
+            refs.append(vr)
+            values.append(value)
+            orders += [1, 2]
+            derivatives += [d1, d2]
+        if refs:
+            self.fmu.setReal(refs, values)
+            self.fmu.setRealInputDerivatives([r for r in refs for _ in (1, 2)], orders, derivatives)
         self.fmu.doStep(currentCommunicationPoint=self.time, communicationStepSize=h)
-        self.time += h
+        self.time += h  # the FMU accepts the rounding of this sum (relative time tolerance)
+        return self.outputs()
 
     def close(self):
-        try:
-            self.fmu.terminate()
-        finally:
-            self.fmu.freeInstance()
-            if self._own_dir:
-                shutil.rmtree(self.unzip_dir, ignore_errors=True)
+        if self.fmu is None:
+            return
+        if self._initialized:
+            try:
+                self.fmu.terminate()
+            except Exception:
+                pass  # after a failed step: fmi2FreeInstance is still allowed
+        self.fmu.freeInstance()
+        self.fmu = None
 
     def __enter__(self):
         return self

@@ -25,24 +25,19 @@ energy seen; energy_dissipated never decreases; every contact QP converged (KKT 
 """
 from __future__ import annotations
 
-import atexit
 import math
 import re
-import shutil
+import sys
 import time
 from dataclasses import dataclass, field
 from pathlib import Path
-from typing import Callable, Optional
+from typing import Optional
 
-from fmpy import calloc, extract, free, read_model_description
 from fmpy.fmi1 import FMICallException  # fmpy raises this one for FMI 2.0 calls too
-from fmpy.fmi2 import (
-    FMU2Slave,
-    fmi2CallbackAllocateMemoryTYPE,
-    fmi2CallbackFreeMemoryTYPE,
-    fmi2CallbackFunctions,
-    fmi2CallbackLoggerTYPE,
-)
+
+# The one FMU driver, shared with the examples.
+sys.path.insert(0, str(Path(__file__).resolve().parent.parent / "examples"))
+from plateimpact import PlateImpactFMU  # noqa: E402
 
 # ---------------------------------------------------------------------------------------------
 # Limits of the checks (the issue's numbers)
@@ -200,83 +195,19 @@ assert len(set(CASE_NAMES)) == len(CASE_NAMES)
 # ---------------------------------------------------------------------------------------------
 # Driving the FMU
 
-_extracted = {}
-
-
-def _unzipped(fmu_path):
-    path = Path(fmu_path).resolve()
-    if not path.is_file():
-        raise FileNotFoundError(f"FMU not found: {path} (build it, or set PLATEIMPACT_FMU)")
-    key = (str(path), path.stat().st_mtime_ns)
-    if key not in _extracted:
-        unzipdir = extract(str(path))
-        atexit.register(shutil.rmtree, unzipdir, ignore_errors=True)
-        _extracted[key] = (unzipdir, read_model_description(str(path)))
-    return _extracted[key]
-
-
-class _Instance:
-    """One FMU instance with a logger that records (status, category, message)."""
+class _Instance(PlateImpactFMU):
+    """One FMU instance, initialized by the runner (so a refused initialization keeps its
+    log, (status, category, message) in .log), stepped at the runner's times."""
 
     def __init__(self, fmu_path):
-        self.unzipdir, self.md = _unzipped(fmu_path)
-        self.vars = {v.name: v for v in self.md.modelVariables}
-        self.log = []
-        self._logger = fmi2CallbackLoggerTYPE(self._on_log)  # keep the ctypes objects alive
-        self._callbacks = fmi2CallbackFunctions()
-        self._callbacks.logger = self._logger
-        self._callbacks.allocateMemory = fmi2CallbackAllocateMemoryTYPE(calloc)
-        self._callbacks.freeMemory = fmi2CallbackFreeMemoryTYPE(free)
-        self.fmu = FMU2Slave(guid=self.md.guid, unzipDirectory=self.unzipdir,
-                             modelIdentifier=self.md.coSimulation.modelIdentifier,
-                             instanceName="stability")
-        self.fmu.instantiate(callbacks=self._callbacks, loggingOn=False)
-        self._real_out = [n for n in ("corner_1", "corner_2", "free_edge_mid", "energy",
-                                      "energy_dissipated", "energy_input", "qp_kkt_residual_max")]
-        self._int_out = ["contact_vertices", "qp_iterations_total", "qp_iterations_max"]
-        self._real_vr = [self.vars[n].valueReference for n in self._real_out]
-        self._int_vr = [self.vars[n].valueReference for n in self._int_out]
-        self._in_vr = [self.vars[n].valueReference for n in ("base_displacement", "load")]
-
-    def _on_log(self, env, instance, status, category, message):
-        self.log.append((status, category.decode(errors="replace"),
-                         message.decode(errors="replace")))
-
-    def initialize(self, params, base0, load0):
-        self.fmu.setupExperiment(startTime=0.0)
-        self.fmu.enterInitializationMode()
-        for name, value in params.items():
-            v = self.vars[name]
-            if v.type == "Real":
-                self.fmu.setReal([v.valueReference], [float(value)])
-            elif v.type in ("Integer", "Enumeration"):
-                self.fmu.setInteger([v.valueReference], [int(value)])
-            else:
-                self.fmu.setBoolean([v.valueReference], [bool(value)])
-        self.fmu.setReal(self._in_vr, [base0, load0])
-        self.fmu.exitInitializationMode()
+        super().__init__(fmu_path, instance_name="stability", initialize=False)
 
     def step(self, t, h, base, load):
-        vb, vl = self._in_vr
-        self.fmu.setReal([vb, vl], [base[0], load[0]])
-        self.fmu.setRealInputDerivatives([vb, vl, vb, vl], [1, 1, 2, 2],
-                                         [base[1], load[1], base[2], load[2]])
-        self.fmu.doStep(currentCommunicationPoint=t, communicationStepSize=h)
-
-    def outputs(self):
-        out = dict(zip(self._real_out, self.fmu.getReal(self._real_vr)))
-        out.update(zip(self._int_out, self.fmu.getInteger(self._int_vr)))
-        return out
+        self.time = t
+        return super().step(h, base=base, load=load)
 
     def free(self):
-        try:
-            self.fmu.terminate()
-        except Exception:
-            pass
-        self.fmu.freeInstance()
-
-    def errors(self):
-        return [m for s, _, m in self.log if s >= 3]
+        self.close()
 
 
 # The FMU's refusal names the bound: "... dt < 2/sqrt((1-4 beta) kappa_h) = <bound> s ...".
