@@ -13,6 +13,7 @@ command -v readelf >/dev/null || need_apt+=(binutils)
 [ -f /usr/include/eigen3/Eigen/Core ] || need_apt+=(libeigen3-dev)
 [ -f /usr/include/suitesparse/cholmod.h ] || need_apt+=(libsuitesparse-dev)
 [ -f /usr/include/gtest/gtest.h ] || need_apt+=(libgtest-dev)
+command -v valgrind >/dev/null || need_apt+=(valgrind)  # python_tests/test_valgrind.py
 command -v python3 >/dev/null || need_apt+=(python3)
 python3 -c 'import venv, ensurepip' 2>/dev/null || need_apt+=(python3-venv)
 if [ ${#need_apt[@]} -gt 0 ]; then
@@ -37,5 +38,7 @@ build="${PLATEIMPACT_BUILD_DIR:-$repo/build}"
 if [ ! -f "$build/CMakeCache.txt" ]; then
   cmake -S "$repo" -B "$build" -DCMAKE_BUILD_TYPE=Release ${PLATEIMPACT_CMAKE_ARGS:-} >/dev/null
 fi
-cmake --build "$build" -j"$(nproc)" -- --no-print-directory >/dev/null
+# PLATEIMPACT_BUILD_TARGET: one target instead of all (test.sh: the sanitizer FMU only)
+cmake --build "$build" -j"$(nproc)" ${PLATEIMPACT_BUILD_TARGET:+--target "$PLATEIMPACT_BUILD_TARGET"} \
+  -- --no-print-directory >/dev/null
 echo "setup: built $build/PlateImpact.fmu"

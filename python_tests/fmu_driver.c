@@ -1,0 +1,319 @@
+/* A plain C co-simulation master for PlateImpact.fmu, made to run under valgrind memcheck
+ * (python_tests/test_valgrind.py) and as a ctest smoke test.
+ *
+ *     fmu_driver [--keep-loaded] UNZIPPED_FMU_DIR [STEPS]
+ *
+ * dlopens UNZIPPED_FMU_DIR/binaries/linux64/PlateImpact.so (so the shipped CHOLMOD is the one
+ * loaded, through the library's RPATH=$ORIGIN), reads the GUID from modelDescription.xml and
+ * runs, for three small configurations (Argyris exact, FVS, reduced modal; 4 x 2 cells):
+ * instantiate (logAll on) -> parameters -> initialize -> STEPS communication steps with input
+ * derivatives -> get/set/serialize/deserialize/free FMU states (also into a second instance
+ * that was never initialized) -> an illegal call (the error path and its log) -> reset ->
+ * initialize again -> step -> terminate -> free. Every result is checked: runs after a state
+ * restore or a reset must reproduce the first run bit for bit. Exit code 0 when all checks pass,
+ * 1 (with a message on stderr) otherwise. All memory the driver allocates is freed, so every
+ * leak valgrind reports belongs to the FMU. At the end the driver unloads the FMU (dlclose), as
+ * fmpy does in freeInstance, so memory the library allocated when it was loaded and never frees
+ * shows as lost; --keep-loaded skips the dlclose (the library stays loaded until exit, as in an
+ * importer that keeps it for the whole session).
+ */
+#include <dlfcn.h>
+#include <math.h>
+#include <stdarg.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+
+#include "fmi2Functions.h"
+
+#define LOAD(name)                                                                \
+    name##TYPE* name = (name##TYPE*)dlsym(lib, #name);                            \
+    if (!name) {                                                                  \
+        fprintf(stderr, "fmu_driver: %s not exported: %s\n", #name, dlerror()); \
+        return 1;                                                                 \
+    }
+
+#define CHECK(cond)                                                                          \
+    do {                                                                                     \
+        if (!(cond)) {                                                                       \
+            fprintf(stderr, "fmu_driver: %s:%d: check failed: %s\n", __FILE__, __LINE__, #cond); \
+            exit(1);                                                                         \
+        }                                                                                    \
+    } while (0)
+
+#define OK(call) CHECK((call) == fmi2OK)
+
+enum { VR_NX = 6, VR_NY = 7, VR_ELEMENT = 8, VR_DT = 13, VR_INITIAL_LOAD = 15, VR_MODES = 16,
+       VR_OBSTACLE_LOWER = 9, VR_OBSTACLE_UPPER = 10, VR_BASE = 20, VR_LOAD = 21 };
+static const fmi2ValueReference REAL_OUT[] = {30, 31, 32, 33, 34, 35, 37};
+static const fmi2ValueReference INT_OUT[] = {36, 38, 39};
+#define N_REAL (sizeof REAL_OUT / sizeof REAL_OUT[0])
+#define N_INT (sizeof INT_OUT / sizeof INT_OUT[0])
+#define H 1e-3 /* communication step: 10 internal steps of dt = 1e-4 */
+
+typedef struct {
+    fmi2Real r[N_REAL];
+    fmi2Integer i[N_INT];
+} Outputs;
+
+static unsigned long log_messages = 0;
+
+static void logger(fmi2ComponentEnvironment env, fmi2String instance, fmi2Status status,
+                   fmi2String category, fmi2String message, ...) {
+    (void)env;
+    char text[2048];
+    va_list args;
+    va_start(args, message);
+    vsnprintf(text, sizeof text, message, args);
+    va_end(args);
+    ++log_messages;
+    if (status >= fmi2Error && getenv("FMU_DRIVER_VERBOSE"))
+        fprintf(stderr, "[%s %s %d] %s\n", instance ? instance : "?", category, (int)status, text);
+}
+
+/* The FMI functions, resolved once. */
+static struct {
+    fmi2InstantiateTYPE* instantiate;
+    fmi2FreeInstanceTYPE* freeInstance;
+    fmi2SetDebugLoggingTYPE* setDebugLogging;
+    fmi2SetupExperimentTYPE* setupExperiment;
+    fmi2EnterInitializationModeTYPE* enterInit;
+    fmi2ExitInitializationModeTYPE* exitInit;
+    fmi2TerminateTYPE* terminate;
+    fmi2ResetTYPE* reset;
+    fmi2GetRealTYPE* getReal;
+    fmi2GetIntegerTYPE* getInteger;
+    fmi2SetRealTYPE* setReal;
+    fmi2SetIntegerTYPE* setInteger;
+    fmi2SetRealInputDerivativesTYPE* setRealInputDerivatives;
+    fmi2DoStepTYPE* doStep;
+    fmi2GetFMUstateTYPE* getFMUstate;
+    fmi2SetFMUstateTYPE* setFMUstate;
+    fmi2FreeFMUstateTYPE* freeFMUstate;
+    fmi2SerializedFMUstateSizeTYPE* serializedSize;
+    fmi2SerializeFMUstateTYPE* serialize;
+    fmi2DeSerializeFMUstateTYPE* deSerialize;
+    fmi2GetRealStatusTYPE* getRealStatus;
+} F;
+
+typedef struct {
+    const char* name;
+    int element; /* 1 argyris, 2 fvs */
+    int modes;
+} Config;
+
+static Outputs outputs(fmi2Component c) {
+    Outputs o;
+    OK(F.getReal(c, REAL_OUT, N_REAL, o.r));
+    OK(F.getInteger(c, INT_OUT, N_INT, o.i));
+    for (size_t k = 0; k < N_REAL; ++k) CHECK(isfinite(o.r[k]));
+    return o;
+}
+
+/* bit for bit (memcmp of the arrays, not of the struct: its padding is never written) */
+static int same(const Outputs* a, const Outputs* b) {
+    return memcmp(a->r, b->r, sizeof a->r) == 0 && memcmp(a->i, b->i, sizeof a->i) == 0;
+}
+
+static void initialize(fmi2Component c, const Config* cfg) {
+    const fmi2ValueReference ivr[] = {VR_NX, VR_NY, VR_ELEMENT, VR_MODES};
+    const fmi2Integer ival[] = {4, 2, cfg->element, cfg->modes};
+    /* pressed against the upper obstacle at the start: impacts within the first steps */
+    const fmi2ValueReference rvr[] = {VR_DT, VR_INITIAL_LOAD, VR_OBSTACLE_LOWER, VR_OBSTACLE_UPPER};
+    const fmi2Real rval[] = {1e-4, 8600.0, -0.05, 0.05};
+    OK(F.setupExperiment(c, fmi2False, 0.0, 0.0, fmi2False, 0.0));
+    OK(F.enterInit(c));
+    OK(F.setInteger(c, ivr, 4, ival));
+    OK(F.setReal(c, rvr, 4, rval));
+    OK(F.exitInit(c));
+}
+
+/* Communication steps k0..k1-1 with base motion and load and their derivatives; the outputs
+ * after each step into trace[k - k0] (if trace). */
+static void drive(fmi2Component c, int k0, int k1, Outputs* trace) {
+    const double w = 2 * M_PI * 20.0, f = 2 * M_PI * 7.0;
+    for (int k = k0; k < k1; ++k) {
+        const double t = k * H;
+        const fmi2ValueReference vr[] = {VR_BASE, VR_LOAD};
+        const fmi2Real value[] = {0.005 * sin(w * t), 200.0 * cos(f * t)};
+        const fmi2ValueReference dvr[] = {VR_BASE, VR_BASE, VR_LOAD, VR_LOAD};
+        const fmi2Integer order[] = {1, 2, 1, 2};
+        const fmi2Real deriv[] = {0.005 * w * cos(w * t), -0.005 * w * w * sin(w * t),
+                                  -200.0 * f * sin(f * t), -200.0 * f * f * cos(f * t)};
+        OK(F.setReal(c, vr, 2, value));
+        OK(F.setRealInputDerivatives(c, dvr, 4, order, deriv));
+        OK(F.doStep(c, t, H, fmi2True));
+        if (trace) trace[k - k0] = outputs(c);
+    }
+}
+
+static void run_config(const Config* cfg, const char* guid, const char* resources, int steps,
+                       const fmi2CallbackFunctions* callbacks) {
+    const int half = steps / 2;
+    Outputs* first = calloc((size_t)steps, sizeof *first);
+    Outputs* again = calloc((size_t)steps, sizeof *again);
+    CHECK(first && again);
+
+    fmi2Component c = F.instantiate(cfg->name, fmi2CoSimulation, guid, resources, callbacks, fmi2False, fmi2True);
+    CHECK(c != NULL);
+    const fmi2String all[] = {"logAll"};
+    OK(F.setDebugLogging(c, fmi2True, 1, all));
+    initialize(c, cfg);
+    const Outputs start = outputs(c);
+    drive(c, 0, half, first);
+
+    /* FMU state at half time: get, run on, set back, run again */
+    fmi2FMUstate state = NULL;
+    OK(F.getFMUstate(c, &state));
+    CHECK(state != NULL);
+    drive(c, half, steps, first + half);
+    OK(F.setFMUstate(c, state));
+    drive(c, half, steps, again + half);
+    for (int k = half; k < steps; ++k) CHECK(same(&first[k], &again[k]));
+
+    /* serialize, free, deserialize, restore */
+    size_t size = 0;
+    OK(F.serializedSize(c, state, &size));
+    CHECK(size > 0);
+    fmi2Byte* blob = malloc(size);
+    CHECK(blob != NULL);
+    OK(F.serialize(c, state, blob, size));
+    OK(F.freeFMUstate(c, &state));
+    CHECK(state == NULL);
+    fmi2FMUstate restored = NULL;
+    OK(F.deSerialize(c, blob, size, &restored));
+    OK(F.setFMUstate(c, restored));
+    OK(F.freeFMUstate(c, &restored));
+    drive(c, half, steps, again + half);
+    for (int k = half; k < steps; ++k) CHECK(same(&first[k], &again[k]));
+
+    /* a second instance, never initialized, continues from the serialized state; overwriting
+     * an existing FMU state with fmi2GetFMUstate reuses it */
+    fmi2Component other = F.instantiate("other", fmi2CoSimulation, guid, resources, callbacks, fmi2False, fmi2False);
+    CHECK(other != NULL);
+    OK(F.deSerialize(other, blob, size, &restored));
+    OK(F.setFMUstate(other, restored));
+    drive(other, half, half + 1, NULL);
+    OK(F.getFMUstate(other, &restored)); /* overwrite the existing state */
+    OK(F.freeFMUstate(other, &restored));
+    free(blob);
+    F.freeInstance(other); /* freed without fmi2Terminate */
+
+    /* the error path: a step at the wrong communication point, logged; then reset */
+    CHECK(F.doStep(c, 123.0, H, fmi2True) == fmi2Error);
+    CHECK(F.doStep(c, steps * H, H, fmi2True) == fmi2Error); /* illegal in state error */
+    OK(F.reset(c));
+
+    /* initialize again: the same run as a fresh instance */
+    initialize(c, cfg);
+    const Outputs start2 = outputs(c);
+    CHECK(same(&start, &start2));
+    drive(c, 0, steps, again);
+    for (int k = 0; k < steps; ++k) CHECK(same(&first[k], &again[k]));
+    fmi2Real last = 0.0;
+    OK(F.getRealStatus(c, fmi2LastSuccessfulTime, &last));
+    CHECK(fabs(last - steps * H) < 1e-12);
+    OK(F.terminate(c));
+    OK(F.reset(c)); /* a reset after terminate, then free from state instantiated */
+    F.freeInstance(c);
+
+    printf("%s: %d steps, energy %.12g J, dissipated %.6g J, contact vertices %d, QP iterations %d\n",
+           cfg->name, steps, first[steps - 1].r[3], first[steps - 1].r[4], first[steps - 1].i[0],
+           first[steps - 1].i[1]);
+    free(first);
+    free(again);
+}
+
+/* The value of guid="..." in modelDescription.xml (malloc'ed). */
+static char* read_guid(const char* dir) {
+    char path[4096];
+    snprintf(path, sizeof path, "%s/modelDescription.xml", dir);
+    FILE* file = fopen(path, "rb");
+    if (!file) return NULL;
+    char* text = calloc(1, 1 << 20);
+    size_t n = text ? fread(text, 1, (1 << 20) - 1, file) : 0;
+    fclose(file);
+    char* guid = NULL;
+    const char* at = n ? strstr(text, "guid=\"") : NULL;
+    if (at) {
+        at += 6;
+        const char* end = strchr(at, '"');
+        if (end) {
+            guid = calloc(1, (size_t)(end - at) + 1);
+            memcpy(guid, at, (size_t)(end - at));
+        }
+    }
+    free(text);
+    return guid;
+}
+
+int main(int argc, char** argv) {
+    const int keep_loaded = argc > 1 && strcmp(argv[1], "--keep-loaded") == 0;
+    argv += keep_loaded;
+    argc -= keep_loaded;
+    if (argc < 2 || argc > 3) {
+        fprintf(stderr, "usage: fmu_driver [--keep-loaded] UNZIPPED_FMU_DIR [STEPS]\n");
+        return 2;
+    }
+    const char* dir = argv[1];
+    const int steps = argc == 3 ? atoi(argv[2]) : 6;
+    if (steps < 2) {
+        fprintf(stderr, "fmu_driver: STEPS must be >= 2\n");
+        return 2;
+    }
+    char* guid = read_guid(dir);
+    if (!guid) {
+        fprintf(stderr, "fmu_driver: no guid in %s/modelDescription.xml\n", dir);
+        return 1;
+    }
+    char so[4096], resources[4200];
+    snprintf(so, sizeof so, "%s/binaries/linux64/PlateImpact.so", dir);
+    snprintf(resources, sizeof resources, "file://%s/resources", dir);
+    void* lib = dlopen(so, RTLD_NOW | RTLD_LOCAL);
+    if (!lib) {
+        fprintf(stderr, "fmu_driver: dlopen %s: %s\n", so, dlerror());
+        free(guid);
+        return 1;
+    }
+    {
+        LOAD(fmi2Instantiate) LOAD(fmi2FreeInstance) LOAD(fmi2SetDebugLogging) LOAD(fmi2SetupExperiment)
+        LOAD(fmi2EnterInitializationMode) LOAD(fmi2ExitInitializationMode) LOAD(fmi2Terminate)
+        LOAD(fmi2Reset) LOAD(fmi2GetReal) LOAD(fmi2GetInteger) LOAD(fmi2SetReal) LOAD(fmi2SetInteger)
+        LOAD(fmi2SetRealInputDerivatives) LOAD(fmi2DoStep) LOAD(fmi2GetFMUstate) LOAD(fmi2SetFMUstate)
+        LOAD(fmi2FreeFMUstate) LOAD(fmi2SerializedFMUstateSize) LOAD(fmi2SerializeFMUstate)
+        LOAD(fmi2DeSerializeFMUstate) LOAD(fmi2GetRealStatus)
+        F.instantiate = fmi2Instantiate;
+        F.freeInstance = fmi2FreeInstance;
+        F.setDebugLogging = fmi2SetDebugLogging;
+        F.setupExperiment = fmi2SetupExperiment;
+        F.enterInit = fmi2EnterInitializationMode;
+        F.exitInit = fmi2ExitInitializationMode;
+        F.terminate = fmi2Terminate;
+        F.reset = fmi2Reset;
+        F.getReal = fmi2GetReal;
+        F.getInteger = fmi2GetInteger;
+        F.setReal = fmi2SetReal;
+        F.setInteger = fmi2SetInteger;
+        F.setRealInputDerivatives = fmi2SetRealInputDerivatives;
+        F.doStep = fmi2DoStep;
+        F.getFMUstate = fmi2GetFMUstate;
+        F.setFMUstate = fmi2SetFMUstate;
+        F.freeFMUstate = fmi2FreeFMUstate;
+        F.serializedSize = fmi2SerializedFMUstateSize;
+        F.serialize = fmi2SerializeFMUstate;
+        F.deSerialize = fmi2DeSerializeFMUstate;
+        F.getRealStatus = fmi2GetRealStatus;
+    }
+
+    const fmi2CallbackFunctions callbacks = {logger, calloc, free, NULL, NULL};
+    const Config configs[] = {{"argyris", 1, 0}, {"fvs", 2, 0}, {"modal", 1, 6}};
+    for (size_t k = 0; k < sizeof configs / sizeof configs[0]; ++k)
+        run_config(&configs[k], guid, resources, steps, &callbacks);
+    CHECK(log_messages > 0);
+    printf("fmu_driver: all checks passed (%lu log messages)\n", log_messages);
+
+    free(guid);
+    /* Unloading the FMU is part of the check: its static destructors run here. */
+    if (!keep_loaded) CHECK(dlclose(lib) == 0);
+    return 0;
+}
