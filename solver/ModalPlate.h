@@ -52,9 +52,4 @@ private:
     Eigen::VectorXd pressureLoad_, baseInertia_;
 };
 
-// The m lowest modes of the clamped plate (dense generalized eigensolver for small spaces,
-// subspace iteration with the CHOLMOD factor of K for large ones).
-void lowestModes(const ClampedPlate& plate, int modes, Eigen::MatrixXd& phi,
-                 Eigen::VectorXd& omega2);
-
 }  // namespace plate

@@ -14,6 +14,7 @@
 
 #include "BoxQP.h"
 #include "DiscretePlate.h"
+#include "NewmarkState.h"
 
 namespace plate {
 
@@ -21,24 +22,6 @@ struct Obstacles {
     double lower = -std::numeric_limits<double>::infinity();  // absolute height, m
     double upper = std::numeric_limits<double>::infinity();
     bool any() const { return std::isfinite(lower) || std::isfinite(upper); }
-};
-
-// The full mutable state of the scheme: two time levels plus the bookkeeping that makes the
-// energy ledger and the warm start exact. Saving and restoring it continues bit-identically.
-struct NewmarkState {
-    Eigen::VectorXd w, wPrev;        // w_n, w_{n−1}
-    Eigen::VectorXd kw, kwPrev;      // K w_n, K w_{n−1} (reused by the next step and the energy)
-    double z = 0, zPrev = 0;         // base z_n, z_{n−1}
-    double p = 0, pPrev = 0;         // pressure p_n, p_{n−1}
-    double s = 0, sPrev = 0;         // Fᵀw (work of the pressure)
-    double t = 0, tPrev = 0;         // (M·1)ᵀw (coupling of base and plate inertia)
-    long long step = 0;
-    double energyInput = 0, energyDissipated = 0;
-    double maxKktResidual = 0;
-    long long qpIterationsTotal = 0;
-    int qpIterationsMax = 0, qpIterationsLast = 0;
-    int contactVertices = 0;
-    std::vector<signed char> contactState;  // −1 on lower, +1 on upper, 0 free (warm start)
 };
 
 class NewmarkContactStepper {

@@ -11,76 +11,18 @@
 #include "FullOrderPlate.h"
 #include "ModalPlate.h"
 #include "NewmarkContactStepper.h"
+#include "Spectrum.h"
+#include "StaticEquilibrium.h"
 
 namespace plate {
 
 namespace {
-
-// Largest eigenvalue of M⁻¹K by power iteration with the Rayleigh quotient. The top of the FE
-// spectrum is clustered, so the quotient is within a fraction of a percent after a few hundred
-// iterations even where the eigenvector converges slowly.
-double largestEigenvalue(const ClampedPlate& plate) {
-    const CholmodFactor massFactor(plate.mass);
-    Eigen::VectorXd x = Eigen::VectorXd::Ones(plate.mass.rows());
-    for (Eigen::Index i = 0; i < x.size(); ++i) x[i] += 0.37 * std::sin(1.0 + 7.0 * i);
-    Eigen::VectorXd kx, y, mx;
-    double lambda = 0.0;
-    for (int it = 0; it < 2000; ++it) {
-        kx = plate.stiffness * x;
-        massFactor.solve(kx, y);
-        mx = plate.mass * y;
-        const double next = y.dot(plate.stiffness * y) / y.dot(mx);
-        x = y / std::sqrt(y.dot(mx));
-        if (it > 50 && std::abs(next - lambda) <= 1e-7 * next) {
-            lambda = next;
-            break;
-        }
-        lambda = next;
-    }
-    return lambda;
-}
 
 Obstacles obstaclesOf(const PlateParameters& p) {
     Obstacles o;
     if (p.obstacleLowerEnabled) o.lower = p.obstacleLower;
     if (p.obstacleUpperEnabled) o.upper = p.obstacleUpper;
     return o;
-}
-
-// Static equilibrium K w = p0 F between the obstacles (the initial state of §5.2), with the
-// clamp at z0: the same contact-space QP as a time step, with S = K, in the plate's own
-// coordinates.
-Eigen::VectorXd staticEquilibrium(const DiscretePlate& plate, const Obstacles& obstacles,
-                                  double z0, double p0) {
-    const DiscretePlate::Solver solveK = plate.stiffnessSolver();
-    Eigen::VectorXd w;
-    solveK(Eigen::VectorXd(p0 * plate.pressureLoad()), w);
-    if (!obstacles.any()) return w;
-    const int m = plate.contactCount();
-    ContactColumns columns(
-        m,
-        [&](int j, Eigen::VectorXd& z) {
-            Eigen::VectorXd c;
-            plate.contactDirection(j, c);
-            solveK(c, z);
-        },
-        [&plate](const Eigen::VectorXd& z, Eigen::VectorXd& y) { plate.gatherContact(z, y); });
-    Eigen::VectorXd yFree, y, mu = Eigen::VectorXd::Zero(m);
-    plate.gatherContact(w, yFree);
-    const Eigen::VectorXd lower = Eigen::VectorXd::Constant(m, obstacles.lower - z0);
-    const Eigen::VectorXd upper = Eigen::VectorXd::Constant(m, obstacles.upper - z0);
-    std::vector<signed char> state(m, 0);
-    BoxQP qp(columns);
-    const QPResult r = qp.solve(yFree, lower, upper, state, mu, y);
-    if (!r.converged || !(r.kktResidual <= 1e-10)) {
-        std::ostringstream msg;
-        msg << "invalid parameter initial_load = " << p0
-            << ": the static contact problem for the initial state did not converge (relative KKT "
-            << r.kktResidual << ")";
-        throw ParameterError(msg.str());
-    }
-    for (int i : qp.active()) w.noalias() += mu[i] * columns.column(i);
-    return w;
 }
 
 // Exact mode (modes = 0) runs the complete modal basis where it is cheaper per step than the
@@ -283,56 +225,12 @@ double PlateSimulation::measureFloorSolveSeconds(int repeats) const {
 }
 
 std::vector<double> PlateSimulation::saveState() const {
-    const NewmarkState& s = impl_->stepper->state();
-    const auto n = s.w.size();
-    std::vector<double> out;
-    out.reserve(4 * n + s.contactState.size() + 32);
-    out.push_back(1.0);  // format version
-    out.push_back(static_cast<double>(n));
-    out.push_back(static_cast<double>(s.contactState.size()));
-    for (const Eigen::VectorXd* v : {&s.w, &s.wPrev, &s.kw, &s.kwPrev})
-        out.insert(out.end(), v->data(), v->data() + n);
-    for (double x : {s.z, s.zPrev, s.p, s.pPrev, s.s, s.sPrev, s.t, s.tPrev,
-                     static_cast<double>(s.step), s.energyInput, s.energyDissipated,
-                     s.maxKktResidual, static_cast<double>(s.qpIterationsTotal),
-                     static_cast<double>(s.qpIterationsMax),
-                     static_cast<double>(s.qpIterationsLast),
-                     static_cast<double>(s.contactVertices)})
-        out.push_back(x);
-    for (signed char c : s.contactState) out.push_back(c);
-    return out;
+    return serialize(impl_->stepper->state());
 }
 
 void PlateSimulation::restoreState(const std::vector<double>& in) {
     const NewmarkState& current = impl_->stepper->state();
-    const auto n = current.w.size();
-    const auto m = current.contactState.size();
-    if (in.size() != 3 + 4 * static_cast<std::size_t>(n) + 16 + m || in[0] != 1.0 ||
-        in[1] != static_cast<double>(n) || in[2] != static_cast<double>(m))
-        throw std::invalid_argument("state does not belong to this plate (size or format differs)");
-    NewmarkState s;
-    std::size_t k = 3;
-    for (Eigen::VectorXd* v : {&s.w, &s.wPrev, &s.kw, &s.kwPrev}) {
-        *v = Eigen::Map<const Eigen::VectorXd>(in.data() + k, n);
-        k += n;
-    }
-    s.z = in[k++]; s.zPrev = in[k++]; s.p = in[k++]; s.pPrev = in[k++];
-    s.s = in[k++]; s.sPrev = in[k++]; s.t = in[k++]; s.tPrev = in[k++];
-    s.step = static_cast<long long>(in[k++]);
-    s.energyInput = in[k++]; s.energyDissipated = in[k++]; s.maxKktResidual = in[k++];
-    s.qpIterationsTotal = static_cast<long long>(in[k++]);
-    s.qpIterationsMax = static_cast<int>(in[k++]);
-    s.qpIterationsLast = static_cast<int>(in[k++]);
-    s.contactVertices = static_cast<int>(in[k++]);
-    s.contactState.resize(m);
-    for (std::size_t i = 0; i < m; ++i) {
-        const double c = in[k++];
-        if (c != -1.0 && c != 0.0 && c != 1.0) throw std::invalid_argument("corrupt contact state");
-        s.contactState[i] = static_cast<signed char>(c);
-    }
-    for (const Eigen::VectorXd* v : {&s.w, &s.wPrev, &s.kw, &s.kwPrev})
-        if (!v->allFinite()) throw std::invalid_argument("corrupt state: non-finite displacement");
-    impl_->stepper->setState(s);
+    impl_->stepper->setState(deserialize(in, current.w.size(), current.contactState.size()));
     impl_->energyStep = -1;
 }
 

@@ -1,0 +1,32 @@
+#pragma once
+// The state of the Newmark–contact scheme and its flat serialization (FMU states).
+#include <Eigen/Core>
+#include <vector>
+
+namespace plate {
+
+// The full mutable state of the scheme: two time levels plus the bookkeeping that makes the
+// energy ledger and the warm start exact. Saving and restoring it continues bit-identically.
+struct NewmarkState {
+    Eigen::VectorXd w, wPrev;        // w_n, w_{n−1}
+    Eigen::VectorXd kw, kwPrev;      // K w_n, K w_{n−1} (reused by the next step and the energy)
+    double z = 0, zPrev = 0;         // base z_n, z_{n−1}
+    double p = 0, pPrev = 0;         // pressure p_n, p_{n−1}
+    double s = 0, sPrev = 0;         // Fᵀw (work of the pressure)
+    double t = 0, tPrev = 0;         // (M·1)ᵀw (coupling of base and plate inertia)
+    long long step = 0;
+    double energyInput = 0, energyDissipated = 0;
+    double maxKktResidual = 0;
+    long long qpIterationsTotal = 0;
+    int qpIterationsMax = 0, qpIterationsLast = 0;
+    int contactVertices = 0;
+    std::vector<signed char> contactState;  // −1 on lower, +1 on upper, 0 free (warm start)
+};
+
+// Flat form: format version, sizes, the four vectors, the scalars, the contact set.
+std::vector<double> serialize(const NewmarkState& state);
+// Throws std::invalid_argument if the data does not fit a plate with n coordinates and m
+// contact vertices, or is corrupt (non-finite displacements, an impossible contact state).
+NewmarkState deserialize(const std::vector<double>& data, Eigen::Index n, std::size_t m);
+
+}  // namespace plate
