@@ -1,0 +1,1432 @@
+"""Speed against error of PlateImpact: wall time per simulated second, real-time factor and
+step/floor ratio beside errors against a fine reference, for both elements, several grids,
+Δt from 1e-3 down to 1e-6 and several `modes`; plus the same scheme in plain Python/SciPy
+(sparse factorization + a general QP solver from PyPI) as the baseline a user might write.
+
+Everything is measured in this run with `plate_bench` (the solver without FMI, one JSON line
+per run, the floor = one solve with the sparse factor of A = M + βΔt²K measured in the same
+run) and, for the default scene's wall time, with the FMU through fmpy.
+
+    .venv/bin/python examples/speed_vs_error.py            # full: docs/performance.md (~10 min)
+    .venv/bin/python examples/speed_vs_error.py --quick --out /tmp/perf   # smoke run, seconds
+
+Errors are used only for quantities shown to converge (successive differences of a refinement
+sequence shrinking, rule in `converges()`); a quantity that does not is reported and flagged,
+never used as an error. Writes <out>/performance.md, <out>/figures/speed_vs_error.png,
+<out>/figures/scaling.png and <out>/speed_vs_error.json (all numbers, for checks).
+"""
+from __future__ import annotations
+
+import argparse
+import datetime
+import json
+import math
+import os
+import platform
+import subprocess
+import sys
+import tempfile
+import time
+from dataclasses import dataclass, replace
+from pathlib import Path
+
+import numpy as np
+
+REPO = Path(__file__).resolve().parent.parent
+BUILD = Path(os.environ.get("PLATEIMPACT_BUILD_DIR", REPO / "build"))
+
+# The two scenes (README, NOTES.md): the §5.1 forced oscillation (default scene) and the §5.2
+# free vibration (static equilibrium under 8600 Pa, released at rest, lower obstacle only).
+SINE = {"amplitude": 0.09, "frequency": 10.0, "gap": 0.1}
+FREE = {"initial_load": 8600, "lower_only": 1, "amplitude": 0.0, "gap": 0.1}
+OBSTACLE = 0.1
+CONTRACTION = 0.75  # a refinement sequence converges if every difference ≤ 0.75 × the previous
+
+
+# ------------------------------------------------------------------------------------------
+# Runs of plate_bench
+# ------------------------------------------------------------------------------------------
+@dataclass(frozen=True)
+class Cfg:
+    element: str = "argyris"
+    nx: int = 14
+    ny: int = 5
+    dt: float = 1e-5
+    modes: int = 0
+    engine: str = "auto"
+
+    @property
+    def grid(self):
+        return f"{self.nx}x{self.ny}"
+
+    def label(self, dt=True):
+        s = f"{'Argyris' if self.element == 'argyris' else 'FVS'} {self.nx}×{self.ny}"
+        if dt:
+            s += f", Δt={fmt_dt(self.dt)}"
+        if self.modes:
+            s += f", m={self.modes}"
+        if self.engine != "auto":
+            s += f", engine={self.engine}"
+        return s
+
+    def args(self):
+        return [f"element={self.element}", f"nx={self.nx}", f"ny={self.ny}", f"dt={self.dt!r}",
+                f"modes={self.modes}", f"engine={self.engine}"]
+
+
+def fmt_dt(dt):
+    m, e = f"{dt:.0e}".split("e")
+    return f"{m}e{int(e)}" if m != "1" else f"1e{int(e)}"
+
+
+def fmt(x, digits=3):
+    if x is None or (isinstance(x, float) and not math.isfinite(x)):
+        return "—"
+    if x == 0:
+        return "0"
+    a = abs(x)
+    if 1e-3 <= a < 1e4:
+        return f"{x:.{digits}g}"
+    return f"{x:.{max(digits - 1, 1)}e}".replace("e-0", "e-").replace("e+0", "e")
+
+
+SERIES_COLUMNS = ("time", "base", "corner_1", "corner_2", "free_edge_mid", "energy",
+                  "energy_input", "energy_dissipated", "contact_vertices")
+
+
+class Bench:
+    """Runs plate_bench, caches results by configuration, keeps a log of every run.
+
+    The per-step time and the floor used everywhere are timed with the process CPU clock
+    (`step_cpu_s`, `floor_cpu_s`; equal to wall time on an idle core): the machine is shared, and
+    the wall clock also counts the time the process waited for a core. Of repeated runs the one
+    with the smallest step time is kept, with the floor measured in that same run."""
+
+    def __init__(self, path, workdir, verbose=True):
+        self.path = str(path)
+        self.workdir = Path(workdir)
+        self.verbose = verbose
+        self.cache = {}
+        self.log = []
+        self.count = 0
+
+    @staticmethod
+    def _key(cfg, scene, horizon, comm, series):
+        return (cfg, tuple(sorted(scene.items())), horizon, comm, series)
+
+    def _once(self, cfg, scene, horizon, comm, series):
+        steps = max(1, round(horizon / cfg.dt))
+        self.count += 1
+        args = [self.path, *cfg.args(), f"steps={steps}"]
+        args += [f"{k}={v}" for k, v in scene.items()]
+        if comm is not None:
+            args.append(f"comm={comm!r}")
+        if cfg.nx * cfg.ny >= 250:  # large meshes: a shorter floor measurement (~10 s saved)
+            args.append("floor_repeats=400")
+        csv = self.workdir / f"series_{self.count}.csv"
+        if series:
+            args.append(f"series={csv}")
+        t0 = time.perf_counter()
+        proc = run_binary(args)
+        elapsed = time.perf_counter() - t0
+        if proc.returncode != 0:
+            raise RuntimeError(f"{' '.join(args)} failed: {proc.stderr.strip()}")
+        r = json.loads(proc.stdout.strip().splitlines()[-1])
+        r["process_s"] = elapsed
+        r["step_wall_s"] = r["step_s"]
+        r["floor_wall_s"] = r["floor_solve_s"]
+        r["step_s"] = r.get("step_cpu_s", r["step_s"])  # older plate_bench: wall only
+        r["floor_solve_s"] = r.get("floor_cpu_s", r["floor_solve_s"])
+        r["step_over_floor"] = r["step_s"] / r["floor_solve_s"]
+        if series:
+            data = np.loadtxt(csv, delimiter=",", skiprows=1, ndmin=2)
+            r["series"] = {c: data[:, i] for i, c in enumerate(SERIES_COLUMNS)}
+            csv.unlink()
+        if self.verbose:
+            print(f"  [{self.count:3d}] {cfg.label()} {scene_name(scene)} {horizon:g}s: "
+                  f"{r['engine']}, {1e6 * r['step_s']:.2f} us/step (wall {1e6 * r['step_wall_s']:.2f}), "
+                  f"floor {1e6 * r['floor_solve_s']:.2f} us, {elapsed:.1f} s", flush=True)
+        return r
+
+    def _store(self, key, cfg, runs):
+        best = min(runs, key=lambda r: r["step_s"])
+        best["repeats"] = len(runs)
+        best["floors"] = [r["floor_solve_s"] for r in runs]
+        best["cfg"] = cfg
+        best["wall_per_sim_s"] = best["step_s"] / cfg.dt
+        best["rtf"] = cfg.dt / best["step_s"]
+        self.log.append({k: v for k, v in best.items() if k not in ("series", "cfg")})
+        self.cache[key] = best
+        return best
+
+    def run(self, cfg: Cfg, scene: dict, horizon: float, comm=None, series=False, repeats=1):
+        key = self._key(cfg, scene, horizon, comm, series)
+        if key in self.cache and self.cache[key]["repeats"] >= repeats:
+            return self.cache[key]
+        return self._store(key, cfg, [self._once(cfg, scene, horizon, comm, series)
+                                      for _ in range(repeats)])
+
+    def run_group(self, items, rounds):
+        """Runs that are compared with each other, interleaved round by round so that a busy
+        spell of the shared machine hits all of them alike. items: (cfg, scene, horizon, comm)."""
+        runs = {i: [] for i in range(len(items))}
+        for _ in range(rounds):
+            for i, (cfg, scene, horizon, comm) in enumerate(items):
+                runs[i].append(self._once(cfg, scene, horizon, comm, False))
+        return [self._store(self._key(cfg, scene, horizon, comm, False), cfg, runs[i])
+                for i, (cfg, scene, horizon, comm) in enumerate(items)]
+
+    def export(self, cfg: Cfg, directory):
+        Path(directory).mkdir(parents=True, exist_ok=True)
+        proc = run_binary([self.path, *cfg.args(), f"export={directory}"])
+        if proc.returncode != 0:
+            raise RuntimeError(f"export failed: {proc.stderr.strip()}")
+        return json.loads(proc.stdout.strip().splitlines()[-1])
+
+
+def run_binary(args, attempts=40):
+    """subprocess.run, retried while the binary cannot be executed (a rebuild relinking it)."""
+    for attempt in range(attempts):
+        try:
+            return subprocess.run(args, capture_output=True, text=True)
+        except OSError:
+            if attempt == attempts - 1:
+                raise
+            time.sleep(3)
+
+
+def scene_name(scene):
+    return "sine" if scene.get("amplitude", 0) else "§5.2"
+
+
+# ------------------------------------------------------------------------------------------
+# Exported matrices: first frequency (mesh accuracy yardstick) and the Python/SciPy baseline
+# ------------------------------------------------------------------------------------------
+def load_export(directory):
+    import scipy.io
+    d = Path(directory)
+    mass = scipy.io.mmread(d / "mass.mtx").tocsr()
+    stiffness = scipy.io.mmread(d / "stiffness.mtx").tocsr()
+    vectors = np.loadtxt(d / "vectors.txt", ndmin=2)
+    contact = np.loadtxt(d / "contact_dofs.txt", dtype=int, ndmin=1)
+    probes = []
+    for line in (d / "probes.txt").read_text().splitlines():
+        row = np.zeros(mass.shape[0])
+        for token in line.split():
+            i, c = token.split(":")
+            row[int(i)] += float(c)
+        probes.append(row)
+    return dict(M=mass, K=stiffness, F=vectors[:, 0], M1=vectors[:, 1], contact=contact,
+                probes=np.array(probes))
+
+
+def first_frequency(bench, cfg, workdir):
+    """Lowest natural frequency of the clamped plate (Hz), from the exported M, K (SciPy)."""
+    from scipy.sparse.linalg import eigsh
+    d = Path(workdir) / f"export_{cfg.element}_{cfg.grid}"
+    bench.export(cfg, d)
+    e = load_export(d)
+    vals = eigsh(e["K"].tocsc(), k=1, M=e["M"].tocsc(), sigma=0.0, which="LM",
+                 return_eigenvectors=False)
+    return float(np.sqrt(vals.min()) / (2 * np.pi)), int(e["M"].shape[0])
+
+
+def python_baseline(export_dir, dt, steps, comm, split, beta=0.5, amplitude=0.09,
+                    frequency=10.0, gap=OBSTACLE):
+    """The same three-level scheme as NewmarkContactStepper (NOTES.md "Time scheme") in plain
+    Python/SciPy: A = M + βΔt²K factored once (scipy.sparse.linalg.factorized), the free
+    solution every step, and on steps where it violates a bound the full step QP
+    min ½wᵀAw − wᵀb, obstacle − z⁺ ≤ w_C ≤ obstacle − z⁺, solved by OSQP (set up once, q/l/u
+    updated per step, warm-started, polished). The base input follows the FMU's
+    value + derivative interpolation inside each communication step, as plate_bench feeds it.
+    `split`: the step count (a whole number of communication steps) at which the wall clock is
+    also read, to split free flight from the contact phase."""
+    import osqp
+    import scipy.sparse as sp
+    from scipy.sparse.linalg import factorized
+
+    e = load_export(export_dir)
+    M, K, M1, C, P = e["M"], e["K"], e["M1"], e["contact"], e["probes"]
+    n, m = M.shape[0], len(C)
+    t_setup = time.perf_counter()
+    A = (M + beta * dt * dt * K).tocsc()
+    solve = factorized(A)
+    # OSQP on A as it is fails (A's diagonal spans ~1e-10 … 1e-1 on the default mesh): solve
+    # for x = D⁻¹w with the Jacobi scaling D = diag(A)^-½, the usual preconditioning.
+    dg = 1.0 / np.sqrt(A.diagonal())
+    D = sp.diags(dg)
+    H = sp.triu(D @ A @ D).tocsc()
+    Cx = sp.csc_matrix((dg[C], (np.arange(m), C)), shape=(m, n))
+    settings = dict(verbose=False, eps_abs=1e-9, eps_rel=1e-9, polishing=True, max_iter=100000)
+    qp = osqp.OSQP()
+    qp.setup(H, np.zeros(n), Cx, -np.ones(m), np.ones(m), **settings)
+    setup_s = time.perf_counter() - t_setup
+    unscaled_status = None
+
+    w = np.zeros(n)
+    w_prev = w.copy()
+    kw = K @ w
+    z = z_prev = 0.0
+    omega = 2 * np.pi * frequency
+    per = max(1, round(comm / dt))
+    rows = [(0.0, *(P @ w + z))]
+    qp_steps, qp_s, statuses = 0, 0.0, {}
+    clock = time.process_time  # CPU time, like plate_bench's step_cpu_s (shared machine)
+    t0 = clock()
+    t0_wall = time.perf_counter()
+    t_split = None
+    done = 0
+    while done < steps:
+        if done == split:
+            t_split = clock() - t0
+        t = done * dt
+        v = amplitude * math.sin(omega * t)
+        d1 = amplitude * omega * math.cos(omega * t)
+        d2 = -amplitude * omega * omega * math.sin(omega * t)
+        for k in range(1, min(per, steps - done) + 1):
+            s = k * dt
+            z_next = v + s * (d1 + 0.5 * s * d2)
+            rhs = -(dt * dt) * kw - (z_next - 2 * z + z_prev) * M1
+            w_next = 2 * w - w_prev + solve(rhs)
+            y = w_next[C]
+            lo, hi = -gap - z_next, gap - z_next
+            if (y < lo).any() or (y > hi).any():
+                tq = clock()
+                b = A @ w_next
+                qp.update(q=-(D @ b), l=np.full(m, lo), u=np.full(m, hi))
+                r = qp.solve()
+                statuses[r.info.status] = statuses.get(r.info.status, 0) + 1
+                w_next = dg * r.x
+                qp_steps += 1
+                qp_s += clock() - tq
+                if unscaled_status is None:  # once, untimed: what OSQP says on the unscaled QP
+                    tu = clock()
+                    raw = osqp.OSQP()
+                    raw.setup(sp.triu(A).tocsc(), -b,
+                              sp.csc_matrix((np.ones(m), (np.arange(m), C)), shape=(m, n)),
+                              np.full(m, lo), np.full(m, hi), **settings)
+                    unscaled_status = raw.solve().info.status
+                    t0 += clock() - tu
+            w_prev, w = w, w_next
+            kw = K @ w
+            z_prev, z = z, z_next
+        done += min(per, steps - done)
+        rows.append((done * dt, *(P @ w + z)))
+    wall = clock() - t0
+    real = time.perf_counter() - t0_wall
+    rows = np.array(rows)
+    t_split = wall if t_split is None else t_split
+    return dict(dofs=n, steps=steps, setup_s=setup_s, cpu_s=wall, wall_s=real, step_s=wall / steps,
+                qp_steps=qp_steps, qp_step_s=qp_s / max(qp_steps, 1),
+                free_phase_step_s=t_split / split,
+                contact_phase_step_s=(wall - t_split) / max(steps - split, 1), statuses=statuses,
+                unscaled_status=unscaled_status, time=rows[:, 0], corner_1=rows[:, 1])
+
+
+def fmu_wall(fmu, horizon, comm=1e-4, **parameters):
+    """Wall time of the default scene through the FMU (fmpy FMU2Slave), instantiation included."""
+    sys.path.insert(0, str(REPO / "examples"))
+    from plateimpact import PlateImpactFMU, sine
+
+    n = round(horizon / comm)
+    t0, c0 = time.perf_counter(), time.process_time()
+    with PlateImpactFMU(fmu, **parameters) as plate:
+        t1 = time.perf_counter()
+        for k in range(n):
+            plate.step(comm, base=sine(SINE["amplitude"], SINE["frequency"], k * comm))
+            plate.outputs()
+        t2 = time.perf_counter()
+    return dict(total_s=time.perf_counter() - t0, cpu_s=time.process_time() - c0, init_s=t1 - t0,
+                stepping_s=t2 - t1)
+
+
+# ------------------------------------------------------------------------------------------
+# Quantities, convergence, errors
+# ------------------------------------------------------------------------------------------
+def first_impact(r):
+    s = r["series"]
+    hit = np.nonzero(s["contact_vertices"] > 0)[0]
+    return float(s["time"][hit[0]]) if hit.size else float("nan")
+
+
+def traj_difference(a, b, until):
+    """max |corner_1(a) − corner_1(b)| over the common output times ≤ until, relative to
+    max |corner_1(b)| there."""
+    ta = np.round(a["series"]["time"], 9)
+    tb = np.round(b["series"]["time"], 9)
+    common, ia, ib = np.intersect1d(ta, tb, return_indices=True)
+    keep = common <= until + 1e-12
+    ca = a["series"]["corner_1"][ia[keep]]
+    cb = b["series"]["corner_1"][ib[keep]]
+    return float(np.max(np.abs(ca - cb)) / np.max(np.abs(cb)))
+
+
+def converges(diffs, resolution):
+    """The rule: at least two successive differences, each ≤ CONTRACTION × the previous one, or
+    within its resolution (e.g. the output step for an impact time); a difference smaller than
+    its own resolution counts as its resolution when the next one is compared with it."""
+    if len(diffs) < 2 or not all(np.isfinite(diffs)):
+        return False
+    return all(d2 <= max(CONTRACTION * max(d1, r1), r2)
+               for d1, d2, r1, r2 in zip(diffs[:-1], diffs[1:], resolution[:-1], resolution[1:]))
+
+
+def refinement_factors(cfgs):
+    """How much finer each member is than the previous one (Δt ratio, or cells ratio in x)."""
+    return [a.dt / b.dt if a.dt != b.dt else b.nx / a.nx for a, b in zip(cfgs[:-1], cfgs[1:])]
+
+
+def sequence_report(name, labels, values, diffs, resolution, unit="", factors=None):
+    ok = converges(diffs, resolution)
+    ratios = [d2 / d1 if d1 > 0 else float("nan") for d1, d2 in zip(diffs[:-1], diffs[1:])]
+    # observed order from the last two differences: d_i ~ C step^p, factor f between members
+    orders = []
+    if factors is not None:
+        for i, r in enumerate(ratios):
+            f = math.sqrt(factors[i] * factors[i + 1])
+            orders.append(math.log(1 / r) / math.log(f) if r > 0 and f > 1 else float("nan"))
+    # a-posteriori uncertainty of the finest member: geometric tail of the last contraction
+    q = ratios[-1] if ratios else float("nan")
+    tail = diffs[-1] * q / (1 - q) if ok and ratios and 0 <= q < 1 else float("nan")
+    if ok and ratios and q == 0:
+        tail = max(resolution[-1], diffs[-1])
+    return dict(name=name, labels=labels, values=values, diffs=list(map(float, diffs)),
+                resolution=list(map(float, resolution)), ratios=ratios, converges=ok,
+                tail=float(tail), unit=unit, orders=orders)
+
+
+# ------------------------------------------------------------------------------------------
+# The plan
+# ------------------------------------------------------------------------------------------
+def make_plan(quick):
+    A, F = "argyris", "fvs"
+    if quick:
+        return dict(
+            quick=True,
+            scaling=[(A, 7, 3), (F, 10, 4)], scaling_steps=2000, scaling_repeats=1,
+            short_T=0.06, pre_impact=0.045,
+            short=[Cfg(A, 7, 3, dt) for dt in (1e-3, 1e-4, 1e-5)]
+            + [Cfg(F, nx, ny, 1e-5) for nx, ny in ((10, 4), (20, 7), (40, 14))]
+            + [Cfg(A, 7, 3, 1e-5, modes=m) for m in (10, 40)],
+            short_ref=Cfg(F, 40, 14, 1e-5),
+            short_seqs=[("Δt, Argyris 7×3", [Cfg(A, 7, 3, dt) for dt in (1e-3, 1e-4, 1e-5)], "dt"),
+                        ("h, FVS, Δt=1e-5", [Cfg(F, nx, ny, 1e-5) for nx, ny in ((10, 4), (20, 7), (40, 14))], "h")],
+            free_T=0.5,
+            free=[Cfg(A, 7, 3, dt) for dt in (1e-4, 1e-5, 5e-6)]
+            + [Cfg(A, 7, 3, 1e-5, modes=m) for m in (10, 40, 120)]
+            + [Cfg(A, 7, 3, 1e-5, engine="sparse")],
+            free_seqs=[("Δt, Argyris 7×3", [Cfg(A, 7, 3, dt) for dt in (1e-4, 1e-5, 5e-6)])],
+            free_modes_base=Cfg(A, 7, 3, 1e-5), free_modes=(10, 40, 120),
+            long_T=0.3,
+            long=[Cfg(A, 7, 3, 1e-5), Cfg(A, 7, 3, 1e-5, engine="sparse"),
+                  Cfg(A, 7, 3, 1e-5, modes=40)],
+            default=Cfg(A, 7, 3, 1e-4), default_T=0.05, default_repeats=1,
+            baseline=dict(cfg=Cfg(A, 7, 3, 1e-4), steps=600, comm=1e-4, split=490),
+            pairs=[((A, 7, 3), (F, 20, 7))],
+            freq_grids=[(A, 7, 3), (F, 10, 4), (F, 20, 7), (F, 40, 14)],
+        )
+    grids_a = [(7, 3), (14, 5), (28, 10)]
+    grids_f = [(20, 7), (40, 14), (80, 28)]
+    decades = (1e-3, 1e-4, 1e-5, 1e-6)
+    short = []
+    for nx, ny in grids_a:
+        short += [Cfg(A, nx, ny, dt) for dt in decades]
+    for nx, ny in grids_f:
+        short += [Cfg(F, nx, ny, dt) for dt in decades]
+    short += [Cfg(A, 14, 5, dt, modes=m) for dt in (1e-5, 1e-6) for m in (10, 40, 160, 400)]
+    short += [Cfg(F, 20, 7, 1e-5, modes=m) for m in (10, 40, 160)]
+    fine_dt = (1e-3, 1e-4, 1e-5, 5e-6, 2e-6, 1e-6, 5e-7)
+    free = [Cfg(A, 14, 5, dt) for dt in fine_dt] + [Cfg(A, 7, 3, dt) for dt in fine_dt]
+    free += [Cfg(F, 20, 7, dt) for dt in fine_dt[:-1]]
+    free += [Cfg(A, 28, 10, dt) for dt in (1e-3, 1e-4, 1e-5)] + [Cfg(F, 40, 14, dt) for dt in (1e-4, 1e-5)]
+    free += [Cfg(A, 14, 5, 1e-5, engine="sparse")]
+    modes_a = (10, 20, 40, 80, 160, 300, 500, 650, 700, 733)
+    free += [Cfg(A, 14, 5, 1e-5, modes=m) for m in modes_a]
+    free += [Cfg(A, 14, 5, 1e-6, modes=m) for m in (40, 160, 650)]
+    free += [Cfg(F, 20, 7, 1e-5, modes=m) for m in (10, 40, 160, 320, 440)]
+    return dict(
+        quick=False,
+        scaling=[(A, 7, 3), (A, 14, 5), (A, 28, 10), (A, 56, 20),
+                 (F, 10, 4), (F, 20, 7), (F, 40, 14), (F, 80, 28)],
+        scaling_steps=6000, scaling_repeats=3,
+        short_T=0.06, pre_impact=0.045, short=short,
+        short_ref=Cfg(A, 28, 10, 1e-6),
+        short_seqs=[("Δt, Argyris 14×5", [Cfg(A, 14, 5, dt) for dt in decades], "dt"),
+                    ("Δt, FVS 20×7", [Cfg(F, 20, 7, dt) for dt in decades], "dt"),
+                    ("h, Argyris, Δt=1e-6", [Cfg(A, nx, ny, 1e-6) for nx, ny in grids_a], "h"),
+                    ("h, FVS, Δt=1e-6", [Cfg(F, nx, ny, 1e-6) for nx, ny in grids_f], "h")],
+        free_T=0.5, free=free,
+        free_seqs=[("Δt, Argyris 14×5", [Cfg(A, 14, 5, dt) for dt in fine_dt]),
+                   ("Δt, Argyris 7×3", [Cfg(A, 7, 3, dt) for dt in fine_dt]),
+                   ("Δt, FVS 20×7", [Cfg(F, 20, 7, dt) for dt in fine_dt[:-1]]),
+                   ("h, Argyris, Δt=1e-5", [Cfg(A, nx, ny, 1e-5) for nx, ny in grids_a]),
+                   ("h, FVS, Δt=1e-5", [Cfg(F, nx, ny, 1e-5) for nx, ny in grids_f[:2]])],
+        free_modes_base=Cfg(A, 14, 5, 1e-5), free_modes=modes_a,
+        long_T=1.0,
+        long=[Cfg(A, 14, 5, 1e-5), Cfg(A, 14, 5, 1e-5, engine="sparse"), Cfg(A, 14, 5, 5e-6),
+              Cfg(A, 7, 3, 1e-5), Cfg(F, 20, 7, 1e-5)]
+        + [Cfg(A, 14, 5, 1e-5, modes=m) for m in (10, 40, 160, 400, 650)],
+        default=Cfg(A, 14, 5, 1e-5), default_T=1.0, default_repeats=3,
+        baseline=dict(cfg=Cfg(A, 14, 5, 1e-5), steps=6000, comm=1e-4, split=4900),
+        pairs=[((A, 7, 3), (F, 20, 7)), ((A, 14, 5), (F, 40, 14)), ((A, 28, 10), (F, 80, 28))],
+        freq_grids=[(A, 7, 3), (A, 14, 5), (A, 28, 10), (A, 56, 20),
+                    (F, 10, 4), (F, 20, 7), (F, 40, 14), (F, 80, 28)],
+    )
+
+
+# ------------------------------------------------------------------------------------------
+# Studies
+# ------------------------------------------------------------------------------------------
+def study_scaling(bench, plan):
+    rows = []
+    for element, nx, ny in plan["scaling"]:
+        cells = nx * ny
+        steps = plan["scaling_steps"] if cells <= 600 else 600
+        small = cells <= 150
+        rounds = plan["scaling_repeats"] if small else (2 if cells <= 600 else 1)
+        engines = ["auto", "sparse", "modal"] if small else ["auto"]
+        items = [(Cfg(element, nx, ny, 1e-5, engine=e), SINE, steps * 1e-5, None) for e in engines]
+        res = dict(zip(engines, bench.run_group(items, rounds)))
+        if "sparse" not in res:
+            res["sparse"] = (res["auto"] if res["auto"]["engine"] == "sparse" else
+                             bench.run(Cfg(element, nx, ny, 1e-5, engine="sparse"), SINE, steps * 1e-5))
+        rows.append(dict(element=element, nx=nx, ny=ny, dofs=res["auto"]["dofs"], steps=steps,
+                         rounds=rounds, auto=res["auto"], sparse=res["sparse"], modal=res.get("modal")))
+    return rows
+
+
+def study_short(bench, plan):
+    # errors from runs that write every step (comm = Δt, so t₁ is resolved to Δt); their timing
+    # would include the CSV writing, so each configuration is timed in a second run without
+    # series at the FMU's communication step (1e-4 s, or Δt if larger)
+    runs = {c: bench.run(c, SINE, plan["short_T"], comm=c.dt, series=True) for c in plan["short"]}
+    timing = {c: bench.run(c, SINE, plan["short_T"], comm=max(c.dt, 1e-4)) for c in plan["short"]}
+    ref = plan["short_ref"]
+    until = plan["pre_impact"]
+    seqs = {"trajectory": [], "impact": []}
+    for name, cfgs, kind in plan["short_seqs"]:
+        rs = [runs[c] for c in cfgs]
+        labels = [c.label() for c in cfgs]
+        dtraj = [traj_difference(a, b, until) for a, b in zip(rs[:-1], rs[1:])]
+        seqs["trajectory"].append(sequence_report(
+            name, labels, [None] * len(rs), dtraj, [1e-12] * len(dtraj), "relative",
+            refinement_factors(cfgs)))
+        t1 = [first_impact(r) for r in rs]
+        dt1 = [abs(b - a) for a, b in zip(t1[:-1], t1[1:])]
+        res = [max(a.dt, b.dt) for a, b in zip(cfgs[:-1], cfgs[1:])]
+        seqs["impact"].append(sequence_report(name, labels, t1, dt1, res, "s",
+                                              refinement_factors(cfgs)))
+    quantities = {}
+    for q in ("trajectory", "impact"):
+        ok = all(s["converges"] for s in seqs[q])
+        # uncertainty of the reference: the worst Δt tail among the Δt sequences that end at the
+        # reference's Δt, plus the worst h tail among the h sequences that end at the reference
+        dt_tails = [s["tail"] for s, (_, cfgs, kind) in zip(seqs[q], plan["short_seqs"])
+                    if kind == "dt" and cfgs[-1].dt == ref.dt]
+        h_tails = [s["tail"] for s, (_, cfgs, kind) in zip(seqs[q], plan["short_seqs"])
+                   if kind == "h" and cfgs[-1] == ref]
+        unc = max(dt_tails, default=0.0) + max(h_tails, default=0.0)
+        quantities[q] = dict(converges=ok, sequences=seqs[q], ref=ref.label(),
+                             ref_uncertainty=unc if ok else float("nan"))
+    t1_ref = first_impact(runs[ref])
+    rows = []
+    for c, r in runs.items():
+        row = dict(cfg=c, run=timing[c], t1=first_impact(r))
+        row["err_trajectory"] = (traj_difference(r, runs[ref], until)
+                                 if quantities["trajectory"]["converges"] and c != ref else None)
+        row["err_impact"] = (abs(row["t1"] - t1_ref)
+                             if quantities["impact"]["converges"] and c != ref else None)
+        rows.append(row)
+    quantities["impact"]["ref_value"] = t1_ref
+    return dict(rows=rows, quantities=quantities, runs=runs)
+
+
+def study_free(bench, plan):
+    base = plan["free_modes_base"]
+    # the modes-against-exact speed-ups are headline numbers: exact and modes interleaved, 3 rounds
+    group = [c for c in plan["free"] if (c.element, c.nx, c.ny, c.dt, c.engine)
+             == (base.element, base.nx, base.ny, base.dt, "auto")]
+    runs = dict(zip(group, bench.run_group(
+        [(c, FREE, plan["free_T"], max(c.dt, 1e-4)) for c in group], rounds=3)))
+    for c in plan["free"]:
+        if c not in runs:
+            runs[c] = bench.run(c, FREE, plan["free_T"], comm=max(c.dt, 1e-4))
+    seqs = []
+    for name, cfgs in plan["free_seqs"]:
+        e = [runs[c]["energy_dissipated"] for c in cfgs]
+        d = [abs(b - a) for a, b in zip(e[:-1], e[1:])]
+        seqs.append(sequence_report(name, [c.label() for c in cfgs], e, d, [1e-6] * len(d), "J",
+                                    refinement_factors(cfgs)))
+    ok = all(s["converges"] for s in seqs)
+    exact = runs[base]
+    modes = []
+    for c, r in runs.items():
+        if c.modes:
+            ex = runs.get(replace(c, modes=0))
+            if ex is None:
+                continue
+            modes.append(dict(cfg=c, run=r, exact=ex,
+                              rel_err=(r["energy_dissipated"] - ex["energy_dissipated"])
+                              / ex["energy_dissipated"],
+                              speedup=ex["step_s"] / r["step_s"]))
+    sparse = runs.get(replace(base, engine="sparse"))
+    roundoff = (abs(sparse["energy_dissipated"] - exact["energy_dissipated"]) if sparse else None)
+    return dict(runs=runs, sequences=seqs, converges=ok, modes=modes, roundoff=roundoff,
+                base=base)
+
+
+def study_long(bench, plan):
+    runs = {c: bench.run(c, SINE, plan["long_T"], comm=1e-4, series=True) for c in plan["long"]}
+    rows = []
+    for c, r in runs.items():
+        s = r["series"]
+        rel = np.abs(s["corner_1"] - s["base"])
+        period = 1.0 / SINE["frequency"]
+        k = np.floor(s["time"] / period + 1e-9).astype(int)
+        periods = [rel[k == i].max() for i in range(1, int(plan["long_T"] / period)) if (k == i).any()]
+        rows.append(dict(cfg=c, run=r, max_corner=float(np.max(np.abs(s["corner_1"]))),
+                         max_corner_any=float(max(np.max(np.abs(s["corner_1"])),
+                                                  np.max(np.abs(s["corner_2"])))),
+                         period_envelope=float(np.mean(periods)) if periods else float("nan"),
+                         energy_dissipated=r["energy_dissipated"]))
+    pinned = all(abs(row["max_corner_any"] - OBSTACLE) < 1e-9 for row in rows)
+    by = {row["cfg"]: row for row in rows}
+    base = plan["long"][0]
+    sparse = by.get(replace(base, engine="sparse"))
+    noise = (abs(sparse["period_envelope"] - by[base]["period_envelope"])
+             / by[base]["period_envelope"]) if sparse else float("nan")
+    half = by.get(replace(base, dt=base.dt / 2))
+    dt_change = (abs(half["period_envelope"] - by[base]["period_envelope"])
+                 / by[base]["period_envelope"]) if half else float("nan")
+    return dict(rows=rows, pinned=pinned, roundoff_rel=noise, dt_half_rel=dt_change, base=base)
+
+
+# ------------------------------------------------------------------------------------------
+# Figures
+# ------------------------------------------------------------------------------------------
+COLORS = {("argyris", "7x3"): "#9ecae1", ("argyris", "14x5"): "#3182bd",
+          ("argyris", "28x10"): "#08306b", ("fvs", "10x4"): "#fdd0a2", ("fvs", "20x7"): "#fd8d3c",
+          ("fvs", "40x14"): "#d94801", ("fvs", "80x28"): "#7f2704"}
+DT_MARKERS = {1e-3: "s", 1e-4: "D", 1e-5: "o", 5e-6: "v", 2e-6: "<", 1e-6: "*", 5e-7: "P"}
+
+
+def plot_speed_vs_error(short, free, path):
+    import matplotlib
+    matplotlib.use("Agg")
+    import matplotlib.pyplot as plt
+    from matplotlib.lines import Line2D
+
+    fig, axes = plt.subplots(2, 2, figsize=(13, 10))
+    for ax, key, q, title, unit in (
+            (axes[0, 0], "err_trajectory", "trajectory",
+             "sine scene: corner_1 before the first impact (t ≤ 0.045 s)", "max error / max |corner_1|"),
+            (axes[0, 1], "err_impact", "impact", "sine scene: time of the first impact",
+             "|t₁ − t₁,ref| [s]")):
+        info = short["quantities"][q]
+        pts = [r for r in short["rows"] if r[key] is not None and r[key] > 0]
+        if not info["converges"]:
+            ax.text(0.5, 0.5, "does not converge (convergence table):\nnot used as an error",
+                    ha="center", va="center", transform=ax.transAxes, fontsize=10, color="0.3")
+        for r in pts:
+            c = r["cfg"]
+            color = COLORS.get((c.element, c.grid), "k")
+            ax.scatter(r["run"]["wall_per_sim_s"], r[key], color=color if not c.modes else "white",
+                       edgecolor=color, marker=DT_MARKERS.get(c.dt, "o"), s=60, zorder=3)
+            if c.modes:
+                ax.annotate(f"m={c.modes}", (r["run"]["wall_per_sim_s"], r[key]), fontsize=7,
+                            xytext=(4, 2), textcoords="offset points")
+        groups = {}
+        for r in pts:
+            if not r["cfg"].modes and r["cfg"].engine == "auto":
+                groups.setdefault((r["cfg"].element, r["cfg"].grid), []).append(r)
+        for g, rs in groups.items():
+            rs.sort(key=lambda r: -r["cfg"].dt)
+            ax.plot([r["run"]["wall_per_sim_s"] for r in rs], [r[key] for r in rs],
+                    color=COLORS.get(g, "k"), lw=0.8, zorder=2)
+        unc = info.get("ref_uncertainty", float("nan"))
+        if math.isfinite(unc) and unc > 0:
+            ax.axhline(unc, color="0.5", ls=":", lw=1)
+            ax.text(ax.get_xlim()[0] if False else 0.02, unc, " reference uncertainty", fontsize=7,
+                    color="0.4", transform=ax.get_yaxis_transform(), va="bottom")
+        ax.set_xscale("log")
+        ax.set_yscale("log")
+        ax.set_xlabel("wall time per simulated second on an idle core [s]  (plate_bench stepping)")
+        ax.set_ylabel(unit)
+        ax.set_title(title, fontsize=10)
+        ax.axvline(1.0, color="0.8", lw=0.8)
+        ax.text(1.0, 0.98, " real time", fontsize=7, color="0.5", transform=ax.get_xaxis_transform(),
+                va="top")
+        ax.grid(True, which="major", color="0.92")
+
+    ax = axes[1, 0]
+    for dt_ in sorted({m["cfg"].dt for m in free["modes"]}, reverse=True):
+        for element in ("argyris", "fvs"):
+            ms = sorted([m for m in free["modes"] if m["cfg"].dt == dt_ and m["cfg"].element == element],
+                        key=lambda m: m["cfg"].modes)
+            if not ms:
+                continue
+            color = COLORS.get((element, ms[0]["cfg"].grid), "k")
+            ls = "-" if dt_ >= 1e-5 else "--"
+            xs = [m["run"]["wall_per_sim_s"] for m in ms]
+            ys = [max(abs(m["rel_err"]), 1e-6) for m in ms]
+            mesh = replace(ms[0]["cfg"], modes=0).label(dt=False)
+            ax.plot(xs, ys, marker=DT_MARKERS.get(dt_, "o"), color=color, lw=0.8, ls=ls,
+                    label=f"{mesh}, Δt={fmt_dt(dt_)}: modes m (numbers)")
+            for m, x, y in zip(ms, xs, ys):
+                ax.annotate(str(m["cfg"].modes), (x, y), fontsize=7, xytext=(3, 3),
+                            textcoords="offset points")
+            ax.axvline(ms[0]["exact"]["wall_per_sim_s"], color=color, ls=ls, lw=1.2, alpha=0.6)
+    ax.axhline(0.01, color="r", ls="--", lw=0.8)
+    lo, hi = ax.get_ylim()
+    ax.set_ylim(min(lo, 1e-3), hi)
+    ax.text(0.02, 0.01, " 1 % goal", color="r", fontsize=8, transform=ax.get_yaxis_transform(),
+            va="bottom")
+    ax.set_xscale("log")
+    ax.set_yscale("log")
+    ax.set_xlabel("wall time per simulated second on an idle core [s]\n(vertical line: the exact scheme, same mesh and Δt)")
+    ax.set_ylabel("|E_lost(m) − E_lost(exact)| / E_lost(exact)")
+    ax.set_title("§5.2: energy lost by 0.5 s, modes against the exact scheme (same mesh, Δt)\n"
+                 "(against a fine reference: not converged, see the right panel)", fontsize=10)
+    ax.legend(fontsize=7, loc="upper right")
+    ax.grid(True, which="major", color="0.92")
+
+    ax = axes[1, 1]
+    for name, cfgs in free["plan_seqs"]:
+        if not name.startswith("Δt"):
+            continue
+        c0 = cfgs[0]
+        rs = [free["runs"][c] for c in cfgs]
+        ax.plot([c.dt for c in cfgs], [r["energy_dissipated"] for r in rs], marker="o",
+                color=COLORS.get((c0.element, c0.grid), "k"), label=c0.label(dt=False))
+    for name, cfgs in free["plan_seqs"]:
+        if name.startswith("h"):
+            for c in cfgs:
+                if not any(c in cf for n, cf in free["plan_seqs"] if n.startswith("Δt")):
+                    ax.scatter([c.dt], [free["runs"][c]["energy_dissipated"]], marker="^",
+                               color=COLORS.get((c.element, c.grid), "k"), label=c.label(dt=False))
+    ax.set_xscale("log")
+    ax.set_xlabel("Δt [s]")
+    ax.set_ylabel("energy lost by 0.5 s [J]")
+    ax.set_title("§5.2: energy lost by 0.5 s against Δt and mesh (exact scheme)", fontsize=10)
+    ax.legend(fontsize=7)
+    ax.grid(True, which="major", color="0.92")
+    ax.invert_xaxis()
+
+    handles = [Line2D([], [], color=col, marker="o", ls="-", label=f"{'Argyris' if e == 'argyris' else 'FVS'} {g}")
+               for (e, g), col in COLORS.items()
+               if any(r["cfg"].element == e and r["cfg"].grid == g for r in short["rows"])]
+    handles += [Line2D([], [], color="k", marker=mk, ls="", label=f"Δt={fmt_dt(d)}")
+                for d, mk in DT_MARKERS.items() if any(r["cfg"].dt == d for r in short["rows"])]
+    handles += [Line2D([], [], color="k", marker="o", markerfacecolor="white", ls="",
+                       label="modes m (hollow)")]
+    axes[0, 0].legend(handles=handles, fontsize=7, loc="lower left", ncol=2)
+    fig.suptitle("PlateImpact: error against wall time per simulated second", fontsize=12)
+    fig.tight_layout()
+    fig.savefig(path, dpi=110)
+    plt.close(fig)
+
+
+def plot_scaling(rows, path):
+    import matplotlib
+    matplotlib.use("Agg")
+    import matplotlib.pyplot as plt
+
+    fig, ax = plt.subplots(figsize=(7.5, 5))
+    for element, color in (("argyris", "#3182bd"), ("fvs", "#d94801")):
+        rs = sorted([r for r in rows if r["element"] == element], key=lambda r: r["dofs"])
+        if not rs:
+            continue
+        n = [r["dofs"] for r in rs]
+        name = "Argyris" if element == "argyris" else "FVS"
+        ax.plot(n, [r["auto"]["step_s"] for r in rs], "o-", color=color, label=f"{name}: step, engine=auto")
+        ax.plot(n, [r["sparse"]["step_s"] for r in rs], "s--", color=color, alpha=0.7,
+                label=f"{name}: step, engine=sparse")
+        ax.plot(n, [r["auto"]["floor_solve_s"] for r in rs], "x:", color=color, label=f"{name}: floor (one solve)")
+    ax.set_xscale("log")
+    ax.set_yscale("log")
+    ax.set_xlabel("free dofs")
+    ax.set_ylabel("seconds per step")
+    ax.set_title("Per-step time and floor against the number of dofs (sine scene, Δt=1e-5)", fontsize=10)
+    ax.grid(True, which="both", color="0.92")
+    ax.legend(fontsize=8)
+    fig.tight_layout()
+    fig.savefig(path, dpi=110)
+    plt.close(fig)
+
+
+# ------------------------------------------------------------------------------------------
+# Main
+# ------------------------------------------------------------------------------------------
+def loglog_slope(xs, ys):
+    xs, ys = np.log(np.asarray(xs, float)), np.log(np.asarray(ys, float))
+    return float(np.polyfit(xs, ys, 1)[0]) if len(xs) >= 2 else float("nan")
+
+
+def main(argv=None):
+    ap = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
+    ap.add_argument("--quick", action="store_true", help="smoke run on tiny grids (seconds)")
+    ap.add_argument("--out", default=str(REPO / "docs"), help="output directory (performance.md, figures/)")
+    ap.add_argument("--bench", default=str(BUILD / "solver" / "bench" / "plate_bench"))
+    ap.add_argument("--fmu", default=str(BUILD / "PlateImpact.fmu"))
+    args = ap.parse_args(argv)
+
+    out = Path(args.out)
+    (out / "figures").mkdir(parents=True, exist_ok=True)
+    plan = make_plan(args.quick)
+    started = time.perf_counter()
+    load_before = os.getloadavg()
+    with tempfile.TemporaryDirectory(prefix="speed_vs_error_") as tmp:
+        bench = Bench(args.bench, tmp)
+        print("== first natural frequencies (mesh accuracy), from the exported M, K")
+        freqs = {}
+        for element, nx, ny in plan["freq_grids"]:
+            f, n = first_frequency(bench, Cfg(element, nx, ny), tmp)
+            freqs[(element, nx, ny)] = dict(f1=f, dofs=n)
+            print(f"  {element} {nx}x{ny}: {n} dofs, f1 = {f:.6f} Hz")
+        f_ref_key = max(freqs, key=lambda k: (k[0] == "argyris", freqs[k]["dofs"]))
+        for k, v in freqs.items():
+            v["rel_err"] = abs(v["f1"] - freqs[f_ref_key]["f1"]) / freqs[f_ref_key]["f1"]
+
+        print("== scaling: per-step time and floor against dofs")
+        scaling = study_scaling(bench, plan)
+        print("== sine scene, short horizon (trajectory before the first impact, impact time)")
+        short = study_short(bench, plan)
+        print("== §5.2 free vibration (energy lost by 0.5 s)")
+        free = study_free(bench, plan)
+        free["plan_seqs"] = plan["free_seqs"]
+        print("== sine scene, long horizon (envelope)")
+        long = study_long(bench, plan)
+
+        print("== default scene: plate_bench and the FMU")
+        dflt = bench.run(plan["default"], SINE, plan["default_T"], repeats=plan["default_repeats"])
+        fmu = None
+        if Path(args.fmu).exists():
+            tries = []
+            for _ in range(plan["default_repeats"]):
+                tries.append(fmu_wall(args.fmu, plan["default_T"], dt=plan["default"].dt,
+                                      nx=plan["default"].nx, ny=plan["default"].ny))
+            fmu = min(tries, key=lambda t: t["total_s"])
+            print(f"  FMU: {fmu['total_s']:.2f} s wall for {plan['default_T']} s "
+                  f"(init {fmu['init_s']:.2f} s)")
+
+        print("== Python/SciPy baseline")
+        bl = plan["baseline"]
+        exp_dir = Path(tmp) / "baseline_export"
+        bench.export(bl["cfg"], exp_dir)
+        try:
+            py = min((python_baseline(exp_dir, bl["cfg"].dt, bl["steps"], bl["comm"], bl["split"])
+                      for _ in range(2)), key=lambda r: r["step_s"])
+        except ImportError as e:
+            py = dict(error=str(e))
+        cpp = {}
+        items = [(replace(bl["cfg"], engine=e), SINE, n * bl["cfg"].dt, bl["comm"])
+                 for e in ("auto", "sparse") for n in (bl["steps"], bl["split"])]
+        timed = bench.run_group(items, rounds=3)
+        for k, engine in enumerate(("auto", "sparse")):
+            whole, free_part = timed[2 * k], timed[2 * k + 1]
+            c = replace(bl["cfg"], engine=engine)
+            ser = bench.run(c, SINE, bl["steps"] * c.dt, comm=bl["comm"], series=True)
+            contact_s = max((whole["step_s"] * bl["steps"] - free_part["step_s"] * bl["split"])
+                            / (bl["steps"] - bl["split"]), 0.0)
+            cpp[engine] = dict(run=whole, free_step_s=free_part["step_s"], contact_step_s=contact_s,
+                               series=ser)
+        if "error" not in py:
+            ser = cpp["auto"]["series"]["series"]
+            t_imp = first_impact(cpp["auto"]["series"])
+            agree = {}
+            for engine in ("auto", "sparse"):
+                s = cpp[engine]["series"]["series"]
+                diff = np.abs(py["corner_1"] - s["corner_1"][:len(py["corner_1"])])
+                before = py["time"] < t_imp - 1e-12
+                agree[engine] = dict(before=float(diff[before].max()),
+                                     after=float(diff[~before].max()) if (~before).any() else float("nan"))
+            py["agree"] = agree
+            py["t_impact"] = t_imp
+            py["ratio"] = {e: py["step_s"] / cpp[e]["run"]["step_s"] for e in cpp}
+            py["ratio_free"] = {e: py["free_phase_step_s"] / cpp[e]["free_step_s"] for e in cpp}
+            py["ratio_contact"] = {e: py["contact_phase_step_s"] / cpp[e]["contact_step_s"]
+                                   if cpp[e]["contact_step_s"] > 0 else float("nan") for e in cpp}
+            print(f"  Python {1e6 * py['step_s']:.0f} us/step ({py['qp_steps']} QP steps), "
+                  f"ratio to C++ auto {py['ratio']['auto']:.0f}x, agreement before impact "
+                  f"{agree['auto']['before']:.1e} m, after {agree['auto']['after']:.1e} m")
+    elapsed = time.perf_counter() - started
+    load_after = os.getloadavg()
+
+    ctx = dict(plan=plan, freqs=freqs, f_ref_key=f_ref_key, scaling=scaling, short=short,
+               free=free, long=long, dflt=dflt, fmu=fmu, py=py, cpp=cpp, elapsed=elapsed,
+               load=(load_before, load_after), runs=bench.count, args=args)
+    plot_speed_vs_error(short, free, out / "figures" / "speed_vs_error.png")
+    plot_scaling(scaling, out / "figures" / "scaling.png")
+    summary = write_report(ctx, out / "performance.md")
+    summary["runs"] = bench.log  # every plate_bench run: wall and CPU step times, floors, engine
+    (out / "speed_vs_error.json").write_text(json.dumps(summary, indent=1, default=float))
+    print(f"== wrote {out / 'performance.md'}, {out / 'figures' / 'speed_vs_error.png'}, "
+          f"{out / 'figures' / 'scaling.png'} in {elapsed:.0f} s ({bench.count} plate_bench runs)")
+    for line in summary["headline_lines"]:
+        print("  " + line)
+    return 0
+
+
+# ------------------------------------------------------------------------------------------
+# The report
+# ------------------------------------------------------------------------------------------
+def git_describe():
+    try:
+        rev = subprocess.run(["git", "-C", str(REPO), "rev-parse", "--short", "HEAD"],
+                             capture_output=True, text=True).stdout.strip()
+        dirty = subprocess.run(["git", "-C", str(REPO), "status", "--porcelain", "--untracked-files=no",
+                                "solver", "fmu"], capture_output=True, text=True).stdout.strip()
+        return rev + (" (solver/fmu with uncommitted edits)" if dirty else "")
+    except OSError:
+        return "unknown"
+
+
+def write_report(ctx, path):
+    plan, short, free, long, py, cpp = (ctx[k] for k in ("plan", "short", "free", "long", "py", "cpp"))
+    L = []
+    w = L.append
+    quick = plan["quick"]
+    cmd = ("`.venv/bin/python examples/speed_vs_error.py" + (" --quick" if quick else "") + "`"
+           + " (after `bash run.sh` has built `build/solver/bench/plate_bench` and `build/PlateImpact.fmu`)")
+    w("# PlateImpact: speed against error")
+    w("")
+    if quick:
+        w("> **--quick smoke run**: tiny grids and horizons; the numbers exercise the pipeline and mean little.")
+        w("")
+    w(f"Regenerate: {cmd}. This run: {ctx['elapsed'] / 60:.1f} min wall, {ctx['runs']} `plate_bench` runs, "
+      f"commit {git_describe()}, {datetime.date.today().isoformat()}.")
+    w("")
+    lb, la = ctx["load"]
+    w(f"**Machine**: {os.cpu_count()} cores, shared with colleagues' builds and tests while this ran "
+      f"(load average {lb[0]:.1f} at the start, {la[0]:.1f} at the end; {platform.processor() or platform.machine()}, "
+      f"Python {platform.python_version()}). Timings are noisy (±30 % between runs is common here): "
+      "runs that are compared with each other are interleaved and repeated and the fastest kept; "
+      "every step/floor ratio divides two numbers measured in the same process.")
+    w("")
+    w("Definitions. *Floor*: one solve with the sparse CHOLMOD factor of A = M + βΔt²K (NOTES.md), "
+      "measured by `plate_bench` in the same run (median of 20 batches of solves). *Step*: mean time "
+      "of one time step of the stepper over the run (QP steps included, outputs read every "
+      "communication step of 1e-4 s, setup excluded). Both are timed with the process CPU clock "
+      "(`step_cpu_s`, `floor_cpu_s` of plate_bench) — the wall time on an idle core; on this shared "
+      "machine the wall clock also counts the time the process waited for a core (both are in the JSON). *Wall time per "
+      "simulated second* = step / Δt; *real-time factor* (RTF) = Δt / step. *Exact*: `modes = 0` (engine `auto` picks the complete "
+      "modal basis or the sparse factor; both are the same scheme). *m*: `modes = m`, the m lowest modes.")
+    w("")
+
+    # ---------------- headline ----------------
+    heads = headline(ctx)
+    w("## Headline numbers and goals")
+    w("")
+    w("| goal | measured | verdict |")
+    w("|---|---|---|")
+    for g in heads["goals"]:
+        cells = [g["goal"], g["measured"], g["verdict"] + (" (quick run: not meaningful)" if quick else "")]
+        w("| " + " | ".join(c.replace("\\|", "|").replace("|", "\\|") for c in cells) + " |")
+    w("")
+    for para in heads["notes"]:
+        w(para)
+        w("")
+    w("![error against wall time per simulated second](figures/speed_vs_error.png)")
+    w("")
+
+    # ---------------- convergence ----------------
+    w("## Which quantities converge (checked before any is used as an error)")
+    w("")
+    w(f"Rule (`converges()` in the script): a refinement sequence converges when it has at least two "
+      f"successive differences and each is at most {CONTRACTION} × the previous one, or within its "
+      "resolution (the output step for an impact time, whose value is quantized to Δt; a difference "
+      "below its own resolution counts as the resolution when the next one is compared with it). "
+      "A quantity is used as an error "
+      "only if every one of its sequences converges; the reference's uncertainty is the geometric "
+      "tail d·q/(1−q) of the last difference d and ratio q, summed over the Δt and h sequences that "
+      "end at the reference's Δt or mesh.")
+    w("")
+    w("| quantity | sequence (coarse → fine) | values | successive differences | ratios | converges |")
+    w("|---|---|---|---|---|---|")
+    allseqs = [("corner_1 before the first impact (sine)", s) for s in short["quantities"]["trajectory"]["sequences"]]
+    allseqs += [("time of the first impact (sine)", s) for s in short["quantities"]["impact"]["sequences"]]
+    allseqs += [("energy lost by 0.5 s (§5.2)", s) for s in free["sequences"]]
+    for qname, s in allseqs:
+        vals = ", ".join(fmt(v, 6 if s["unit"] == "s" else 4) for v in s["values"]) if s["values"][0] is not None else "(series)"
+        w(f"| {qname} | {s['name']}: {', '.join(lab.split(', ')[-1] if s['name'].startswith('Δt') else lab.split(', ')[0] for lab in s['labels'])} "
+          f"| {vals} | {', '.join(fmt(d) for d in s['diffs'])} {s['unit']} | {', '.join(fmt(r, 2) for r in s['ratios'])} "
+          f"| {'yes' if s['converges'] else '**no**'} |")
+    w(f"| envelope max \\|corner\\| (sine, {plan['long_T']:g} s) | every run below | "
+      f"{'all = 0.1 m to 1e-9' if long['pinned'] else 'not all equal'} | — | — | "
+      f"{'**degenerate**' if long['pinned'] else 'see table'} |")
+    w("")
+    q = short["quantities"]
+    w(f"Verdicts: pre-impact trajectory **{'converges' if q['trajectory']['converges'] else 'does not converge'}** "
+      f"(reference {q['trajectory']['ref']}, uncertainty ≈ {fmt(q['trajectory']['ref_uncertainty'])} relative); "
+      f"first-impact time **{'converges' if q['impact']['converges'] else 'does not converge'}** "
+      f"(reference t₁ = {q['impact']['ref_value']:.7f} s, uncertainty ≈ {fmt(q['impact']['ref_uncertainty'])} s); "
+      f"§5.2 energy lost by 0.5 s **{'converges' if free['converges'] else 'does not converge'}**; "
+      f"sine envelope max |corner| **{'is degenerate' if long['pinned'] else 'varies'}**.")
+    w("")
+    for para in heads["convergence_notes"]:
+        w(para)
+        w("")
+
+    # ---------------- sine matrix ----------------
+    w(f"## Sine scene (default §5.1 scene) to {plan['short_T']:g} s: speed and error")
+    w("")
+    w(f"Base 0.09 sin(2π·10 t), obstacles ±0.1 m, output every Δt. Errors against {q['trajectory']['ref']}: "
+      f"trajectory = max |corner_1 − ref| over the outputs with t ≤ {plan['pre_impact']:g} s, divided by "
+      "max |corner_1|; |Δt₁| = difference of the first step with a vertex on an obstacle. "
+      "Errors below the reference's uncertainty are marked ≤ref.")
+    w("")
+    w("| configuration | dofs | engine | wall / sim s | RTF | step/floor | trajectory error | t₁ [s] | \\|Δt₁\\| [s] |")
+    w("|---|---|---|---|---|---|---|---|---|")
+    unc_t = q["trajectory"]["ref_uncertainty"]
+    unc_i = q["impact"]["ref_uncertainty"]
+    for r in sorted(short["rows"], key=lambda r: (r["cfg"].element, r["cfg"].nx, r["cfg"].modes, -r["cfg"].dt)):
+        c, run = r["cfg"], r["run"]
+        et = r["err_trajectory"]
+        ei = r["err_impact"]
+        ets = "reference" if c == plan["short_ref"] else (fmt(et) + (" ≤ref" if et is not None and math.isfinite(unc_t) and et < unc_t else "")) if et is not None else "n/c"
+        eis = "reference" if c == plan["short_ref"] else (fmt(ei) + (" ≤ref" if ei is not None and math.isfinite(unc_i) and ei < unc_i else "")) if ei is not None else "n/c"
+        w(f"| {c.label()} | {run['dofs']} | {run['engine']} | {fmt(run['wall_per_sim_s'])} | {fmt(run['rtf'])} "
+          f"| {fmt(run['step_over_floor'])} | {ets} | {r['t1']:.7f} | {eis} |")
+    w("")
+    w("Timing from a second run of each configuration without output files (communication step "
+      "1e-4 s or Δt). At Δt = 1e-3 a run is 60 steps: its time is rough and includes the one-time "
+      "computation of the contact columns (one solve per vertex that ever touches an obstacle), "
+      "which is why step/floor is high there on the sparse engine.")
+    w("")
+
+    # ---------------- elements ----------------
+    w("## The two elements at equal first-frequency error")
+    w("")
+    w("Argyris has two P5 triangles per cell (21 dofs each), reduced FVS one composite-cubic "
+      "quadrilateral (12 dofs); at equal dofs they are not equally accurate, so the pairs below are "
+      "meshes of about equal error in the first natural frequency (the yardstick of a mesh). Sine "
+      "scene, errors as above.")
+    w("")
+    w("| mesh | dofs | f₁ error | Δt | engine | wall / sim s | trajectory error | \\|Δt₁\\| [s] |")
+    w("|---|---|---|---|---|---|---|---|")
+    rows_by = {r["cfg"]: r for r in short["rows"]}
+    for pair in plan["pairs"]:
+        for element, nx, ny in pair:
+            fk = ctx["freqs"].get((element, nx, ny))
+            for dt_ in (1e-5, 1e-6):
+                r = rows_by.get(Cfg(element, nx, ny, dt_))
+                if r is None or fk is None:
+                    continue
+                et = "reference" if r["cfg"] == plan["short_ref"] else fmt(r["err_trajectory"])
+                ei = "reference" if r["cfg"] == plan["short_ref"] else fmt(r["err_impact"])
+                w(f"| {'Argyris' if element == 'argyris' else 'FVS'} {nx}×{ny} | {r['run']['dofs']} | "
+                  f"{fmt(fk['rel_err']) if fk['rel_err'] > 0 else 'reference'} | {fmt_dt(dt_)} | {r['run']['engine']} | {fmt(r['run']['wall_per_sim_s'])} | {et} | {ei} |")
+    w("")
+    for para in heads["element_notes"]:
+        w(para)
+        w("")
+
+    # ---------------- §5.2 ----------------
+    w(f"## §5.2 free vibration: energy lost by {plan['free_T']:g} s")
+    w("")
+    w("Initial shape = static equilibrium under 8600 Pa, released at rest, lower obstacle only "
+      "(`initial_load=8600 lower_only=1 amplitude=0`). The exact scheme's value per mesh and Δt, and "
+      "each `modes` run against the exact scheme on the same mesh and Δt (the truncation error of "
+      "the modal basis; the discretization error of the exact value itself is in the convergence "
+      "table above).")
+    w("")
+    w("| configuration | dofs | engine | wall / sim s | RTF | step/floor | energy lost [J] | vs exact, same mesh & Δt | speed-up vs exact |")
+    w("|---|---|---|---|---|---|---|---|---|")
+    mod = {m["cfg"]: m for m in free["modes"]}
+    for c, run in sorted(free["runs"].items(), key=lambda kv: (kv[0].element, kv[0].nx, kv[0].modes, kv[0].engine, -kv[0].dt)):
+        m = mod.get(c)
+        rel = f"{100 * m['rel_err']:+.2f} %" if m else ("—" if not c.modes else "n/a")
+        sp = f"{m['speedup']:.2f}×" if m else "—"
+        w(f"| {c.label()} | {run['dofs']} | {run['engine']} | {fmt(run['wall_per_sim_s'])} | {fmt(run['rtf'])} "
+          f"| {fmt(run['step_over_floor'])} | {run['energy_dissipated']:.4f} | {rel} | {sp} |")
+    w("")
+    if free["roundoff"] is not None:
+        w(f"Roundoff check: the sparse-factor engine and the complete modal basis (same scheme, other "
+          f"coordinates) give energies lost that differ by {fmt(free['roundoff'])} J on "
+          f"{free['base'].label()}: the quantity is reproducible"
+          + ("; its failure to converge is discretization, not chaos." if not free["converges"] else "."))
+        w("")
+
+    # ---------------- envelope ----------------
+    w(f"## Sine scene envelope ({plan['long_T']:g} s)")
+    w("")
+    w("max |corner| = max over the run of |corner_1| and |corner_2|; per-period envelope = mean over "
+      "the forcing periods after the first of max |corner_1 − z| (deflection relative to the clamp).")
+    w("")
+    w("| configuration | engine | wall / sim s | RTF | step/floor | max \\|corner\\| [m] | per-period envelope [m] | energy lost [J] |")
+    w("|---|---|---|---|---|---|---|---|")
+    for r in long["rows"]:
+        c, run = r["cfg"], r["run"]
+        w(f"| {c.label()} | {run['engine']} | {fmt(run['wall_per_sim_s'])} | {fmt(run['rtf'])} | "
+          f"{fmt(run['step_over_floor'])} | {r['max_corner_any']:.12f} | {r['period_envelope']:.4f} | "
+          f"{r['energy_dissipated']:.1f} |")
+    w("")
+    for para in heads["envelope_notes"]:
+        w(para)
+        w("")
+
+    # ---------------- scaling ----------------
+    w("## Per-step time and floor against the number of dofs")
+    w("")
+    w("Sine scene, Δt = 1e-5, the first N steps (N in the table; the first impact is at step ≈ 4950, so "
+      "N = 6000 includes ~1000 steps of contact, N = 600 is free flight only). engine=auto is what "
+      "the FMU runs; engine=sparse forces the sparse factor of A, engine=modal the complete modal "
+      "basis (small meshes only). Runs: interleaved rounds per mesh, fastest kept. First frequency f₁ "
+      f"of the clamped plate from the exported M, K (SciPy), error against {f_ref_key_label(ctx)}.")
+    w("")
+    w("| mesh | dofs | f₁ [Hz] | f₁ error | N × runs | auto engine | step (auto) [µs] | floor [µs] | step/floor (auto) | step (sparse) [µs] | step/floor (sparse) | step (modal) [µs] | setup (auto) [s] |")
+    w("|---|---|---|---|---|---|---|---|---|---|---|---|---|")
+    for r in ctx["scaling"]:
+        fk = ctx["freqs"].get((r["element"], r["nx"], r["ny"]))
+        a, sp_, mo = r["auto"], r["sparse"], r.get("modal")
+        modal_step = f"{1e6 * mo['step_s']:.1f}" if mo else "—"
+        w(f"| {'Argyris' if r['element'] == 'argyris' else 'FVS'} {r['nx']}×{r['ny']} | {r['dofs']} | "
+          f"{fk['f1']:.5f} | {fmt(fk['rel_err']) if fk['rel_err'] > 0 else 'reference'} | {r['steps']} × {r['rounds']} | {a['engine']} | "
+          f"{1e6 * a['step_s']:.1f} | {1e6 * a['floor_solve_s']:.1f} | {a['step_over_floor']:.2f} | "
+          f"{1e6 * sp_['step_s']:.1f} | {sp_['step_over_floor']:.2f} | "
+          f"{modal_step} | {a['setup_s']:.2f} |")
+    w("")
+    for para in heads["scaling_notes"]:
+        w(para)
+        w("")
+    w("![per-step time and floor against dofs](figures/scaling.png)")
+    w("")
+
+    # ---------------- baseline ----------------
+    w("## Plain Python/SciPy baseline")
+    w("")
+    bl = plan["baseline"]
+    if "error" in py:
+        w(f"Not run: {py['error']} (install `osqp` from requirements.txt).")
+    else:
+        w(f"The same scheme written the way a user would with SciPy: `plate_bench export=DIR` gives the "
+          f"clamped plate's M, K (Matrix Market), F, M·1, the contact dofs and the probe rows; A is "
+          f"factored once with `scipy.sparse.linalg.factorized` (SuperLU); every step solves for the free "
+          f"solution and, when a vertex violates an obstacle, solves the full step QP "
+          f"min ½wᵀAw − wᵀb over the bounds with OSQP {osqp_version()} (set up once, q/l/u updated, "
+          f"warm-started, eps 1e-9, polished). {bl['cfg'].label()}, {bl['steps']} steps "
+          f"({bl['steps'] * bl['cfg'].dt:g} s; first impact at t = {py['t_impact']:.4f} s, "
+          f"{py['qp_steps']} steps needed the QP), communication step {bl['comm']:g} s.")
+        w("")
+        w("| | per step, whole horizon [µs] | free flight [µs] | contact phase [µs] | Python / C++ | free flight | contact phase |")
+        w("|---|---|---|---|---|---|---|")
+        w(f"| Python/SciPy + OSQP | {1e6 * py['step_s']:.1f} | {1e6 * py['free_phase_step_s']:.1f} | "
+          f"{1e6 * py['contact_phase_step_s']:.0f} | | | |")
+        for e in ("auto", "sparse"):
+            cr = cpp[e]
+            w(f"| C++ plate_bench, engine={e} ({cr['run']['engine']}) | {1e6 * cr['run']['step_s']:.2f} | "
+              f"{1e6 * cr['free_step_s']:.2f} | {1e6 * cr['contact_step_s']:.1f} | **{py['ratio'][e]:.0f}×** | "
+              f"{py['ratio_free'][e]:.0f}× | {py['ratio_contact'][e]:.0f}× |")
+        w("")
+        w(f"Free flight = the first {bl['split']} steps (no vertex reaches an obstacle); contact phase = "
+          f"steps {bl['split'] + 1}–{bl['steps']} (every step counted, with or without a QP). C++: the phase "
+          f"time is (time of {bl['steps']} steps − time of {bl['split']} steps), fastest of 3 runs each; "
+          f"Python: wall clock read at step {bl['split']} of its single run. A Python step with a QP costs "
+          f"{1e3 * py['qp_step_s']:.2f} ms on average ({py['qp_steps']} of them). Python setup "
+          f"(factorization + OSQP setup): {py['setup_s']:.3f} s.")
+        w("")
+        a = py["agree"]
+        w(f"Agreement with `plate_bench` over the horizon (corner_1 at every output): before the first "
+          f"impact max |Δ| = {a['auto']['before']:.1e} m against engine=auto ({cpp['auto']['run']['engine']}) and "
+          f"{a['sparse']['before']:.1e} m against engine=sparse; from the first impact to the end "
+          f"{a['auto']['after']:.1e} m and {a['sparse']['after']:.1e} m. OSQP statuses: "
+          f"{', '.join(f'{k}: {v}' for k, v in py['statuses'].items())}. "
+          + (f"Without the Jacobi scaling OSQP answers '{py['unscaled_status']}' on the first contact QP "
+             "(A's diagonal spans many orders of magnitude), so a user must scale."
+             if py["unscaled_status"] != "solved" else
+             "OSQP also solves the first contact QP without the Jacobi scaling on this mesh."))
+    w("")
+
+    # ---------------- findings ----------------
+    w("## Findings for the solver")
+    w("")
+    for para in heads["findings"]:
+        w("- " + para)
+    w("")
+    w("All raw numbers: `speed_vs_error.json` beside this file.")
+    path.write_text("\n".join(L) + "\n")
+    return heads["summary"]
+
+
+def f_ref_key_label(ctx):
+    e, nx, ny = ctx["f_ref_key"]
+    return f"{'Argyris' if e == 'argyris' else 'FVS'} {nx}×{ny} (the finest mesh)"
+
+
+def osqp_version():
+    try:
+        import osqp
+        return osqp.__version__
+    except Exception:  # noqa: BLE001
+        return "?"
+
+
+def headline(ctx):
+    """Goal verdicts, notes and the JSON summary (everything computed from the measurements)."""
+    plan, short, free, long, py, cpp, dflt, fmu = (ctx[k] for k in (
+        "plan", "short", "free", "long", "py", "cpp", "dflt", "fmu"))
+    goals, notes, conv_notes, env_notes, scal_notes, findings, lines = [], [], [], [], [], [], []
+
+    # goal 1: exact default scene
+    d = dflt
+    total_bench = d["setup_s"] + d["wall_s"]
+    limit = 2.5 * plan["default_T"]
+    wall = fmu["total_s"] if fmu else total_bench
+    cpu = fmu["cpu_s"] if fmu else d["setup_s"] + d["step_s"] * d["steps"]
+    ratio_ok = d["step_over_floor"] <= 1.2
+    fmu_s = (f"FMU through fmpy (instantiation, 10⁴ doStep with input derivatives, outputs read "
+             f"every step): **{fmu['total_s']:.2f} s** wall, {fmu['cpu_s']:.2f} s CPU (instantiation "
+             f"{fmu['init_s']:.2f} s), fastest of {plan['default_repeats']}" if fmu else "FMU not found")
+    goals.append(dict(
+        goal=f"exact default scene ({plan['default'].label()}, {plan['default_T']:g} s) ≤ 2.5 s wall",
+        measured=f"{fmu_s}; plate_bench {total_bench:.2f} s wall (setup {d['setup_s']:.2f} s + stepping "
+                 f"{d['wall_s']:.2f} s, engine {d['engine']})",
+        verdict=("**met**" if wall <= limit else
+                 "**met on CPU time**, not on the wall clock of this shared machine" if cpu <= limit
+                 else "**not met**")))
+    goals.append(dict(
+        goal="step/floor ≤ 1.2 (same scene)",
+        measured=f"{1e6 * d['step_s']:.1f} µs/step against a floor of {1e6 * d['floor_solve_s']:.1f} µs: "
+                 f"**{d['step_over_floor']:.2f}** (RTF {d['rtf']:.2f})",
+        verdict="**met**" if ratio_ok else "**not met**"))
+    lines.append(f"default scene: FMU {fmu['total_s']:.2f} s wall, plate_bench {total_bench:.2f} s, "
+                 f"step {1e6 * d['step_s']:.1f} us, floor {1e6 * d['floor_solve_s']:.1f} us, "
+                 f"step/floor {d['step_over_floor']:.2f}" if fmu else
+                 f"default scene: plate_bench {total_bench:.2f} s, step/floor {d['step_over_floor']:.2f}")
+
+    # goal 2: modes
+    base = free["base"]
+    ms = sorted([m for m in free["modes"] if m["cfg"].dt == base.dt and m["cfg"].element == base.element
+                 and m["cfg"].nx == base.nx], key=lambda m: m["cfg"].modes)
+    within = [m for m in ms if abs(m["rel_err"]) <= 0.01]
+    fast = [m for m in ms if m["speedup"] >= 10]
+    both = [m for m in ms if abs(m["rel_err"]) <= 0.01 and m["speedup"] >= 10]
+    e_exact = free["runs"][base]["energy_dissipated"]
+    if ms:
+        lst = ", ".join(f"{m['cfg'].modes}: {m['run']['energy_dissipated']:.2f} J "
+                        f"({100 * m['rel_err']:+.0f} %, {m['speedup']:.1f}×)" for m in ms)
+        first_ok = within[0] if within else None
+        best_fast = fast[-1] if fast else None
+        meas = (f"exact {e_exact:.4f} J; m: {lst}. Smallest m within 1 %: "
+                + (f"**m = {first_ok['cfg'].modes}** at **{first_ok['speedup']:.2f}×**" if first_ok else "none")
+                + "; largest m at ≥ 10×: "
+                + (f"m = {best_fast['cfg'].modes}, error **{100 * best_fast['rel_err']:+.0f} %**" if best_fast else "none"))
+        goals.append(dict(goal=f"`modes` ≥ 10× faster than exact with ≤ 1 % error on the energy lost by 0.5 s (§5.2), {base.label()}",
+                          measured=meas,
+                          verdict="**met** at m = " + str(both[0]["cfg"].modes) if both else "**not met**"))
+        lines.append("modes (§5.2 energy lost): " + (f"<=1% first at m={first_ok['cfg'].modes} ({first_ok['speedup']:.2f}x)" if first_ok else "never within 1%")
+                     + (f"; >=10x at m<={best_fast['cfg'].modes} with {100 * best_fast['rel_err']:+.0f}%" if best_fast else ""))
+    # envelope goal
+    lrows = {r["cfg"]: r for r in long["rows"]}
+    lbase = long["base"]
+    lm = sorted([r for c, r in lrows.items() if c.modes and c.nx == lbase.nx and c.dt == lbase.dt],
+                key=lambda r: r["cfg"].modes)
+    if lm and lbase in lrows:
+        ex = lrows[lbase]
+        parts = []
+        for r in lm:
+            sp = ex["run"]["step_s"] / r["run"]["step_s"]
+            parts.append(f"{r['cfg'].modes}: max|corner| {r['max_corner_any']:.6f} m, per-period "
+                         f"{r['period_envelope']:.4f} m ({100 * (r['period_envelope'] / ex['period_envelope'] - 1):+.0f} %), {sp:.1f}×")
+        noise, dth = long["roundoff_rel"], long["dt_half_rel"]
+        spread = max(x for x in (noise, dth) if math.isfinite(x)) if any(
+            math.isfinite(x) for x in (noise, dth)) else float("nan")
+        fast_env = [r for r, part in zip(lm, parts) if ex["run"]["step_s"] / r["run"]["step_s"] >= 10]
+        verdict = []
+        if long["pinned"]:
+            verdict.append("max |corner|: **vacuous** (0 % error for every m: the corner is a mesh vertex "
+                           "held at the obstacle)")
+        if math.isfinite(spread) and spread > 0.01:
+            verdict.append("per-period envelope: **not met / cannot be claimed** (not reproducible to "
+                           f"1 %: {100 * spread:.1f} % from roundoff or Δt/2 alone)")
+        else:
+            ok_env = [r for r in fast_env if abs(r["period_envelope"] / ex["period_envelope"] - 1) <= 0.01]
+            verdict.append("per-period envelope: " + (f"**met** at m = {ok_env[0]['cfg'].modes}" if ok_env else "**not met**"))
+        goals.append(dict(
+            goal="`modes` ≥ 10× faster with ≤ 1 % error on the sine-scene envelope (max |corner|)",
+            measured=(f"max |corner| = 0.1 m (the obstacle) in **every** run, exact and every m alike. "
+                      if long["pinned"] else "") +
+                     f"Per-period envelope (mean over the periods after the first of max |corner_1 − z|): "
+                     f"exact {ex['period_envelope']:.4f} m; m: " + "; ".join(parts) +
+                     f". Same scheme with the sparse engine instead of the modal basis: {100 * noise:.1f} % apart"
+                     + (f"; exact with Δt/2: {100 * dth:.1f} % apart" if math.isfinite(dth) else "") + ".",
+            verdict="; ".join(verdict)))
+
+    # goal 3: python
+    if "error" not in py:
+        r = py["ratio"]["auto"]
+        goals.append(dict(
+            goal="≥ 50× faster than the Python/SciPy baseline per step",
+            measured=f"{bl_label(plan)}: Python {1e6 * py['step_s']:.0f} µs/step vs C++ "
+                     f"{1e6 * cpp['auto']['run']['step_s']:.1f} µs/step (engine auto, {cpp['auto']['run']['engine']}): "
+                     f"**{r:.0f}×** (free flight {py['ratio_free']['auto']:.0f}×, contact phase "
+                     f"{py['ratio_contact']['auto']:.0f}×); against engine=sparse (the same algorithm as "
+                     f"the baseline: sparse factor + QP) {py['ratio']['sparse']:.0f}×",
+            verdict="**met**" if r >= 50 else "**not met**"))
+        lines.append(f"Python/SciPy baseline: {1e6 * py['step_s']:.0f} us/step, {r:.0f}x slower than C++ auto "
+                     f"({py['ratio']['sparse']:.0f}x vs sparse); agreement before impact {py['agree']['auto']['before']:.1e} m")
+
+    # notes
+    if ms:
+        es = [m["run"]["energy_dissipated"] for m in ms]
+        mono = all(b <= a for a, b in zip(es[:-1], es[1:]))
+        n_dofs = ms[0]["run"]["dofs"]
+        notes.append(
+            f"**Why `modes` does not reach 1 % on the §5.2 energy cheaply.** The energy lost by 0.5 s goes "
+            + ", ".join(f"{e:.2f}" for e in es) + f" J for m = " + ", ".join(str(m["cfg"].modes) for m in ms)
+            + f" (of {n_dofs}), {'falling monotonically' if mono else 'not monotonically'} towards the exact "
+            f"{e_exact:.3f} J. A truncated basis keeps the contact at every vertex, but it can stop a vertex "
+            "only by stopping a smooth (low-mode) field around it, so an impact destroys more kinetic energy "
+            "than in the complete basis, where the highest mesh modes take up the shock and keep it as "
+            "vibration (our reading of the numbers: the loss reaches the exact value only as the basis "
+            "becomes complete). The step of a truncated basis costs O(m × contact vertices), so a nearly "
+            "complete basis is hardly faster than the exact scheme.")
+    sq = short["quantities"]
+    orders = [(s["name"], s["orders"][-1]) for s in sq["trajectory"]["sequences"] if s["orders"]]
+    if orders:
+        conv_notes.append(
+            "Observed orders of the pre-impact trajectory (from the last two differences): "
+            + ", ".join(f"{n}: {o:.2f}" for n, o in orders) + ". "
+            + ("Below the scheme's second order for smooth data: the plate starts at rest while the clamp "
+               "starts moving at 0.09·2π·10 ≈ 5.7 m/s, so the initial velocity is incompatible with the "
+               "clamp (the first step's base-inertia load is an impulse that excites every mode), and the "
+               "clamped–free corners are singular."
+               if any(o < 1.5 for n, o in orders if n.startswith("Δt")) else ""))
+    if not free["converges"]:
+        seq = free["sequences"][0]
+        conv_notes.append(
+            f"The §5.2 energy lost by 0.5 s does **not** converge in the affordable range: on {seq['name'].split(', ')[1]} "
+            f"it goes {', '.join(fmt(v, 4) for v in seq['values'])} J as Δt goes "
+            f"{', '.join(lab.split('Δt=')[1] for lab in seq['labels'])}; under mesh refinement at Δt = 1e-5 "
+            "the Argyris and FVS values move in opposite directions. The loss at an impact of this "
+            "scheme is a property of the discretization (how many vertex modes the obstacle stops, and "
+            "for how many steps), not a physical constant that the refinements approach. It is therefore "
+            "flagged and never used as an error against a fine reference; the tables use it only to "
+            "compare `modes` with the exact scheme on the same mesh and Δt (the goal's sense), which is "
+            "well defined because the exact value is reproducible to roundoff.")
+    if long["pinned"]:
+        env_notes.append(
+            "max |corner| is **degenerate**: both corners are mesh vertices, the contact holds every "
+            "vertex between the obstacles, and in every run the corners reach an obstacle, so the envelope "
+            "is 0.1 m to 1e-9 (to roundoff, in fact) for every mesh, Δt and m. It would report 0 % error "
+            "for any configuration, so it is flagged and not used.")
+    env_notes.append(
+        "The per-period envelope of the deflection relative to the clamp is informative, but after the "
+        "first impacts the response is chaotic (NOTES.md): a roundoff-level change (the sparse factor "
+        f"instead of the modal basis, same scheme) moves it by {100 * long['roundoff_rel']:.1f} %"
+        + (f", halving Δt by {100 * long['dt_half_rel']:.1f} %" if math.isfinite(long["dt_half_rel"]) else "")
+        + ". No refinement sequence of it is shown to converge, so it is reported but not used as an "
+        "error. (Its peak over the whole run, max |corner_1 − z|, comes before the first impact, "
+        "at t ≈ 0.021 s: that is the pre-impact trajectory again.)")
+
+    # element notes: the pairs at equal first-frequency error
+    element_notes = []
+    rows_by = {r["cfg"]: r for r in short["rows"]}
+    for (ea, na, ma), (ef, nf, mf) in plan["pairs"]:
+        for dt_ in (1e-6, 1e-5):
+            ra, rf = rows_by.get(Cfg(ea, na, ma, dt_)), rows_by.get(Cfg(ef, nf, mf, dt_))
+            if not ra or not rf:
+                continue
+            fa, ff = ctx["freqs"][(ea, na, ma)], ctx["freqs"][(ef, nf, mf)]
+            ta, tf = ra["err_trajectory"], rf["err_trajectory"]
+            if ta is None or tf is None:
+                break
+            element_notes.append(
+                f"Argyris {na}×{ma} ({ra['run']['dofs']} dofs, f₁ error {fmt(fa['rel_err'])}) against FVS {nf}×{mf} "
+                f"({rf['run']['dofs']} dofs, f₁ error {fmt(ff['rel_err'])}) at Δt = {fmt_dt(dt_)}: trajectory error "
+                f"{fmt(ta)} against {fmt(tf)}, {fmt(ra['run']['wall_per_sim_s'])} against "
+                f"{fmt(rf['run']['wall_per_sim_s'])} s per simulated second ({ra['run']['engine']} against "
+                f"{rf['run']['engine']}).")
+            break
+
+    # scaling notes
+    rows = ctx["scaling"]
+    for element in ("argyris", "fvs"):
+        rs = sorted([r for r in rows if r["element"] == element], key=lambda r: r["dofs"])
+        sparse_rs = [r for r in rs if r["sparse"]["engine"] == "sparse"]
+        if len(sparse_rs) >= 2:
+            big = [r for r in sparse_rs if r["dofs"] >= 1000] or sparse_rs
+            sf = loglog_slope([r["dofs"] for r in big], [r["sparse"]["floor_solve_s"] for r in big])
+            ss = loglog_slope([r["dofs"] for r in big], [r["sparse"]["step_s"] for r in big])
+            scal_notes.append(
+                f"{'Argyris' if element == 'argyris' else 'FVS'}: from {big[0]['dofs']} to {big[-1]['dofs']} dofs the floor grows like "
+                f"n^{sf:.2f} and the sparse step like n^{ss:.2f}; step/floor with the sparse factor: "
+                + ", ".join(f"{r['dofs']}: {r['sparse']['step_over_floor']:.2f}" for r in sparse_rs) + ".")
+    small_sparse = [r for r in rows if r["sparse"]["engine"] == "sparse" and r["dofs"] < 600]
+    if small_sparse:
+        worst = max(small_sparse, key=lambda r: r["sparse"]["step_over_floor"])
+        findings.append(
+            f"On small meshes the sparse engine's step costs far more than the floor: "
+            f"{'Argyris' if worst['element'] == 'argyris' else 'FVS'} {worst['nx']}×{worst['ny']} ({worst['dofs']} dofs) "
+            f"{1e6 * worst['sparse']['step_s']:.1f} µs/step against {1e6 * worst['sparse']['floor_solve_s']:.1f} µs "
+            f"({worst['sparse']['step_over_floor']:.1f}×; reproduce: `plate_bench element={worst['element']} nx={worst['nx']} "
+            f"ny={worst['ny']} engine=sparse steps=20000`). `perf record` of `plate_bench nx=7 ny=3 engine=sparse "
+            "gap=0 steps=200000` (no contact at all) puts 31 % of the time in `FullOrderPlate::applyStiffness` "
+            "(the CSR product K·w⁺ every step) and ~60 % in CHOLMOD's solve, which in the stepper runs "
+            "slower than in the floor's tight loop; the floor counts only the solve. engine=auto avoids this "
+            "wherever it picks the modal basis; on larger meshes the ratio settles near the values in the "
+            "scaling table.")
+    for r in rows:
+        mo = r.get("modal")
+        if mo and r["auto"]["engine"] == "sparse" and mo["step_s"] < 0.8 * r["auto"]["step_s"]:
+            findings.append(
+                f"engine=auto runs the sparse factor on {'Argyris' if r['element'] == 'argyris' else 'FVS'} "
+                f"{r['nx']}×{r['ny']} ({r['dofs']} dofs) at {1e6 * r['auto']['step_s']:.1f} µs/step; the complete "
+                f"modal basis measured {1e6 * mo['step_s']:.1f} µs/step in the same interleaved rounds "
+                f"(`plate_bench element={r['element']} nx={r['nx']} ny={r['ny']} engine=modal`).")
+        if mo and r["auto"]["engine"] != "sparse" and r["sparse"]["step_s"] < 0.8 * r["auto"]["step_s"]:
+            findings.append(
+                f"engine=auto runs the modal basis on {'Argyris' if r['element'] == 'argyris' else 'FVS'} "
+                f"{r['nx']}×{r['ny']} at {1e6 * r['auto']['step_s']:.1f} µs/step; the sparse factor measured "
+                f"{1e6 * r['sparse']['step_s']:.1f} µs/step in the same rounds.")
+    findings.append(
+        "`modes = m` with m ≪ n still solves the dense generalized eigenproblem of all n dofs whenever "
+        "n ≤ 3000 (ModalPlate.cpp, kDenseLimit): measured setup 13 s for m = 40 on FVS 40×14 (1800 dofs) "
+        "and 64 s on Argyris 28×10 (2727 dofs) on this machine (`plate_bench nx=28 ny=10 modes=40 steps=100`), "
+        "while the step itself is a few µs. The subspace iteration that already exists for n > 3000 "
+        "(or a shift-invert Lanczos) would need a fraction of that for m ≪ n. This is why this report "
+        "runs `modes` only on the small meshes.")
+    findings.append(
+        "The floor measurement in plate_bench costs 2 × ~2100 solves, ~20 s per run on Argyris 56×20; "
+        "a `floor_repeats=` argument would make large-mesh sweeps cheaper.")
+    summary = dict(
+        headline_lines=lines,
+        goals=goals,
+        quantities={
+            "trajectory": dict(converges=sq["trajectory"]["converges"],
+                               sequences=sq["trajectory"]["sequences"],
+                               ref_uncertainty=sq["trajectory"]["ref_uncertainty"]),
+            "impact": dict(converges=sq["impact"]["converges"], sequences=sq["impact"]["sequences"],
+                           ref_uncertainty=sq["impact"]["ref_uncertainty"]),
+            "energy_lost_0p5s": dict(converges=free["converges"], sequences=free["sequences"]),
+            "envelope_max_corner": dict(converges=False, degenerate=long["pinned"],
+                                        roundoff_rel=long["roundoff_rel"]),
+        },
+        errors=[dict(config=r["cfg"].label(), wall_per_sim_s=r["run"]["wall_per_sim_s"],
+                     rtf=r["run"]["rtf"], step_over_floor=r["run"]["step_over_floor"],
+                     err_trajectory=r["err_trajectory"], err_impact=r["err_impact"])
+                for r in short["rows"]],
+        modes=[dict(config=m["cfg"].label(), rel_err=m["rel_err"], speedup=m["speedup"],
+                    energy_dissipated=m["run"]["energy_dissipated"]) for m in free["modes"]],
+        envelope=[dict(config=r["cfg"].label(), max_corner=r["max_corner_any"],
+                       period_envelope=r["period_envelope"]) for r in long["rows"]],
+        scaling=[dict(element=r["element"], nx=r["nx"], ny=r["ny"], dofs=r["dofs"],
+                      auto=dict((k, r["auto"][k]) for k in ("engine", "step_s", "floor_solve_s", "step_over_floor")),
+                      sparse=dict((k, r["sparse"][k]) for k in ("engine", "step_s", "floor_solve_s", "step_over_floor")))
+                 for r in rows],
+        baseline=({k: v for k, v in py.items() if k not in ("time", "corner_1")} if py else None),
+        default=dict(fmu=fmu, bench={k: dflt[k] for k in ("setup_s", "wall_s", "step_s", "floor_solve_s", "step_over_floor", "engine")}),
+        elapsed_s=ctx["elapsed"], quick=plan["quick"],
+    )
+    return dict(goals=goals, notes=notes, convergence_notes=conv_notes, envelope_notes=env_notes,
+                scaling_notes=scal_notes, findings=findings, summary=summary,
+                element_notes=element_notes)
+
+
+def bl_label(plan):
+    bl = plan["baseline"]
+    return f"{bl['cfg'].label()}, {bl['steps']} steps"
+
+
+if __name__ == "__main__":
+    sys.exit(main())
