@@ -42,15 +42,6 @@ SUPPRESSIONS = """
    fun:call_init
 }
 """
-# The FMU links libstdc++ statically: its emergency exception-handling pool (eh_alloc.cc,
-# 72,704 bytes, allocated by a static constructor when the library is loaded) is never freed, so
-# every dlopen/dlclose of PlateImpact.so loses it (fmpy's freeInstance unloads the library).
-KNOWN_UNLOAD_LEAK = re.compile(
-    r"72,704 bytes in 1 blocks are definitely lost in loss record \d+ of \d+\n"
-    r"==\d+==    at 0x[0-9A-F]+: malloc \(in [^)]*\)\n"
-    r"==\d+==    by 0x[0-9A-F]+: _GLOBAL__sub_I_eh_alloc\.cc \(in [^)]*PlateImpact\.so\)")
-
-
 @pytest.fixture(scope="module")
 def valgrind():
     tool = shutil.which("valgrind")
@@ -109,15 +100,10 @@ def test_instance_lifecycle_is_clean_under_memcheck(valgrind, driver, unzipped_f
 
 def test_unloading_the_fmu_is_clean_under_memcheck(valgrind, driver, unzipped_fmu):
     """The same, and the driver unloads PlateImpact.so at the end (dlclose, as fmpy's
-    freeInstance does): memory the library allocated at load time must be freed at unload."""
+    freeInstance does): memory the library allocated at load time must be freed at unload —
+    including the statically linked libstdc++'s emergency EH pool (fmu/RuntimeRelease.cpp)."""
     proc = memcheck(valgrind, driver, unzipped_fmu)
     report = proc.stderr
     assert "fmu_driver: all checks passed" in proc.stdout, proc.stdout + report[-4000:]
-    lost = re.search(r"definitely lost: ([\d,]+) bytes in (\d+) blocks", report)
-    if lost and lost.group(1) == "72,704" and KNOWN_UNLOAD_LEAK.search(report) \
-            and "ERROR SUMMARY: 1 errors from 1 contexts" in report:
-        pytest.xfail("known leak at unload: the statically linked libstdc++'s emergency EH pool "
-                     "(_GLOBAL__sub_I_eh_alloc.cc, 72,704 bytes) is lost at every dlclose of "
-                     "PlateImpact.so; fix: call __gnu_cxx::__freeres() from a destructor in fmu/")
     assert proc.returncode == 0, f"exit code {proc.returncode}\n{report[-6000:]}"
     assert re.search(r"ERROR SUMMARY: 0 errors", report), report[-6000:]
