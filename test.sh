@@ -23,13 +23,17 @@ PLATEIMPACT_CMAKE_ARGS="-DPLATEIMPACT_SANITIZE=ON -DPLATEIMPACT_TESTS=OFF -DCMAK
 # A sanitized shared object needs the sanitizer runtimes loaded first: preload them into Python
 # (and so into the catalogue's child processes). No leak check here: CPython leaks by design;
 # test_valgrind.py checks the FMU's leaks. halt_on_error: the first report ends the process
-# with exit code 1 (a failed child in the catalogue, pytest itself otherwise).
+# with exit code 1 (a failed child in the catalogue, pytest itself otherwise). Reports go to
+# files (pytest would swallow the stderr of a process that dies under its capture): any report
+# fails the stage and is printed, whatever pytest says.
 runtimes=""
 for name in libasan.so libubsan.so; do
   path="$(gcc -print-file-name=$name)"
   [ -f "$path" ] || { echo "test.sh: $name not found (gcc -print-file-name=$name)" >&2; exit 1; }
   runtimes="$runtimes $path"
 done
+reports="$repo/build-asan/sanitizer-reports"
+rm -rf "$reports" && mkdir -p "$reports"
 # What runs: everything but what repeats a covered path at more cost (the convergence studies,
 # most stability cases, the element comparison), what the sanitizer build cannot take (valgrind)
 # and the packaging checks (a sanitizer build's packaging is not the product's).
@@ -38,12 +42,23 @@ sanitizer_tests=(
   python_tests/test_physics.py          # both elements, static and dynamic, contact, reduced modal model
   python_tests/test_libcosimpy.py       # a second importer's call sequence
   python_tests/test_stability.py        # the cases below: many contacts, large dt, beta = 0 and its bound,
-)                                       # the sparse engine (56 x 20), a start in contact, load steps
-sanitizer_k="not second_order and not midpoint and (not test_stability_case or gap_1e-4 or dt_1e-2 \
-or beta_0_ or grid_56x20 or pressed_held or load_steps)"
+)                                       # the sparse engine (56 x 20), a start pressed onto an obstacle
+sanitizer_k="not second_order and not midpoint and not converges and (not test_stability_case \
+or gap_1e-4 or dt_1e-2 or beta_0_ or grid_56x20 or pressed_held)"
 echo "test.sh: sanitizer stage: ${sanitizer_tests[*]} against build-asan/PlateImpact.fmu"
+status=0
 LD_PRELOAD="${runtimes# }${LD_PRELOAD:+ $LD_PRELOAD}" \
-ASAN_OPTIONS="detect_leaks=0:halt_on_error=1${ASAN_OPTIONS:+:$ASAN_OPTIONS}" \
-UBSAN_OPTIONS="halt_on_error=1:print_stacktrace=1${UBSAN_OPTIONS:+:$UBSAN_OPTIONS}" \
+ASAN_OPTIONS="detect_leaks=0:halt_on_error=1:log_path=$reports/asan${ASAN_OPTIONS:+:$ASAN_OPTIONS}" \
+UBSAN_OPTIONS="halt_on_error=1:print_stacktrace=1:log_path=$reports/ubsan${UBSAN_OPTIONS:+:$UBSAN_OPTIONS}" \
 PLATEIMPACT_FMU="$repo/build-asan/PlateImpact.fmu" \
-  "$repo/.venv/bin/python" -m pytest -q "${sanitizer_tests[@]}" -k "$sanitizer_k" "$@"
+  "$repo/.venv/bin/python" -m pytest -q "${sanitizer_tests[@]}" -k "$sanitizer_k" "$@" || status=$?
+if [ -n "$(ls -A "$reports")" ]; then
+  for report in "$reports"/*; do
+    echo "test.sh: sanitizer report $report:" >&2
+    cat "$report" >&2
+  done
+  echo "test.sh: sanitizer stage FAILED: $(ls "$reports" | wc -l) report(s) in $reports" >&2
+  exit 1
+fi
+[ "$status" = 0 ] || echo "test.sh: sanitizer stage FAILED (pytest exit code $status)" >&2
+exit "$status"
