@@ -28,6 +28,10 @@ public:
     virtual void gatherContact(const Eigen::VectorXd& w, Eigen::VectorXd& y) const = 0;
     virtual void stepMatrixContactColumn(int j, Eigen::VectorXd& z) const = 0;
     virtual void contactDirection(int j, Eigen::VectorXd& c) const = 0;  // Cᵀ e_j
+    // max_i ‖C_i‖₂ over the rows of C, when gathering y = C w is expensive enough that a step
+    // should first bound how far the vertices can have moved (|Δy_i| ≤ ‖C_i‖₂ ‖Δw‖₂); 0 when
+    // the gather is as cheap as that bound.
+    virtual double contactRowNormBound() const { return 0.0; }
 
     virtual const Eigen::VectorXd& pressureLoad() const = 0;  // F (unit pressure)
     virtual const Eigen::VectorXd& baseInertia() const = 0;   // (M·1)_free

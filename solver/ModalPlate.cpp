@@ -17,6 +17,7 @@ ModalPlate::ModalPlate(std::shared_ptr<const FiniteElementSpace> space,
     const auto& dofs = plate_->contactDofs;
     contactModesT_.resize(phi_.cols(), static_cast<Eigen::Index>(dofs.size()));
     for (std::size_t i = 0; i < dofs.size(); ++i) contactModesT_.col(i) = phi_.row(dofs[i]).transpose();
+    if (contactModesT_.cols() > 0) contactRowNormMax_ = contactModesT_.colwise().norm().maxCoeff();
     pressureLoad_ = phi_.transpose() * plate_->pressureLoad;
     baseInertia_ = phi_.transpose() * plate_->baseInertia;
 }

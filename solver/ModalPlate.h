@@ -29,6 +29,7 @@ public:
     void gatherContact(const Eigen::VectorXd& w, Eigen::VectorXd& y) const override;
     void stepMatrixContactColumn(int j, Eigen::VectorXd& z) const override;
     void contactDirection(int j, Eigen::VectorXd& c) const override { c = contactModesT_.col(j); }
+    double contactRowNormBound() const override { return contactRowNormMax_; }
     const Eigen::VectorXd& pressureLoad() const override { return pressureLoad_; }
     const Eigen::VectorXd& baseInertia() const override { return baseInertia_; }
     double totalMass() const override { return plate_->totalMass; }
@@ -50,6 +51,7 @@ private:
     Eigen::VectorXd inverseStep_;   // 1 / (1 + βΔt²ω²)
     Eigen::MatrixXd contactModesT_;  // (CΦ)ᵀ: column j = mode shapes at contact vertex j
     Eigen::VectorXd pressureLoad_, baseInertia_;
+    double contactRowNormMax_ = 0.0;  // max_i ‖(CΦ)_i‖₂
 };
 
 }  // namespace plate

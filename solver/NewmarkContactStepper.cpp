@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
 #include <sstream>
 
 #include "PlateParameters.h"
@@ -30,6 +31,8 @@ NewmarkContactStepper::NewmarkContactStepper(std::shared_ptr<const DiscretePlate
         lowerBound_.resize(m);
         upperBound_.resize(m);
         trialState_.assign(m, 0);
+        rowNormBound_ = plate_->contactRowNormBound();
+        if (rowNormBound_ > 0.0) wCheck_.resize(n);
     }
 }
 
@@ -45,6 +48,7 @@ void NewmarkContactStepper::initialize(const Eigen::VectorXd& w0, double z0, dou
     s.s = s.sPrev = plate_->pressureLoad().dot(w0);
     s.t = s.tPrev = plate_->baseInertia().dot(w0);
     s.contactState.assign(obstacles_.any() ? plate_->contactCount() : 0, 0);
+    checkMargin_ = -1.0;
     if (obstacles_.any()) {
         plate_->gatherContact(w0, y_);
         for (int i = 0; i < y_.size(); ++i) {
@@ -92,10 +96,26 @@ void NewmarkContactStepper::step(double zNext, double pNext) {
     int iterations = 0;
     double kkt = 0.0;
     if (qp_) {
-        plate_->gatherContact(wNext_, yFree_);
-        bool violated = false;
         const double lo = obstacles_.lower - zNext, hi = obstacles_.upper - zNext;
-        for (int i = 0; i < yFree_.size(); ++i) violated |= (yFree_[i] < lo) | (yFree_[i] > hi);
+        bool violated = false;
+        // 1e-12 m covers the roundoff of the gathered values the bound is compared with.
+        const bool mayTouch =
+            checkMargin_ <= 0.0 || rowNormBound_ * (wNext_ - wCheck_).norm() +
+                                           std::abs(zNext - zCheck_) + 1e-12 >= checkMargin_;
+        if (mayTouch) {
+            plate_->gatherContact(wNext_, yFree_);
+            double margin = std::numeric_limits<double>::infinity();
+            for (int i = 0; i < yFree_.size(); ++i) {
+                violated |= (yFree_[i] < lo) | (yFree_[i] > hi);
+                margin = std::min(margin, std::min(yFree_[i] - lo, hi - yFree_[i]));
+            }
+            checkMargin_ = -1.0;
+            if (!violated && rowNormBound_ > 0.0) {
+                wCheck_ = wNext_;  // same size: no allocation
+                zCheck_ = zNext;
+                checkMargin_ = margin;
+            }
+        }
         if (violated) {
             lowerBound_.setConstant(lo);
             upperBound_.setConstant(hi);

@@ -45,7 +45,10 @@ public:
     double energy() const;
 
     const NewmarkState& state() const { return state_; }
-    void setState(const NewmarkState& s) { state_ = s; }
+    void setState(const NewmarkState& s) {
+        state_ = s;
+        checkMargin_ = -1.0;  // the free-flight bound restarts from a full look
+    }
     const DiscretePlate& plate() const { return *plate_; }
     double dt() const { return dt_; }
     double beta() const { return beta_; }
@@ -64,6 +67,14 @@ private:
     Eigen::VectorXd rhs_, d_, wNext_, kwNext_, yFree_, y_, mu_, lowerBound_, upperBound_,
         yPrev_;
     std::vector<signed char> trialState_;
+    // Free flight without looking at every vertex (complete modal basis: the look is a dense
+    // product): at the last full look the vertices were at least checkMargin_ from the
+    // obstacles with the plate at wCheck_ and the base at zCheck_; while
+    // ‖C_i‖ ‖w⁺ − wCheck_‖ + |z⁺ − zCheck_| stays below that margin no vertex can touch, so the
+    // look (which would find nothing) is skipped. Results are identical either way.
+    double rowNormBound_ = 0.0;
+    Eigen::VectorXd wCheck_;
+    double zCheck_ = 0.0, checkMargin_ = -1.0;
     mutable Eigen::VectorXd scratch_;
 };
 
