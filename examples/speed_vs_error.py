@@ -1279,7 +1279,7 @@ def headline(ctx):
                      f"the baseline: sparse factor + QP) {py['ratio']['sparse']:.0f}×",
             verdict="**met**" if r >= 50 else "**not met**"))
         notes.append(
-            f"**Why the Python/SciPy baseline is only {r:.0f}× slower.** The ratio depends on how many steps "
+            f"**Where the {r:.0f}× comes from.** The ratio depends on how many steps "
             f"need a QP: {py['ratio_free']['auto']:.0f}× in free flight, where the C++ step "
             f"({1e6 * cpp['auto']['free_step_s']:.1f} µs, a diagonal solve in the complete modal basis) "
             f"meets a SciPy step of {1e6 * py['free_phase_step_s']:.0f} µs (SuperLU solve, K·w, Python "
