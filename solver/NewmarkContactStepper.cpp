@@ -197,7 +197,8 @@ double NewmarkContactStepper::energy() const {
     // E = ½ vᵀ(M + (β−¼)Δt²K) v + ½ ūᵀKū with v the absolute velocity (w − w⁻)/Δt + ż·1 and
     // ū = (w + w⁻)/2; K·1 = 0, so only the mass sees the base (NOTES.md).
     const NewmarkState& s = state_;
-    const Eigen::VectorXd dw = s.w - s.wPrev;
+    dwScratch_ = s.w - s.wPrev;  // read once per communication step: reuse the buffers
+    const Eigen::VectorXd& dw = dwScratch_;
     plate_->applyMass(dw, scratch_);
     const double dt2 = dt_ * dt_;
     const double zDot = (s.z - s.zPrev) / dt_;

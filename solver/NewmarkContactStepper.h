@@ -75,7 +75,7 @@ private:
     double rowNormBound_ = 0.0;
     Eigen::VectorXd wCheck_;
     double zCheck_ = 0.0, checkMargin_ = -1.0;
-    mutable Eigen::VectorXd scratch_;
+    mutable Eigen::VectorXd scratch_, dwScratch_;
 };
 
 }  // namespace plate
