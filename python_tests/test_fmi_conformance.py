@@ -18,8 +18,6 @@ import subprocess
 import sys
 import threading
 import time
-import zipfile
-from pathlib import Path
 
 import pytest
 from fmpy import calloc, free, read_model_description
@@ -199,14 +197,8 @@ def norm(text):
 
 
 @pytest.fixture(scope="module")
-def unzipped(fmu_path, tmp_path_factory):
-    assert fmu_path.is_file(), f"FMU not built: {fmu_path} (build it or set PLATEIMPACT_FMU)"
-    target = tmp_path_factory.mktemp("fmu")
-    with zipfile.ZipFile(fmu_path) as archive:
-        archive.extractall(target)
-    so = target / "binaries" / "linux64" / "PlateImpact.so"
-    assert so.is_file()
-    return target
+def unzipped(extracted_fmu):
+    return extracted_fmu
 
 
 # ---------------------------------------------------------------------------------------------

@@ -14,7 +14,6 @@ import os
 import re
 import shutil
 import subprocess
-import zipfile
 from pathlib import Path
 
 import pytest
@@ -50,11 +49,8 @@ def valgrind():
 
 
 @pytest.fixture(scope="module")
-def unzipped_fmu(fmu_path, tmp_path_factory):
-    assert fmu_path.is_file(), f"FMU not built: {fmu_path} (build it or set PLATEIMPACT_FMU)"
-    target = tmp_path_factory.mktemp("fmu_valgrind")
-    with zipfile.ZipFile(fmu_path) as archive:
-        archive.extractall(target)
+def unzipped_fmu(extracted_fmu):
+    target = extracted_fmu
     so = target / "binaries" / "linux64" / "PlateImpact.so"
     if b"__asan_init" in so.read_bytes():
         pytest.skip("a sanitizer build of the FMU (AddressSanitizer and valgrind exclude each other)")
