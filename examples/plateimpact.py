@@ -128,11 +128,12 @@ class PlateImpactFMU:
         return out
 
     # -- time stepping ----------------------------------------------------------------------
-    def step(self, h, base=None, load=None):
+    def step(self, h, base=None, load=None, derivatives=True):
         """Advance by h from self.time; the outputs after the step. base/load: a value or
         (value, first derivative, second derivative) at the step start; None keeps the input
-        as it was (held, derivatives zero)."""
-        refs, values, orders, derivatives = [], [], [], []
+        as it was. derivatives=False sets the values only, as ordinary importers do: the FMU
+        then reconstructs the inputs inside the step (base_input_mode / load_input_mode)."""
+        refs, values, orders, rates = [], [], [], []
         for name, given in (("base_displacement", base), ("load", load)):
             if given is None:
                 continue
@@ -141,10 +142,11 @@ class PlateImpactFMU:
             refs.append(vr)
             values.append(value)
             orders += [1, 2]
-            derivatives += [d1, d2]
+            rates += [d1, d2]
         if refs:
             self.fmu.setReal(refs, values)
-            self.fmu.setRealInputDerivatives([r for r in refs for _ in (1, 2)], orders, derivatives)
+        if refs and derivatives:
+            self.fmu.setRealInputDerivatives([r for r in refs for _ in (1, 2)], orders, rates)
         self.fmu.doStep(currentCommunicationPoint=self.time, communicationStepSize=h)
         self.time += h  # the FMU accepts the rounding of this sum (relative time tolerance)
         return self.outputs()

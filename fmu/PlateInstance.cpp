@@ -104,7 +104,8 @@ Snapshot* asSnapshot(fmi2FMUstate state) {
 //   bytes 72..    n doubles: the instance fields in the order of encodeSnapshot, then the
 //                 PlateSimulation state.
 constexpr char kMagic[8] = {'P', 'L', 'A', 'T', 'E', 'I', 'M', 'P'};
-constexpr std::uint32_t kFormatVersion = 1;
+// Version 2: the inputs carry their mode, whether derivatives were given and their history.
+constexpr std::uint32_t kFormatVersion = 2;
 constexpr std::size_t kGuidField = 48;
 constexpr std::size_t kHeaderBytes = 8 + 4 + 4 + kGuidField + 8;
 
@@ -142,16 +143,25 @@ private:
     std::size_t next_ = 0;
 };
 
-void encodeSignal(std::vector<double>& out, const plate::InputSignal& s) {
-    out.insert(out.end(), {s.value, s.d1, s.d2});
+void encodeInput(std::vector<double>& out, const InputPort& port) {
+    out.insert(out.end(), {port.signal.value, port.signal.d1, port.signal.d2, port.derivativesGiven ? 1.0 : 0.0,
+                           double(static_cast<int>(port.mode))});
+    port.history.serialize(out);
 }
 
-plate::InputSignal decodeSignal(Reader& in, const char* what) {
-    plate::InputSignal s;
-    s.value = in.finite(what);
-    s.d1 = in.finite(what);
-    s.d2 = in.finite(what);
-    return s;
+void decodeInput(Reader& in, InputPort& port, const char* what) {
+    port.signal.value = in.finite(what);
+    port.signal.d1 = in.finite(what);
+    port.signal.d2 = in.finite(what);
+    port.derivativesGiven = in.boolean(what);
+    port.mode = static_cast<plate::InputMode>(in.integer(what, 1, 3));
+    double history[plate::InputHistory::kSerializedSize];
+    for (double& x : history) x = in.real(what);
+    try {
+        port.history = plate::InputHistory::deserialize(history);
+    } catch (const std::invalid_argument& e) {
+        throw DecodeError(std::string(what) + ": " + e.what());
+    }
 }
 
 std::vector<double> encodeSnapshot(const Snapshot& s) {
@@ -163,8 +173,8 @@ std::vector<double> encodeSnapshot(const Snapshot& s) {
         double(p.nx), double(p.ny), p.element == plate::ElementType::Fvs ? 2.0 : 1.0,
         p.obstacleLower, p.obstacleUpper, p.obstacleLowerEnabled ? 1.0 : 0.0,
         p.obstacleUpperEnabled ? 1.0 : 0.0, p.dt, p.beta, p.initialLoad, double(p.modes)};
-    encodeSignal(out, s.values.baseDisplacement);
-    encodeSignal(out, s.values.load);
+    encodeInput(out, s.values.baseDisplacement);
+    encodeInput(out, s.values.load);
     out.insert(out.end(), {o.corner1, o.corner2, o.freeEdgeMid, o.energy, o.energyDissipated,
                            o.energyInput, double(o.contactVertices), o.maxKktResidual,
                            double(o.qpIterations), double(o.qpIterationsTotal), double(o.qpIterationsMax)});
@@ -199,8 +209,8 @@ void decodeSnapshot(const std::vector<double>& data, Snapshot& s) {
     p.beta = in.finite("beta");
     p.initialLoad = in.finite("initial_load");
     p.modes = int(in.integer("modes", kIntMin, kIntMax));
-    s.values.baseDisplacement = decodeSignal(in, "base_displacement");
-    s.values.load = decodeSignal(in, "load");
+    decodeInput(in, s.values.baseDisplacement, "base_displacement");
+    decodeInput(in, s.values.load, "load");
     plate::PlateOutputs& o = s.values.outputs;
     o.corner1 = in.real("corner_1");
     o.corner2 = in.real("corner_2");
@@ -396,8 +406,9 @@ void PlateInstance::ensureSimulation(const char* function) {
     if (simulation_) return;
     // A plate::ParameterError names the parameter, its value and the allowed range; call()
     // logs it (category logStatusError) and returns fmi2Error.
-    simulation_ = std::make_unique<plate::PlateSimulation>(values_.parameters, values_.baseDisplacement.value);
-    simulationBase0_ = values_.baseDisplacement.value;
+    simulation_ = std::make_unique<plate::PlateSimulation>(values_.parameters,
+                                                         values_.baseDisplacement.signal.value);
+    simulationBase0_ = values_.baseDisplacement.signal.value;
     refreshOutputs();
     log(fmi2OK, LogAll, "%s: simulation built (nx = %d, ny = %d, dt = %g s, beta = %g, modes = %d)", function,
         values_.parameters.nx, values_.parameters.ny, values_.parameters.dt, values_.parameters.beta,
@@ -753,8 +764,9 @@ fmi2Status PlateInstance::setRealInputDerivatives(const fmi2ValueReference vr[],
             if (!std::isfinite(value[i]))
                 return fail("fmi2SetRealInputDerivatives: derivative of order %d of %s = %g rejected: NaN and Inf are "
                             "not allowed", order[i], variable->name, value[i]);
-            plate::InputSignal& signal = vr[i] == kVrBaseDisplacement ? values_.baseDisplacement : values_.load;
-            (order[i] == 1 ? signal.d1 : signal.d2) = value[i];
+            InputPort& port = vr[i] == kVrBaseDisplacement ? values_.baseDisplacement : values_.load;
+            (order[i] == 1 ? port.signal.d1 : port.signal.d2) = value[i];
+            port.derivativesGiven = true;
         }
         return fmi2OK;
     });
@@ -782,8 +794,14 @@ fmi2Status PlateInstance::doStep(fmi2Real t, fmi2Real h, fmi2Boolean) {
             return fail("fmi2DoStep: communicationStepSize h = %.17g is not a whole multiple of dt = %.17g "
                         "(h/dt = %.17g); the rule is h = n*dt with an integer n >= 1, relative tolerance %g", h, dt,
                         ratio, kStepMultipleTolerance);
+        // The communicated values at this point extend the histories; a master that set no
+        // derivatives gets the inputs reconstructed from them (InputPort::stepSignal). The
+        // history's times are the FMU's own (whole numbers of dt): a master's roundoff in t
+        // does not reach the divided differences.
+        values_.baseDisplacement.history.record(now, values_.baseDisplacement.signal.value);
+        values_.load.history.record(now, values_.load.signal.value);
         try {
-            simulation_->advance(steps, values_.baseDisplacement, values_.load);
+            simulation_->advance(steps, values_.baseDisplacement.stepSignal(), values_.load.stepSignal());
         } catch (const plate::StepError& e) {
             refreshOutputs();  // the simulation stays at its last good step (for debugging)
             return fail("fmi2DoStep: step from t = %.17g failed at t = %.17g: %s", t, currentTime(), e.what());

@@ -61,13 +61,30 @@ void setElementItem(ModelValues& v, int item) {
     }
 }
 
+// Enumeration InputMode: hold = 1, linear = 2, quadratic = 3 (the values of plate::InputMode).
+int inputModeItem(plate::InputMode m) { return static_cast<int>(m); }
+plate::InputMode inputModeOf(const char* name, int item) {
+    if (item < 1 || item > 3)
+        throw VariableError(std::string(name) + " = " + std::to_string(item) +
+                            " is not an item of the enumeration InputMode (hold = 1, linear = 2, quadratic = 3)");
+    return static_cast<plate::InputMode>(item);
+}
+
+// A new value makes the input a plain value again: its derivatives are zero and not given,
+// so the step reconstructs the input from the communicated values unless the master sets
+// derivatives again.
+void setInputValue(InputPort& port, double x) {
+    port.signal = plate::InputSignal{x, 0.0, 0.0};
+    port.derivativesGiven = false;
+}
+
 int saturateToInt(long long n) { return n > INT_MAX ? INT_MAX : n < INT_MIN ? INT_MIN : int(n); }
 
-// Inputs: setting a value makes the input a plain held value again, i.e. its derivatives
-// (fmi2SetRealInputDerivatives) are reset to zero. FMI 2.0 lets input derivatives apply to
-// the communication step that follows them; a master that wants them for the next step as
-// well sets them again after setting the new value.
-const std::array<Variable, 29> kVariables = {{
+// Inputs: setting a value resets its derivatives (fmi2SetRealInputDerivatives). FMI 2.0 lets
+// input derivatives apply to the communication step that follows them; a master that wants
+// them for the next step as well sets them again after setting the new value. A master that
+// sets values only gets the reconstruction chosen by base_input_mode / load_input_mode.
+const std::array<Variable, 31> kVariables = {{
     realParameter(0, "length",
         [](const ModelValues& v) { return v.parameters.length; },
         [](ModelValues& v, double x) { v.parameters.length = x; }),
@@ -119,13 +136,19 @@ const std::array<Variable, 29> kVariables = {{
     integerParameter(16, "modes",
         [](const ModelValues& v) { return v.parameters.modes; },
         [](ModelValues& v, int x) { v.parameters.modes = x; }),
+    enumerationParameter(17, "base_input_mode",
+        [](const ModelValues& v) { return inputModeItem(v.baseDisplacement.mode); },
+        [](ModelValues& v, int x) { v.baseDisplacement.mode = inputModeOf("base_input_mode", x); }),
+    enumerationParameter(18, "load_input_mode",
+        [](const ModelValues& v) { return inputModeItem(v.load.mode); },
+        [](ModelValues& v, int x) { v.load.mode = inputModeOf("load_input_mode", x); }),
 
     realInput(kVrBaseDisplacement, "base_displacement", true,
-        [](const ModelValues& v) { return v.baseDisplacement.value; },
-        [](ModelValues& v, double x) { v.baseDisplacement = plate::InputSignal{x, 0.0, 0.0}; }),
+        [](const ModelValues& v) { return v.baseDisplacement.signal.value; },
+        [](ModelValues& v, double x) { setInputValue(v.baseDisplacement, x); }),
     realInput(kVrLoad, "load", false,
-        [](const ModelValues& v) { return v.load.value; },
-        [](ModelValues& v, double x) { v.load = plate::InputSignal{x, 0.0, 0.0}; }),
+        [](const ModelValues& v) { return v.load.signal.value; },
+        [](ModelValues& v, double x) { setInputValue(v.load, x); }),
 
     realOutput(30, "corner_1", [](const ModelValues& v) { return v.outputs.corner1; }),
     realOutput(31, "corner_2", [](const ModelValues& v) { return v.outputs.corner2; }),

@@ -10,11 +10,27 @@
 
 namespace plateimpact {
 
+// One Real input as the master passes it (docs/theory.md, "Inputs between communication
+// points"): the value, the derivatives if the master set them since the value, and the values
+// at the last communication points for masters that give none.
+struct InputPort {
+    plate::InputSignal signal;      // value (fmi2SetReal) + derivatives (fmi2SetRealInputDerivatives)
+    bool derivativesGiven = false;  // the master set derivatives since the value: they win
+    plate::InputMode mode;          // otherwise the step follows history.extrapolate(mode)
+    plate::InputHistory history;
+
+    explicit InputPort(plate::InputMode defaultMode) : mode(defaultMode) {}
+    // The signal over the step that starts now.
+    plate::InputSignal stepSignal() const { return derivativesGiven ? signal : history.extrapolate(mode); }
+};
+
 // Everything an importer can set or read, as plain values.
 struct ModelValues {
     plate::PlateParameters parameters;  // defaults = the start values in modelDescription.xml
-    plate::InputSignal baseDisplacement;  // value + derivatives (fmi2SetRealInputDerivatives)
-    plate::InputSignal load;
+    // Default modes, chosen by measurement (docs/input-accuracy.md): a clamp displacement is
+    // smooth (quadratic extrapolation); a load may step, and extrapolating a step overshoots.
+    InputPort baseDisplacement{plate::InputMode::Quadratic};
+    InputPort load{plate::InputMode::Hold};
     plate::PlateOutputs outputs;          // copy of PlateSimulation::outputs() after each change
 };
 

@@ -35,6 +35,8 @@ PARAMETERS = {
     "beta": (14, "Real"),
     "initial_load": (15, "Real"),
     "modes": (16, "Integer"),
+    "base_input_mode": (17, "Integer"),  # Enumeration InputMode: hold = 1, linear = 2, quadratic = 3
+    "load_input_mode": (18, "Integer"),
 }
 ELEMENTS = {"argyris": 1, "fvs": 2}
 VR_BASE, VR_LOAD = 20, 21
@@ -63,8 +65,8 @@ class PlateRun(PlateImpactFMU):
         super().__init__(fmu_path, base0=base0, load0=load0, **parameters)
         self.steps = 0  # communication steps taken
 
-    def step(self, h, base=0.0, load=0.0):
+    def step(self, h, base=0.0, load=0.0, derivatives=True):
         """One fmi2DoStep of size h from self.time with the given input signals; the outputs."""
-        out = super().step(h, base=base, load=load)
+        out = super().step(h, base=base, load=load, derivatives=derivatives)
         self.steps += 1
         return out

@@ -55,6 +55,8 @@ INTERFACE = {
     "beta": (14, "Real", "parameter"),
     "initial_load": (15, "Real", "parameter"),
     "modes": (16, "Integer", "parameter"),
+    "base_input_mode": (17, "Enumeration", "parameter"),
+    "load_input_mode": (18, "Enumeration", "parameter"),
     "base_displacement": (20, "Real", "input"),
     "load": (21, "Real", "input"),
     "corner_1": (30, "Real", "output"),
@@ -72,7 +74,8 @@ START = {
     "length": 1.2, "width": 0.4, "thickness": 0.01, "youngs_modulus": 2.1e11, "poisson_ratio": 0.3,
     "density": 7770.0, "nx": 14, "ny": 5, "element": 1, "obstacle_lower": -0.1, "obstacle_upper": 0.1,
     "obstacle_lower_enabled": True, "obstacle_upper_enabled": True, "dt": 1e-5, "beta": 0.5,
-    "initial_load": 0.0, "modes": 0, "base_displacement": 0.0, "load": 0.0,
+    "initial_load": 0.0, "modes": 0, "base_input_mode": 3, "load_input_mode": 1, "base_displacement": 0.0,
+    "load": 0.0,
 }
 UNITS = {
     "length": "m", "width": "m", "thickness": "m", "youngs_modulus": "Pa", "density": "kg/m3",

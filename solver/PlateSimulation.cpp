@@ -119,6 +119,7 @@ PlateSimulation::~PlateSimulation() = default;
 const PlateParameters& PlateSimulation::parameters() const { return impl_->parameters; }
 double PlateSimulation::time() const { return impl_->stepper->state().step * impl_->parameters.dt; }
 long long PlateSimulation::stepCount() const { return impl_->stepper->state().step; }
+double PlateSimulation::baseDisplacement() const { return impl_->stepper->state().z; }
 
 void PlateSimulation::advance(long long steps, const InputSignal& base, const InputSignal& load) {
     const double dt = impl_->parameters.dt;

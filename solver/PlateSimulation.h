@@ -6,16 +6,10 @@
 #include <string>
 #include <vector>
 
+#include "InputSignal.h"
 #include "PlateParameters.h"
 
 namespace plate {
-
-// An input over one communication step: value and time derivatives at its start; inside the
-// step it follows value + d1 s + d2 s^2 / 2 (FMI input-derivative interpolation).
-struct InputSignal {
-    double value = 0.0, d1 = 0.0, d2 = 0.0;
-    double at(double s) const { return value + s * (d1 + 0.5 * s * d2); }
-};
 
 struct PlateOutputs {
     double corner1 = 0, corner2 = 0, freeEdgeMid = 0;  // w at (L,0), (L,W), (L,W/2), m
@@ -42,6 +36,7 @@ public:
     const PlateParameters& parameters() const;
     double time() const;           // t_n = n Δt
     long long stepCount() const;
+    double baseDisplacement() const;  // z(t_n), the clamp position of the last step
 
     // Advances `steps` internal steps; inside, base and load follow the given signals with
     // s = t - time() at the call. Throws StepError (state left at the last good step).

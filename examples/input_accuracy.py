@@ -1,0 +1,194 @@
+"""Accuracy on the path users take: the clamp driven by masters that hold inputs and give no
+derivatives (fmpy.simulate_fmu, libcosimpy), against our derivative-giving driver.
+
+Two scenes on the default plate (14x5 Argyris, dt = 1e-5 s, obstacles at +-0.1 m):
+  smooth  base 0.09 sin(2 pi 10 t) s(t), s = sin^2(pi t / 0.1) for t < 0.05 s, 1 after
+          (z, z', z'' all start at 0: a causal master loses nothing at the start)
+  paper   base 0.09 sin(2 pi 10 t) from t = 0 (a kink out of rest: c w = 5.7 m/s at t = 0+)
+For each communication step h and each way of passing the base, the largest |corner_1 - ref|
+over the communication points before the first impact and over 0.15 s, where ref is the run
+whose base is exact at every internal step (our driver with value and derivatives at h = dt).
+
+    python examples/input_accuracy.py --fmu build/PlateImpact.fmu [--markdown docs/input-accuracy.md]
+
+Ways of passing the base (each a row):
+  derivatives           our driver: value, first and second derivative at every point
+  fmpy <mode>           fmpy.simulate_fmu with an input table (held values), base_input_mode=<mode>
+  libcosimpy            libcosim with an override manipulator (held values; default mode, since
+                        libcosimpy ignores Enumeration start values)
+  quadratic+carry       prototype through the derivative inputs: quadratic extrapolation that
+                        starts where the clamp is and takes the miss over the step (measured to
+                        decide whether the FMU should do it)
+"""
+from __future__ import annotations
+
+import argparse
+import math
+import sys
+import time
+from pathlib import Path
+
+import numpy as np
+
+sys.path.insert(0, str(Path(__file__).resolve().parent))
+from plateimpact import PlateImpactFMU, unzipped  # noqa: E402
+
+DT = 1e-5
+AMPLITUDE, FREQUENCY = 0.09, 10.0
+MODES = {"hold": 1, "linear": 2, "quadratic": 3}
+FIRST_IMPACT = {"smooth": 0.06, "paper": 0.045}  # horizons before the first impact, s
+
+
+def base(scene, t):
+    """Value, first and second derivative of the scene's base displacement at t."""
+    w = 2.0 * math.pi * FREQUENCY
+    z, zd, zdd = AMPLITUDE * math.sin(w * t), AMPLITUDE * w * math.cos(w * t), -AMPLITUDE * w * w * math.sin(w * t)
+    if scene == "paper" or t >= 0.05:
+        return z, zd, zdd
+    a = math.pi / 0.1
+    s, sd, sdd = math.sin(a * t) ** 2, a * math.sin(2 * a * t), 2 * a * a * math.cos(2 * a * t)
+    return z * s, zd * s + z * sd, zdd * s + 2 * zd * sd + z * sdd
+
+
+def run_derivatives(fmu, scene, h, stop):
+    n = round(stop / h)
+    out = np.empty(n)
+    with PlateImpactFMU(fmu, dt=DT) as plate:
+        for k in range(n):
+            out[k] = plate.step(h, base=base(scene, k * h))["corner_1"]
+    return out
+
+
+def run_carry(fmu, scene, h, stop):
+    """Quadratic extrapolation of the held values, started at the clamp's current position with
+    the miss spread over the step (value = where the clamp is, d1 += miss / h)."""
+    n = round(stop / h)
+    out = np.empty(n)
+    ts, zs = [], []
+    position = base(scene, 0.0)[0]
+    with PlateImpactFMU(fmu, dt=DT) as plate:
+        for k in range(n):
+            t = k * h
+            ts.insert(0, t)
+            zs.insert(0, base(scene, t)[0])
+            del ts[3:], zs[3:]
+            d1 = d2 = 0.0
+            if len(ts) >= 2:
+                d01 = (zs[0] - zs[1]) / (ts[0] - ts[1])
+                d1 = d01
+                if len(ts) == 3:
+                    d012 = (d01 - (zs[1] - zs[2]) / (ts[1] - ts[2])) / (ts[0] - ts[2])
+                    d1 += d012 * (ts[0] - ts[1])
+                    d2 = 2 * d012
+            d1 += (zs[0] - position) / h
+            out[k] = plate.step(h, base=(position, d1, d2))["corner_1"]
+            position = position + h * (d1 + 0.5 * h * d2)
+    return out
+
+
+def run_fmpy(fmu, scene, h, stop, mode):
+    from fmpy import simulate_fmu
+    n = round(stop / h)
+    grid = np.arange(0, round(stop / DT) + 1) * DT
+    signal = np.array([(t, base(scene, t)[0]) for t in grid], dtype=[("time", float), ("base_displacement", float)])
+    result = simulate_fmu(fmu, start_time=0.0, stop_time=n * h, output_interval=h, input=signal,
+                          start_values={"base_input_mode": MODES[mode], "dt": DT}, output=["corner_1"],
+                          fmi_type="CoSimulation")
+    return np.asarray(result["corner_1"][1:n + 1])
+
+
+def run_libcosim(fmu, scene, h, stop):
+    from libcosimpy.CosimExecution import CosimExecution
+    from libcosimpy.CosimLogging import CosimLogLevel, log_output_level
+    from libcosimpy.CosimManipulator import CosimManipulator
+    from libcosimpy.CosimObserver import CosimObserver
+    from libcosimpy.CosimSlave import CosimLocalSlave
+    log_output_level(CosimLogLevel.ERROR)
+    step_ns = round(h * 1e9)
+    n = round(stop / h)
+    _, md = unzipped(fmu)
+    vr = {v.name: v.valueReference for v in md.modelVariables}
+    execution = CosimExecution.from_step_size(step_ns)
+    slave = CosimLocalSlave(fmu_path=str(Path(fmu).resolve()), instance_name="plate")
+    index = execution.add_local_slave(slave)
+    manipulator = CosimManipulator.create_override()
+    observer = CosimObserver.create_last_value()
+    execution.add_manipulator(manipulator)
+    execution.add_observer(observer)
+    out = np.empty(n)
+    for k in range(n):
+        manipulator.slave_real_values(index, [vr["base_displacement"]], [base(scene, k * step_ns * 1e-9)[0]])
+        if not execution.step():
+            raise RuntimeError(f"libcosim step {k} failed")
+        out[k] = observer.last_real_values(index, [vr["corner_1"]])[0]
+    del execution, manipulator, observer, slave
+    return out
+
+
+def errors(run, ref, h, scene):
+    """max |run - ref| before the first impact and over the whole run, at the points k h."""
+    stride = round(h / DT)
+    sampled = ref[stride - 1::stride][:len(run)]
+    diff = np.abs(run - sampled)
+    before = round(FIRST_IMPACT[scene] / h)
+    return float(diff[:before].max()), float(diff.max())
+
+
+def measure(fmu, steps, stop, scenes, ways):
+    rows = []
+    for scene in scenes:
+        t0 = time.perf_counter()
+        ref = run_derivatives(fmu, scene, DT, stop)
+        print(f"[{scene}] reference (derivatives at h = dt): {time.perf_counter() - t0:.1f} s", file=sys.stderr)
+        for h in steps:
+            for way in ways:
+                if way == "derivatives" and h == DT:
+                    continue  # it is the reference
+                t0 = time.perf_counter()
+                if way == "derivatives":
+                    run = run_derivatives(fmu, scene, h, stop)
+                elif way == "libcosimpy":
+                    run = run_libcosim(fmu, scene, h, stop)
+                elif way == "quadratic+carry":
+                    run = run_carry(fmu, scene, h, stop)
+                else:
+                    run = run_fmpy(fmu, scene, h, stop, way.split()[1])
+                before, whole = errors(run, ref, h, scene)
+                rows.append({"scene": scene, "h": h, "way": way, "before": before, "whole": whole})
+                print(f"[{scene}] h = {h:g} {way:16s} before first impact {before:.2e} m, "
+                      f"over {stop:g} s {whole:.2e} m ({time.perf_counter() - t0:.1f} s)", file=sys.stderr)
+    return rows
+
+
+def table(rows, stop):
+    lines = []
+    for scene in dict.fromkeys(r["scene"] for r in rows):
+        lines += [f"\n### Scene `{scene}` (first impact after {FIRST_IMPACT[scene]:g} s)\n",
+                  "| communication step h | base passed as | max error before first impact | "
+                  f"max error over {stop:g} s |", "|---|---|---|---|"]
+        for r in rows:
+            if r["scene"] == scene:
+                lines.append(f"| {r['h']:g} s | {r['way']} | {r['before']:.2e} m | {r['whole']:.2e} m |")
+    return "\n".join(lines)
+
+
+def main(argv=None):
+    ap = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
+    ap.add_argument("--fmu", default="build/PlateImpact.fmu")
+    ap.add_argument("--steps", default="1e-5,1e-4,1e-3", help="communication steps, s")
+    ap.add_argument("--stop-time", type=float, default=0.15)
+    ap.add_argument("--scenes", default="smooth,paper")
+    ap.add_argument("--ways", default="derivatives,fmpy hold,fmpy linear,fmpy quadratic,libcosimpy,quadratic+carry")
+    ap.add_argument("--markdown", help="write the tables to this file")
+    args = ap.parse_args(argv)
+    steps = [float(s) for s in args.steps.split(",")]
+    rows = measure(args.fmu, steps, args.stop_time, args.scenes.split(","), args.ways.split(","))
+    text = table(rows, args.stop_time)
+    print(text)
+    if args.markdown:
+        Path(args.markdown).write_text(text + "\n")
+    return rows
+
+
+if __name__ == "__main__":
+    main()

@@ -1,0 +1,71 @@
+#include "InputSignal.h"
+
+#include <cmath>
+#include <stdexcept>
+
+namespace plate {
+
+void InputHistory::record(double t, double value) {
+    if (count_ > 0 && t == t_[0]) {
+        value_[0] = value;
+        return;
+    }
+    for (int i = kCapacity - 1; i > 0; --i) {
+        t_[i] = t_[i - 1];
+        value_[i] = value_[i - 1];
+    }
+    t_[0] = t;
+    value_[0] = value;
+    if (count_ < kCapacity) ++count_;
+}
+
+InputSignal InputHistory::extrapolate(InputMode mode) const {
+    InputSignal s;
+    if (count_ == 0) return s;
+    s.value = value_[0];
+    const int degree = std::min(static_cast<int>(mode) - 1, count_ - 1);
+    if (degree >= 1) {
+        // p(t) = v0 + [t0,t1](t - t0) + [t0,t1,t2](t - t0)(t - t1), so at t0:
+        // p' = [t0,t1] + [t0,t1,t2](t0 - t1), p'' = 2 [t0,t1,t2] (docs/theory.md, eq. (I.1)).
+        const double d01 = (value_[0] - value_[1]) / (t_[0] - t_[1]);
+        s.d1 = d01;
+        if (degree >= 2) {
+            const double d12 = (value_[1] - value_[2]) / (t_[1] - t_[2]);
+            const double d012 = (d01 - d12) / (t_[0] - t_[2]);
+            s.d1 += d012 * (t_[0] - t_[1]);
+            s.d2 = 2.0 * d012;
+        }
+    }
+    return s;
+}
+
+void InputHistory::serialize(std::vector<double>& out) const {
+    out.push_back(double(count_));
+    for (int i = 0; i < kCapacity; ++i) {
+        out.push_back(i < count_ ? t_[i] : 0.0);
+        out.push_back(i < count_ ? value_[i] : 0.0);
+    }
+}
+
+InputHistory InputHistory::deserialize(const double* data) {
+    InputHistory h;
+    const double count = data[0];
+    if (!(count >= 0 && count <= kCapacity) || std::floor(count) != count)
+        throw std::invalid_argument("input history: point count out of range");
+    h.count_ = static_cast<int>(count);
+    for (int i = 0; i < kCapacity; ++i) {
+        const double t = data[1 + 2 * i], v = data[2 + 2 * i];
+        if (!std::isfinite(t) || !std::isfinite(v))
+            throw std::invalid_argument("input history: a recorded point is not finite");
+        if (i < h.count_) {
+            h.t_[i] = t;
+            h.value_[i] = v;
+            // Strictly decreasing times: the divided differences never divide by zero.
+            if (i > 0 && !(t < h.t_[i - 1]))
+                throw std::invalid_argument("input history: times not strictly decreasing");
+        }
+    }
+    return h;
+}
+
+}  // namespace plate
