@@ -801,7 +801,8 @@ fmi2Status PlateInstance::doStep(fmi2Real t, fmi2Real h, fmi2Boolean) {
         values_.baseDisplacement.history.record(now, values_.baseDisplacement.signal.value);
         values_.load.history.record(now, values_.load.signal.value);
         try {
-            simulation_->advance(steps, values_.baseDisplacement.stepSignal(), values_.load.stepSignal());
+            const double span = double(steps) * dt;  // the step as taken (h up to roundoff)
+            simulation_->advance(steps, values_.baseDisplacement.stepSignal(span), values_.load.stepSignal(span));
         } catch (const plate::StepError& e) {
             refreshOutputs();  // the simulation stays at its last good step (for debugging)
             return fail("fmi2DoStep: step from t = %.17g failed at t = %.17g: %s", t, currentTime(), e.what());

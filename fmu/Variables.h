@@ -20,8 +20,12 @@ struct InputPort {
     plate::InputHistory history;
 
     explicit InputPort(plate::InputMode defaultMode) : mode(defaultMode) {}
-    // The signal over the step that starts now.
-    plate::InputSignal stepSignal() const { return derivativesGiven ? signal : history.extrapolate(mode); }
+    // The signal over the step of length h that starts now.
+    plate::InputSignal stepSignal(double h) {
+        if (!derivativesGiven) return history.continueStep(mode, h);
+        history.reached(signal.at(h));
+        return signal;
+    }
 };
 
 // Everything an importer can set or read, as plain values.

@@ -39,12 +39,24 @@ InputSignal InputHistory::extrapolate(InputMode mode) const {
     return s;
 }
 
+InputSignal InputHistory::continueStep(InputMode mode, double h) {
+    InputSignal s = extrapolate(mode);
+    if (mode != InputMode::Hold && hasReached_) {
+        s.d1 += (s.value - reached_) / h;  // start where the input is, end on the extrapolation
+        s.value = reached_;
+    }
+    reached(s.at(h));
+    return s;
+}
+
 void InputHistory::serialize(std::vector<double>& out) const {
     out.push_back(double(count_));
     for (int i = 0; i < kCapacity; ++i) {
         out.push_back(i < count_ ? t_[i] : 0.0);
         out.push_back(i < count_ ? value_[i] : 0.0);
     }
+    out.push_back(hasReached_ ? 1.0 : 0.0);
+    out.push_back(reached_);
 }
 
 InputHistory InputHistory::deserialize(const double* data) {
@@ -65,6 +77,11 @@ InputHistory InputHistory::deserialize(const double* data) {
                 throw std::invalid_argument("input history: times not strictly decreasing");
         }
     }
+    const double flag = data[1 + 2 * kCapacity], reachedValue = data[2 + 2 * kCapacity];
+    if (!(flag == 0.0 || flag == 1.0) || !std::isfinite(reachedValue))
+        throw std::invalid_argument("input history: bad end-of-step value");
+    h.hasReached_ = flag == 1.0;
+    h.reached_ = reachedValue;
     return h;
 }
 

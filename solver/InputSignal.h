@@ -21,8 +21,9 @@ struct InputSignal {
 // support. Derivatives the master sets itself always take precedence (the FMU layer decides).
 enum class InputMode { Hold = 1, Linear = 2, Quadratic = 3 };
 
-// The last three communicated points (t, value) of one input, newest first, and the
-// polynomial extrapolation through them (Newton's divided differences, any spacing).
+// The last three communicated points (t, value) of one input, newest first, the polynomial
+// extrapolation through them (Newton's divided differences, any spacing), and where the
+// reconstructed input stood at the end of the last step.
 class InputHistory {
 public:
     static constexpr int kCapacity = 3;
@@ -30,14 +31,30 @@ public:
     // Records the value communicated at communication point t. A point at the time of the
     // newest one replaces it (the master set the input again before stepping).
     void record(double t, double value);
-    void clear() { count_ = 0; }
     int count() const { return count_; }
 
-    // The signal from the newest point on: polynomial of degree min(order(mode), count-1).
+    // The polynomial of degree min(order(mode), count-1) through the newest points, from the
+    // newest point on.
     InputSignal extrapolate(InputMode mode) const;
 
-    // Fixed-size flat form for FMU states: count, then (t, value) for kCapacity points.
-    static constexpr int kSerializedSize = 1 + 2 * kCapacity;
+    // The signal for the step of length h that starts at the newest point (docs/theory.md,
+    // "Inputs between communication points"). Hold: the newest value. Linear, Quadratic:
+    // the extrapolation, made continuous — the step starts where the input ended the last
+    // step and the miss (newest value − that end) is spread over the step as a slope miss/h,
+    // so the input never jumps (a jump Δz of the clamp is a velocity kick Δz/Δt on one
+    // internal step). Remembers where this step ends.
+    InputSignal continueStep(InputMode mode, double h);
+    // Where the input ended the last step taken through continueStep (no step yet: none).
+    bool hasReached() const { return hasReached_; }
+    // Records where the input ended a step that the master's derivatives drove.
+    void reached(double value) {
+        reached_ = value;
+        hasReached_ = true;
+    }
+
+    // Fixed-size flat form for FMU states: count, (t, value) for kCapacity points, the
+    // reached flag and value.
+    static constexpr int kSerializedSize = 1 + 2 * kCapacity + 2;
     void serialize(std::vector<double>& out) const;
     // Throws std::invalid_argument for a count out of range or non-finite recorded points.
     static InputHistory deserialize(const double* data);
@@ -45,6 +62,8 @@ public:
 private:
     int count_ = 0;
     std::array<double, kCapacity> t_{}, value_{};
+    bool hasReached_ = false;
+    double reached_ = 0.0;
 };
 
 }  // namespace plate

@@ -6,7 +6,11 @@
 # and zips them into FMU_FILE. PlateImpact.so carries RPATH=$ORIGIN (DT_RPATH, which glibc also
 # applies to the dependencies of its dependencies), so the shipped copies are the ones loaded.
 #
-# Inputs (-D): LIBRARY, MODEL_DESCRIPTION, STAGING_DIR, FMU_FILE.
+# Inputs (-D): LIBRARY, MODEL_DESCRIPTION, STAGING_DIR, FMU_FILE; MODEL_IDENTIFIER (default
+# PlateImpact) names the shipped shared object.
+if(NOT DEFINED MODEL_IDENTIFIER)
+  set(MODEL_IDENTIFIER PlateImpact)
+endif()
 foreach(var LIBRARY MODEL_DESCRIPTION STAGING_DIR FMU_FILE)
   if(NOT DEFINED ${var})
     message(FATAL_ERROR "PackageFmu.cmake: ${var} is not set")
@@ -17,7 +21,7 @@ set(bin_dir "${STAGING_DIR}/binaries/linux64")
 file(REMOVE_RECURSE "${STAGING_DIR}")
 file(MAKE_DIRECTORY "${bin_dir}")
 configure_file("${MODEL_DESCRIPTION}" "${STAGING_DIR}/modelDescription.xml" COPYONLY)
-configure_file("${LIBRARY}" "${bin_dir}/PlateImpact.so" COPYONLY)
+configure_file("${LIBRARY}" "${bin_dir}/${MODEL_IDENTIFIER}.so" COPYONLY)
 
 find_program(LDD ldd REQUIRED)
 execute_process(COMMAND "${LDD}" "${LIBRARY}" OUTPUT_VARIABLE ldd_output ERROR_VARIABLE ldd_error
@@ -53,7 +57,7 @@ foreach(line IN LISTS ldd_lines)
   list(APPEND shipped "${name}")
 endforeach()
 list(JOIN shipped ", " shipped_text)
-message(STATUS "PlateImpact.fmu ships: ${shipped_text}")
+message(STATUS "${MODEL_IDENTIFIER}.fmu ships: ${shipped_text}")
 
 file(REMOVE "${FMU_FILE}")
 execute_process(COMMAND "${CMAKE_COMMAND}" -E tar cf "${FMU_FILE}" --format=zip modelDescription.xml binaries
