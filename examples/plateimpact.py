@@ -2,7 +2,7 @@
 the tests use.
 
 Users copy this: it shows how to set the parameters by name, feed inputs *with* their time
-derivatives (fmpy's simulate_fmu cannot: its input-derivative path crashes, NOTES.md) and
+derivatives (fmpy's simulate_fmu cannot: its input-derivative path crashes, docs/theory.md) and
 read the outputs every communication step.
 
     with PlateImpactFMU("build/PlateImpact.fmu", nx=14, ny=5, dt=1e-5) as plate:

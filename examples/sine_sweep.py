@@ -4,7 +4,7 @@ The controller (`SineSweep`) is a separate object from the plant (the FMU). It k
 sweep law and, at every communication point, hands the master the base displacement together
 with its first two time derivatives; the master passes all three to the FMU through
 `fmi2SetRealInputDerivatives`, so inside a communication step the clamp follows the sweep to
-third order instead of being held constant (fmpy's `simulate_fmu` cannot do this, NOTES.md).
+third order instead of being held constant (fmpy's `simulate_fmu` cannot do this, docs/theory.md).
 
     z(t) = A sin φ(t),  φ(t) = 2π ∫₀ᵗ f(s) ds
     linear:      f(t) = f0 + (f1 − f0) t/T,   φ = 2π (f0 t + (f1 − f0) t²/(2T))

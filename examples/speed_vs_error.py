@@ -35,7 +35,7 @@ import numpy as np
 REPO = Path(__file__).resolve().parent.parent
 BUILD = Path(os.environ.get("PLATEIMPACT_BUILD_DIR", REPO / "build"))
 
-# The two scenes (README, NOTES.md): the §5.1 forced oscillation (default scene) and the §5.2
+# The two scenes (README, docs/theory.md): the §5.1 forced oscillation (default scene) and the §5.2
 # free vibration (static equilibrium under 8600 Pa, released at rest, lower obstacle only).
 SINE = {"amplitude": 0.09, "frequency": 10.0, "gap": 0.1}
 FREE = {"initial_load": 8600, "lower_only": 1, "amplitude": 0.0, "gap": 0.1}
@@ -233,7 +233,7 @@ def first_frequency(bench, cfg, workdir):
 
 def python_baseline(export_dir, dt, steps, comm, split, beta=0.5, amplitude=0.09,
                     frequency=10.0, gap=OBSTACLE):
-    """The same three-level scheme as NewmarkContactStepper (NOTES.md "Time scheme") in plain
+    """The same three-level scheme as NewmarkContactStepper (docs/theory.md §3–4) in plain
     Python/SciPy: A = M + βΔt²K factored once (scipy.sparse.linalg.factorized), the free
     solution every step, and on steps where it violates a bound the full step QP
     min ½wᵀAw − wᵀb, obstacle − z⁺ ≤ w_C ≤ obstacle − z⁺, solved by OSQP (set up once, q/l/u
@@ -918,7 +918,7 @@ def write_report(ctx, path):
       "runs that are compared with each other are interleaved and repeated and the fastest kept; "
       "every step/floor ratio divides two numbers measured in the same process.")
     w("")
-    w("Definitions. *Floor*: one solve with the sparse CHOLMOD factor of A = M + βΔt²K (NOTES.md), "
+    w("Definitions. *Floor*: one solve with the sparse CHOLMOD factor of A = M + βΔt²K (docs/theory.md), "
       "measured by `plate_bench` in the same run (median of 20 batches of solves). *Step*: mean time "
       "of one time step of the stepper over the run (QP steps included, outputs read every "
       "communication step of 1e-4 s, setup excluded). Both are timed with the process CPU clock "
@@ -1343,7 +1343,7 @@ def headline(ctx):
             "for any configuration, so it is flagged and not used.")
     env_notes.append(
         "The per-period envelope of the deflection relative to the clamp is informative, but after the "
-        "first impacts the response is chaotic (NOTES.md): a roundoff-level change (the sparse factor "
+        "first impacts the response is chaotic (docs/theory.md): a roundoff-level change (the sparse factor "
         f"instead of the modal basis, same scheme) moves it by {100 * long['roundoff_rel']:.1f} %"
         + (f", halving Δt by {100 * long['dt_half_rel']:.1f} %" if math.isfinite(long["dt_half_rel"]) else "")
         + ". No refinement sequence of it is shown to converge, so it is reported but not used as an "

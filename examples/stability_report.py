@@ -101,7 +101,7 @@ def findings(results, full):
         worst_mid = max(mid, key=lambda r: r.midedge_overshoot)
         out.append(
             f"- **Between vertices the plate may pass the obstacle.** Contact is enforced at the mesh "
-            f"vertices only (NOTES.md). With ny odd the middle of the free edge is not a vertex, and it goes "
+            f"vertices only (docs/theory.md). With ny odd the middle of the free edge is not a vertex, and it goes "
             f"up to {worst_mid.midedge_overshoot * 1e3:.3g} mm past the obstacle (`{worst_mid.case.name}`; "
             f"{by['base'].midedge_overshoot * 1e3:.3g} mm in the base case). This is the discretization of "
             "the constraint, not a solver error; it is not counted as penetration.")
@@ -148,7 +148,7 @@ def findings(results, full):
             "- **Small gaps are scale copies.** The plate is linear between the obstacles and the base "
             "amplitude is 0.9 of the gap, so in exact arithmetic gaps 0.1 / 0.01 / 0.001 / 1e-4 m give "
             "the same motion scaled by the gap; in floating point the copies differ by roundoff, which "
-            "impacts amplify over long horizons (NOTES.md). Energy lost / gap² = "
+            "impacts amplify over long horizons (docs/theory.md). Energy lost / gap² = "
             f"{', '.join(f'{x:.6g}' for x in scaled)} J/m² (relative spread {fmt(spread)}), {counts}, "
             "and penetration / gap stays at roundoff "
             f"({', '.join(fmt(max(r.penetration, 0.0) / -r.case.obstacles[0]) for r in gaps)}): the "

@@ -1,7 +1,7 @@
 """Physics verification of PlateImpact.fmu, driven through fmpy the way a master drives it.
 
 Each test asserts a physical or mathematical fact of the plate model or of the Newmark–contact
-scheme (NOTES.md, Pozzolini–Renard–Salaün 2013 §3, §5) with a tolerance justified next to it.
+scheme (docs/theory.md, Pozzolini–Renard–Salaün 2013 §3, §5) with a tolerance justified next to it.
 Numbers in comments are what this build measured (Release, x86-64).
 
 Units: m, s, Pa, J. Plate: 1.2 x 0.4 x 0.01 m steel unless said otherwise; loads +up.
@@ -173,7 +173,7 @@ def test_time_scheme_is_second_order(fmu_path, element):
     Measured orders: Argyris 2.09, 2.01; FVS 2.08, 1.92. Band [1.8, 2.2].
 
     Why not the literal sine base z = 0.09 sin(2π·10t) here: the plate is at rest for t ≤ 0
-    (NOTES.md), so the clamp's velocity jumps from 0 to 5.65 m/s at t = 0. That impulse puts
+    (docs/theory.md), so the clamp's velocity jumps from 0 to 5.65 m/s at t = 0. That impulse puts
     energy ~ ż(0)²·(modal mass) into EVERY mode, including those with ω Δt ≫ 1 (ω_max = 2.1e5
     s⁻¹ on 6x2), whose Newmark phase error ω³Δt²t/24 is O(1) or more: the corner value at these
     Δt then wanders (measured differences 1.6e-3, 4.3e-4, −6.8e-4 …, no order). The sine start
@@ -206,7 +206,7 @@ def test_time_scheme_is_second_order_for_the_sine_start_once_the_mesh_is_resolve
 def test_energy_is_conserved_without_contact_and_input(fmu_path, element, beta):
     """No obstacles, no input: released from the static shape under 1000 Pa, the discrete
     energy E = ½vᵀ(M + (β−¼)Δt²K)v + ½ūᵀKū is an exact invariant of the scheme for any β
-    (NOTES.md), so only rounding can change it. 10⁴ steps of 1e-5 s on the paper's mesh,
+    (docs/theory.md), so only rounding can change it. 10⁴ steps of 1e-5 s on the paper's mesh,
     sampled every 10 steps.
 
     Tolerance 1e-10 relative: the kinetic term is computed from w⁺ − w (|Δw| ≈ 5e-6 m against
@@ -252,7 +252,7 @@ def test_free_vibration_dissipates_at_impacts_and_respects_the_obstacle(fmu_path
     −0.1 m only, Δt = 1e-5, 0.3 s on the paper's mesh, sampled every 10 steps.
 
     - Energy never rises: with contact the scheme's energy can only drop (loss ½λᵀ(u⁻ − u⁺) ≥ 0
-      per step, NOTES.md). Rises allowed: 1e-9 E0 (rounding, measured ≤ 3.3e-11 E0).
+      per step, docs/theory.md). Rises allowed: 1e-9 E0 (rounding, measured ≤ 3.3e-11 E0).
     - The ledger: E + energy_dissipated = E0, 1e-9 relative (measured ≤ 5.0e-11).
     - energy_dissipated ≥ 0 and non-decreasing. Per-step losses are ≥ 0 in exact arithmetic;
       for a vertex staying on the obstacle u⁻ − u⁺ is rounding (~1e-17 m), which makes the
@@ -288,7 +288,7 @@ def test_free_vibration_dissipates_at_impacts_and_respects_the_obstacle(fmu_path
 
 @pytest.mark.parametrize("element,nx,ny", [("argyris", 14, 6), ("fvs", 20, 8)])
 def test_free_edge_midpoint_respects_the_obstacle_when_it_is_a_vertex(fmu_path, element, nx, ny):
-    """Contact is enforced at the mesh vertices only (NOTES.md). With ny odd (the paper's
+    """Contact is enforced at the mesh vertices only (docs/theory.md). With ny odd (the paper's
     meshes) free_edge_mid = w(L, W/2) lies between vertices and may dip below the obstacle by
     O(h²·curvature) — measured 5.5e-5 m (Argyris 14x5), 1.3e-5 m (FVS 20x7). With ny even it IS
     a vertex: then all three probes must stay ≥ −0.1 − 1e-12 m, and they must reach it."""

@@ -194,7 +194,7 @@ std::vector<Eigen::Index> ArgyrisSpace::clampedDofs() const {
     for (int v = 0; v < mesh_.vertexCount(); ++v) {
         if (!mesh_.isClamped(v)) continue;
         // Trace w, w_y, w_yy and normal-derivative trace w_x, w_xy vanish along x = 0;
-        // w_xx (k = 3) is not a trace quantity and stays free (NOTES.md).
+        // w_xx (k = 3) is not a trace quantity and stays free (docs/theory.md).
         for (int k : {0, 1, 2, 4, 5}) dofs.push_back(kVertexDofs * v + k);
     }
     for (int e = 0; e < edgeCount(); ++e)

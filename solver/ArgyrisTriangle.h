@@ -51,7 +51,7 @@ public:
     Eigen::Index vertexValueDof(int vertex) const override { return kVertexDofs * vertex; }
 
     // Exact clamp along x = 0: w, w_x, w_y, w_xy, w_yy at clamped vertices (w_xx free:
-    // NOTES.md, fixing it over-stiffens) and the mid-edge dof of every edge on x = 0.
+    // docs/theory.md, fixing it over-stiffens) and the mid-edge dof of every edge on x = 0.
     std::vector<Eigen::Index> clampedDofs() const override;
 
     // Mesh edges, in order of first appearance over (triangle, local edge).

@@ -30,7 +30,7 @@ struct PointProbe {
 };
 
 // The plate with the clamp x = 0 applied: only the free dofs remain. The base motion z(t)
-// enters through `baseInertia` = (M·1)_free (NOTES.md: u = z·1 + w, w clamped).
+// enters through `baseInertia` = (M·1)_free (docs/theory.md: u = z·1 + w, w clamped).
 struct ClampedPlate {
     Eigen::SparseMatrix<double> mass, stiffness;  // free x free
     Eigen::VectorXd pressureLoad;                 // free

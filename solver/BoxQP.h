@@ -5,7 +5,7 @@
 // values and S SPD and factored once (S = A = M + βΔt²K in time, S = K for the initial static
 // state). With w_free = S⁻¹b the solution is w = w_free + S⁻¹Cᵀμ, and y = C w solves
 //     y = y_free + W μ,  lower ≤ y ≤ upper,  μ ≥ 0 ⊥ y − lower ≥ 0,  μ ≤ 0 ⊥ upper − y ≥ 0,
-// with W = C S⁻¹ Cᵀ small, dense, SPD and constant (NOTES.md). Only the columns of W (and of
+// with W = C S⁻¹ Cᵀ small, dense, SPD and constant (docs/theory.md). Only the columns of W (and of
 // S⁻¹Cᵀ) of vertices that ever touch an obstacle are computed, once, when first needed.
 #include <Eigen/Cholesky>
 #include <Eigen/Core>

@@ -15,7 +15,7 @@ public:
     virtual Eigen::Index size() const = 0;
     virtual void applyStiffness(const Eigen::VectorXd& w, Eigen::VectorXd& out) const = 0;
     virtual void applyMass(const Eigen::VectorXd& w, Eigen::VectorXd& out) const = 0;
-    // x = A⁻¹ b with A = M + βΔt²K, factored once (NOTES.md: never a refactorization per step).
+    // x = A⁻¹ b with A = M + βΔt²K, factored once (docs/theory.md: never a refactorization per step).
     virtual void solveStepMatrix(const Eigen::VectorXd& b, Eigen::VectorXd& x) const = 0;
 
     // A solver x = K⁻¹ b for the static problem of the initial state (§5.2); it owns whatever

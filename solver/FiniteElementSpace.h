@@ -4,7 +4,7 @@
 //
 // Global degrees of freedom are physical quantities (values and derivatives in x, y), so a
 // space is C1 across elements by construction of its local bases. Every space has one
-// "vertex value" dof per mesh vertex: contact is enforced on those (NOTES.md).
+// "vertex value" dof per mesh vertex: contact is enforced on those (docs/theory.md).
 #include <Eigen/Core>
 #include <memory>
 #include <string>
@@ -56,7 +56,7 @@ public:
     // The dof holding w at mesh vertex v.
     virtual Eigen::Index vertexValueDof(int vertex) const = 0;
 
-    // Dofs fixed by the exact clamp along x = 0 (NOTES.md: for Argyris w_xx stays free).
+    // Dofs fixed by the exact clamp along x = 0 (docs/theory.md: for Argyris w_xx stays free).
     virtual std::vector<Eigen::Index> clampedDofs() const = 0;
 };
 

@@ -2,7 +2,7 @@
 // Structured mesh of the plate [0, length] x [0, width] with nx x ny rectangular cells.
 // Vertex (i, j) sits at (i*length/nx, j*width/ny); the clamped edge is x = 0 (i = 0).
 // Each cell is split into two triangles by the diagonal (x_i, y_j) -> (x_{i+1}, y_{j+1})
-// (NOTES.md: 14 x 5 cells -> the paper's 140 Argyris triangles), or kept as one quadrilateral.
+// (docs/theory.md: 14 x 5 cells -> the paper's 140 Argyris triangles), or kept as one quadrilateral.
 #include <Eigen/Core>
 #include <array>
 

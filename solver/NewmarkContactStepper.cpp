@@ -134,7 +134,7 @@ void NewmarkContactStepper::step(double zNext, double pNext) {
             for (int i : qp_->active()) {
                 wNext_.noalias() += mu_[i] * columns_->column(i);
                 muSum += mu_[i];
-                // Loss ½ λᵀ(u⁻ − u⁺) on the active vertices (NOTES.md), absolute heights. Each
+                // Loss ½ λᵀ(u⁻ − u⁺) on the active vertices (docs/theory.md), absolute heights. Each
                 // term is ≥ 0 in exact arithmetic (u⁺ on the obstacle, u⁻ not past it). A vertex
                 // that stays on the obstacle has u⁻ there only up to the roundoff of
                 // w + Σ μ_j A⁻¹Cᵀe_j (~1e-17 m), which can make its term ~1e-13 J negative: that
@@ -195,7 +195,7 @@ void NewmarkContactStepper::step(double zNext, double pNext) {
 
 double NewmarkContactStepper::energy() const {
     // E = ½ vᵀ(M + (β−¼)Δt²K) v + ½ ūᵀKū with v the absolute velocity (w − w⁻)/Δt + ż·1 and
-    // ū = (w + w⁻)/2; K·1 = 0, so only the mass sees the base (NOTES.md).
+    // ū = (w + w⁻)/2; K·1 = 0, so only the mass sees the base (docs/theory.md).
     const NewmarkState& s = state_;
     dwScratch_ = s.w - s.wPrev;  // read once per communication step: reuse the buffers
     const Eigen::VectorXd& dw = dwScratch_;

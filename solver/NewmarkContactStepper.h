@@ -1,6 +1,6 @@
 #pragma once
 // The Newmark (γ = ½, β) scheme with contact of §3.2, three-level form (3.3)/(3.6), in the
-// relative displacement w = u − z(t)·1 of the clamped plate (NOTES.md "Time scheme"):
+// relative displacement w = u − z(t)·1 of the clamped plate (docs/theory.md §3–4):
 //
 //   M d + Δt² K (w + β d) = Δt² p^{nβ} F − (M·1)(z⁺ − 2z + z⁻) + Cᵀμ,   d = w⁺ − 2w + w⁻,
 //   lower − z⁺ ≤ C w⁺ ≤ upper − z⁺,  μ the contact multipliers of the step's QP.
@@ -33,7 +33,7 @@ public:
     void initialize(const Eigen::VectorXd& w0, double z0, double p0);
 
     // The load input at t = 0, known only when the master starts stepping: the history holds
-    // it for t ≤ 0 (NOTES.md: the load acts from t = 0 on; the initial load only shapes u⁰).
+    // it for t ≤ 0 (docs/theory.md: the load acts from t = 0 on; the initial load only shapes u⁰).
     // Only before the first step.
     void setLoadAtStart(double p0);
 
@@ -41,7 +41,7 @@ public:
     // Throws StepError without changing the state if the step cannot be taken.
     void step(double zNext, double pNext);
 
-    // Discrete energy E^{n−½} (NOTES.md), absolute velocity in the kinetic part.
+    // Discrete energy E^{n−½} (docs/theory.md), absolute velocity in the kinetic part.
     double energy() const;
 
     const NewmarkState& state() const { return state_; }

@@ -77,7 +77,7 @@ PlateSimulation::PlateSimulation(const PlateParameters& p, double baseDisplaceme
         assemble(*s.space, p.surfaceDensity(), p.bendingStiffness(), p.poissonRatio);
     s.clamped = std::make_shared<const ClampedPlate>(clamp(*s.space, matrices));
     if (p.beta < 0.25) {
-        // Stability of γ = ½, β < ¼ (NOTES.md): Δt < 2 / √((1 − 4β) κ_h).
+        // Stability of γ = ½, β < ¼ (docs/theory.md): Δt < 2 / √((1 − 4β) κ_h).
         const double bound = 2.0 / std::sqrt((1.0 - 4.0 * p.beta) * kappa());
         if (!(p.dt < bound)) {
             std::ostringstream msg;
@@ -201,7 +201,7 @@ double PlateSimulation::kappa() const {
 }
 
 double PlateSimulation::measureFloorSolveSeconds(int repeats) const {
-    // The floor is one solve with the sparse factor of A = M + βΔt²K (NOTES.md), whatever
+    // The floor is one solve with the sparse factor of A = M + βΔt²K (docs/theory.md), whatever
     // coordinates the stepper runs in.
     const Impl& s = *impl_;
     if (!s.floorFactor)

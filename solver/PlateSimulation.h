@@ -13,7 +13,7 @@ namespace plate {
 
 struct PlateOutputs {
     double corner1 = 0, corner2 = 0, freeEdgeMid = 0;  // w at (L,0), (L,W), (L,W/2), m
-    double energy = 0;             // discrete energy E^{n-1/2} (NOTES.md), J
+    double energy = 0;             // discrete energy E^{n-1/2} (docs/theory.md), J
     double energyDissipated = 0;   // cumulative contact loss, J
     double energyInput = 0;        // cumulative work of base motion and load, J
     int contactVertices = 0;       // vertices on an obstacle after the last step
@@ -56,7 +56,7 @@ public:
     // Lowest natural frequency of the clamped plate, Hz (the accuracy yardstick of a mesh).
     double firstFrequency() const;
 
-    // Largest eigenvalue of M^{-1} K of the clamped plate (κ_h, NOTES.md), s^-2.
+    // Largest eigenvalue of M^{-1} K of the clamped plate (κ_h, docs/theory.md), s^-2.
     double kappa() const;
     // Time of one solve with the factor of A, measured now (median of repeats), s.
     double measureFloorSolveSeconds(int repeats = 2000) const;

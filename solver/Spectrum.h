@@ -13,7 +13,7 @@ namespace plate {
 void lowestModes(const ClampedPlate& plate, int modes, Eigen::MatrixXd& phi,
                  Eigen::VectorXd& omega2);
 
-// κ_h = λ_max(M⁻¹K), s⁻² (NOTES.md).
+// κ_h = λ_max(M⁻¹K), s⁻² (docs/theory.md).
 double largestEigenvalue(const ClampedPlate& plate);
 
 }  // namespace plate

@@ -1,5 +1,5 @@
 // Measures, in one run, the floor of an exact step (one solve with the factor of
-// A = M + βΔt²K, NOTES.md) and the average cost of a stepper step on a scene, and prints both
+// A = M + βΔt²K, docs/theory.md) and the average cost of a stepper step on a scene, and prints both
 // as one JSON object. Usage:
 //   plate_bench [key=value ...]   keys: element=argyris|fvs nx ny dt beta steps amplitude
 //                                 frequency gap (both obstacles at ±gap; gap=0 disables them)

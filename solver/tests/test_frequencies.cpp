@@ -2,7 +2,7 @@
 // the assembled M and K of both elements, against published values, an exact case and the
 // convergence theory; plus identities of the unclamped matrices.
 //
-// λ = ω a² √(ρt/D). Published (Barton 1951, Leissa; NOTES.md), ν = 0.3: 3.492, 8.525, 21.43,
+// λ = ω a² √(ρt/D). Published (Barton 1951, Leissa; docs/theory.md), ν = 0.3: 3.492, 8.525, 21.43,
 // 27.33, 31.11 — Ritz upper bounds 0.2–0.7 % above the converged values, so a conforming FE
 // result lies a little BELOW them.
 //
@@ -246,7 +246,7 @@ TEST(CantileverFrequencies, ArgyrisFirstFrequencyConvergesAtTheCornerSingularity
         EXPECT_LT(std::abs(lam1[i] - lam1[i - 1]), std::abs(lam1[i - 1] - lam1[i - 2]));
     // Measured orders: 1.73 (2-4-8), 2.01 (4-8-16), 2.26 (8-16-32); 2.52 for 16-32-64.
     // Asymptotic order 2·Re z = 2.14 with the slow log-periodic drift (header). Band
-    // [1.8, 2.6] on the two finer triples: an over-stiff clamp (w_xx fixed, NOTES.md) gives an
+    // [1.8, 2.6] on the two finer triples: an over-stiff clamp (w_xx fixed, docs/theory.md) gives an
     // O(h) error and order ≈ 1; a P5 rate unimpeded by the corner would show ≥ 4.
     const double p1 = observedOrder(lam1[1], lam1[2], lam1[3]);
     const double p2 = observedOrder(lam1[2], lam1[3], lam1[4]);
