@@ -1,0 +1,99 @@
+// InputHistory: the reconstruction of held inputs (docs/theory.md §8, (I.1) and (I.2)).
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <stdexcept>
+#include <vector>
+
+#include "InputSignal.h"
+
+namespace {
+
+using plate::InputHistory;
+using plate::InputMode;
+
+double quadratic(double t) { return 0.3 - 1.5 * t + 40.0 * t * t; }
+
+// (I.1) on three points of a parabola, at uneven and roundoff-laden spacing, gives its exact
+// value, slope and curvature at the newest point (to roundoff: values ~0.3, spacing ~1e-3,
+// so divided differences carry ~eps·0.3/1e-6 ~ 1e-10 relative error in the curvature).
+TEST(InputHistory, QuadraticExtrapolationIsExactForAParabola) {
+    InputHistory h;
+    const double times[] = {0.0, 1e-3, 3.0000000000000001e-3, 3.5e-3};
+    for (double t : times) h.record(t, quadratic(t));
+    const plate::InputSignal s = h.extrapolate(InputMode::Quadratic);
+    const double t0 = 3.5e-3;
+    EXPECT_NEAR(s.value, quadratic(t0), 1e-15);
+    EXPECT_NEAR(s.d1, -1.5 + 80.0 * t0, 1e-9);
+    EXPECT_NEAR(s.d2, 80.0, 1e-6);
+    const plate::InputSignal lin = h.extrapolate(InputMode::Linear);
+    EXPECT_DOUBLE_EQ(lin.d2, 0.0);
+    EXPECT_NEAR(lin.d1, (quadratic(3.5e-3) - quadratic(3e-3)) / 0.5e-3, 1e-9);
+}
+
+// The order drops while fewer points exist: one point holds, two give a line.
+TEST(InputHistory, OrderDropsAtTheStart) {
+    InputHistory h;
+    h.record(0.0, 2.0);
+    plate::InputSignal s = h.extrapolate(InputMode::Quadratic);
+    EXPECT_EQ(s.value, 2.0);
+    EXPECT_EQ(s.d1, 0.0);
+    EXPECT_EQ(s.d2, 0.0);
+    h.record(0.5, 3.0);
+    s = h.extrapolate(InputMode::Quadratic);
+    EXPECT_DOUBLE_EQ(s.d1, 2.0);
+    EXPECT_EQ(s.d2, 0.0);
+}
+
+// (I.2): the continued signal starts where the last step ended and ends on the extrapolation,
+// so the input never jumps; Hold keeps the communicated value.
+TEST(InputHistory, ContinuedStepsAreContinuous) {
+    InputHistory h;
+    const double step = 1e-2;
+    double end = 0.0;
+    for (int k = 0; k < 20; ++k) {
+        const double t = k * step;
+        h.record(t, std::sin(5.0 * t));
+        const plate::InputSignal s = h.continueStep(InputMode::Quadratic, step);
+        if (k > 0) EXPECT_EQ(s.value, end) << "jump at step " << k;
+        const plate::InputSignal target = h.extrapolate(InputMode::Quadratic);
+        EXPECT_NEAR(s.at(step), target.at(step), 1e-15);
+        end = s.at(step);
+    }
+    InputHistory held;
+    held.record(0.0, 1.0);
+    held.continueStep(InputMode::Hold, step);
+    held.record(step, 4.0);
+    EXPECT_EQ(held.continueStep(InputMode::Hold, step).value, 4.0);
+}
+
+TEST(InputHistory, SerializationRoundTripAndDamagedData) {
+    InputHistory h;
+    for (int k = 0; k < 5; ++k) {
+        h.record(0.1 * k, 0.7 * k * k);
+        h.continueStep(InputMode::Quadratic, 0.1);
+    }
+    std::vector<double> data;
+    h.serialize(data);
+    ASSERT_EQ(data.size(), static_cast<std::size_t>(InputHistory::kSerializedSize));
+    InputHistory back = InputHistory::deserialize(data.data());
+    std::vector<double> again;
+    back.serialize(again);
+    EXPECT_EQ(data, again);
+    EXPECT_EQ(back.continueStep(InputMode::Quadratic, 0.1).d1, h.continueStep(InputMode::Quadratic, 0.1).d1);
+
+    std::vector<double> bad = data;
+    bad[0] = 4.0;  // more points than kept
+    EXPECT_THROW(InputHistory::deserialize(bad.data()), std::invalid_argument);
+    bad = data;
+    std::swap(bad[1], bad[3]);  // times out of order: a division by zero or worse later
+    EXPECT_THROW(InputHistory::deserialize(bad.data()), std::invalid_argument);
+    bad = data;
+    bad[2] = std::nan("");
+    EXPECT_THROW(InputHistory::deserialize(bad.data()), std::invalid_argument);
+    bad = data;
+    bad[InputHistory::kSerializedSize - 2] = 0.5;  // the reached flag is 0 or 1
+    EXPECT_THROW(InputHistory::deserialize(bad.data()), std::invalid_argument);
+}
+
+}  // namespace
