@@ -45,7 +45,6 @@ def run_libcosim(sweep_fmu, plate_fmu, h, stop):
     plate.base_displacement; corner_1 of the plate after every step."""
     from libcosimpy.CosimExecution import CosimExecution
     from libcosimpy.CosimLogging import CosimLogLevel, log_output_level
-    from libcosimpy.CosimObserver import CosimObserver
     from libcosimpy.CosimSlave import CosimLocalSlave
     log_output_level(CosimLogLevel.ERROR)
     sv, pv = variables(sweep_fmu), variables(plate_fmu)
@@ -58,14 +57,19 @@ def run_libcosim(sweep_fmu, plate_fmu, h, stop):
     # returns the C status: 0 on success
     if execution.connect_real_variables(sweep, sv["base_displacement"], plate, pv["base_displacement"]) != 0:
         raise RuntimeError("libcosim could not connect sweep.base_displacement to plate.base_displacement")
+    return step_and_observe(execution, plate, pv["corner_1"], round(stop / h))
+
+
+def step_and_observe(execution, plate, corner_vr, steps):
+    """Steps a libcosim execution; the plate's corner_1 after every step."""
+    from libcosimpy.CosimObserver import CosimObserver
     observer = CosimObserver.create_last_value()
     execution.add_observer(observer)
-    n = round(stop / h)
-    out = np.empty(n)
-    for k in range(n):
+    out = np.empty(steps)
+    for k in range(steps):
         if not execution.step():
             raise RuntimeError(f"libcosim step {k} failed: {execution.status()}")
-        out[k] = observer.last_real_values(plate, [pv["corner_1"]])[0]
+        out[k] = observer.last_real_values(plate, [corner_vr])[0]
     return out
 
 
@@ -81,7 +85,6 @@ def make_ssp(sweep_fmu, plate_fmu, target):
 def run_libcosim_ssp(ssp, h, stop):
     from libcosimpy.CosimExecution import CosimExecution
     from libcosimpy.CosimLogging import CosimLogLevel, log_output_level
-    from libcosimpy.CosimObserver import CosimObserver
     log_output_level(CosimLogLevel.ERROR)
     unpacked = Path(tempfile.mkdtemp())
     try:
@@ -90,15 +93,7 @@ def run_libcosim_ssp(ssp, h, stop):
         execution = CosimExecution.from_ssp_file(str(unpacked), round(h * 1e9))
         plate = execution.slave_index_from_instance_name("plate")
         corner = [v.reference for v in execution.slave_variables(plate) if v.name.decode() == "corner_1"][0]
-        observer = CosimObserver.create_last_value()
-        execution.add_observer(observer)
-        n = round(stop / h)
-        out = np.empty(n)
-        for k in range(n):
-            if not execution.step():
-                raise RuntimeError(f"libcosim (SSP) step {k} failed")
-            out[k] = observer.last_real_values(plate, [corner])[0]
-        return out
+        return step_and_observe(execution, plate, corner, round(stop / h))
     finally:
         shutil.rmtree(unpacked, ignore_errors=True)
 
