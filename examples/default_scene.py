@@ -8,12 +8,10 @@ import argparse
 import csv
 import json
 import subprocess
-import sys
 import time
 from pathlib import Path
 
-sys.path.insert(0, str(Path(__file__).resolve().parent))
-from plateimpact import PlateImpactFMU, sine  # noqa: E402
+from plateimpact import PlateImpactFMU, sine
 
 
 def main(argv=None):

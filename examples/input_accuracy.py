@@ -31,33 +31,10 @@ from pathlib import Path
 
 import numpy as np
 
-sys.path.insert(0, str(Path(__file__).resolve().parent))
-from plateimpact import PlateImpactFMU, unzipped  # noqa: E402
+from plateimpact import PlateImpactFMU, unzipped
+from plateimpact.scenes import DT, FIRST_IMPACT, base, errors, run_derivatives
 
-DT = 1e-5
-AMPLITUDE, FREQUENCY = 0.09, 10.0
 MODES = {"hold": 1, "linear": 2, "quadratic": 3}
-FIRST_IMPACT = {"smooth": 0.06, "paper": 0.045}  # horizons before the first impact, s
-
-
-def base(scene, t):
-    """Value, first and second derivative of the scene's base displacement at t."""
-    w = 2.0 * math.pi * FREQUENCY
-    z, zd, zdd = AMPLITUDE * math.sin(w * t), AMPLITUDE * w * math.cos(w * t), -AMPLITUDE * w * w * math.sin(w * t)
-    if scene == "paper" or t >= 0.05:
-        return z, zd, zdd
-    a = math.pi / 0.1
-    s, sd, sdd = math.sin(a * t) ** 2, a * math.sin(2 * a * t), 2 * a * a * math.cos(2 * a * t)
-    return z * s, zd * s + z * sd, zdd * s + 2 * zd * sd + z * sdd
-
-
-def run_derivatives(fmu, scene, h, stop):
-    n = round(stop / h)
-    out = np.empty(n)
-    with PlateImpactFMU(fmu, dt=DT) as plate:
-        for k in range(n):
-            out[k] = plate.step(h, base=base(scene, k * h))["corner_1"]
-    return out
 
 
 def run_jumps(fmu, scene, h, stop):
@@ -121,15 +98,6 @@ def run_libcosim(fmu, scene, h, stop):
         out[k] = observer.last_real_values(index, [vr["corner_1"]])[0]
     del execution, manipulator, observer, slave
     return out
-
-
-def errors(run, ref, h, scene):
-    """max |run - ref| before the first impact and over the whole run, at the points k h."""
-    stride = round(h / DT)
-    sampled = ref[stride - 1::stride][:len(run)]
-    diff = np.abs(run - sampled)
-    before = round(FIRST_IMPACT[scene] / h)
-    return float(diff[:before].max()), float(diff.max())
 
 
 def measure(fmu, steps, stop, scenes, ways):

@@ -31,15 +31,13 @@ import argparse
 import csv
 import math
 import shutil
-import sys
 import time
 from pathlib import Path
 
 import numpy as np
 from fmpy import extract
 
-sys.path.insert(0, str(Path(__file__).resolve().parent))
-from plateimpact import PlateImpactFMU, sine  # noqa: E402
+from plateimpact import PlateImpactFMU, sine
 
 MESHES = {"argyris": (14, 5), "fvs": (20, 7)}
 MESHES_FREE = {"argyris": (16, 5), "fvs": (20, 7)}  # figs 13, 16, 18: "160 Argyris triangles"

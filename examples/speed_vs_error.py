@@ -325,7 +325,6 @@ def python_baseline(export_dir, dt, steps, comm, split, beta=0.5, amplitude=0.09
 
 def fmu_wall(fmu, horizon, comm=1e-4, **parameters):
     """Wall time of the default scene through the FMU (fmpy FMU2Slave), instantiation included."""
-    sys.path.insert(0, str(REPO / "examples"))
     from plateimpact import PlateImpactFMU, sine
 
     n = round(horizon / comm)

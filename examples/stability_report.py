@@ -3,7 +3,7 @@
     python examples/stability_report.py            # the test's short horizons (~30 s)
     python examples/stability_report.py --full     # longer horizons (~1.5 min)
 
-The cases, the runner and the checks are those of python_tests/stability_cases.py (the same
+The cases, the runner and the checks are those of python/plateimpact/stability.py (the same
 table python_tests/test_stability.py runs), so the report and the test cannot drift apart.
 The FMU is build/PlateImpact.fmu, or $PLATEIMPACT_FMU, or --fmu.
 """
@@ -18,9 +18,8 @@ import time
 from pathlib import Path
 
 REPO = Path(__file__).resolve().parent.parent
-sys.path.insert(0, str(REPO / "python_tests"))
 
-import stability_cases as sc  # noqa: E402
+import plateimpact.stability as sc
 
 
 def fmt(x, digits=2):
@@ -209,7 +208,7 @@ def document(results, full, fmu):
     return f"""# Stability stress matrix
 
 Written by `python examples/stability_report.py{' --full' if full else ''}` with {mode}; do not
-edit by hand. The cases, the runner and the checks live in `python_tests/stability_cases.py`;
+edit by hand. The cases, the runner and the checks live in `python/plateimpact/stability.py`;
 `python_tests/test_stability.py` runs the same table with the short horizons on every test run.
 
 **Base case** (`{base.name}`): the default plate (1.2 × 0.4 × 0.01 m steel, 14 × 5 cells,

@@ -22,7 +22,8 @@ import numpy as np
 import pytest
 from fmpy.fmi1 import FMICallException
 
-from plate_fmu import PlateImpactFMU, PlateRun
+from plate_fmu import PlateRun
+from plateimpact import PlateImpactFMU
 
 # A small, quick plate; the reconstruction does not depend on the mesh.
 SMALL = dict(nx=6, ny=2, dt=1e-5, obstacle_lower=-1.0, obstacle_upper=1.0)

@@ -15,7 +15,8 @@ import math
 import numpy as np
 import pytest
 
-from plate_fmu import INTEGER_OUTPUTS, REAL_OUTPUTS, VR_BASE, PlateRun
+from fmpy import read_model_description
+from plate_fmu import PlateRun
 
 cosim = pytest.importorskip("libcosimpy.CosimExecution", reason="libcosimpy is not installed (requirements.txt)")
 from libcosimpy.CosimExecution import CosimExecution  # noqa: E402
@@ -23,6 +24,15 @@ from libcosimpy.CosimLogging import CosimLogLevel, log_output_level  # noqa: E40
 from libcosimpy.CosimManipulator import CosimManipulator  # noqa: E402
 from libcosimpy.CosimObserver import CosimObserver  # noqa: E402
 from libcosimpy.CosimSlave import CosimLocalSlave  # noqa: E402
+
+def interface(fmu_path):
+    """Output value references by name (Real and Integer) and the base input's, from the FMU."""
+    variables = read_model_description(str(fmu_path)).modelVariables
+    outputs = {t: {v.name: v.valueReference for v in variables if v.causality == "output" and v.type == t}
+               for t in ("Real", "Integer")}
+    base_vr = next(v.valueReference for v in variables if v.name == "base_displacement")
+    return outputs["Real"], outputs["Integer"], base_vr
+
 
 STEP_NS = 100_000  # 1e-4 s
 H = STEP_NS * 1e-9
@@ -36,6 +46,7 @@ def base(k):
 
 
 def run_libcosim(fmu_path):
+    REAL_OUTPUTS, INTEGER_OUTPUTS, VR_BASE = interface(fmu_path)
     log_output_level(CosimLogLevel.ERROR)  # its warning that Enumeration variables (element) are ignored
     execution = CosimExecution.from_step_size(STEP_NS)
     slave = CosimLocalSlave(fmu_path=str(fmu_path), instance_name="plate")
@@ -59,6 +70,7 @@ def run_libcosim(fmu_path):
 
 
 def run_fmpy(fmu_path):
+    REAL_OUTPUTS, INTEGER_OUTPUTS, _ = interface(fmu_path)
     trace = []
     with PlateRun(fmu_path, dt=1e-5) as run:
         for k in range(STEPS):
@@ -71,6 +83,7 @@ def test_libcosimpy_and_fmpy_give_the_same_outputs(fmu_path):
     assert fmu_path.is_file(), f"FMU not built: {fmu_path} (build it or set PLATEIMPACT_FMU)"
     theirs = run_libcosim(fmu_path)
     ours = run_fmpy(fmu_path)
+    REAL_OUTPUTS, INTEGER_OUTPUTS, _ = interface(fmu_path)
     names = list(REAL_OUTPUTS) + list(INTEGER_OUTPUTS)
     assert theirs.shape == ours.shape == (STEPS, len(names))
     assert np.isfinite(ours).all()

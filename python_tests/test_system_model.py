@@ -19,9 +19,8 @@ from fmpy.fmi1 import FMICallException
 from fmpy.fmi2 import FMU2Slave
 from fmpy.validation import validate_fmu
 
-import plate_fmu  # noqa: F401  (puts examples/ on the path, as for every test of the driver)
-import system_model  # noqa: E402  (examples/system_model.py)
-from input_accuracy import DT, errors, run_derivatives  # noqa: E402
+from plateimpact import cosim
+from plateimpact.scenes import DT, errors, run_derivatives
 
 REPO = Path(__file__).resolve().parent.parent
 
@@ -94,10 +93,10 @@ def test_coupled_system_reaches_the_held_input_accuracy(sweep_fmu, fmu_path, mas
     pytest.importorskip("libcosimpy.CosimExecution")
     h, stop = 1e-4, 0.06
     if master == "libcosimpy (API)":
-        run = system_model.run_libcosim(sweep_fmu, fmu_path, h, stop)
+        run = cosim.run_libcosim(sweep_fmu, fmu_path, h, stop)
     else:
-        ssp = system_model.make_ssp(sweep_fmu, fmu_path, tmp_path / "SineSweepPlate.ssp")
-        run = (system_model.run_libcosim_ssp if "libcosim" in master else system_model.run_fmpy_ssp)(ssp, h, stop)
+        ssp = cosim.make_ssp(sweep_fmu, fmu_path, tmp_path / "SineSweepPlate.ssp", REPO / "examples" / "system_model.ssd")
+        run = (cosim.run_libcosim_ssp if "libcosim" in master else cosim.run_fmpy_ssp)(ssp, h, stop)
     reference = run_derivatives(fmu_path, "smooth", DT, stop)
     before, _ = errors(run, reference, h, "smooth")
     assert before <= 2e-7, before

@@ -25,12 +25,14 @@ fi
 
 venv="$repo/.venv"
 stamp="$venv/.requirements.sha256"
-want="$(sha256sum requirements.txt | cut -d' ' -f1)"
+want="$(cat requirements.txt python/pyproject.toml | sha256sum | cut -d' ' -f1)"
 if [ ! -x "$venv/bin/python" ] || [ "$(cat "$stamp" 2>/dev/null)" != "$want" ]; then
   echo "setup: creating the Python venv in .venv"
   python3 -m venv "$venv"
   "$venv/bin/python" -m pip install -q --upgrade pip
   "$venv/bin/python" -m pip install -q -r requirements.txt
+  # The project's own package (python/plateimpact), editable: tests and examples import it.
+  "$venv/bin/python" -m pip install -q -e python
   echo "$want" > "$stamp"
 fi
 

@@ -1,5 +1,6 @@
 """A thin driver for PlateImpact.fmu on top of fmpy's FMU2Slave — the one the examples and
-the tests use.
+the tests use. Variable names, types and value references come from the FMU's model
+description.
 
 Users copy this: it shows how to set the parameters by name, feed inputs *with* their time
 derivatives (fmpy's simulate_fmu cannot: its input-derivative path crashes, docs/theory.md) and
@@ -22,10 +23,6 @@ from pathlib import Path
 from fmpy import calloc, extract, free, read_model_description
 from fmpy.fmi2 import (FMU2Slave, fmi2CallbackAllocateMemoryTYPE, fmi2CallbackFreeMemoryTYPE,
                        fmi2CallbackFunctions, fmi2CallbackLoggerTYPE)
-
-OUTPUTS = ("corner_1", "corner_2", "free_edge_mid", "energy", "energy_dissipated",
-           "energy_input", "contact_vertices", "qp_kkt_residual_max",
-           "qp_iterations_total", "qp_iterations_max")
 
 _extracted = {}  # (resolved path, mtime) -> (unzip directory, model description)
 
@@ -76,7 +73,8 @@ class PlateImpactFMU:
         self.fmu.instantiate(callbacks=self._callbacks, loggingOn=logger is not None)
         self.time = start_time
         self._initialized = False
-        self._out_refs = [(n, self.vars[n]) for n in OUTPUTS if n in self.vars]
+        # every output the model description declares, in its order
+        self._out_refs = [(v.name, v) for v in self.md.modelVariables if v.causality == "output"]
         if initialize:
             try:
                 self.initialize(parameters, base0, load0)

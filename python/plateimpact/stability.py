@@ -27,17 +27,14 @@ from __future__ import annotations
 
 import math
 import re
-import sys
 import time
 from dataclasses import dataclass, field
-from pathlib import Path
 from typing import Optional
 
 from fmpy.fmi1 import FMICallException  # fmpy raises this one for FMI 2.0 calls too
 
 # The one FMU driver, shared with the examples.
-sys.path.insert(0, str(Path(__file__).resolve().parent.parent / "examples"))
-from plateimpact import PlateImpactFMU  # noqa: E402
+from .driver import PlateImpactFMU
 
 # ---------------------------------------------------------------------------------------------
 # Limits of the checks (the numbers)
