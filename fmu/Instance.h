@@ -1,0 +1,145 @@
+#pragma once
+// One instance of a co-simulation FMU, model-independent: the FMI 2.0 state machine (one
+// allowed-state mask per function), logging, the checks every fmi2Get*/fmi2Set* makes against
+// the model's table of variables, FMU states, and the dispatch that runs a function's body,
+// prefixes its messages with the function's name and keeps exceptions inside. Everything the
+// model does is behind fmu::Model (Model.h).
+#include <cstdarg>
+#include <memory>
+#include <string>
+
+#include "Model.h"
+#include "fmi2Functions.h"
+
+namespace fmu {
+
+// States of the FMI 2.0 co-simulation state machine (FMI 2.0.4, section 4.2.4), as bits so
+// that the allowed states of a function are one mask. EventMode and ContinuousTimeMode
+// belong to Model Exchange and are never entered.
+enum State : unsigned {
+    StartAndEnd = 1u << 0,
+    Instantiated = 1u << 1,
+    InitializationMode = 1u << 2,
+    EventMode = 1u << 3,
+    ContinuousTimeMode = 1u << 4,
+    StepComplete = 1u << 5,
+    StepInProgress = 1u << 6,
+    StepFailed = 1u << 7,
+    StepCanceled = 1u << 8,
+    Terminated = 1u << 9,
+    Error = 1u << 10,
+    Fatal = 1u << 11,
+};
+const char* stateName(State state);
+
+// Log categories every FMU of this layer declares.
+enum LogCategory { LogStatusError = 0, LogStatusWarning = 1, LogAll = 2, LogCategoryCount = 3 };
+const char* logCategoryName(LogCategory category);
+
+// Logging without an instance (fmi2Instantiate failures).
+void logWithoutInstance(const fmi2CallbackFunctions* functions, fmi2String instanceName, const char* format, ...)
+    __attribute__((format(printf, 3, 4)));
+
+struct Snapshot;
+
+class Instance {
+public:
+    Instance(std::string instanceName, const fmi2CallbackFunctions& callbacks, bool loggingOn);
+    ~Instance();
+    Instance(const Instance&) = delete;
+    Instance& operator=(const Instance&) = delete;
+
+    // Runs `body` as the fmi2 function `function` if the state allows it (else logs "illegal
+    // call sequence: ..."); exceptions become a logged fmi2Error; fmi2Error enters the error
+    // state. fmi2Functions.cpp calls every function through it.
+    template <class Body>
+    fmi2Status call(const char* function, unsigned allowedStates, Body&& body);
+
+    fmi2Status setDebugLogging(fmi2Boolean loggingOn, size_t nCategories, const fmi2String categories[]);
+    fmi2Status setupExperiment(fmi2Real startTime, fmi2Boolean toleranceDefined, fmi2Real tolerance,
+                               fmi2Boolean stopTimeDefined, fmi2Real stopTime);
+    fmi2Status enterInitializationMode();
+    fmi2Status exitInitializationMode();
+    fmi2Status terminate();
+    fmi2Status reset();
+    void logFreeInstance();
+
+    // fmi2Get*/fmi2Set* of any type: values travel as doubles (exact for Integer and Boolean).
+    fmi2Status getValues(VariableType type, const fmi2ValueReference vr[], size_t nvr, double value[]);
+    fmi2Status setValues(VariableType type, const fmi2ValueReference vr[], size_t nvr, const double value[]);
+
+    fmi2Status getFMUstate(fmi2FMUstate* state);
+    fmi2Status setFMUstate(fmi2FMUstate state);
+    fmi2Status freeFMUstate(fmi2FMUstate* state);
+    fmi2Status serializedFMUstateSize(fmi2FMUstate state, size_t* size);
+    fmi2Status serializeFMUstate(fmi2FMUstate state, fmi2Byte serialized[], size_t size);
+    fmi2Status deSerializeFMUstate(const fmi2Byte serialized[], size_t size, fmi2FMUstate* state);
+
+    fmi2Status setRealInputDerivatives(const fmi2ValueReference vr[], size_t nvr, const fmi2Integer order[],
+                                       const fmi2Real value[]);
+    fmi2Status getRealOutputDerivatives(const fmi2ValueReference vr[], size_t nvr, const fmi2Integer order[],
+                                        fmi2Real value[]);
+    fmi2Status doStep(fmi2Real currentCommunicationPoint, fmi2Real communicationStepSize);
+    fmi2Status statusNotAvailable(fmi2StatusKind kind);
+    double currentTime() const;
+
+    // Logs "<function>: <message>" as an fmi2Error and returns fmi2Error.
+    fmi2Status fail(const char* format, ...) __attribute__((format(printf, 2, 3)));
+    void log(fmi2Status status, LogCategory category, const char* format, ...) __attribute__((format(printf, 4, 5)));
+
+    State state() const { return state_; }
+
+private:
+    void vlog(fmi2Status status, LogCategory category, const char* format, va_list args);
+    const Variable* variableFor(fmi2ValueReference vr, VariableType type);
+    bool settable(const Variable& variable);  // logs why not
+    void capture(Snapshot& snapshot) const;
+    void restore(const Snapshot& snapshot);
+    void attachTrace();
+
+    std::string instanceName_;
+    fmi2CallbackFunctions callbacks_;
+    bool logCategories_[LogCategoryCount];
+    const char* function_ = "";  // the fmi2 function running (message prefix)
+    State state_ = Instantiated;
+    double startTime_ = 0.0;
+    std::unique_ptr<Model> model_;
+};
+
+template <class Body>
+fmi2Status Instance::call(const char* function, unsigned allowedStates, Body&& body) {
+    function_ = function;
+    fmi2Status status = fmi2Error;
+    if (!(state_ & allowedStates)) {
+        log(fmi2Error, LogStatusError, "illegal call sequence: %s is not allowed in state %s", function,
+            stateName(state_));
+    } else {
+        try {
+            status = body();
+        } catch (const std::exception& e) {
+            fail("%s", e.what());
+        } catch (...) {
+            fail("unknown exception");
+        }
+    }
+    // FMI 2.0: after fmi2Error only fmi2SetFMUstate, fmi2Reset, fmi2FreeInstance (and getters
+    // for debugging) are allowed.
+    if (status == fmi2Error) state_ = Error;
+    if (status == fmi2Fatal) state_ = Fatal;
+    return status;
+}
+
+// Allowed states of each function group (FMI 2.0.4, table in section 4.2.4).
+constexpr unsigned kFreeInstanceStates =
+    Instantiated | InitializationMode | StepComplete | StepFailed | StepCanceled | Terminated | Error;
+constexpr unsigned kDebugLoggingStates = kFreeInstanceStates | StepInProgress;
+constexpr unsigned kResetStates = kFreeInstanceStates;
+constexpr unsigned kFMUstateStates = kFreeInstanceStates;
+constexpr unsigned kGetStates = InitializationMode | StepComplete | StepFailed | StepCanceled | Terminated | Error;
+constexpr unsigned kSetStates = Instantiated | InitializationMode | StepComplete;
+constexpr unsigned kInputDerivativeStates = Instantiated | InitializationMode | StepComplete;
+constexpr unsigned kOutputDerivativeStates = StepComplete | StepFailed | StepCanceled | Terminated | Error;
+constexpr unsigned kStatusStates = StepComplete | StepInProgress | StepFailed | Terminated;
+constexpr unsigned kAnyState = ~0u;
+
+}  // namespace fmu

@@ -1,0 +1,36 @@
+#include "Model.h"
+
+#include <string>
+
+namespace fmu {
+
+bool EnumerationType::contains(int value) const {
+    for (const EnumerationItem& item : items)
+        if (item.value == value) return true;
+    return false;
+}
+
+std::string EnumerationType::itemList() const {
+    std::string text;
+    for (const EnumerationItem& item : items) {
+        if (!text.empty()) text += ", ";
+        text += std::string(item.name) + " = " + std::to_string(item.value);
+    }
+    return text;
+}
+
+const Variable* Model::find(fmi2ValueReference vr) const {
+    for (const Variable& v : variables())
+        if (v.vr == vr) return &v;
+    return nullptr;
+}
+
+void Model::setInputDerivative(const Variable& v, int, double) {
+    throw ModelError(std::string(v.name) + " takes no input derivatives");
+}
+
+double Model::getOutputDerivative(const Variable& v, int) const {
+    throw ModelError(std::string(v.name) + " has no output derivatives");
+}
+
+}  // namespace fmu

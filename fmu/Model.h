@@ -1,0 +1,109 @@
+#pragma once
+// The contract between the model-independent FMI 2.0 co-simulation layer (Instance.cpp,
+// fmi2Functions.cpp, StateFormat.cpp) and one model binding (PlateModel.cpp, or
+// sinesweep/SweepModel.cpp): the model's table of variables and its behaviour. The same table
+// writes modelDescription.xml (modelDescription/WriteModelDescription.cpp), serializes FMU
+// states and decides whether two configurations are equal. A binding knows nothing of the FMI
+// state machine; the generic layer knows nothing of plates.
+#include <functional>
+#include <memory>
+#include <stdexcept>
+#include <string>
+#include <vector>
+
+#include "fmi2Functions.h"
+
+namespace fmu {
+
+enum class VariableType { Real, Integer, Boolean, Enumeration };
+enum class Causality { Parameter, Input, Output };
+
+struct EnumerationItem {
+    const char* name;
+    int value;
+    const char* description;
+};
+
+// An Enumeration type of modelDescription.xml (TypeDefinitions): the one place its items are
+// written down. The generic layer checks every Enumeration value against it.
+struct EnumerationType {
+    const char* name;
+    const char* description;
+    std::vector<EnumerationItem> items;
+    bool contains(int value) const;
+    std::string itemList() const;  // "argyris = 1, fvs = 2"
+};
+
+// One row of a model's table of variables.
+struct Variable {
+    fmi2ValueReference vr;
+    const char* name;
+    VariableType type;
+    Causality causality;
+    const char* description;
+    const char* unit = nullptr;                      // Real only; nullptr: none
+    const EnumerationType* enumeration = nullptr;    // Enumeration only
+    // A new value before initialization ends invalidates what was built from the old one
+    // (parameters; an input that places the initial state).
+    bool shapesInitialState = false;
+    // Real inputs: take fmi2SetRealInputDerivatives; Real outputs: give fmi2GetRealOutputDerivatives.
+    bool hasDerivatives = false;
+};
+
+// Capabilities and fixed parts of modelDescription.xml.
+struct ModelInfo {
+    const char* modelName;
+    const char* modelIdentifier;
+    const char* description;
+    bool canInterpolateInputs;
+    int maxOutputDerivativeOrder;
+    bool canGetAndSetFMUstate;  // and canSerializeFMUstate
+    double defaultStopTime, defaultStepSize;
+};
+
+// A value or call the model rejects; the message names what, the value and what is allowed.
+// The generic layer logs it after the name of the fmi2 function.
+class ModelError : public std::runtime_error {
+public:
+    using std::runtime_error::runtime_error;
+};
+
+class Model {
+public:
+    virtual ~Model() = default;
+
+    virtual const ModelInfo& info() const = 0;
+    virtual const std::vector<Variable>& variables() const = 0;
+    const Variable* find(fmi2ValueReference vr) const;
+
+    // Values, as doubles for every type (Integer, Enumeration and Boolean exactly). The generic
+    // layer has checked type, causality and finiteness; `set` may still throw ModelError.
+    virtual double get(const Variable& v) const = 0;
+    virtual void set(const Variable& v, double value) = 0;
+    virtual void setInputDerivative(const Variable& v, int order, double value);
+    virtual double getOutputDerivative(const Variable& v, int order) const;
+
+    // Builds what the parameters describe (at fmi2ExitInitializationMode, or earlier when an
+    // output is read in initialization mode); drops it again (a shaping value changed).
+    virtual void build() = 0;
+    virtual bool built() const = 0;
+    virtual void drop() = 0;
+    // Time since the start of the experiment.
+    virtual double time() const = 0;
+    // One communication step [t, t + h] (t checked by the caller); throws ModelError.
+    virtual void doStep(double t, double h) = 0;
+
+    // Everything beyond the variables' values that an FMU state must carry (append / read
+    // back in the same order; `in` advances). restoreState throws ModelError on bad data.
+    virtual void saveState(std::vector<double>& out) const = 0;
+    virtual void restoreState(const double*& in, const double* end) = 0;
+
+    // Where the model's trace messages go (the instance's logAll category).
+    std::function<void(const std::string&)> trace = [](const std::string&) {};
+};
+
+// Defined once by each model binding.
+std::unique_ptr<Model> createModel();
+const char* modelGuid();  // compiled in at build time (fmu/cmake/MakeGuid.cmake)
+
+}  // namespace fmu

@@ -1,0 +1,185 @@
+// The PlateImpact model binding: plate::PlateSimulation behind fmu::Model. The FMI layer
+// (Instance.cpp) calls it; it knows the plate's variables (PlateVariables.cpp), builds the
+// simulation from them, and feeds it the inputs each communication step. No numerics here.
+#include <cmath>
+#include <cstdio>
+#include <memory>
+#include <string>
+
+#include "Model.h"
+#include "PlateImpactGuid.h"  // generated at build time: PLATEIMPACT_GUID
+#include "PlateVariables.h"
+
+namespace plateimpact {
+
+namespace {
+
+// Tolerance of "h is a whole multiple of dt" (importers' step sizes wobble in the last digits).
+constexpr double kStepMultipleTolerance = 1e-9;
+
+const fmu::ModelInfo kInfo{
+    "PlateImpact",
+    "PlateImpact",
+    "Kirchhoff plate clamped along x = 0 and free elsewhere, between two flat obstacles; C1 finite elements "
+    "(Argyris or reduced FVS), Newmark scheme with exact per-step contact QP at a fixed time step dt",
+    /*canInterpolateInputs=*/true,
+    /*maxOutputDerivativeOrder=*/0,
+    /*canGetAndSetFMUstate=*/true,
+    /*defaultStopTime=*/0.2,
+    /*defaultStepSize=*/0.001,
+};
+
+std::string format(const char* fmt, double a, double b, double c = 0.0) {
+    char text[400];
+    std::snprintf(text, sizeof text, fmt, a, b, c);
+    return text;
+}
+
+class PlateModel final : public fmu::Model {
+public:
+    const fmu::ModelInfo& info() const override { return kInfo; }
+    const std::vector<fmu::Variable>& variables() const override { return plateVariables(); }
+
+    double get(const fmu::Variable& v) const override { return getValue(values_, v); }
+    void set(const fmu::Variable& v, double x) override { setValue(values_, v, x); }
+
+    void setInputDerivative(const fmu::Variable& v, int order, double x) override {
+        InputPort& port = v.vr == kVrBaseDisplacement ? values_.baseDisplacement : values_.load;
+        (order == 1 ? port.signal.d1 : port.signal.d2) = x;
+        port.derivativesGiven = true;
+    }
+
+    void build() override {
+        // A plate::ParameterError names the parameter, its value and the allowed range.
+        simulation_ = std::make_unique<plate::PlateSimulation>(values_.parameters, values_.baseDisplacement.signal.value);
+        builtWith_ = configuration();
+        simulationBase0_ = values_.baseDisplacement.signal.value;
+        refreshOutputs();
+        const plate::PlateParameters& p = values_.parameters;
+        trace(format("simulation built (nx = %g, ny = %g, dt = %g s)", p.nx, p.ny, p.dt));
+    }
+    bool built() const override { return simulation_ != nullptr; }
+    void drop() override {
+        simulation_.reset();
+        refreshOutputs();
+    }
+    double time() const override { return simulation_ ? simulation_->time() : 0.0; }
+
+    void doStep(double t, double h) override {
+        if (!simulation_) throw fmu::ModelError("internal error: no simulation in state stepComplete");
+        const double dt = simulation_->parameters().dt;
+        const double ratio = h / dt;
+        const long long steps = ratio < 9.0e15 ? std::llround(ratio) : 0;
+        if (steps < 1 || std::fabs(double(steps) * dt - h) > kStepMultipleTolerance * h) {
+            char text[400];
+            std::snprintf(text, sizeof text,
+                          "communicationStepSize h = %.17g is not a whole multiple of dt = %.17g (h/dt = %.17g); the "
+                          "rule is h = n*dt with an integer n >= 1, relative tolerance %g",
+                          h, dt, ratio, kStepMultipleTolerance);
+            throw fmu::ModelError(text);
+        }
+        // The communicated values at this point extend the histories; a master that set no
+        // derivatives gets the inputs reconstructed from them (docs/theory.md §8). The
+        // history's times are the model's own (whole numbers of dt): a master's roundoff in t
+        // does not reach the divided differences.
+        const double now = simulation_->time();
+        values_.baseDisplacement.history.record(now, values_.baseDisplacement.signal.value);
+        values_.load.history.record(now, values_.load.signal.value);
+        const double span = double(steps) * dt;  // the step as taken (h up to roundoff)
+        try {
+            simulation_->advance(steps, values_.baseDisplacement.stepSignal(span), values_.load.stepSignal(span));
+        } catch (const plate::StepError& e) {
+            refreshOutputs();  // the simulation stays at its last good step (for debugging)
+            throw fmu::ModelError(format("step from t = %.17g failed at t = %.17g: ", t, t + simulation_->time() - now) +
+                                  e.what());
+        }
+        refreshOutputs();
+        trace(format("t = %.17g, h = %.17g, %g steps", t, h, double(steps)));
+    }
+
+    // The model's part of an FMU state: per input the derivatives, whether they were given and
+    // the history; then whether a simulation exists, the base it was built with and its state.
+    void saveState(std::vector<double>& out) const override {
+        for (const InputPort* port : {&values_.baseDisplacement, &values_.load}) {
+            out.insert(out.end(), {port->signal.d1, port->signal.d2, port->derivativesGiven ? 1.0 : 0.0});
+            port->history.serialize(out);
+        }
+        out.push_back(simulation_ ? 1.0 : 0.0);
+        out.push_back(simulationBase0_);
+        if (simulation_) {
+            const std::vector<double> state = simulation_->saveState();
+            out.insert(out.end(), state.begin(), state.end());
+        }
+    }
+
+    void restoreState(const double*& in, const double* end) override {
+        const auto take = [&](std::size_t n, const char* what) {
+            if (end - in < static_cast<std::ptrdiff_t>(n)) throw fmu::ModelError(std::string("data end before ") + what);
+            const double* at = in;
+            in += n;
+            return at;
+        };
+        for (InputPort* port : {&values_.baseDisplacement, &values_.load}) {
+            const double* x = take(3 + plate::InputHistory::kSerializedSize, "an input's derivatives and history");
+            if (!std::isfinite(x[0]) || !std::isfinite(x[1]) || (x[2] != 0.0 && x[2] != 1.0))
+                throw fmu::ModelError("an input's derivatives are not finite");
+            port->signal.d1 = x[0];
+            port->signal.d2 = x[1];
+            port->derivativesGiven = x[2] == 1.0;
+            try {
+                port->history = plate::InputHistory::deserialize(x + 3);
+            } catch (const std::invalid_argument& e) {
+                throw fmu::ModelError(e.what());
+            }
+        }
+        const double* flags = take(2, "the simulation flag");
+        if ((flags[0] != 0.0 && flags[0] != 1.0) || !std::isfinite(flags[1]))
+            throw fmu::ModelError("simulation flag or initial base displacement out of range");
+        if (flags[0] == 0.0) {
+            if (in != end) throw fmu::ModelError("simulation state without a simulation");
+            drop();
+            return;
+        }
+        const std::vector<double> state(in, end);
+        in = end;
+        // Equal configurations (every parameter of the table, and the initial base) reuse the
+        // discretization; another one is built for the state's parameters.
+        if (!simulation_ || builtWith_ != configuration() || simulationBase0_ != flags[1]) {
+            auto simulation = std::make_unique<plate::PlateSimulation>(values_.parameters, flags[1]);
+            simulation->restoreState(state);
+            simulation_ = std::move(simulation);
+            builtWith_ = configuration();
+        } else {
+            simulation_->restoreState(state);
+        }
+        simulationBase0_ = flags[1];
+        refreshOutputs();
+    }
+
+private:
+    // The values of every parameter, walking the table: two simulations built from equal
+    // configurations (and the same initial base) are the same discretization.
+    std::vector<double> configuration() const {
+        std::vector<double> out;
+        for (const fmu::Variable& v : plateVariables())
+            if (v.causality == fmu::Causality::Parameter) out.push_back(getValue(values_, v));
+        return out;
+    }
+    void refreshOutputs() {
+        values_.outputs = simulation_ ? simulation_->outputs() : plate::PlateOutputs{};
+    }
+
+    PlateValues values_;
+    std::unique_ptr<plate::PlateSimulation> simulation_;
+    std::vector<double> builtWith_;   // configuration() when simulation_ was built
+    double simulationBase0_ = 0.0;    // base displacement the simulation was built with
+};
+
+}  // namespace
+
+}  // namespace plateimpact
+
+namespace fmu {
+std::unique_ptr<Model> createModel() { return std::make_unique<plateimpact::PlateModel>(); }
+const char* modelGuid() { return PLATEIMPACT_GUID; }
+}  // namespace fmu

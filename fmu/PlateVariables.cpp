@@ -1,0 +1,169 @@
+#include "PlateVariables.h"
+
+#include <array>
+#include <climits>
+
+namespace plateimpact {
+
+namespace {
+
+using fmu::Causality;
+using fmu::VariableType;
+using plate::ElementType;
+using plate::InputMode;
+
+const fmu::EnumerationType kElementType{
+    "ElementType", "C1 plate element",
+    {{"argyris", 1, "Argyris triangle (P5, 21 dofs); each cell split into two triangles"},
+     {"fvs", 2, "Reduced Fraeijs de Veubeke-Sander quadrilateral (12 dofs); one per cell"}}};
+
+const fmu::EnumerationType kInputMode{
+    "InputMode",
+    "How an input is continued inside a communication step when the master sets only its value "
+    "(no fmi2SetRealInputDerivatives)",
+    {{"hold", 1, "Held constant over the step"},
+     {"linear", 2, "Extrapolated along the line through the last two communicated values"},
+     {"quadratic", 3, "Extrapolated along the parabola through the last three communicated values"}}};
+
+// A row: the variable as modelDescription.xml declares it, and how its value is read and set.
+struct Row {
+    fmu::Variable variable;
+    double (*get)(const PlateValues&);
+    void (*set)(PlateValues&, double);  // nullptr for outputs
+};
+
+fmu::Variable parameter(fmi2ValueReference vr, const char* name, VariableType type, const char* unit,
+                        const char* description, const fmu::EnumerationType* enumeration = nullptr) {
+    return {vr, name, type, Causality::Parameter, description, unit, enumeration, true, false};
+}
+fmu::Variable input(fmi2ValueReference vr, const char* name, const char* unit, bool shapesInitialState,
+                    const char* description) {
+    return {vr, name, VariableType::Real, Causality::Input, description, unit, nullptr, shapesInitialState, true};
+}
+fmu::Variable output(fmi2ValueReference vr, const char* name, VariableType type, const char* unit,
+                     const char* description) {
+    return {vr, name, type, Causality::Output, description, unit, nullptr, false, false};
+}
+
+double saturate(long long n) { return double(n > INT_MAX ? INT_MAX : n < INT_MIN ? INT_MIN : n); }
+
+#define PARAMETER_FIELD(field) \
+    [](const PlateValues& v) { return double(v.parameters.field); }, [](PlateValues& v, double x) { v.parameters.field = decltype(v.parameters.field)(x); }
+#define OUTPUT_FIELD(field) [](const PlateValues& v) { return double(v.outputs.field); }, nullptr
+
+const std::vector<Row>& rows() {
+    static const std::vector<Row> table = {
+        {parameter(0, "length", VariableType::Real, "m", "Plate length along x (clamped edge at x = 0)"),
+         PARAMETER_FIELD(length)},
+        {parameter(1, "width", VariableType::Real, "m", "Plate width along y"), PARAMETER_FIELD(width)},
+        {parameter(2, "thickness", VariableType::Real, "m", "Plate thickness"), PARAMETER_FIELD(thickness)},
+        {parameter(3, "youngs_modulus", VariableType::Real, "Pa", "Young's modulus E"), PARAMETER_FIELD(youngsModulus)},
+        {parameter(4, "poisson_ratio", VariableType::Real, "1", "Poisson's ratio, in (0, 0.5)"),
+         PARAMETER_FIELD(poissonRatio)},
+        {parameter(5, "density", VariableType::Real, "kg/m3", "Mass density of the plate material"),
+         PARAMETER_FIELD(density)},
+        {parameter(6, "nx", VariableType::Integer, nullptr, "Number of mesh cells along x (at least 1)"),
+         PARAMETER_FIELD(nx)},
+        {parameter(7, "ny", VariableType::Integer, nullptr, "Number of mesh cells along y (at least 1)"),
+         PARAMETER_FIELD(ny)},
+        {parameter(8, "element", VariableType::Enumeration, nullptr, "Finite element: argyris (1) or fvs (2)",
+                   &kElementType),
+         [](const PlateValues& v) { return v.parameters.element == ElementType::Fvs ? 2.0 : 1.0; },
+         [](PlateValues& v, double x) { v.parameters.element = x == 2.0 ? ElementType::Fvs : ElementType::Argyris; }},
+        {parameter(9, "obstacle_lower", VariableType::Real, "m",
+                   "Height of the lower obstacle (negative; used when obstacle_lower_enabled)"),
+         PARAMETER_FIELD(obstacleLower)},
+        {parameter(10, "obstacle_upper", VariableType::Real, "m",
+                   "Height of the upper obstacle (positive; used when obstacle_upper_enabled)"),
+         PARAMETER_FIELD(obstacleUpper)},
+        {parameter(11, "obstacle_lower_enabled", VariableType::Boolean, nullptr, "Whether the lower obstacle is present"),
+         PARAMETER_FIELD(obstacleLowerEnabled)},
+        {parameter(12, "obstacle_upper_enabled", VariableType::Boolean, nullptr, "Whether the upper obstacle is present"),
+         PARAMETER_FIELD(obstacleUpperEnabled)},
+        {parameter(13, "dt", VariableType::Real, "s",
+                   "Internal time step; every communication step must be a whole multiple of dt"),
+         PARAMETER_FIELD(dt)},
+        {parameter(14, "beta", VariableType::Real, "1",
+                   "Newmark parameter beta in [0, 0.5] (gamma = 1/2); unconditionally stable for beta >= 1/4"),
+         PARAMETER_FIELD(beta)},
+        {parameter(15, "initial_load", VariableType::Real, "Pa",
+                   "Uniform pressure (positive upward) whose static equilibrium is the initial shape; the plate "
+                   "starts at rest"),
+         PARAMETER_FIELD(initialLoad)},
+        {parameter(16, "modes", VariableType::Integer, nullptr,
+                   "0: full finite element space (exact scheme); m > 0: reduced model on m modes"),
+         PARAMETER_FIELD(modes)},
+        {parameter(17, "base_input_mode", VariableType::Enumeration, nullptr,
+                   "How base_displacement moves inside a communication step when the master gives no input "
+                   "derivatives: hold, linear or quadratic extrapolation of the communicated values (derivatives "
+                   "set by the master always win)",
+                   &kInputMode),
+         [](const PlateValues& v) { return double(static_cast<int>(v.baseDisplacement.mode)); },
+         [](PlateValues& v, double x) { v.baseDisplacement.mode = static_cast<InputMode>(int(x)); }},
+        {parameter(18, "load_input_mode", VariableType::Enumeration, nullptr,
+                   "How load moves inside a communication step when the master gives no input derivatives: hold "
+                   "(a load may step; extrapolating a step overshoots), linear or quadratic",
+                   &kInputMode),
+         [](const PlateValues& v) { return double(static_cast<int>(v.load.mode)); },
+         [](PlateValues& v, double x) { v.load.mode = static_cast<InputMode>(int(x)); }},
+        {input(kVrBaseDisplacement, "base_displacement", "m", true,
+               "Vertical displacement z of the clamped edge (base motion); its value at initialization places "
+               "the clamp at t = 0"),
+         [](const PlateValues& v) { return v.baseDisplacement.signal.value; },
+         [](PlateValues& v, double x) { v.baseDisplacement.setValue(x); }},
+        {input(kVrLoad, "load", "Pa", false, "Uniform pressure on the plate, positive upward, acting from t = 0 on"),
+         [](const PlateValues& v) { return v.load.signal.value; }, [](PlateValues& v, double x) { v.load.setValue(x); }},
+        {output(30, "corner_1", VariableType::Real, "m", "Absolute displacement w at the free corner (length, 0)"),
+         OUTPUT_FIELD(corner1)},
+        {output(31, "corner_2", VariableType::Real, "m", "Absolute displacement w at the free corner (length, width)"),
+         OUTPUT_FIELD(corner2)},
+        {output(32, "free_edge_mid", VariableType::Real, "m",
+                "Absolute displacement w at the middle of the free edge (length, width/2)"),
+         OUTPUT_FIELD(freeEdgeMid)},
+        {output(33, "energy", VariableType::Real, "J", "Discrete energy of the scheme (kinetic + bending)"),
+         OUTPUT_FIELD(energy)},
+        {output(34, "energy_dissipated", VariableType::Real, "J",
+                "Energy lost in impacts since t = 0 (cumulative, non-negative)"),
+         OUTPUT_FIELD(energyDissipated)},
+        {output(35, "energy_input", VariableType::Real, "J", "Work done by base motion and load since t = 0 (cumulative)"),
+         OUTPUT_FIELD(energyInput)},
+        {output(36, "contact_vertices", VariableType::Integer, nullptr,
+                "Number of mesh vertices on an obstacle after the last step"),
+         OUTPUT_FIELD(contactVertices)},
+        {output(37, "qp_kkt_residual_max", VariableType::Real, "1",
+                "Largest relative KKT residual of the per-step contact QPs so far"),
+         OUTPUT_FIELD(maxKktResidual)},
+        {output(38, "qp_iterations_total", VariableType::Integer, nullptr,
+                "Active-set iterations of all per-step QPs so far (saturates at 2147483647)"),
+         [](const PlateValues& v) { return saturate(v.outputs.qpIterationsTotal); }, nullptr},
+        {output(39, "qp_iterations_max", VariableType::Integer, nullptr,
+                "Largest number of active-set iterations of one per-step QP so far"),
+         OUTPUT_FIELD(qpIterationsMax)},
+    };
+    return table;
+}
+
+#undef PARAMETER_FIELD
+#undef OUTPUT_FIELD
+
+const Row& rowOf(const fmu::Variable& v) {
+    // `v` is an element of plateVariables(), which lists the rows' variables in the same order.
+    return rows()[static_cast<std::size_t>(&v - plateVariables().data())];
+}
+
+}  // namespace
+
+const std::vector<fmu::Variable>& plateVariables() {
+    static const std::vector<fmu::Variable> variables = [] {
+        std::vector<fmu::Variable> out;
+        for (const Row& row : rows()) out.push_back(row.variable);
+        return out;
+    }();
+    return variables;
+}
+
+double getValue(const PlateValues& values, const fmu::Variable& v) { return rowOf(v).get(values); }
+
+void setValue(PlateValues& values, const fmu::Variable& v, double x) { rowOf(v).set(values, x); }
+
+}  // namespace plateimpact

@@ -1,0 +1,52 @@
+#pragma once
+// The plate's values as the importer sets and reads them, and the one table of its variables
+// (PlateVariables.cpp): name, value reference, type, causality, unit, description and the
+// accessors. modelDescription.xml, FMU states and the README's table all come from it.
+#include <vector>
+
+#include "Model.h"
+#include "PlateSimulation.h"
+
+namespace plateimpact {
+
+// One Real input as the master passes it (docs/theory.md §8): the value, the derivatives if
+// the master set them since the value, and the values at the last communication points for
+// masters that give none.
+struct InputPort {
+    plate::InputSignal signal;      // value (fmi2SetReal) + derivatives (fmi2SetRealInputDerivatives)
+    bool derivativesGiven = false;  // the master set derivatives since the value: they win
+    plate::InputMode mode;          // otherwise the step follows history.continueStep(mode, h)
+    plate::InputHistory history;
+
+    explicit InputPort(plate::InputMode defaultMode) : mode(defaultMode) {}
+    // A new value: its derivatives are zero and not given until the master sets them again.
+    void setValue(double x) {
+        signal = plate::InputSignal{x, 0.0, 0.0};
+        derivativesGiven = false;
+    }
+    // The signal over the step of length h that starts now.
+    plate::InputSignal stepSignal(double h) {
+        if (!derivativesGiven) return history.continueStep(mode, h);
+        history.reached(signal.at(h));
+        return signal;
+    }
+};
+
+// Everything an importer can set or read, as plain values.
+struct PlateValues {
+    plate::PlateParameters parameters;  // defaults = the start values of modelDescription.xml
+    // Default modes, chosen by measurement (docs/input-accuracy.md): a clamp displacement is
+    // smooth (quadratic extrapolation); a load may step, and extrapolating a step overshoots.
+    InputPort baseDisplacement{plate::InputMode::Quadratic};
+    InputPort load{plate::InputMode::Hold};
+    plate::PlateOutputs outputs;  // copy of PlateSimulation::outputs() after each change
+};
+
+// Value references the binding needs by name.
+enum PlateVr : fmi2ValueReference { kVrBaseDisplacement = 20, kVrLoad = 21 };
+
+const std::vector<fmu::Variable>& plateVariables();
+double getValue(const PlateValues& values, const fmu::Variable& v);
+void setValue(PlateValues& values, const fmu::Variable& v, double x);
+
+}  // namespace plateimpact

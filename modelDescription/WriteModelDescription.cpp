@@ -1,0 +1,195 @@
+// Writes a model's modelDescription.xml from its table of variables (fmu/Model.h), at build
+// time: the table is the one source of the interface, so the XML, the binary and the FMU
+// states cannot disagree. Linked with one model binding; the GUID is the one compiled into it.
+//
+//   write_model_description <output.xml>
+#include <algorithm>
+#include <cmath>
+#include <cstdio>
+#include <cstdlib>
+#include <cstring>
+#include <fstream>
+#include <iostream>
+#include <map>
+#include <string>
+#include <vector>
+
+#include "Model.h"
+
+#ifndef PLATEIMPACT_VERSION
+#error "PLATEIMPACT_VERSION must be defined (the project version)"
+#endif
+
+namespace {
+
+using fmu::Causality;
+using fmu::Variable;
+using fmu::VariableType;
+
+std::string escape(const std::string& text) {
+    std::string out;
+    for (char ch : text) {
+        switch (ch) {
+            case '&': out += "&amp;"; break;
+            case '<': out += "&lt;"; break;
+            case '>': out += "&gt;"; break;
+            case '"': out += "&quot;"; break;
+            default: out += ch;
+        }
+    }
+    return out;
+}
+
+// The shortest decimal text that reads back as the same double (0.01, not 0.01000000000000000021).
+std::string real(double x) {
+    char text[40];
+    for (int digits = 1; digits <= 17; ++digits) {
+        std::snprintf(text, sizeof text, "%.*g", digits, x);
+        if (std::strtod(text, nullptr) == x) break;
+    }
+    // A whole number below 1e6 reads better without an exponent (7770, not 7.77e+03).
+    if (std::strchr(text, 'e') && x == std::floor(x) && std::fabs(x) < 1e6) std::snprintf(text, sizeof text, "%.0f", x);
+    return text;
+}
+
+// SI units as FMI 2.0 BaseUnit exponents.
+const std::map<std::string, std::string>& baseUnits() {
+    static const std::map<std::string, std::string> units = {
+        {"m", "m=\"1\""}, {"Pa", "kg=\"1\" m=\"-1\" s=\"-2\""}, {"kg/m3", "kg=\"1\" m=\"-3\""},
+        {"s", "s=\"1\""}, {"J", "kg=\"1\" m=\"2\" s=\"-2\""},    {"1", ""},
+        {"Hz", "s=\"-1\""},
+    };
+    return units;
+}
+
+const char* typeElement(VariableType type) {
+    switch (type) {
+        case VariableType::Real: return "Real";
+        case VariableType::Integer: return "Integer";
+        case VariableType::Boolean: return "Boolean";
+        case VariableType::Enumeration: return "Enumeration";
+    }
+    return "?";
+}
+
+std::string startText(const Variable& v, double x) {
+    switch (v.type) {
+        case VariableType::Real: return real(x);
+        case VariableType::Boolean: return x != 0.0 ? "true" : "false";
+        default: return std::to_string(static_cast<long long>(x));
+    }
+}
+
+void writeHeader(std::ostream& xml, const fmu::ModelInfo& info) {
+    const char* version = PLATEIMPACT_VERSION;
+    xml << "<?xml version=\"1.0\" encoding=\"UTF-8\"?>\n"
+        << "<!-- Generated at build time from the table of variables of the model binding\n"
+        << "     (modelDescription/WriteModelDescription.cpp): do not edit. -->\n"
+        << "<fmiModelDescription\n  fmiVersion=\"2.0\"\n  modelName=\"" << info.modelName << "\"\n  guid=\""
+        << fmu::modelGuid() << "\"\n  description=\"" << escape(info.description) << "\"\n  version=\"" << version
+        << "\"\n  generationTool=\"PlateImpact " << version << " (CMake)\"\n"
+        << "  variableNamingConvention=\"flat\"\n  numberOfEventIndicators=\"0\">\n\n";
+    const char* states = info.canGetAndSetFMUstate ? "true" : "false";
+    xml << "  <CoSimulation\n    modelIdentifier=\"" << info.modelIdentifier << "\"\n"
+        << "    needsExecutionTool=\"false\"\n    canHandleVariableCommunicationStepSize=\"true\"\n"
+        << "    canInterpolateInputs=\"" << (info.canInterpolateInputs ? "true" : "false") << "\"\n"
+        << "    maxOutputDerivativeOrder=\"" << info.maxOutputDerivativeOrder << "\"\n"
+        << "    canRunAsynchronuously=\"false\"\n    canBeInstantiatedOnlyOncePerProcess=\"false\"\n"
+        << "    canNotUseMemoryManagementFunctions=\"true\"\n    canGetAndSetFMUstate=\"" << states << "\"\n"
+        << "    canSerializeFMUstate=\"" << states << "\"\n    providesDirectionalDerivative=\"false\"/>\n\n";
+}
+
+void writeTypes(std::ostream& xml, const std::vector<Variable>& variables) {
+    std::vector<std::string> units;
+    std::vector<const fmu::EnumerationType*> enumerations;
+    for (const Variable& v : variables) {
+        if (v.unit && std::find(units.begin(), units.end(), v.unit) == units.end()) units.push_back(v.unit);
+        if (v.enumeration && std::find(enumerations.begin(), enumerations.end(), v.enumeration) == enumerations.end())
+            enumerations.push_back(v.enumeration);
+    }
+    if (!units.empty()) {
+        xml << "  <UnitDefinitions>\n";
+        for (const std::string& unit : units) {
+            const auto base = baseUnits().find(unit);
+            if (base == baseUnits().end()) throw std::runtime_error("no BaseUnit known for unit " + unit);
+            xml << "    <Unit name=\"" << escape(unit) << "\"><BaseUnit" << (base->second.empty() ? "" : " ")
+                << base->second << "/></Unit>\n";
+        }
+        xml << "  </UnitDefinitions>\n\n";
+    }
+    if (!enumerations.empty()) {
+        xml << "  <TypeDefinitions>\n";
+        for (const fmu::EnumerationType* e : enumerations) {
+            xml << "    <SimpleType name=\"" << e->name << "\" description=\"" << escape(e->description)
+                << "\">\n      <Enumeration>\n";
+            for (const fmu::EnumerationItem& item : e->items)
+                xml << "        <Item name=\"" << item.name << "\" value=\"" << item.value << "\" description=\""
+                    << escape(item.description) << "\"/>\n";
+            xml << "      </Enumeration>\n    </SimpleType>\n";
+        }
+        xml << "  </TypeDefinitions>\n\n";
+    }
+    xml << "  <LogCategories>\n"
+        << "    <Category name=\"logStatusError\" description=\"Messages explaining an fmi2Error or fmi2Discard "
+           "return (on unless switched off)\"/>\n"
+        << "    <Category name=\"logStatusWarning\" description=\"Warnings (on when loggingOn)\"/>\n"
+        << "    <Category name=\"logAll\" description=\"Trace of the FMU's work: instantiation, builds, steps; "
+           "setting this category switches all categories\"/>\n"
+        << "  </LogCategories>\n\n";
+}
+
+void writeVariables(std::ostream& xml, const fmu::Model& model) {
+    const std::vector<Variable>& variables = model.variables();
+    xml << "  <ModelVariables>\n";
+    std::vector<std::size_t> outputs;
+    for (std::size_t i = 0; i < variables.size(); ++i) {
+        const Variable& v = variables[i];
+        xml << "    <!-- index " << i + 1 << " --><ScalarVariable name=\"" << v.name << "\" valueReference=\"" << v.vr
+            << "\"";
+        switch (v.causality) {
+            case Causality::Parameter: xml << " causality=\"parameter\" variability=\"fixed\" initial=\"exact\""; break;
+            case Causality::Input: xml << " causality=\"input\" variability=\"continuous\""; break;
+            case Causality::Output:
+                xml << " causality=\"output\" variability=\""
+                    << (v.type == VariableType::Real ? "continuous" : "discrete") << "\" initial=\"calculated\"";
+                outputs.push_back(i + 1);
+                break;
+        }
+        xml << " description=\"" << escape(v.description) << "\">\n      <" << typeElement(v.type);
+        if (v.enumeration) xml << " declaredType=\"" << v.enumeration->name << "\"";
+        if (v.unit) xml << " unit=\"" << escape(v.unit) << "\"";
+        if (v.causality != Causality::Output) xml << " start=\"" << startText(v, model.get(v)) << "\"";
+        xml << "/></ScalarVariable>\n";
+    }
+    xml << "  </ModelVariables>\n\n";
+    // No direct feedthrough: the outputs at a communication point depend on the inputs only
+    // through the steps before it.
+    xml << "  <ModelStructure>\n    <Outputs>\n";
+    for (std::size_t index : outputs) xml << "      <Unknown index=\"" << index << "\" dependencies=\"\"/>\n";
+    xml << "    </Outputs>\n    <InitialUnknowns>\n";
+    for (std::size_t index : outputs) xml << "      <Unknown index=\"" << index << "\"/>\n";
+    xml << "    </InitialUnknowns>\n  </ModelStructure>\n\n</fmiModelDescription>\n";
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+    if (argc != 2) {
+        std::cerr << "usage: " << argv[0] << " <modelDescription.xml>\n";
+        return 2;
+    }
+    try {
+        const std::unique_ptr<fmu::Model> model = fmu::createModel();
+        std::ofstream xml(argv[1]);
+        writeHeader(xml, model->info());
+        writeTypes(xml, model->variables());
+        xml << "  <DefaultExperiment startTime=\"0\" stopTime=\"" << real(model->info().defaultStopTime)
+            << "\" stepSize=\"" << real(model->info().defaultStepSize) << "\"/>\n\n";
+        writeVariables(xml, *model);
+        if (!xml) throw std::runtime_error(std::string("cannot write ") + argv[1]);
+    } catch (const std::exception& e) {
+        std::cerr << argv[0] << ": " << e.what() << "\n";
+        return 1;
+    }
+    return 0;
+}
