@@ -45,8 +45,8 @@ void NewmarkContactStepper::initialize(const Eigen::VectorXd& w0, double z0, dou
     s.kwPrev = s.kw;
     s.z = s.zPrev = z0;
     s.p = s.pPrev = p0;
-    s.s = s.sPrev = plate_->pressureLoad().dot(w0);
-    s.t = s.tPrev = plate_->baseInertia().dot(w0);
+    s.pressureWork = s.pressureWorkPrev = plate_->pressureLoad().dot(w0);
+    s.baseCoupling = s.baseCouplingPrev = plate_->baseInertia().dot(w0);
     s.contactState.assign(obstacles_.any() ? plate_->contactCount() : 0, 0);
     checkMargin_ = -1.0;
     if (obstacles_.any()) {
@@ -164,9 +164,9 @@ void NewmarkContactStepper::step(double zNext, double pNext) {
     // cross term ż vᵀ(M·1) + ½ ż² 1ᵀM1 that turns the relative energy into the absolute one.
     const double zDotNext = (zNext - s.z) / dt_, zDot = (s.z - s.zPrev) / dt_;
     const double mass = plate_->totalMass();
-    const double crossNext = zDotNext * (tNext - s.t) / dt_ + 0.5 * zDotNext * zDotNext * mass;
-    const double cross = zDot * (s.t - s.tPrev) / dt_ + 0.5 * zDot * zDot * mass;
-    const double work = 0.5 * pBeta * (sNext - s.sPrev) - 0.5 * (baseJump / dt2) * (tNext - s.tPrev) +
+    const double crossNext = zDotNext * (tNext - s.baseCoupling) / dt_ + 0.5 * zDotNext * zDotNext * mass;
+    const double cross = zDot * (s.baseCoupling - s.baseCouplingPrev) / dt_ + 0.5 * zDot * zDot * mass;
+    const double work = 0.5 * pBeta * (sNext - s.pressureWorkPrev) - 0.5 * (baseJump / dt2) * (tNext - s.baseCouplingPrev) +
                         contactWorkOnBase + crossNext - cross;
 
     // Commit.
@@ -178,10 +178,10 @@ void NewmarkContactStepper::step(double zNext, double pNext) {
     s.z = zNext;
     s.pPrev = s.p;
     s.p = pNext;
-    s.sPrev = s.s;
-    s.s = sNext;
-    s.tPrev = s.t;
-    s.t = tNext;
+    s.pressureWorkPrev = s.pressureWork;
+    s.pressureWork = sNext;
+    s.baseCouplingPrev = s.baseCoupling;
+    s.baseCoupling = tNext;
     ++s.step;
     s.energyInput += work;
     s.energyDissipated += dissipated;
@@ -204,7 +204,7 @@ double NewmarkContactStepper::energy() const {
     const double zDot = (s.z - s.zPrev) / dt_;
     const double kinetic = 0.5 * dw.dot(scratch_) / dt2 +
                            0.5 * (beta_ - 0.25) * dw.dot(s.kw - s.kwPrev) +
-                           zDot * (s.t - s.tPrev) / dt_ + 0.5 * zDot * zDot * plate_->totalMass();
+                           zDot * (s.baseCoupling - s.baseCouplingPrev) / dt_ + 0.5 * zDot * zDot * plate_->totalMass();
     const double potential = 0.125 * (s.w + s.wPrev).dot(s.kw + s.kwPrev);
     return kinetic + potential;
 }

@@ -15,14 +15,9 @@
 #include "BoxQP.h"
 #include "DiscretePlate.h"
 #include "NewmarkState.h"
+#include "Obstacles.h"
 
 namespace plate {
-
-struct Obstacles {
-    double lower = -std::numeric_limits<double>::infinity();  // absolute height, m
-    double upper = std::numeric_limits<double>::infinity();
-    bool any() const { return std::isfinite(lower) || std::isfinite(upper); }
-};
 
 class NewmarkContactStepper {
 public:

@@ -18,7 +18,7 @@ std::vector<double> serialize(const NewmarkState& s) {
     out.push_back(static_cast<double>(s.contactState.size()));
     for (const Eigen::VectorXd* v : {&s.w, &s.wPrev, &s.kw, &s.kwPrev})
         out.insert(out.end(), v->data(), v->data() + n);
-    for (double x : {s.z, s.zPrev, s.p, s.pPrev, s.s, s.sPrev, s.t, s.tPrev,
+    for (double x : {s.z, s.zPrev, s.p, s.pPrev, s.pressureWork, s.pressureWorkPrev, s.baseCoupling, s.baseCouplingPrev,
                      static_cast<double>(s.step), s.energyInput, s.energyDissipated,
                      s.maxKktResidual, static_cast<double>(s.qpIterationsTotal),
                      static_cast<double>(s.qpIterationsMax),
@@ -41,7 +41,7 @@ NewmarkState deserialize(const std::vector<double>& in, Eigen::Index n, std::siz
         k += nn;
     }
     s.z = in[k++]; s.zPrev = in[k++]; s.p = in[k++]; s.pPrev = in[k++];
-    s.s = in[k++]; s.sPrev = in[k++]; s.t = in[k++]; s.tPrev = in[k++];
+    s.pressureWork = in[k++]; s.pressureWorkPrev = in[k++]; s.baseCoupling = in[k++]; s.baseCouplingPrev = in[k++];
     s.step = static_cast<long long>(in[k++]);
     s.energyInput = in[k++]; s.energyDissipated = in[k++]; s.maxKktResidual = in[k++];
     s.qpIterationsTotal = static_cast<long long>(in[k++]);

@@ -12,8 +12,8 @@ struct NewmarkState {
     Eigen::VectorXd kw, kwPrev;      // K w_n, K w_{n−1} (reused by the next step and the energy)
     double z = 0, zPrev = 0;         // base z_n, z_{n−1}
     double p = 0, pPrev = 0;         // pressure p_n, p_{n−1}
-    double s = 0, sPrev = 0;         // Fᵀw (work of the pressure)
-    double t = 0, tPrev = 0;         // (M·1)ᵀw (coupling of base and plate inertia)
+    double pressureWork = 0, pressureWorkPrev = 0;  // Fᵀw_n, Fᵀw_{n−1} (work of the pressure)
+    double baseCoupling = 0, baseCouplingPrev = 0;  // (M·1)ᵀw: coupling of base and plate inertia
     long long step = 0;
     double energyInput = 0, energyDissipated = 0;
     double maxKktResidual = 0;

@@ -3,6 +3,7 @@
 #include <stdexcept>
 #include <string>
 
+#include "Errors.h"
 #include "FiniteElementSpace.h"
 
 namespace plate {
@@ -34,19 +35,6 @@ struct PlateParameters {
                (12.0 * (1.0 - poissonRatio * poissonRatio));
     }
     double surfaceDensity() const { return density * thickness; }
-};
-
-// A parameter or input outside its allowed range. what() names the parameter, its value and
-// the allowed range, ready for the FMU's log.
-class ParameterError : public std::invalid_argument {
-public:
-    using std::invalid_argument::invalid_argument;
-};
-
-// A time step that cannot be taken (input past an obstacle, non-finite input, QP failure).
-class StepError : public std::runtime_error {
-public:
-    using std::runtime_error::runtime_error;
 };
 
 // Checks everything that can be checked without assembling (throws ParameterError).

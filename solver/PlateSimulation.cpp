@@ -26,14 +26,10 @@ Obstacles obstaclesOf(const PlateParameters& p) {
 }
 
 // Exact mode (modes = 0) runs the complete modal basis where it is cheaper per step than the
-// sparse factor of A (both are the same scheme (3.6) in other coordinates). A modal step costs
-// about one pass over the dense contact operator CΦ (contact vertices x dofs); a sparse step
-// a solve and a product K w, several indexed passes over about nnz(K) entries each, at ~5
-// instructions per entry against ~1 per entry of the vectorized dense pass (callgrind).
-// Measured with plate_bench: Argyris 14x5 (CΦ 62k, nnz(K) 30k) modal 10 µs against sparse
-// 45 µs per step; FVS 14x5 modal 5 µs against sparse 12 µs; FVS 20x7 (CΦ 77k, nnz(K) 12k)
-// modal 19 µs against sparse 28 µs; FVS 28x10 (CΦ 259k) even at 60 µs. The O(n³) eigen solution at start stays near a second up to ~1000
-// dofs.
+// sparse factor of A (both are the same scheme (3.6) in other coordinates): a modal step is
+// about one pass over the dense CΦ (contact vertices × dofs), a sparse step several indexed
+// passes over about nnz(K) entries at ~5 times the cost per entry. The threshold and the
+// measurements behind it: docs/theory.md §7.
 bool completeModalPays(const ClampedPlate& plate) {
     const auto n = plate.mass.rows();
     const auto m = static_cast<Eigen::Index>(plate.contactDofs.size());

@@ -3,7 +3,8 @@
 #include <Eigen/Core>
 
 #include "DiscretePlate.h"
-#include "NewmarkContactStepper.h"
+#include "Errors.h"
+#include "Obstacles.h"
 
 namespace plate {
 
