@@ -1,5 +1,6 @@
 #!/usr/bin/env bash
-# All tests: the C++ unit tests (ctest) and the Python suite through fmpy (pytest); then the
+# All tests: the style check (clang-format, ruff), the C++ unit tests (ctest) and the Python
+# suite through fmpy (pytest); then the
 # sanitizer stage: an AddressSanitizer + UndefinedBehaviorSanitizer build of the FMU in
 # build-asan/ and the part of the Python suite that reaches every code path of the FMU, run
 # against it. Any sanitizer report fails the stage. Arguments go to both pytest runs;
@@ -7,6 +8,7 @@
 set -euo pipefail
 repo="$(cd "$(dirname "${BASH_SOURCE[0]}")" && pwd)"
 bash "$repo/scripts/setup.sh"
+bash "$repo/scripts/check-format.sh"
 cd "$repo/build"
 ctest --output-on-failure -j"$(nproc)"
 cd "$repo"

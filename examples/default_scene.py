@@ -2,6 +2,7 @@
 obstacles at ±0.1 m, 14×5 Argyris cells, dt = 1e-5 s, 1 s simulated, communication step 1e-4 s
 with input derivatives. Writes CSV + PNG and prints the wall time; with --bench, also the
 per-step time beside the time of one solve with A's factor, measured in the same run."""
+
 from __future__ import annotations
 
 import argparse
@@ -35,13 +36,16 @@ def main(argv=None):
         for k in range(n):
             t = k * args.step
             plate.step(args.step, base=sine(0.09, 10.0, t))
-            rows.append({"time": (k + 1) * args.step, "base": sine(0.09, 10.0, (k + 1) * args.step)[0],
-                         **plate.outputs()})
+            rows.append(
+                {"time": (k + 1) * args.step, "base": sine(0.09, 10.0, (k + 1) * args.step)[0], **plate.outputs()}
+            )
     wall = time.perf_counter() - t0
     steps = round(args.stop_time / args.dt)
-    print(f"default scene: {steps} steps of dt = {args.dt:g} s ({args.element}, 14x5 cells) "
-          f"simulated {args.stop_time:g} s in {wall:.2f} s wall "
-          f"({1e6 * wall / steps:.1f} us/step through fmpy, real-time factor {args.stop_time / wall:.2f})")
+    print(
+        f"default scene: {steps} steps of dt = {args.dt:g} s ({args.element}, 14x5 cells) "
+        f"simulated {args.stop_time:g} s in {wall:.2f} s wall "
+        f"({1e6 * wall / steps:.1f} us/step through fmpy, real-time factor {args.stop_time / wall:.2f})"
+    )
 
     csv_path = out / "default_scene.csv"
     with csv_path.open("w", newline="") as f:
@@ -50,8 +54,10 @@ def main(argv=None):
         w.writerows(rows)
 
     import matplotlib
+
     matplotlib.use("Agg")
     import matplotlib.pyplot as plt
+
     t = [r["time"] for r in rows]
     fig, (ax1, ax2) = plt.subplots(2, 1, figsize=(9, 6.5), sharex=True)
     ax1.plot(t, [r["base"] for r in rows], color="0.6", lw=0.8, label="base z(t)")
@@ -74,12 +80,19 @@ def main(argv=None):
     print(f"wrote {csv_path} and {png_path}")
 
     if args.bench:
-        r = json.loads(subprocess.run([args.bench, f"dt={args.dt}", f"element={args.element}",
-                                       f"steps={steps}"], check=True, capture_output=True,
-                                      text=True).stdout)
-        print(f"solver alone, same scene: {1e6 * r['step_s']:.1f} us/step, one solve with the "
-              f"factor of A: {1e6 * r['floor_solve_s']:.1f} us (step/floor = {r['step_over_floor']:.2f}); "
-              f"{r['wall_s']:.2f} s for {steps} steps")
+        r = json.loads(
+            subprocess.run(
+                [args.bench, f"dt={args.dt}", f"element={args.element}", f"steps={steps}"],
+                check=True,
+                capture_output=True,
+                text=True,
+            ).stdout
+        )
+        print(
+            f"solver alone, same scene: {1e6 * r['step_s']:.1f} us/step, one solve with the "
+            f"factor of A: {1e6 * r['floor_solve_s']:.1f} us (step/floor = {r['step_over_floor']:.2f}); "
+            f"{r['wall_s']:.2f} s for {steps} steps"
+        )
 
 
 if __name__ == "__main__":

@@ -19,6 +19,7 @@ Writes <out>/frequency_response.csv and <out>/frequency_response.png (two heat m
     python examples/frequency_response.py                       # LocalCluster, 2 workers
     python examples/frequency_response.py --scheduler tcp://host:8786 --ship-fmu
 """
+
 from __future__ import annotations
 
 import argparse
@@ -26,7 +27,8 @@ import csv
 import time
 from pathlib import Path
 
-from plateimpact.response_map import CSV_COLUMNS, dask_map, grid, serial_map
+from plateimpact.response_map import CSV_COLUMNS, dask_map, grid
+
 
 def write_csv(path, results):
     with Path(path).open("w", newline="") as f:
@@ -37,6 +39,7 @@ def write_csv(path, results):
 
 def plot(path, results, frequencies, gaps, title):
     import matplotlib
+
     matplotlib.use("Agg")
     import matplotlib.pyplot as plt
     import numpy as np
@@ -71,30 +74,28 @@ def _floats(text):
 
 
 def main(argv=None):
-    ap = argparse.ArgumentParser(description=__doc__,
-                                 formatter_class=argparse.RawDescriptionHelpFormatter)
+    ap = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
     ap.add_argument("--fmu", default="build/PlateImpact.fmu")
     ap.add_argument("--out", default="out")
     ap.add_argument("--scheduler", help="address of an existing Dask scheduler")
     ap.add_argument("--workers", type=int, default=2, help="LocalCluster worker processes")
-    ap.add_argument("--ship-fmu", action="store_true",
-                    help="send the FMU's bytes to the workers instead of its path")
-    ap.add_argument("--frequencies", type=_floats,
-                    default=[2.0 * i for i in range(1, 21)], help="Hz, comma separated")
-    ap.add_argument("--gaps", type=_floats, default=[0.015, 0.02, 0.03, 0.05, 0.07, 0.1],
-                    help="obstacle gaps, m, comma separated")
+    ap.add_argument("--ship-fmu", action="store_true", help="send the FMU's bytes to the workers instead of its path")
+    ap.add_argument("--frequencies", type=_floats, default=[2.0 * i for i in range(1, 21)], help="Hz, comma separated")
+    ap.add_argument(
+        "--gaps", type=_floats, default=[0.015, 0.02, 0.03, 0.05, 0.07, 0.1], help="obstacle gaps, m, comma separated"
+    )
     ap.add_argument("--amplitude", type=float, default=0.01, help="base amplitude, m")
     ap.add_argument("--stop-time", type=float, default=2.0)
-    ap.add_argument("--settle", type=float, default=1.0,
-                    help="the per-cycle dissipation is taken over [settle, stop-time]")
+    ap.add_argument(
+        "--settle", type=float, default=1.0, help="the per-cycle dissipation is taken over [settle, stop-time]"
+    )
     ap.add_argument("--dt", type=float, default=1e-4)
     ap.add_argument("--step", type=float, default=1e-3, help="communication step, s")
     ap.add_argument("--element", choices=("argyris", "fvs"), default="argyris")
     ap.add_argument("--nx", type=int, default=14)
     ap.add_argument("--ny", type=int, default=5)
     ap.add_argument("--no-progress", action="store_true")
-    ap.add_argument("--quick", action="store_true",
-                    help="smoke test: 2×2 map, 0.1 s, 6×2 cells")
+    ap.add_argument("--quick", action="store_true", help="smoke test: 2×2 map, 0.1 s, 6×2 cells")
     args = ap.parse_args(argv)
     if args.quick:
         args.frequencies, args.gaps = [8.0, 30.0], [0.012, 0.05]
@@ -102,8 +103,16 @@ def main(argv=None):
     out = Path(args.out)
     out.mkdir(parents=True, exist_ok=True)
     points = grid(args.frequencies, args.gaps)
-    kw = dict(amplitude=args.amplitude, stop_time=args.stop_time, settle=args.settle,
-              dt=args.dt, comm_step=args.step, element=args.element, nx=args.nx, ny=args.ny)
+    kw = dict(
+        amplitude=args.amplitude,
+        stop_time=args.stop_time,
+        settle=args.settle,
+        dt=args.dt,
+        comm_step=args.step,
+        element=args.element,
+        nx=args.nx,
+        ny=args.ny,
+    )
     fmu = Path(args.fmu).read_bytes() if args.ship_fmu else str(Path(args.fmu).resolve())
 
     from distributed import Client, LocalCluster
@@ -112,8 +121,7 @@ def main(argv=None):
     if args.scheduler:
         client, cluster = Client(args.scheduler), None
     else:
-        cluster = LocalCluster(n_workers=args.workers, threads_per_worker=1, processes=True,
-                               dashboard_address=None)
+        cluster = LocalCluster(n_workers=args.workers, threads_per_worker=1, processes=True, dashboard_address=None)
         client = Client(cluster)
     try:
         print(f"{len(points)} simulations on {client}")
@@ -126,10 +134,15 @@ def main(argv=None):
     cpu = sum(r["wall_s"] for r in results)
     print(f"map done in {wall:.1f} s wall ({cpu:.1f} s summed over the tasks)")
     write_csv(out / "frequency_response.csv", results)
-    plot(out / "frequency_response.png", results, args.frequencies, args.gaps,
-         f"{args.element} {args.nx}×{args.ny}, base {args.amplitude:g} sin(2πf t) m, "
-         f"{args.stop_time:g} s per point (dissipation over the last "
-         f"{args.stop_time - args.settle:g} s), Δt = {args.dt:g} s")
+    plot(
+        out / "frequency_response.png",
+        results,
+        args.frequencies,
+        args.gaps,
+        f"{args.element} {args.nx}×{args.ny}, base {args.amplitude:g} sin(2πf t) m, "
+        f"{args.stop_time:g} s per point (dissipation over the last "
+        f"{args.stop_time - args.settle:g} s), Δt = {args.dt:g} s",
+    )
     print(f"wrote {out / 'frequency_response.csv'} and {out / 'frequency_response.png'}")
 
 

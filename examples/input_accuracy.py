@@ -21,6 +21,7 @@ Ways of passing the base (each a row):
                         so the clamp jumps by the miss at every point) — kept to show what the
                         continuity buys
 """
+
 from __future__ import annotations
 
 import argparse
@@ -63,13 +64,21 @@ def run_jumps(fmu, scene, h, stop):
 
 def run_fmpy(fmu, scene, h, stop, mode):
     from fmpy import simulate_fmu
+
     n = round(stop / h)
     grid = np.arange(0, round(stop / DT) + 1) * DT
     signal = np.array([(t, base(scene, t)[0]) for t in grid], dtype=[("time", float), ("base_displacement", float)])
-    result = simulate_fmu(fmu, start_time=0.0, stop_time=n * h, output_interval=h, input=signal,
-                          start_values={"base_input_mode": MODES[mode], "dt": DT}, output=["corner_1"],
-                          fmi_type="CoSimulation")
-    return np.asarray(result["corner_1"][1:n + 1])
+    result = simulate_fmu(
+        fmu,
+        start_time=0.0,
+        stop_time=n * h,
+        output_interval=h,
+        input=signal,
+        start_values={"base_input_mode": MODES[mode], "dt": DT},
+        output=["corner_1"],
+        fmi_type="CoSimulation",
+    )
+    return np.asarray(result["corner_1"][1 : n + 1])
 
 
 def run_libcosim(fmu, scene, h, stop):
@@ -78,6 +87,7 @@ def run_libcosim(fmu, scene, h, stop):
     from libcosimpy.CosimManipulator import CosimManipulator
     from libcosimpy.CosimObserver import CosimObserver
     from libcosimpy.CosimSlave import CosimLocalSlave
+
     log_output_level(CosimLogLevel.ERROR)
     step_ns = round(h * 1e9)
     n = round(stop / h)
@@ -121,8 +131,11 @@ def measure(fmu, steps, stop, scenes, ways):
                     run = run_fmpy(fmu, scene, h, stop, way.split()[1])
                 before, whole = errors(run, ref, h, scene)
                 rows.append({"scene": scene, "h": h, "way": way, "before": before, "whole": whole})
-                print(f"[{scene}] h = {h:g} {way:16s} before first impact {before:.2e} m, "
-                      f"over {stop:g} s {whole:.2e} m ({time.perf_counter() - t0:.1f} s)", file=sys.stderr)
+                print(
+                    f"[{scene}] h = {h:g} {way:16s} before first impact {before:.2e} m, "
+                    f"over {stop:g} s {whole:.2e} m ({time.perf_counter() - t0:.1f} s)",
+                    file=sys.stderr,
+                )
     return rows
 
 
@@ -141,8 +154,9 @@ def speed(fmu, h=1e-4, stop=0.5, repeats=3):
         for name, (derivatives, mode) in cases.items():
             # No obstacles: every run does the same work per internal step (no contact QPs
             # on trajectories that differ), so the ratios isolate the input handling.
-            with PlateImpactFMU(fmu, dt=DT, base_input_mode=mode, obstacle_lower_enabled=False,
-                                obstacle_upper_enabled=False) as plate:
+            with PlateImpactFMU(
+                fmu, dt=DT, base_input_mode=mode, obstacle_lower_enabled=False, obstacle_upper_enabled=False
+            ) as plate:
                 vr = plate.vars["base_displacement"].valueReference
                 fmu2 = plate.fmu
                 t0 = time.process_time()
@@ -159,9 +173,11 @@ def speed(fmu, h=1e-4, stop=0.5, repeats=3):
 def table(rows, stop):
     lines = []
     for scene in dict.fromkeys(r["scene"] for r in rows):
-        lines += [f"\n### Scene `{scene}` (first impact after {FIRST_IMPACT[scene]:g} s)\n",
-                  "| communication step h | base passed as | max error before first impact | "
-                  f"max error over {stop:g} s |", "|---|---|---|---|"]
+        lines += [
+            f"\n### Scene `{scene}` (first impact after {FIRST_IMPACT[scene]:g} s)\n",
+            f"| communication step h | base passed as | max error before first impact | max error over {stop:g} s |",
+            "|---|---|---|---|",
+        ]
         for r in rows:
             if r["scene"] == scene:
                 lines.append(f"| {r['h']:g} s | {r['way']} | {r['before']:.2e} m | {r['whole']:.2e} m |")
@@ -184,9 +200,11 @@ def main(argv=None):
     if not args.no_speed:
         cost = speed(args.fmu)
         reference = cost["derivatives"]
-        text += ("\n\n### Cost per internal step (paper scene without obstacles, h = 1e-4 s, 0.5 s, process CPU time through "
-                 "fmpy's FMU2Slave, best of 3)\n\n| base passed as | us per internal step | ratio to derivatives |"
-                 "\n|---|---|---|\n")
+        text += (
+            "\n\n### Cost per internal step (paper scene without obstacles, h = 1e-4 s, 0.5 s, process CPU time through "
+            "fmpy's FMU2Slave, best of 3)\n\n| base passed as | us per internal step | ratio to derivatives |"
+            "\n|---|---|---|\n"
+        )
         text += "\n".join(f"| {name} | {1e6 * c:.2f} | {c / reference:.3f} |" for name, c in cost.items())
     print(text)
     if args.markdown:

@@ -25,6 +25,7 @@ Writes the PNGs and two CSVs to --out (default docs/figures):
     python examples/paper_scenes.py            # full run, a few minutes
     python examples/paper_scenes.py --quick --out /tmp/ps   # smoke test, short horizons
 """
+
 from __future__ import annotations
 
 import argparse
@@ -42,25 +43,77 @@ from plateimpact import PlateImpactFMU, sine
 MESHES = {"argyris": (14, 5), "fvs": (20, 7)}
 MESHES_FREE = {"argyris": (16, 5), "fvs": (20, 7)}  # figs 13, 16, 18: "160 Argyris triangles"
 LABEL = {"argyris": "Argyris", "fvs": "FVS"}
-SERIES = ("time", "base", "corner_1", "corner_2", "free_edge_mid", "energy",
-          "energy_dissipated", "energy_input", "contact_vertices")
-RUN_COLUMNS = ("scene", "element", "nx", "ny", "dt", "comm_step", "stop_time", "wall_s",
-               "max_abs_corner", "max_abs_c1_minus_c2", "c1_c2_split_time",
-               "max_abs_c1_minus_mid",
-               "first_contact_time", "contact_episodes", "energy_initial", "energy_final",
-               "energy_dissipated", "energy_input", "ledger_residual",
-               "energy_drift_without_contact", "rms_corner", "first_peak", "last_peak",
-               "peak_count", "peak_rises")
-PAIR_COLUMNS = ("scene", "dt", "first_contact_time", "max_abs_diff_precontact",
-                "horizon_short", "max_abs_diff_short", "max_abs_diff_all",
-                "rms_corner_argyris", "rms_corner_fvs",
-                "energy_dissipated_argyris", "energy_dissipated_fvs",
-                "contact_episodes_argyris", "contact_episodes_fvs",
-                "max_abs_corner_argyris", "max_abs_corner_fvs")
+SERIES = (
+    "time",
+    "base",
+    "corner_1",
+    "corner_2",
+    "free_edge_mid",
+    "energy",
+    "energy_dissipated",
+    "energy_input",
+    "contact_vertices",
+)
+RUN_COLUMNS = (
+    "scene",
+    "element",
+    "nx",
+    "ny",
+    "dt",
+    "comm_step",
+    "stop_time",
+    "wall_s",
+    "max_abs_corner",
+    "max_abs_c1_minus_c2",
+    "c1_c2_split_time",
+    "max_abs_c1_minus_mid",
+    "first_contact_time",
+    "contact_episodes",
+    "energy_initial",
+    "energy_final",
+    "energy_dissipated",
+    "energy_input",
+    "ledger_residual",
+    "energy_drift_without_contact",
+    "rms_corner",
+    "first_peak",
+    "last_peak",
+    "peak_count",
+    "peak_rises",
+)
+PAIR_COLUMNS = (
+    "scene",
+    "dt",
+    "first_contact_time",
+    "max_abs_diff_precontact",
+    "horizon_short",
+    "max_abs_diff_short",
+    "max_abs_diff_all",
+    "rms_corner_argyris",
+    "rms_corner_fvs",
+    "energy_dissipated_argyris",
+    "energy_dissipated_fvs",
+    "contact_episodes_argyris",
+    "contact_episodes_fvs",
+    "max_abs_corner_argyris",
+    "max_abs_corner_fvs",
+)
 
 
-def simulate(fmu, element, dt, stop, comm, amplitude=0.0, frequency=10.0, lower=-0.1,
-             upper=0.1, initial_load=0.0, mesh=(14, 5), unzip_dir=None):
+def simulate(
+    fmu,
+    element,
+    dt,
+    stop,
+    comm,
+    amplitude=0.0,
+    frequency=10.0,
+    lower=-0.1,
+    upper=0.1,
+    initial_load=0.0,
+    mesh=(14, 5),
+    unzip_dir=None,
+):
     """One run; returns (dict of numpy arrays over the communication points, wall seconds)."""
     nx, ny = mesh
     params = dict(element=element, nx=nx, ny=ny, dt=dt, initial_load=initial_load)
@@ -75,8 +128,7 @@ def simulate(fmu, element, dt, stop, comm, amplitude=0.0, frequency=10.0, lower=
     with PlateImpactFMU(fmu, unzip_dir=unzip_dir, **params) as plate:
         for k in range(n + 1):
             if k:
-                plate.step(comm, base=sine(amplitude, frequency, (k - 1) * comm)
-                           if amplitude else None)
+                plate.step(comm, base=sine(amplitude, frequency, (k - 1) * comm) if amplitude else None)
             o = plate.outputs()
             t = k * comm
             rows[k] = (t, sine(amplitude, frequency, t)[0], *(o[s] for s in SERIES[2:]))
@@ -93,6 +145,7 @@ def contact_episodes(r):
 def upward_peaks(t, x, threshold, separation=0.08):
     """Values of the upward peaks of x above threshold, at least `separation` s apart."""
     from scipy.signal import find_peaks
+
     step = t[1] - t[0] if len(t) > 1 else 1.0
     i, _ = find_peaks(x, height=threshold, distance=max(1, int(separation / step)))
     return [float(x[j]) for j in i]
@@ -106,8 +159,14 @@ def metrics(scene, element, dt, comm, stop, r, wall):
     no_work = (np.diff(ed) == 0) & (np.diff(ei) == 0)
     peaks = upward_peaks(r["time"], c1, 0.3 * np.max(np.abs(c1))) if np.any(c1) else []
     return {
-        "scene": scene, "element": element, "nx": r["nx"], "ny": r["ny"], "dt": dt,
-        "comm_step": comm, "stop_time": stop, "wall_s": round(wall, 3),
+        "scene": scene,
+        "element": element,
+        "nx": r["nx"],
+        "ny": r["ny"],
+        "dt": dt,
+        "comm_step": comm,
+        "stop_time": stop,
+        "wall_s": round(wall, 3),
         "max_abs_corner": float(np.max(np.abs(np.r_[c1, c2]))),
         "max_abs_c1_minus_c2": float(np.max(np.abs(c1 - c2))),
         # first time the two corners are 1 mm apart (NaN: never)
@@ -115,11 +174,13 @@ def metrics(scene, element, dt, comm, stop, r, wall):
         "max_abs_c1_minus_mid": float(np.max(np.abs(c1 - mid))),
         "first_contact_time": float(r["time"][np.argmax(contact)]) if contact.any() else math.nan,
         "contact_episodes": contact_episodes(r),
-        "energy_initial": float(e[0]), "energy_final": float(e[-1]),
-        "energy_dissipated": float(ed[-1]), "energy_input": float(ei[-1]),
+        "energy_initial": float(e[0]),
+        "energy_final": float(e[-1]),
+        "energy_dissipated": float(ed[-1]),
+        "energy_input": float(ei[-1]),
         "ledger_residual": float(np.max(np.abs(e - (e[0] + ei - ed)))),
         "energy_drift_without_contact": float(np.max(np.abs(np.diff(e)[no_work]), initial=0.0)),
-        "rms_corner": float(np.sqrt(np.mean(c1 ** 2))),
+        "rms_corner": float(np.sqrt(np.mean(c1**2))),
         "first_peak": peaks[0] if peaks else math.nan,
         "last_peak": peaks[-1] if peaks else math.nan,
         "peak_count": len(peaks),
@@ -135,23 +196,32 @@ def compare(scene, dt, ra, rf, ma, mf):
     first = min(firsts) if firsts else float(t[-1])
     short = float(min(t[-1], first + 0.01))
     d = np.abs(ra["corner_1"] - rf["corner_1"])
-    return {"scene": scene, "dt": dt, "first_contact_time": first,
-            "max_abs_diff_precontact": float(d[t < first - 1e-12].max(initial=0.0)),
-            "horizon_short": short, "max_abs_diff_short": float(d[t <= short + 1e-12].max()),
-            "max_abs_diff_all": float(d.max()),
-            "rms_corner_argyris": ma["rms_corner"], "rms_corner_fvs": mf["rms_corner"],
-            "energy_dissipated_argyris": ma["energy_dissipated"],
-            "energy_dissipated_fvs": mf["energy_dissipated"],
-            "contact_episodes_argyris": ma["contact_episodes"],
-            "contact_episodes_fvs": mf["contact_episodes"],
-            "max_abs_corner_argyris": ma["max_abs_corner"], "max_abs_corner_fvs": mf["max_abs_corner"]}
+    return {
+        "scene": scene,
+        "dt": dt,
+        "first_contact_time": first,
+        "max_abs_diff_precontact": float(d[t < first - 1e-12].max(initial=0.0)),
+        "horizon_short": short,
+        "max_abs_diff_short": float(d[t <= short + 1e-12].max()),
+        "max_abs_diff_all": float(d.max()),
+        "rms_corner_argyris": ma["rms_corner"],
+        "rms_corner_fvs": mf["rms_corner"],
+        "energy_dissipated_argyris": ma["energy_dissipated"],
+        "energy_dissipated_fvs": mf["energy_dissipated"],
+        "contact_episodes_argyris": ma["contact_episodes"],
+        "contact_episodes_fvs": mf["contact_episodes"],
+        "max_abs_corner_argyris": ma["max_abs_corner"],
+        "max_abs_corner_fvs": mf["max_abs_corner"],
+    }
 
 
 # -- plots -------------------------------------------------------------------------------------
 def _plt():
     import matplotlib
+
     matplotlib.use("Agg")
     import matplotlib.pyplot as plt
+
     # thousands of impact wiggles per curve: unsmoothed lines keep the PNGs small (< 150 KB)
     matplotlib.rcParams["lines.antialiased"] = False
     return plt
@@ -162,12 +232,12 @@ def _obstacles(ax, gaps):
         ax.axhline(g, color="k", lw=0.8)
 
 
-def plot_corners_grid(path, runs, rows_keys, title_fn, gaps, suptitle, base=True, mid=False,
-                      window=None):
+def plot_corners_grid(path, runs, rows_keys, title_fn, gaps, suptitle, base=True, mid=False, window=None):
     """Rows: the keys (e.g. Δt); columns: FVS, Argyris; corner_1, corner_2 (and midpoint)."""
     plt = _plt()
-    fig, axes = plt.subplots(len(rows_keys), 2, figsize=(11, 2.6 * len(rows_keys) + 0.6),
-                             sharex=True, sharey=True, squeeze=False)
+    fig, axes = plt.subplots(
+        len(rows_keys), 2, figsize=(11, 2.6 * len(rows_keys) + 0.6), sharex=True, sharey=True, squeeze=False
+    )
     for i, key in enumerate(rows_keys):
         for j, el in enumerate(("fvs", "argyris")):
             ax = axes[i, j]
@@ -179,8 +249,7 @@ def plot_corners_grid(path, runs, rows_keys, title_fn, gaps, suptitle, base=True
             ax.plot(t[k], r["corner_1"][k], color="C0", lw=1.8, label="corner_1 (L, 0)")
             ax.plot(t[k], r["corner_2"][k], color="C3", lw=0.8, ls="--", label="corner_2 (L, W)")
             if mid:
-                ax.plot(t[k], r["free_edge_mid"][k], color="C2", lw=0.8, ls=":",
-                        label="free_edge_mid (L, W/2)")
+                ax.plot(t[k], r["free_edge_mid"][k], color="C2", lw=0.8, ls=":", label="free_edge_mid (L, W/2)")
             _obstacles(ax, gaps)
             ax.set_title(title_fn(key, el, r), fontsize=9)
             if j == 0:
@@ -201,8 +270,7 @@ def plot_frequencies(path, runs, freqs, gap):
     for ax, f in zip(axes.flat, freqs):
         for el, c, ls in (("fvs", "C1", "-"), ("argyris", "C0", "--")):
             r = runs[(f, el)]
-            ax.plot(r["time"], r["corner_1"], color=c, ls=ls, lw=0.7,
-                    label=f"{LABEL[el]} {r['nx']}×{r['ny']} corner_1")
+            ax.plot(r["time"], r["corner_1"], color=c, ls=ls, lw=0.7, label=f"{LABEL[el]} {r['nx']}×{r['ny']} corner_1")
         ax.plot(r["time"], r["base"], color="0.65", lw=0.6, label="base")
         _obstacles(ax, (-gap, gap))
         ax.set_title(f"{f:g} Hz", fontsize=9)
@@ -220,13 +288,14 @@ def plot_convergence(path, forced, free, forced_dts, free_dts):
     """The converging quantity: energy lost in impacts over the whole run, against Δt."""
     plt = _plt()
     fig, axes = plt.subplots(1, 2, figsize=(11, 3.8))
-    for ax, runs, dts, title in ((axes[0], forced, forced_dts, "forced, 10 Hz, ±0.1 m"),
-                                 (axes[1], free, free_dts, "free vibration, 8600 Pa release")):
+    for ax, runs, dts, title in (
+        (axes[0], forced, forced_dts, "forced, 10 Hz, ±0.1 m"),
+        (axes[1], free, free_dts, "free vibration, 8600 Pa release"),
+    ):
         for el, marker, color in (("fvs", "s", "C1"), ("argyris", "o", "C0")):
             r0 = runs[(dts[0], el)]
             y = [runs[(dt, el)]["energy_dissipated"][-1] for dt in dts]
-            ax.semilogx(dts, y, marker=marker, color=color,
-                        label=f"{LABEL[el]} {r0['nx']}×{r0['ny']}")
+            ax.semilogx(dts, y, marker=marker, color=color, label=f"{LABEL[el]} {r0['nx']}×{r0['ny']}")
         T = runs[(dts[0], "fvs")]["time"][-1]
         ax.set_title(f"{title}: energy dissipated over {T:g} s", fontsize=9)
         ax.set_xlabel("Δt [s]")
@@ -251,8 +320,7 @@ def plot_energy(path, runs, dts):
         ax.set_xlabel("time [s]")
         ax.legend(fontsize=8)
     axes[0].set_ylabel("energy [J]")
-    fig.suptitle("Figs 17–18: total energy in free vibration (8600 Pa release, lower obstacle "
-                 "at −0.1 m)", fontsize=10)
+    fig.suptitle("Figs 17–18: total energy in free vibration (8600 Pa release, lower obstacle at −0.1 m)", fontsize=10)
     fig.tight_layout()
     fig.savefig(path, dpi=100)
     plt.close(fig)
@@ -260,8 +328,7 @@ def plot_energy(path, runs, dts):
 
 # -- the experiments ---------------------------------------------------------------------------
 def main(argv=None):
-    ap = argparse.ArgumentParser(description=__doc__,
-                                 formatter_class=argparse.RawDescriptionHelpFormatter)
+    ap = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
     ap.add_argument("--fmu", default="build/PlateImpact.fmu")
     ap.add_argument("--out", default="docs/figures")
     ap.add_argument("--quick", action="store_true", help="short horizons (smoke test)")
@@ -287,8 +354,10 @@ def main(argv=None):
         w = csv.DictWriter(f, fieldnames=PAIR_COLUMNS)
         w.writeheader()
         w.writerows(pairs)
-    print(f"{len(results)} runs in {time.perf_counter() - wall0:.0f} s; wrote PNGs, "
-          f"paper_scenes.csv and paper_scenes_elements.csv to {out}")
+    print(
+        f"{len(results)} runs in {time.perf_counter() - wall0:.0f} s; wrote PNGs, "
+        f"paper_scenes.csv and paper_scenes_elements.csv to {out}"
+    )
 
 
 def _experiments(args, out, q, meshes, meshes_free, unzip_dir, results, pairs):
@@ -297,14 +366,18 @@ def _experiments(args, out, q, meshes, meshes_free, unzip_dir, results, pairs):
     freqs = (10, 15, 20, 25, 30, 35)
 
     def run(scene, key, el, dt, stop, comm, store, free=False, **kw):
-        r, wall = simulate(args.fmu, el, dt, stop, comm, unzip_dir=unzip_dir,
-                           mesh=(meshes_free if free else meshes)[el], **kw)
+        r, wall = simulate(
+            args.fmu, el, dt, stop, comm, unzip_dir=unzip_dir, mesh=(meshes_free if free else meshes)[el], **kw
+        )
         m = metrics(scene, el, dt, comm, stop, r, wall)
         results.append(m)
         store[(key, el)] = r
-        print(f"  {scene:<8} {el:<8} {m['nx']}x{m['ny']} dt={dt:<7g} {stop:g} s in {wall:6.2f} s"
-              f"  max|c1-c2|={m['max_abs_c1_minus_c2']:.2e}  dissipated {m['energy_dissipated']:.4g} J"
-              f"  contacts {m['contact_episodes']}", flush=True)
+        print(
+            f"  {scene:<8} {el:<8} {m['nx']}x{m['ny']} dt={dt:<7g} {stop:g} s in {wall:6.2f} s"
+            f"  max|c1-c2|={m['max_abs_c1_minus_c2']:.2e}  dissipated {m['energy_dissipated']:.4g} J"
+            f"  contacts {m['contact_episodes']}",
+            flush=True,
+        )
         return m
 
     def run_pair(scene, key, dt, stop, comm, store, **kw):
@@ -318,20 +391,32 @@ def _experiments(args, out, q, meshes, meshes_free, unzip_dir, results, pairs):
     for dt in forced_dts:
         run_pair("forced", dt, dt, T_forced, max(dt, 1e-4), forced, amplitude=0.09)
     plot_corners_grid(
-        out / "paper_fig05-07_forced.png", forced, (1e-3, 1e-4, 1e-5),
-        lambda dt, el, r: f"{LABEL[el]} {r['nx']}×{r['ny']}, Δt = {dt:g} s: "
-                          f"max|c1−c2| = {np.max(np.abs(r['corner_1'] - r['corner_2'])):.1e} m",
-        (-0.1, 0.1), "Figs 5–7: base 0.09 sin(2π·10 t), obstacles ±0.1 m, 140 elements each")
+        out / "paper_fig05-07_forced.png",
+        forced,
+        (1e-3, 1e-4, 1e-5),
+        lambda dt, el, r: (
+            f"{LABEL[el]} {r['nx']}×{r['ny']}, Δt = {dt:g} s: "
+            f"max|c1−c2| = {np.max(np.abs(r['corner_1'] - r['corner_2'])):.1e} m"
+        ),
+        (-0.1, 0.1),
+        "Figs 5–7: base 0.09 sin(2π·10 t), obstacles ±0.1 m, 140 elements each",
+    )
 
     print("Fig 8: obstacles ±0.01 m, base amplitude 0.009 m")
     gap = {}
     for dt in (1e-5, 1e-6):
         run_pair("gap", dt, dt, T_gap, 1e-5, gap, amplitude=0.009, lower=-0.01, upper=0.01)
     plot_corners_grid(
-        out / "paper_fig08_gap.png", gap, (1e-6,),
-        lambda dt, el, r: f"{LABEL[el]} {r['nx']}×{r['ny']}, Δt = {dt:g} s: "
-                          f"max|c1−c2| = {np.max(np.abs(r['corner_1'] - r['corner_2'])):.1e} m",
-        (-0.01, 0.01), "Fig 8: base 0.009 sin(2π·10 t), obstacles ±0.01 m, Δt = 1e-6 s")
+        out / "paper_fig08_gap.png",
+        gap,
+        (1e-6,),
+        lambda dt, el, r: (
+            f"{LABEL[el]} {r['nx']}×{r['ny']}, Δt = {dt:g} s: "
+            f"max|c1−c2| = {np.max(np.abs(r['corner_1'] - r['corner_2'])):.1e} m"
+        ),
+        (-0.01, 0.01),
+        "Fig 8: base 0.009 sin(2π·10 t), obstacles ±0.01 m, Δt = 1e-6 s",
+    )
 
     print("Figs 9-11: 10 to 35 Hz, Δt = 1e-3")
     freq = {}
@@ -342,20 +427,43 @@ def _experiments(args, out, q, meshes, meshes_free, unzip_dir, results, pairs):
     print("Figs 12-18: free vibration from the 8600 Pa static shape, lower obstacle only")
     free = {}
     for dt in free_dts:
-        run_pair("free", dt, dt, T_free, max(dt, 1e-4) if dt >= 1e-4 else 5e-5, free,
-                 lower=-0.1, upper=None, initial_load=8600.0, free=True)
+        run_pair(
+            "free",
+            dt,
+            dt,
+            T_free,
+            max(dt, 1e-4) if dt >= 1e-4 else 5e-5,
+            free,
+            lower=-0.1,
+            upper=None,
+            initial_load=8600.0,
+            free=True,
+        )
     plot_corners_grid(
-        out / "paper_fig12-13_free.png", free, (1e-5,),
-        lambda dt, el, r: f"{LABEL[el]} {r['nx']}×{r['ny']}, Δt = {dt:g} s: max|c1−mid| = "
-                          f"{np.max(np.abs(r['corner_1'] - r['free_edge_mid'])):.1e} m",
-        (-0.1,), "Figs 12–13: free vibration, corners and free-edge midpoint", base=False,
-        mid=True)
+        out / "paper_fig12-13_free.png",
+        free,
+        (1e-5,),
+        lambda dt, el, r: (
+            f"{LABEL[el]} {r['nx']}×{r['ny']}, Δt = {dt:g} s: max|c1−mid| = "
+            f"{np.max(np.abs(r['corner_1'] - r['free_edge_mid'])):.1e} m"
+        ),
+        (-0.1,),
+        "Figs 12–13: free vibration, corners and free-edge midpoint",
+        base=False,
+        mid=True,
+    )
     zoom = (0.305, 0.325) if not q else (0.0, T_free)
     plot_corners_grid(
-        out / "paper_fig14-16_free_zoom.png", free, (1e-5, 5e-6),
+        out / "paper_fig14-16_free_zoom.png",
+        free,
+        (1e-5, 5e-6),
         lambda dt, el, r: f"{LABEL[el]} {r['nx']}×{r['ny']}, Δt = {dt:g} s (zoom)",
-        (), f"Figs 14–16: zoom on t ∈ [{zoom[0]:g}, {zoom[1]:g}] s", base=False, mid=True,
-        window=zoom)
+        (),
+        f"Figs 14–16: zoom on t ∈ [{zoom[0]:g}, {zoom[1]:g}] s",
+        base=False,
+        mid=True,
+        window=zoom,
+    )
     plot_energy(out / "paper_fig17-18_energy.png", free, free_dts)
     plot_convergence(out / "paper_dt_convergence.png", forced, free, forced_dts, free_dts)
 

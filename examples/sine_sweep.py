@@ -15,6 +15,7 @@ frequency, base, corners, free-edge midpoint, energies) and <out>/sine_sweep.png
 
     python examples/sine_sweep.py --amplitude 0.01 --f-start 2 --f-end 40 --duration 8 --law log
 """
+
 from __future__ import annotations
 
 import argparse
@@ -23,6 +24,7 @@ import time
 from pathlib import Path
 
 from plateimpact.sweep import CSV_COLUMNS, SineSweep, run_sweep
+
 
 def write_csv(path, rows):
     with Path(path).open("w", newline="") as f:
@@ -33,6 +35,7 @@ def write_csv(path, rows):
 
 def plot(path, rows, sweep, gap):
     import matplotlib
+
     matplotlib.use("Agg")
     import matplotlib.pyplot as plt
     import numpy as np
@@ -43,8 +46,7 @@ def plot(path, rows, sweep, gap):
     f = np.array([r["frequency"] for r in rows])
     c1 = np.array([r["corner_1"] for r in rows])
     c2 = np.array([r["corner_2"] for r in rows])
-    fig, (ax1, ax2, ax3) = plt.subplots(3, 1, figsize=(9, 8), sharex=True,
-                                        gridspec_kw={"height_ratios": [3, 2, 1.2]})
+    fig, (ax1, ax2, ax3) = plt.subplots(3, 1, figsize=(9, 8), sharex=True, gridspec_kw={"height_ratios": [3, 2, 1.2]})
     ax1.plot(t, c1, lw=1.2, label="corner_1 (L, 0)")
     ax1.plot(t, c2, lw=0.6, ls="--", label="corner_2 (L, W)")
     ax1.plot(t, [r["base"] for r in rows], color="k", lw=0.6, label="base z(t)")
@@ -53,8 +55,9 @@ def plot(path, rows, sweep, gap):
             ax1.axhline(g, color="k", lw=0.8)
     ax1.set_ylabel("displacement [m]")
     ax1.legend(loc="upper left", fontsize=8)
-    ax1.set_title(f"{sweep.law} sine sweep {sweep.f0:g} → {sweep.f1:g} Hz in {sweep.T:g} s, "
-                  f"amplitude {sweep.amplitude:g} m")
+    ax1.set_title(
+        f"{sweep.law} sine sweep {sweep.f0:g} → {sweep.f1:g} Hz in {sweep.T:g} s, amplitude {sweep.amplitude:g} m"
+    )
     ax2.plot(t, [r["energy"] for r in rows], lw=0.8, label="energy")
     ax2.plot(t, [r["energy_input"] for r in rows], lw=0.8, label="energy_input")
     ax2.plot(t, [r["energy_dissipated"] for r in rows], lw=0.8, label="energy_dissipated")
@@ -65,9 +68,10 @@ def plot(path, rows, sweep, gap):
     ax3.set_xlabel("time [s]")
     if sweep.law == "log":
         from matplotlib.ticker import NullFormatter, ScalarFormatter
+
         ax3.set_yscale("log")
         lo, hi = sorted((sweep.f0, sweep.f1))
-        nice = [m * 10.0 ** e for e in range(-2, 5) for m in (1, 2, 5) if lo < m * 10.0 ** e < hi]
+        nice = [m * 10.0**e for e in range(-2, 5) for m in (1, 2, 5) if lo < m * 10.0**e < hi]
         ax3.set_yticks([lo] + [x for x in nice if 1.3 * lo < x < hi / 1.3] + [hi])
         ax3.yaxis.set_major_formatter(ScalarFormatter())
         ax3.yaxis.set_minor_formatter(NullFormatter())
@@ -77,8 +81,7 @@ def plot(path, rows, sweep, gap):
 
 
 def main(argv=None):
-    ap = argparse.ArgumentParser(description=__doc__,
-                                 formatter_class=argparse.RawDescriptionHelpFormatter)
+    ap = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
     ap.add_argument("--fmu", default="build/PlateImpact.fmu")
     ap.add_argument("--out", default="out")
     ap.add_argument("--amplitude", type=float, default=0.01, help="base amplitude A, m")
@@ -92,11 +95,9 @@ def main(argv=None):
     ap.add_argument("--element", choices=("argyris", "fvs"), default="argyris")
     ap.add_argument("--nx", type=int, default=14)
     ap.add_argument("--ny", type=int, default=5)
-    ap.add_argument("--gap", type=float, default=0.1,
-                    help="obstacles at ±gap, m; 0 switches both obstacles off")
+    ap.add_argument("--gap", type=float, default=0.1, help="obstacles at ±gap, m; 0 switches both obstacles off")
     ap.add_argument("--no-progress", action="store_true")
-    ap.add_argument("--quick", action="store_true",
-                    help="smoke test: 0.05 s sweep, 6x2 cells, dt 1e-4")
+    ap.add_argument("--quick", action="store_true", help="smoke test: 0.05 s sweep, 6x2 cells, dt 1e-4")
     args = ap.parse_args(argv)
     if args.quick:
         args.duration, args.nx, args.ny, args.dt, args.step = 0.05, 6, 2, 1e-4, 1e-3
@@ -116,6 +117,7 @@ def main(argv=None):
     bar = None
     if not args.no_progress and n * args.step / args.dt >= 1e5:  # long runs only
         from tqdm import tqdm
+
         bar = tqdm(total=n, unit="step", desc="sweep", mininterval=0.5)
     t0 = time.perf_counter()
     try:
@@ -124,10 +126,12 @@ def main(argv=None):
         if bar is not None:
             bar.close()
     wall = time.perf_counter() - t0
-    print(f"sine sweep ({args.law}, {args.f_start:g} → {args.f_end:g} Hz, A = {args.amplitude:g} m): "
-          f"{stop:g} s simulated in {wall:.1f} s wall, max |corner| = "
-          f"{max(max(abs(r['corner_1']), abs(r['corner_2'])) for r in rows):.4f} m, "
-          f"dissipated {rows[-1]['energy_dissipated']:.2f} J")
+    print(
+        f"sine sweep ({args.law}, {args.f_start:g} → {args.f_end:g} Hz, A = {args.amplitude:g} m): "
+        f"{stop:g} s simulated in {wall:.1f} s wall, max |corner| = "
+        f"{max(max(abs(r['corner_1']), abs(r['corner_2'])) for r in rows):.4f} m, "
+        f"dissipated {rows[-1]['energy_dissipated']:.2f} J"
+    )
     write_csv(out / "sine_sweep.csv", rows)
     gaps = (-args.gap, args.gap) if args.gap > 0 else (None,)
     plot(out / "sine_sweep.png", rows, sweep, gaps)

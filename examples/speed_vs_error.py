@@ -15,6 +15,7 @@ sequence shrinking, rule in `converges()`); a quantity that does not is reported
 never used as an error. Writes <out>/performance.md, <out>/figures/speed_vs_error.png,
 <out>/figures/scaling.png and <out>/speed_vs_error.json (all numbers, for checks).
 """
+
 from __future__ import annotations
 
 import argparse
@@ -29,8 +30,20 @@ from pathlib import Path
 import numpy as np
 
 from plateimpact.speed_report import plot_scaling, plot_speed_vs_error, write_report
-from plateimpact.speed_study import (SINE, Bench, Cfg, first_frequency, first_impact, fmu_wall, make_plan,
-                                     python_baseline, study_free, study_long, study_scaling, study_short)
+from plateimpact.speed_study import (
+    SINE,
+    Bench,
+    Cfg,
+    first_frequency,
+    first_impact,
+    fmu_wall,
+    make_plan,
+    python_baseline,
+    study_free,
+    study_long,
+    study_scaling,
+    study_short,
+)
 
 REPO = Path(__file__).resolve().parent.parent
 BUILD = Path(os.environ.get("PLATEIMPACT_BUILD_DIR", REPO / "build"))
@@ -65,10 +78,11 @@ def main(argv=None):
         scaling = study_scaling(bench, plan)
         ms_cfg = plan["modes_setup"]
         ms_run = bench.run(ms_cfg, SINE, 100 * ms_cfg.dt)
-        ms_exact = next((r["auto"] for r in scaling if (r["element"], r["nx"], r["ny"])
-                         == (ms_cfg.element, ms_cfg.nx, ms_cfg.ny)), None)
-        modes_setup = dict(cfg=ms_cfg, run=ms_run,
-                           exact_setup_s=ms_exact["setup_s"] if ms_exact else float("nan"))
+        ms_exact = next(
+            (r["auto"] for r in scaling if (r["element"], r["nx"], r["ny"]) == (ms_cfg.element, ms_cfg.nx, ms_cfg.ny)),
+            None,
+        )
+        modes_setup = dict(cfg=ms_cfg, run=ms_run, exact_setup_s=ms_exact["setup_s"] if ms_exact else float("nan"))
         print("== sine scene, short horizon (trajectory before the first impact, impact time)")
         short = study_short(bench, plan)
         print("== §5.2 free vibration (energy lost by 0.5 s)")
@@ -83,68 +97,101 @@ def main(argv=None):
         if Path(args.fmu).exists():
             tries = []
             for _ in range(plan["default_repeats"]):
-                tries.append(fmu_wall(args.fmu, plan["default_T"], dt=plan["default"].dt,
-                                      nx=plan["default"].nx, ny=plan["default"].ny))
+                tries.append(
+                    fmu_wall(
+                        args.fmu, plan["default_T"], dt=plan["default"].dt, nx=plan["default"].nx, ny=plan["default"].ny
+                    )
+                )
             fmu = min(tries, key=lambda t: t["total_s"])
-            print(f"  FMU: {fmu['total_s']:.2f} s wall for {plan['default_T']} s "
-                  f"(init {fmu['init_s']:.2f} s)")
+            print(f"  FMU: {fmu['total_s']:.2f} s wall for {plan['default_T']} s (init {fmu['init_s']:.2f} s)")
 
         print("== Python/SciPy baseline")
         bl = plan["baseline"]
         exp_dir = Path(tmp) / "baseline_export"
         bench.export(bl["cfg"], exp_dir)
         try:
-            py = min((python_baseline(exp_dir, bl["cfg"].dt, bl["steps"], bl["comm"], bl["split"])
-                      for _ in range(2)), key=lambda r: r["step_s"])
+            py = min(
+                (python_baseline(exp_dir, bl["cfg"].dt, bl["steps"], bl["comm"], bl["split"]) for _ in range(2)),
+                key=lambda r: r["step_s"],
+            )
         except ImportError as e:
             py = dict(error=str(e))
         cpp = {}
-        items = [(replace(bl["cfg"], engine=e), SINE, n * bl["cfg"].dt, bl["comm"])
-                 for e in ("auto", "sparse") for n in (bl["steps"], bl["split"])]
+        items = [
+            (replace(bl["cfg"], engine=e), SINE, n * bl["cfg"].dt, bl["comm"])
+            for e in ("auto", "sparse")
+            for n in (bl["steps"], bl["split"])
+        ]
         timed = bench.run_group(items, rounds=3)
         for k, engine in enumerate(("auto", "sparse")):
             whole, free_part = timed[2 * k], timed[2 * k + 1]
             c = replace(bl["cfg"], engine=engine)
             ser = bench.run(c, SINE, bl["steps"] * c.dt, comm=bl["comm"], series=True)
-            contact_s = max((whole["step_s"] * bl["steps"] - free_part["step_s"] * bl["split"])
-                            / (bl["steps"] - bl["split"]), 0.0)
-            cpp[engine] = dict(run=whole, free_step_s=free_part["step_s"], contact_step_s=contact_s,
-                               series=ser)
+            contact_s = max(
+                (whole["step_s"] * bl["steps"] - free_part["step_s"] * bl["split"]) / (bl["steps"] - bl["split"]), 0.0
+            )
+            cpp[engine] = dict(run=whole, free_step_s=free_part["step_s"], contact_step_s=contact_s, series=ser)
         if "error" not in py:
             ser = cpp["auto"]["series"]["series"]
             t_imp = first_impact(cpp["auto"]["series"])
             agree = {}
             for engine in ("auto", "sparse"):
                 s = cpp[engine]["series"]["series"]
-                diff = np.abs(py["corner_1"] - s["corner_1"][:len(py["corner_1"])])
+                diff = np.abs(py["corner_1"] - s["corner_1"][: len(py["corner_1"])])
                 before = py["time"] < t_imp - 1e-12
-                agree[engine] = dict(before=float(diff[before].max()),
-                                     after=float(diff[~before].max()) if (~before).any() else float("nan"))
+                agree[engine] = dict(
+                    before=float(diff[before].max()),
+                    after=float(diff[~before].max()) if (~before).any() else float("nan"),
+                )
             py["agree"] = agree
             py["t_impact"] = t_imp
             py["ratio"] = {e: py["step_s"] / cpp[e]["run"]["step_s"] for e in cpp}
             py["ratio_free"] = {e: py["free_phase_step_s"] / cpp[e]["free_step_s"] for e in cpp}
-            py["ratio_contact"] = {e: py["contact_phase_step_s"] / cpp[e]["contact_step_s"]
-                                   if cpp[e]["contact_step_s"] > 0 else float("nan") for e in cpp}
-            print(f"  Python {1e6 * py['step_s']:.0f} us/step ({py['qp_steps']} QP steps), "
-                  f"ratio to C++ auto {py['ratio']['auto']:.0f}x, agreement before impact "
-                  f"{agree['auto']['before']:.1e} m, after {agree['auto']['after']:.1e} m")
+            py["ratio_contact"] = {
+                e: py["contact_phase_step_s"] / cpp[e]["contact_step_s"]
+                if cpp[e]["contact_step_s"] > 0
+                else float("nan")
+                for e in cpp
+            }
+            print(
+                f"  Python {1e6 * py['step_s']:.0f} us/step ({py['qp_steps']} QP steps), "
+                f"ratio to C++ auto {py['ratio']['auto']:.0f}x, agreement before impact "
+                f"{agree['auto']['before']:.1e} m, after {agree['auto']['after']:.1e} m"
+            )
     elapsed = time.perf_counter() - started
     load_after = os.getloadavg()
 
-    ctx = dict(plan=plan, freqs=freqs, modes_setup=modes_setup, f_ref_key=f_ref_key, scaling=scaling, short=short,
-               free=free, long=long, dflt=dflt, fmu=fmu, py=py, cpp=cpp, elapsed=elapsed,
-               load=(load_before, load_after), runs=bench.count, args=args)
+    ctx = dict(
+        plan=plan,
+        freqs=freqs,
+        modes_setup=modes_setup,
+        f_ref_key=f_ref_key,
+        scaling=scaling,
+        short=short,
+        free=free,
+        long=long,
+        dflt=dflt,
+        fmu=fmu,
+        py=py,
+        cpp=cpp,
+        elapsed=elapsed,
+        load=(load_before, load_after),
+        runs=bench.count,
+        args=args,
+    )
     plot_speed_vs_error(short, free, out / "figures" / "speed_vs_error.png")
     plot_scaling(scaling, out / "figures" / "scaling.png")
     summary = write_report(ctx, out / "performance.md")
     summary["runs"] = bench.log  # every plate_bench run: wall and CPU step times, floors, engine
     (out / "speed_vs_error.json").write_text(json.dumps(summary, indent=1, default=float))
-    print(f"== wrote {out / 'performance.md'}, {out / 'figures' / 'speed_vs_error.png'}, "
-          f"{out / 'figures' / 'scaling.png'} in {elapsed:.0f} s ({bench.count} plate_bench runs)")
+    print(
+        f"== wrote {out / 'performance.md'}, {out / 'figures' / 'speed_vs_error.png'}, "
+        f"{out / 'figures' / 'scaling.png'} in {elapsed:.0f} s ({bench.count} plate_bench runs)"
+    )
     for line in summary["headline_lines"]:
         print("  " + line)
     return 0
+
 
 if __name__ == "__main__":
     sys.exit(main())

@@ -7,6 +7,7 @@ The cases, the runner and the checks are those of python/plateimpact/stability.p
 table python_tests/test_stability.py runs), so the report and the test cannot drift apart.
 The FMU is build/PlateImpact.fmu, or $PLATEIMPACT_FMU, or --fmu.
 """
+
 from __future__ import annotations
 
 import argparse
@@ -17,9 +18,9 @@ import sys
 import time
 from pathlib import Path
 
-REPO = Path(__file__).resolve().parent.parent
-
 import plateimpact.stability as sc
+
+REPO = Path(__file__).resolve().parent.parent
 
 
 def fmt(x, digits=2):
@@ -46,23 +47,28 @@ def steps_cell(r):
 
 
 def table(results):
-    head = ("| case | what differs from the base case | steps (horizon) | max penetration (m) "
-            "| ledger error | energy lost (J) | QP iterations mean / max | max KKT | contact vertices (max) | checks |\n"
-            "|---|---|---|---|---|---|---|---|---|---|\n")
+    head = (
+        "| case | what differs from the base case | steps (horizon) | max penetration (m) "
+        "| ledger error | energy lost (J) | QP iterations mean / max | max KKT | contact vertices (max) | checks |\n"
+        "|---|---|---|---|---|---|---|---|---|---|\n"
+    )
     rows = []
     for r in results:
         c = r.case
         problems = sc.failures(r)
         verdict = "pass" if not problems else "**FAIL**: " + "; ".join(problems)
         if c.refused:
-            rows.append(f"| `{c.name}` | {c.varied} | refused at initialization: "
-                        f"dt = {r.dt:.4g} s > bound {r.bound:.4g} s | — | — | — | — | — | — | {verdict} |")
+            rows.append(
+                f"| `{c.name}` | {c.varied} | refused at initialization: "
+                f"dt = {r.dt:.4g} s > bound {r.bound:.4g} s | — | — | — | — | — | — | {verdict} |"
+            )
             continue
         rows.append(
             f"| `{c.name}` | {c.varied} | {steps_cell(r)} | {fmt(max(r.penetration, 0.0))} "
             f"| {fmt(r.ledger_error)} | {fmt_e(r.energy_dissipated)} "
             f"| {r.qp_iterations_mean:.3f} / {r.qp_iterations_max} | {fmt(r.kkt_max)} "
-            f"| {r.contact_max} | {verdict} |")
+            f"| {r.contact_max} | {verdict} |"
+        )
     return head + "\n".join(rows) + "\n"
 
 
@@ -73,19 +79,28 @@ def findings(results, full):
     out = []
 
     if failed:
-        out.append(f"- **{len(failed)} of {len(results)} cases fail**: "
-                   + "; ".join(f"`{r.case.name}`: {'; '.join(sc.failures(r))}" for r in failed) + ".")
+        out.append(
+            f"- **{len(failed)} of {len(results)} cases fail**: "
+            + "; ".join(f"`{r.case.name}`: {'; '.join(sc.failures(r))}" for r in failed)
+            + "."
+        )
     else:
-        out.append(f"- All {len(results)} cases pass every check ({len(run)} runs, "
-                   f"{thousands(sum(r.steps for r in run))} time steps in all; "
-                   f"{len(results) - len(run)} refusals).")
+        out.append(
+            f"- All {len(results)} cases pass every check ({len(run)} runs, "
+            f"{thousands(sum(r.steps for r in run))} time steps in all; "
+            f"{len(results) - len(run)} refusals)."
+        )
 
     worst_pen = max(run, key=lambda r: r.penetration)
     out.append(
         f"- **Penetration.** The worst probe vertex is {fmt(max(worst_pen.penetration, 0.0))} m past an "
         f"obstacle (`{worst_pen.case.name}`, t = {worst_pen.penetration_time:.6g} s"
-        + (": the initial static state, computed with the sparse factor of K and changed to modal "
-           "coordinates; its vertex values are not put back on the obstacle" if worst_pen.penetration_time == 0 else "")
+        + (
+            ": the initial static state, computed with the sparse factor of K and changed to modal "
+            "coordinates; its vertex values are not put back on the obstacle"
+            if worst_pen.penetration_time == 0
+            else ""
+        )
         + f"), {sc.PENETRATION_LIMIT / max(worst_pen.penetration, 1e-300):.0f}× below the 1e-12 m limit; "
         f"during the steps it is at most {fmt(max(max(r.penetration, 0.0) for r in run if r.penetration_time > 0))} m, "
         "the roundoff of z + w at a vertex on the obstacle. The probes are the two free corners (and "
@@ -93,7 +108,8 @@ def findings(results, full):
         f"QP's KKT residual stands in: at most {fmt(max(r.kkt_max for r in run))} over all cases, and it "
         "includes the primal infeasibility of every vertex relative to the largest bound or free value "
         "of the step (solver/BoxQP.cpp). The static QP of the initial state is held to the same 1e-10 "
-        "at initialization but is not part of `qp_kkt_residual_max`.")
+        "at initialization but is not part of `qp_kkt_residual_max`."
+    )
 
     mid = [r for r in run if r.midedge_overshoot > -math.inf]
     if mid:
@@ -103,7 +119,8 @@ def findings(results, full):
             f"vertices only (docs/theory.md). With ny odd the middle of the free edge is not a vertex, and it goes "
             f"up to {worst_mid.midedge_overshoot * 1e3:.3g} mm past the obstacle (`{worst_mid.case.name}`; "
             f"{by['base'].midedge_overshoot * 1e3:.3g} mm in the base case). This is the discretization of "
-            "the constraint, not a solver error; it is not counted as penetration.")
+            "the constraint, not a solver error; it is not counted as penetration."
+        )
 
     worst_led = max(run, key=lambda r: r.ledger_error)
     typical = sorted(r.ledger_error for r in run)[len(run) // 2]
@@ -112,10 +129,12 @@ def findings(results, full):
         f"communication point to at worst {fmt(worst_led.ledger_error)} of the largest energy seen "
         f"(`{worst_led.case.name}`, {fmt(worst_led.ledger_error_abs)} J), median {fmt(typical)} — "
         f"{sc.LEDGER_LIMIT / worst_led.ledger_error:.0f}× inside the 1e-9 limit. The two largest are "
-        + " and ".join(f"`{r.case.name}` ({fmt(r.ledger_error)})"
-                       for r in sorted(run, key=lambda r: -r.ledger_error)[:2])
+        + " and ".join(
+            f"`{r.case.name}` ({fmt(r.ledger_error)})" for r in sorted(run, key=lambda r: -r.ledger_error)[:2]
+        )
         + "; the error is roundoff that fluctuates rather than accumulates: at the end of the runs it "
-        f"is at most {fmt(max(r.ledger_error_final for r in run))}.")
+        f"is at most {fmt(max(r.ledger_error_final for r in run))}."
+    )
 
     out.append(
         "- **energy_dissipated never decreases** (its smallest change between communication points is "
@@ -125,7 +144,8 @@ def findings(results, full):
         "of w + Σ μ A⁻¹Cᵀe), so its term of the loss ½ λᵀ(u⁻ − u⁺) came out slightly negative (down to "
         "−2.3e-12 J). Such terms are no physical work and are now dropped (each vertex's term is "
         "clipped at 0); what is dropped is roundoff-sized — 848 terms, 2.3e-10 J in all, over the "
-        "first 0.1 s of the base case, against 1467 J of energy — so the ledger still closes.")
+        "first 0.1 s of the base case, against 1467 J of energy — so the ledger still closes."
+    )
 
     it_mean = max(run, key=lambda r: r.qp_iterations_mean)
     it_max = max(run, key=lambda r: r.qp_iterations_max)
@@ -133,16 +153,19 @@ def findings(results, full):
         f"- **QP.** Every QP converged (KKT ≤ {fmt(max(r.kkt_max for r in run))}). The warm-started active set "
         f"needs few iterations: at most {it_max.qp_iterations_max} in one step (`{it_max.case.name}`), "
         f"and {it_mean.qp_iterations_mean:.2f} per step on average in the busiest case "
-        f"(`{it_mean.case.name}`). Most steps need no QP at all (no vertex past an obstacle).")
+        f"(`{it_mean.case.name}`). Most steps need no QP at all (no vertex past an obstacle)."
+    )
 
     gaps = [by[n] for n in ("base", "gap_0.01", "gap_0.001", "gap_1e-4") if n in by]
     if len(gaps) == 4:
         scaled = [r.energy_dissipated / (-r.case.obstacles[0]) ** 2 for r in gaps]
         spread = (max(scaled) - min(scaled)) / max(scaled)
         same = len({(r.contact_max, r.comm_with_contact, r.qp_iterations_total) for r in gaps}) == 1
-        counts = ("the same contact counts and QP iterations" if same else
-                  "contact counts / QP iterations " + ", ".join(
-                      f"{r.contact_max}/{r.qp_iterations_total}" for r in gaps))
+        counts = (
+            "the same contact counts and QP iterations"
+            if same
+            else "contact counts / QP iterations " + ", ".join(f"{r.contact_max}/{r.qp_iterations_total}" for r in gaps)
+        )
         out.append(
             "- **Small gaps are scale copies.** The plate is linear between the obstacles and the base "
             "amplitude is 0.9 of the gap, so in exact arithmetic gaps 0.1 / 0.01 / 0.001 / 1e-4 m give "
@@ -151,7 +174,8 @@ def findings(results, full):
             f"{', '.join(f'{x:.6g}' for x in scaled)} J/m² (relative spread {fmt(spread)}), {counts}, "
             "and penetration / gap stays at roundoff "
             f"({', '.join(fmt(max(r.penetration, 0.0) / -r.case.obstacles[0]) for r in gaps)}): the "
-            "tolerances of the QP are relative, nothing in it assumes a gap of order 0.1 m.")
+            "tolerances of the QP are relative, nothing in it assumes a gap of order 0.1 m."
+        )
 
     b0 = by.get("beta_0_0.9x_bound")
     b1 = by.get("beta_0_1.1x_bound")
@@ -164,7 +188,8 @@ def findings(results, full):
             f"stay stable: no NaN, the discrete energy (a norm of the state below the bound) never "
             f"negative and at most {fmt_e(b0.energy_max)} J, the ledger closed to {fmt(b0.ledger_error)}, "
             f"{fmt_e(b0.energy_dissipated)} J lost in impacts. At 1.1× initialization fails with "
-            f"fmi2Error: “{msg}”.")
+            f"fmi2Error: “{msg}”."
+        )
     if b2:
         out.append(f"  On the default 14 × 5 mesh the bound is {b2.bound:.6g} s; 1.1× of it is refused too.")
 
@@ -176,22 +201,25 @@ def findings(results, full):
             f"Held under that load with the base shaking it loses {fmt_e(ph.energy_dissipated)} J "
             f"in {thousands(ph.steps)} steps, released {fmt_e(pr.energy_dissipated)} J (base case "
             f"{fmt_e(by['base'].energy_dissipated)} J); the ledger closes to {fmt(ph.ledger_error)} "
-            f"and {fmt(pr.ledger_error)} from a start with E0 ≠ 0 and sustained contact.")
+            f"and {fmt(pr.ledger_error)} from a start with E0 ≠ 0 and sustained contact."
+        )
     ls = by.get("load_steps_1e5")
     if ls:
         out.append(
             f"- **Load steps of 1e5 Pa** (12× the 8600 Pa of the paper's free-vibration scene) with "
             f"the base moving: {fmt_e(ls.energy_input)} J of input work, "
             f"{fmt_e(ls.energy_dissipated)} J lost, up to {ls.contact_max} vertices in contact, "
-            f"ledger {fmt(ls.ledger_error)}.")
+            f"ledger {fmt(ls.ledger_error)}."
+        )
 
     out.append(
         f"- Wall time: {sum(r.wall for r in results):.0f} s for the whole matrix "
         f"({'--full' if full else 'short'} horizons) on {platform.machine()} "
         f"({os.cpu_count()} cores shared); `grid_56x20` alone {by['grid_56x20'].wall:.0f} s "
         f"({by['grid_56x20'].wall / max(by['grid_56x20'].steps, 1) * 1e3:.1f} ms per step)."
-        if "grid_56x20" in by else
-        f"- Wall time: {sum(r.wall for r in results):.0f} s.")
+        if "grid_56x20" in by
+        else f"- Wall time: {sum(r.wall for r in results):.0f} s."
+    )
     return "\n".join(out) + "\n"
 
 
@@ -201,13 +229,14 @@ def document(results, full, fmu):
     mode = "the long horizons" if full else "the short horizons of the test"
     by = {r.case.name: r for r in results}
     try:
-        bounds = (f"{by['beta_0_0.9x_bound'].bound * 1e6:.2f} µs instead of "
-                  f"{by['beta_0_1.1x_bound_14x5'].bound * 1e6:.2f} µs")
+        bounds = (
+            f"{by['beta_0_0.9x_bound'].bound * 1e6:.2f} µs instead of {by['beta_0_1.1x_bound_14x5'].bound * 1e6:.2f} µs"
+        )
     except KeyError:
         bounds = "larger"
     return f"""# Stability stress matrix
 
-Written by `python examples/stability_report.py{' --full' if full else ''}` with {mode}; do not
+Written by `python examples/stability_report.py{" --full" if full else ""}` with {mode}; do not
 edit by hand. The cases, the runner and the checks live in `python/plateimpact/stability.py`;
 `python_tests/test_stability.py` runs the same table with the short horizons on every test run.
 
@@ -256,10 +285,13 @@ def main(argv=None):
         r = sc.run_case(c, args.fmu, full=args.full)
         results.append(r)
         problems = sc.failures(r)
-        print(f"{c.name:24s} {r.steps:>9d} steps {r.wall:7.1f} s  "
-              f"pen {fmt(max(r.penetration, 0.0))}  ledger {fmt(r.ledger_error)}  "
-              f"lost {r.energy_dissipated:.4g} J  QP {r.qp_iterations_mean:.3f}/{r.qp_iterations_max}  "
-              + ("pass" if not problems else "FAIL: " + "; ".join(problems)), flush=True)
+        print(
+            f"{c.name:24s} {r.steps:>9d} steps {r.wall:7.1f} s  "
+            f"pen {fmt(max(r.penetration, 0.0))}  ledger {fmt(r.ledger_error)}  "
+            f"lost {r.energy_dissipated:.4g} J  QP {r.qp_iterations_mean:.3f}/{r.qp_iterations_max}  "
+            + ("pass" if not problems else "FAIL: " + "; ".join(problems)),
+            flush=True,
+        )
     print(f"total {time.perf_counter() - t0:.0f} s")
     out = Path(args.out)
     out.parent.mkdir(parents=True, exist_ok=True)

@@ -120,8 +120,7 @@ fmi2Status Instance::fail(const char* format, ...) {
     std::string message;
     try {
         message = std::string(function_) + ": " + formatMessage(format, args);
-    } catch (...) {
-    }
+    } catch (...) {}
     va_end(args);
     log(fmi2Error, LogStatusError, "%s", message.c_str());
     return fmi2Error;
@@ -145,9 +144,7 @@ Instance::Instance(std::string instanceName, const fmi2CallbackFunctions& callba
 Instance::~Instance() = default;
 
 void Instance::attachTrace() {
-    model_->trace = [this](const std::string& message) {
-        log(fmi2OK, LogAll, "%s: %s", function_, message.c_str());
-    };
+    model_->trace = [this](const std::string& message) { log(fmi2OK, LogAll, "%s: %s", function_, message.c_str()); };
 }
 
 void Instance::logFreeInstance() { log(fmi2OK, LogAll, "fmi2FreeInstance"); }
@@ -170,8 +167,10 @@ fmi2Status Instance::setDebugLogging(fmi2Boolean loggingOn, size_t nCategories, 
             } else if (std::strcmp(name, "logAll") == 0) {
                 std::fill(next, next + LogCategoryCount, on);  // "all" switches every category
             } else {
-                return fail("unknown log category \"%s\"; the categories of this FMU are logStatusError, "
-                            "logStatusWarning and logAll", name);
+                return fail(
+                    "unknown log category \"%s\"; the categories of this FMU are logStatusError, "
+                    "logStatusWarning and logAll",
+                    name);
             }
         }
     }
@@ -241,7 +240,8 @@ bool Instance::settable(const Variable& variable) {
     if (variable.causality == Causality::Parameter && !(state_ & (Instantiated | InitializationMode))) {
         log(fmi2Error, LogStatusError,
             "illegal call sequence: %s of fixed parameter %s (vr %u) in state %s; fixed parameters can only be set "
-            "before fmi2ExitInitializationMode", function_, variable.name, variable.vr, stateName(state_));
+            "before fmi2ExitInitializationMode",
+            function_, variable.name, variable.vr, stateName(state_));
         return false;
     }
     return true;
@@ -419,8 +419,10 @@ fmi2Status Instance::getRealOutputDerivatives(const fmi2ValueReference vr[], siz
 fmi2Status Instance::doStep(fmi2Real t, fmi2Real h) {
     const double now = currentTime();
     if (!std::isfinite(t) || std::fabs(t - now) > kTimeTolerance * std::max(1.0, std::fabs(t)))
-        return fail("currentCommunicationPoint = %.17g differs from the FMU's time %.17g; each step must start where "
-                    "the previous one ended (relative tolerance %g)", t, now, kTimeTolerance);
+        return fail(
+            "currentCommunicationPoint = %.17g differs from the FMU's time %.17g; each step must start where "
+            "the previous one ended (relative tolerance %g)",
+            t, now, kTimeTolerance);
     if (!std::isfinite(h) || !(h > 0)) return fail("communicationStepSize h = %.17g rejected: it must be > 0", h);
     model_->doStep(t, h);
     return fmi2OK;
@@ -430,8 +432,10 @@ fmi2Status Instance::statusNotAvailable(fmi2StatusKind kind) {
     static constexpr const char* kKinds[] = {"fmi2DoStepStatus", "fmi2PendingStatus", "fmi2LastSuccessfulTime",
                                              "fmi2Terminated"};
     const char* name = (kind >= 0 && kind <= 3) ? kKinds[kind] : "an unknown status kind";
-    log(fmi2Discard, LogStatusError, "%s: %s is not available from this function (fmi2DoStep never returns "
-        "fmi2Pending or fmi2Discard); returning fmi2Discard", function_, name);
+    log(fmi2Discard, LogStatusError,
+        "%s: %s is not available from this function (fmi2DoStep never returns "
+        "fmi2Pending or fmi2Discard); returning fmi2Discard",
+        function_, name);
     return fmi2Discard;
 }
 

@@ -41,8 +41,8 @@ struct Variable {
     VariableType type;
     Causality causality;
     const char* description;
-    const char* unit = nullptr;                      // Real only; nullptr: none
-    const EnumerationType* enumeration = nullptr;    // Enumeration only
+    const char* unit = nullptr;  // Real only; nullptr: none
+    const EnumerationType* enumeration = nullptr;  // Enumeration only
     // A new value before initialization ends invalidates what was built from the old one
     // (parameters; an input that places the initial state).
     bool shapesInitialState = false;

@@ -51,7 +51,8 @@ public:
 
     void build() override {
         // A plate::ParameterError names the parameter, its value and the allowed range.
-        simulation_ = std::make_unique<plate::PlateSimulation>(values_.parameters, values_.baseDisplacement.signal.value);
+        simulation_ =
+            std::make_unique<plate::PlateSimulation>(values_.parameters, values_.baseDisplacement.signal.value);
         builtWith_ = configuration();
         simulationBase0_ = values_.baseDisplacement.signal.value;
         refreshOutputs();
@@ -90,8 +91,8 @@ public:
             simulation_->advance(steps, values_.baseDisplacement.stepSignal(span), values_.load.stepSignal(span));
         } catch (const plate::StepError& e) {
             refreshOutputs();  // the simulation stays at its last good step (for debugging)
-            throw fmu::ModelError(format("step from t = %.17g failed at t = %.17g: ", t, t + simulation_->time() - now) +
-                                  e.what());
+            throw fmu::ModelError(
+                format("step from t = %.17g failed at t = %.17g: ", t, t + simulation_->time() - now) + e.what());
         }
         refreshOutputs();
         trace(format("t = %.17g, h = %.17g, %g steps", t, h, double(steps)));
@@ -114,7 +115,8 @@ public:
 
     void restoreState(const double*& in, const double* end) override {
         const auto take = [&](std::size_t n, const char* what) {
-            if (end - in < static_cast<std::ptrdiff_t>(n)) throw fmu::ModelError(std::string("data end before ") + what);
+            if (end - in < static_cast<std::ptrdiff_t>(n))
+                throw fmu::ModelError(std::string("data end before ") + what);
             const double* at = in;
             in += n;
             return at;
@@ -165,14 +167,12 @@ private:
             if (v.causality == fmu::Causality::Parameter) out.push_back(getValue(values_, v));
         return out;
     }
-    void refreshOutputs() {
-        values_.outputs = simulation_ ? simulation_->outputs() : plate::PlateOutputs{};
-    }
+    void refreshOutputs() { values_.outputs = simulation_ ? simulation_->outputs() : plate::PlateOutputs{}; }
 
     PlateValues values_;
     std::unique_ptr<plate::PlateSimulation> simulation_;
-    std::vector<double> builtWith_;   // configuration() when simulation_ was built
-    double simulationBase0_ = 0.0;    // base displacement the simulation was built with
+    std::vector<double> builtWith_;  // configuration() when simulation_ was built
+    double simulationBase0_ = 0.0;  // base displacement the simulation was built with
 };
 
 }  // namespace

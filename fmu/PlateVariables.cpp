@@ -13,7 +13,8 @@ using plate::ElementType;
 using plate::InputMode;
 
 const fmu::EnumerationType kElementType{
-    "ElementType", "C1 plate element",
+    "ElementType",
+    "C1 plate element",
     {{"argyris", 1, "Argyris triangle (P5, 21 dofs); each cell split into two triangles"},
      {"fvs", 2, "Reduced Fraeijs de Veubeke-Sander quadrilateral (12 dofs); one per cell"}}};
 
@@ -47,8 +48,9 @@ fmu::Variable output(fmi2ValueReference vr, const char* name, VariableType type,
 
 double saturate(long long n) { return double(n > INT_MAX ? INT_MAX : n < INT_MIN ? INT_MIN : n); }
 
-#define PARAMETER_FIELD(field) \
-    [](const PlateValues& v) { return double(v.parameters.field); }, [](PlateValues& v, double x) { v.parameters.field = decltype(v.parameters.field)(x); }
+#define PARAMETER_FIELD(field)                                       \
+    [](const PlateValues& v) { return double(v.parameters.field); }, \
+        [](PlateValues& v, double x) { v.parameters.field = decltype(v.parameters.field)(x); }
 #define OUTPUT_FIELD(field) [](const PlateValues& v) { return double(v.outputs.field); }, nullptr
 
 const std::vector<Row>& rows() {
@@ -76,9 +78,11 @@ const std::vector<Row>& rows() {
         {parameter(10, "obstacle_upper", VariableType::Real, "m",
                    "Height of the upper obstacle (positive; used when obstacle_upper_enabled)"),
          PARAMETER_FIELD(obstacleUpper)},
-        {parameter(11, "obstacle_lower_enabled", VariableType::Boolean, nullptr, "Whether the lower obstacle is present"),
+        {parameter(11, "obstacle_lower_enabled", VariableType::Boolean, nullptr,
+                   "Whether the lower obstacle is present"),
          PARAMETER_FIELD(obstacleLowerEnabled)},
-        {parameter(12, "obstacle_upper_enabled", VariableType::Boolean, nullptr, "Whether the upper obstacle is present"),
+        {parameter(12, "obstacle_upper_enabled", VariableType::Boolean, nullptr,
+                   "Whether the upper obstacle is present"),
          PARAMETER_FIELD(obstacleUpperEnabled)},
         {parameter(13, "dt", VariableType::Real, "s",
                    "Internal time step; every communication step must be a whole multiple of dt"),
@@ -112,7 +116,8 @@ const std::vector<Row>& rows() {
          [](const PlateValues& v) { return v.baseDisplacement.signal.value; },
          [](PlateValues& v, double x) { v.baseDisplacement.setValue(x); }},
         {input(kVrLoad, "load", "Pa", false, "Uniform pressure on the plate, positive upward, acting from t = 0 on"),
-         [](const PlateValues& v) { return v.load.signal.value; }, [](PlateValues& v, double x) { v.load.setValue(x); }},
+         [](const PlateValues& v) { return v.load.signal.value; },
+         [](PlateValues& v, double x) { v.load.setValue(x); }},
         {output(30, "corner_1", VariableType::Real, "m", "Absolute displacement w at the free corner (length, 0)"),
          OUTPUT_FIELD(corner1)},
         {output(31, "corner_2", VariableType::Real, "m", "Absolute displacement w at the free corner (length, width)"),
@@ -125,7 +130,8 @@ const std::vector<Row>& rows() {
         {output(34, "energy_dissipated", VariableType::Real, "J",
                 "Energy lost in impacts since t = 0 (cumulative, non-negative)"),
          OUTPUT_FIELD(energyDissipated)},
-        {output(35, "energy_input", VariableType::Real, "J", "Work done by base motion and load since t = 0 (cumulative)"),
+        {output(35, "energy_input", VariableType::Real, "J",
+                "Work done by base motion and load since t = 0 (cumulative)"),
          OUTPUT_FIELD(energyInput)},
         {output(36, "contact_vertices", VariableType::Integer, nullptr,
                 "Number of mesh vertices on an obstacle after the last step"),

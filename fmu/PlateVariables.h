@@ -13,9 +13,9 @@ namespace plateimpact {
 // the master set them since the value, and the values at the last communication points for
 // masters that give none.
 struct InputPort {
-    plate::InputSignal signal;      // value (fmi2SetReal) + derivatives (fmi2SetRealInputDerivatives)
+    plate::InputSignal signal;  // value (fmi2SetReal) + derivatives (fmi2SetRealInputDerivatives)
     bool derivativesGiven = false;  // the master set derivatives since the value: they win
-    plate::InputMode mode;          // otherwise the step follows history.continueStep(mode, h)
+    plate::InputMode mode;  // otherwise the step follows history.continueStep(mode, h)
     plate::InputHistory history;
 
     explicit InputPort(plate::InputMode defaultMode) : mode(defaultMode) {}

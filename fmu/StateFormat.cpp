@@ -95,7 +95,8 @@ Snapshot deserialize(const fmi2Byte* bytes, std::size_t size, const char* guid, 
                            std::to_string(kFormatVersion) + " (states saved by an older PlateImpact cannot be read)");
     if (guidLength != std::strlen(guid) || std::memcmp(bytes + 16, guid, guidLength) != 0)
         throw CorruptState(std::string("the serialized state was written by a different build (GUID mismatch; "
-                                       "this FMU has GUID ") + guid + ")");
+                                       "this FMU has GUID ") +
+                           guid + ")");
     const std::size_t payloadBytes = size - kHeaderBytes;
     if (payloadBytes % sizeof(double) != 0 || count != payloadBytes / sizeof(double))
         throw CorruptState("wrong size, " + std::to_string(size) + " bytes for the " + std::to_string(count) +

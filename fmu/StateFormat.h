@@ -16,7 +16,7 @@ struct Snapshot {
     std::uint64_t tag = kTag;
     State state = Instantiated;
     double startTime = 0.0;
-    std::vector<double> values;      // parameters and inputs, in table order
+    std::vector<double> values;  // parameters and inputs, in table order
     std::vector<double> modelState;  // Model::saveState
 };
 

@@ -103,8 +103,8 @@ void fmi2FreeInstance(fmi2Component c) {
 // ---------------------------------------------------------------------------------------------
 // Initialization, termination, reset
 
-fmi2Status fmi2SetupExperiment(fmi2Component c, fmi2Boolean toleranceDefined, fmi2Real tolerance,
-                               fmi2Real startTime, fmi2Boolean stopTimeDefined, fmi2Real stopTime) {
+fmi2Status fmi2SetupExperiment(fmi2Component c, fmi2Boolean toleranceDefined, fmi2Real tolerance, fmi2Real startTime,
+                               fmi2Boolean stopTimeDefined, fmi2Real stopTime) {
     return run(c, "fmi2SetupExperiment", fmu::Instantiated, [&](Instance& i) {
         return i.setupExperiment(startTime, toleranceDefined, tolerance, stopTimeDefined, stopTime);
     });
@@ -204,11 +204,10 @@ fmi2Status fmi2DeSerializeFMUstate(fmi2Component c, const fmi2Byte serializedSta
                [&](Instance& i) { return i.deSerializeFMUstate(serializedState, size, FMUstate); });
 }
 
-fmi2Status fmi2GetDirectionalDerivative(fmi2Component c, const fmi2ValueReference[], size_t,
-                                        const fmi2ValueReference[], size_t, const fmi2Real[], fmi2Real[]) {
-    return run(c, "fmi2GetDirectionalDerivative", fmu::kGetStates, [](Instance& i) {
-        return i.fail("not supported (providesDirectionalDerivative=\"false\")");
-    });
+fmi2Status fmi2GetDirectionalDerivative(fmi2Component c, const fmi2ValueReference[], size_t, const fmi2ValueReference[],
+                                        size_t, const fmi2Real[], fmi2Real[]) {
+    return run(c, "fmi2GetDirectionalDerivative", fmu::kGetStates,
+               [](Instance& i) { return i.fail("not supported (providesDirectionalDerivative=\"false\")"); });
 }
 
 // ---------------------------------------------------------------------------------------------

@@ -1,4 +1,5 @@
 """Shared pytest fixtures of the PlateImpact Python tests."""
+
 import os
 import zipfile
 from pathlib import Path

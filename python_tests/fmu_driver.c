@@ -26,25 +26,38 @@
 
 #include "fmi2Functions.h"
 
-#define LOAD(name)                                                                \
-    name##TYPE* name = (name##TYPE*)dlsym(lib, #name);                            \
-    if (!name) {                                                                  \
-        fprintf(stderr, "fmu_driver: %s not exported: %s\n", #name, dlerror()); \
-        return 1;                                                                 \
-    }
+// Declares `name` as the FMU's function of that name (used as a statement: LOAD(x);).
+#define LOAD(name)                                     \
+    name##TYPE* name = (name##TYPE*)dlsym(lib, #name); \
+    if (!name) return missing(#name)
 
-#define CHECK(cond)                                                                          \
-    do {                                                                                     \
-        if (!(cond)) {                                                                       \
+static int missing(const char* name) {
+    fprintf(stderr, "fmu_driver: %s not exported: %s\n", name, dlerror());
+    return 1;
+}
+
+#define CHECK(cond)                                                                              \
+    do {                                                                                         \
+        if (!(cond)) {                                                                           \
             fprintf(stderr, "fmu_driver: %s:%d: check failed: %s\n", __FILE__, __LINE__, #cond); \
-            exit(1);                                                                         \
-        }                                                                                    \
+            exit(1);                                                                             \
+        }                                                                                        \
     } while (0)
 
 #define OK(call) CHECK((call) == fmi2OK)
 
-enum { VR_NX = 6, VR_NY = 7, VR_ELEMENT = 8, VR_DT = 13, VR_INITIAL_LOAD = 15, VR_MODES = 16,
-       VR_OBSTACLE_LOWER = 9, VR_OBSTACLE_UPPER = 10, VR_BASE = 20, VR_LOAD = 21 };
+enum {
+    VR_NX = 6,
+    VR_NY = 7,
+    VR_ELEMENT = 8,
+    VR_DT = 13,
+    VR_INITIAL_LOAD = 15,
+    VR_MODES = 16,
+    VR_OBSTACLE_LOWER = 9,
+    VR_OBSTACLE_UPPER = 10,
+    VR_BASE = 20,
+    VR_LOAD = 21
+};
 static const fmi2ValueReference REAL_OUT[] = {30, 31, 32, 33, 34, 35, 37};
 static const fmi2ValueReference INT_OUT[] = {36, 38, 39};
 #define N_REAL (sizeof REAL_OUT / sizeof REAL_OUT[0])
@@ -58,8 +71,8 @@ typedef struct {
 
 static unsigned long log_messages = 0;
 
-static void logger(fmi2ComponentEnvironment env, fmi2String instance, fmi2Status status,
-                   fmi2String category, fmi2String message, ...) {
+static void logger(fmi2ComponentEnvironment env, fmi2String instance, fmi2Status status, fmi2String category,
+                   fmi2String message, ...) {
     (void)env;
     char text[2048];
     va_list args;
@@ -138,8 +151,8 @@ static void drive(fmi2Component c, int k0, int k1, Outputs* trace) {
         const fmi2Real value[] = {0.005 * sin(w * t), 200.0 * cos(f * t)};
         const fmi2ValueReference dvr[] = {VR_BASE, VR_BASE, VR_LOAD, VR_LOAD};
         const fmi2Integer order[] = {1, 2, 1, 2};
-        const fmi2Real deriv[] = {0.005 * w * cos(w * t), -0.005 * w * w * sin(w * t),
-                                  -200.0 * f * sin(f * t), -200.0 * f * f * cos(f * t)};
+        const fmi2Real deriv[] = {0.005 * w * cos(w * t), -0.005 * w * w * sin(w * t), -200.0 * f * sin(f * t),
+                                  -200.0 * f * f * cos(f * t)};
         OK(F.setReal(c, vr, 2, value));
         OK(F.setRealInputDerivatives(c, dvr, 4, order, deriv));
         OK(F.doStep(c, t, H, fmi2True));
@@ -217,9 +230,8 @@ static void run_config(const Config* cfg, const char* guid, const char* resource
     OK(F.reset(c)); /* a reset after terminate, then free from state instantiated */
     F.freeInstance(c);
 
-    printf("%s: %d steps, energy %.12g J, dissipated %.6g J, contact vertices %d, QP iterations %d\n",
-           cfg->name, steps, first[steps - 1].r[3], first[steps - 1].r[4], first[steps - 1].i[0],
-           first[steps - 1].i[1]);
+    printf("%s: %d steps, energy %.12g J, dissipated %.6g J, contact vertices %d, QP iterations %d\n", cfg->name, steps,
+           first[steps - 1].r[3], first[steps - 1].r[4], first[steps - 1].i[0], first[steps - 1].i[1]);
     free(first);
     free(again);
 }
@@ -276,12 +288,27 @@ int main(int argc, char** argv) {
         return 1;
     }
     {
-        LOAD(fmi2Instantiate) LOAD(fmi2FreeInstance) LOAD(fmi2SetDebugLogging) LOAD(fmi2SetupExperiment)
-        LOAD(fmi2EnterInitializationMode) LOAD(fmi2ExitInitializationMode) LOAD(fmi2Terminate)
-        LOAD(fmi2Reset) LOAD(fmi2GetReal) LOAD(fmi2GetInteger) LOAD(fmi2SetReal) LOAD(fmi2SetInteger)
-        LOAD(fmi2SetRealInputDerivatives) LOAD(fmi2DoStep) LOAD(fmi2GetFMUstate) LOAD(fmi2SetFMUstate)
-        LOAD(fmi2FreeFMUstate) LOAD(fmi2SerializedFMUstateSize) LOAD(fmi2SerializeFMUstate)
-        LOAD(fmi2DeSerializeFMUstate) LOAD(fmi2GetRealStatus)
+        LOAD(fmi2Instantiate);
+        LOAD(fmi2FreeInstance);
+        LOAD(fmi2SetDebugLogging);
+        LOAD(fmi2SetupExperiment);
+        LOAD(fmi2EnterInitializationMode);
+        LOAD(fmi2ExitInitializationMode);
+        LOAD(fmi2Terminate);
+        LOAD(fmi2Reset);
+        LOAD(fmi2GetReal);
+        LOAD(fmi2GetInteger);
+        LOAD(fmi2SetReal);
+        LOAD(fmi2SetInteger);
+        LOAD(fmi2SetRealInputDerivatives);
+        LOAD(fmi2DoStep);
+        LOAD(fmi2GetFMUstate);
+        LOAD(fmi2SetFMUstate);
+        LOAD(fmi2FreeFMUstate);
+        LOAD(fmi2SerializedFMUstateSize);
+        LOAD(fmi2SerializeFMUstate);
+        LOAD(fmi2DeSerializeFMUstate);
+        LOAD(fmi2GetRealStatus);
         F.instantiate = fmi2Instantiate;
         F.freeInstance = fmi2FreeInstance;
         F.setDebugLogging = fmi2SetDebugLogging;

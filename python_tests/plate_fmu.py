@@ -10,6 +10,7 @@ inside the step the FMU follows value + d1 s + d2 s²/2. Unlike the bare driver,
 inputs every time, with derivatives (0 when not given) unless derivatives=False, so nothing
 stale is ever left in the FMU. Outputs come back as a dict keyed by output name.
 """
+
 from plateimpact import PlateImpactFMU
 
 

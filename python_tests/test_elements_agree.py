@@ -9,15 +9,15 @@ FVS discretization error, which shrinks with h: 2.1 % (14×5), 1.3 % (20×7), 0.
 0.42 % (40×14) — so 1 % is met at matched dofs, not at matched cell count; the test also checks
 that the gap shrinks under refinement, which is what makes the agreement a convergence fact.
 """
+
 import math
 
 import numpy as np
 import pytest
-
 from plate_fmu import PlateRun
 
-H = 1e-4          # communication step
-T_END = 0.06      # past the first impact (~0.0496 s)
+H = 1e-4  # communication step
+T_END = 0.06  # past the first impact (~0.0496 s)
 
 
 def sine(t, a=0.09, f=10.0):

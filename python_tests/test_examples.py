@@ -1,5 +1,6 @@
 """The user-facing examples: they run (quick mode), the sine-sweep controller is exact and reaches
 the FMU through the input derivatives, and the Dask response map equals the serial loop."""
+
 import csv
 import math
 import subprocess
@@ -9,12 +10,12 @@ from pathlib import Path
 import numpy as np
 import pytest
 
-REPO = Path(__file__).resolve().parent.parent
-EXAMPLES = REPO / "examples"
-
 from plateimpact import PlateImpactFMU
 from plateimpact.response_map import RESULT_COLUMNS, dask_map, grid, serial_map
 from plateimpact.sweep import SineSweep
+
+REPO = Path(__file__).resolve().parent.parent
+EXAMPLES = REPO / "examples"
 
 EPS = np.finfo(float).eps
 
@@ -27,8 +28,7 @@ def fmu(fmu_path):
 
 
 def run_example(script, fmu, out, *extra):
-    cmd = [sys.executable, str(EXAMPLES / script), "--quick", "--fmu", fmu, "--out", str(out),
-           *extra]
+    cmd = [sys.executable, str(EXAMPLES / script), "--quick", "--fmu", fmu, "--out", str(out), *extra]
     r = subprocess.run(cmd, capture_output=True, text=True, timeout=240, cwd=REPO)
     assert r.returncode == 0, f"{script} failed:\n{r.stdout[-2000:]}\n{r.stderr[-4000:]}"
     return r
@@ -53,8 +53,18 @@ def assert_finite(rows, columns):
 # -- each example runs in quick mode and writes its outputs -------------------------------------
 def test_sine_sweep_quick(fmu, tmp_path):
     run_example("sine_sweep.py", fmu, tmp_path)
-    cols = ("time", "frequency", "base", "corner_1", "corner_2", "free_edge_mid", "energy",
-            "energy_dissipated", "energy_input", "contact_vertices")
+    cols = (
+        "time",
+        "frequency",
+        "base",
+        "corner_1",
+        "corner_2",
+        "free_edge_mid",
+        "energy",
+        "energy_dissipated",
+        "energy_input",
+        "contact_vertices",
+    )
     rows = read_csv(tmp_path / "sine_sweep.csv", cols)
     assert_finite(rows, cols)
     assert len(rows) == 51  # 0.05 s at 1 ms, plus t = 0
@@ -63,19 +73,27 @@ def test_sine_sweep_quick(fmu, tmp_path):
 
 def test_paper_scenes_quick(fmu, tmp_path):
     run_example("paper_scenes.py", fmu, tmp_path)
-    for png in ("paper_fig05-07_forced", "paper_fig08_gap", "paper_fig09-11_frequencies",
-                "paper_fig12-13_free", "paper_fig14-16_free_zoom", "paper_fig17-18_energy",
-                "paper_dt_convergence"):
+    for png in (
+        "paper_fig05-07_forced",
+        "paper_fig08_gap",
+        "paper_fig09-11_frequencies",
+        "paper_fig12-13_free",
+        "paper_fig14-16_free_zoom",
+        "paper_fig17-18_energy",
+        "paper_dt_convergence",
+    ):
         assert (tmp_path / f"{png}.png").stat().st_size > 10_000, png
     runs = read_csv(tmp_path / "paper_scenes.csv", None)  # the script's own columns
     RUN_COLUMNS = list(runs[0])
     assert len(runs) == 2 * (5 + 2 + 6 + 5)
-    numeric = [c for c in RUN_COLUMNS if c not in ("scene", "element", "first_contact_time",
-                                                  "c1_c2_split_time", "first_peak", "last_peak")]
+    numeric = [
+        c
+        for c in RUN_COLUMNS
+        if c not in ("scene", "element", "first_contact_time", "c1_c2_split_time", "first_peak", "last_peak")
+    ]
     assert_finite(runs, numeric)
     for r in runs:  # the FMU's energy ledger holds in every scene
-        assert float(r["ledger_residual"]) <= 1e-9 * max(1.0, float(r["energy_input"]),
-                                                        float(r["energy_initial"]))
+        assert float(r["ledger_residual"]) <= 1e-9 * max(1.0, float(r["energy_input"]), float(r["energy_initial"]))
     pairs = read_csv(tmp_path / "paper_scenes_elements.csv", None)
     assert_finite(pairs, [c for c in pairs[0] if c != "scene"])
 
@@ -124,18 +142,18 @@ def test_sweep_frequency_law_and_phase(law):
     dphi = lambda t: sw.phase(t)[1]  # noqa: E731
     k_log = math.log(f1 / f0) / T
     # |φ'''| = 2π|f''|, |φ''''| = 2π|f'''|: zero for the linear law
-    f2 = 0.0 if law == "linear" else f1 * k_log ** 2
-    f3 = 0.0 if law == "linear" else f1 * k_log ** 3
+    f2 = 0.0 if law == "linear" else f1 * k_log**2
+    f3 = 0.0 if law == "linear" else f1 * k_log**3
     phi_max = abs(phi(T))
     inner = ts[(ts > 0.01) & (ts < T - 0.01)]
     h1 = 1e-5
     fd1 = np.array([(phi(t + h1) - phi(t - h1)) / (2 * h1) for t in inner])
-    bound1 = 4 * (h1 ** 2 / 6 * 2 * np.pi * f2 + EPS * phi_max / h1)
+    bound1 = 4 * (h1**2 / 6 * 2 * np.pi * f2 + EPS * phi_max / h1)
     err1 = np.max(np.abs(fd1 - np.array([dphi(t) for t in inner])))
     assert err1 <= bound1, (err1, bound1)
     h2 = 1e-4
     fd2 = np.array([(dphi(t + h2) - dphi(t - h2)) / (2 * h2) for t in inner])
-    bound2 = 4 * (h2 ** 2 / 6 * 2 * np.pi * f3 + EPS * 2 * np.pi * f1 / h2)
+    bound2 = 4 * (h2**2 / 6 * 2 * np.pi * f3 + EPS * 2 * np.pi * f1 / h2)
     err2 = np.max(np.abs(fd2 - np.array([sw.phase(t)[2] for t in inner])))
     assert err2 <= bound2, (err2, bound2)
 
@@ -144,18 +162,18 @@ def test_sweep_frequency_law_and_phase(law):
     w1 = 2 * np.pi * f1  # max φ'
     w2 = 2 * np.pi * ((f1 - f0) / T if law == "linear" else f1 * k_log)  # max |φ''|
     w3, w4 = 2 * np.pi * f2, 2 * np.pi * f3
-    z3 = A * (w1 ** 3 + 3 * w1 * w2 + w3)
-    z4 = A * (w1 ** 4 + 6 * w1 ** 2 * w2 + 3 * w2 ** 2 + 4 * w1 * w3 + w4)
+    z3 = A * (w1**3 + 3 * w1 * w2 + w3)
+    z4 = A * (w1**4 + 6 * w1**2 * w2 + 3 * w2**2 + 4 * w1 * w3 + w4)
     z = lambda t: sw(t)[0]  # noqa: E731
     zd = lambda t: sw(t)[1]  # noqa: E731
     h = 1e-6
     # rounding: φ carries eps·|φ| absolute error, so z = A sin φ carries A·eps·(|φ| + 1)
     # and ż = A φ' cos φ carries A φ'·eps·(|φ| + 2)
     e_zd = max(abs((z(t + h) - z(t - h)) / (2 * h) - zd(t)) for t in inner)
-    b_zd = 4 * (h ** 2 / 6 * z3 + A * EPS * (phi_max + 1) / h)
+    b_zd = 4 * (h**2 / 6 * z3 + A * EPS * (phi_max + 1) / h)
     assert e_zd <= b_zd, (e_zd, b_zd)
     e_zdd = max(abs((zd(t + h) - zd(t - h)) / (2 * h) - sw(t)[2]) for t in inner)
-    b_zdd = 4 * (h ** 2 / 6 * z4 + A * w1 * EPS * (phi_max + 2) / h)
+    b_zdd = 4 * (h**2 / 6 * z4 + A * w1 * EPS * (phi_max + 2) / h)
     assert e_zdd <= b_zdd, (e_zdd, b_zdd)
 
 
@@ -168,8 +186,9 @@ def _drive(fmu, sweep, dt, h, mode, stop):
     mode "held":   value only, held over the step — error A ω s."""
     n = round(stop / h)
     out = np.empty(n)
-    with PlateImpactFMU(fmu, element="argyris", nx=6, ny=2, dt=dt,
-                        obstacle_lower_enabled=False, obstacle_upper_enabled=False) as plate:
+    with PlateImpactFMU(
+        fmu, element="argyris", nx=6, ny=2, dt=dt, obstacle_lower_enabled=False, obstacle_upper_enabled=False
+    ) as plate:
         for k in range(n):
             t = k * h
             z = sweep(t)
@@ -198,7 +217,7 @@ def test_sweep_reaches_fmu_through_input_derivatives(fmu):
     ref = _drive(fmu, sw, dt, dt, "exact", stop)
     err = {}
     for m in (10, 20):
-        r = ref[m - 1::m]
+        r = ref[m - 1 :: m]
         err[("deriv", m)] = np.max(np.abs(_drive(fmu, sw, dt, m * dt, "deriv", stop) - r))
         err[("held", m)] = np.max(np.abs(_drive(fmu, sw, dt, m * dt, "held", stop) - r))
     print({k: f"{v:.3g}" for k, v in err.items()})
@@ -214,12 +233,12 @@ def test_dask_map_equals_serial_loop(fmu):
     loop here: bitwise equal floats (each task is a fresh, deterministic FMU instance)."""
     distributed = pytest.importorskip("distributed")
     points = grid([6.0, 20.0, 35.0], [0.012, 0.04])
-    kw = dict(amplitude=0.01, stop_time=0.1, settle=0.05, dt=1e-4, comm_step=1e-3,
-              element="argyris", nx=6, ny=2)
+    kw = dict(amplitude=0.01, stop_time=0.1, settle=0.05, dt=1e-4, comm_step=1e-3, element="argyris", nx=6, ny=2)
     serial = serial_map(fmu, points, **kw)
-    with distributed.LocalCluster(n_workers=2, threads_per_worker=1, processes=True,
-                                  dashboard_address=None) as cluster, \
-            distributed.Client(cluster) as client:
+    with (
+        distributed.LocalCluster(n_workers=2, threads_per_worker=1, processes=True, dashboard_address=None) as cluster,
+        distributed.Client(cluster) as client,
+    ):
         parallel = dask_map(client, fmu, points, progress=False, **kw)
     assert any(r["energy_dissipated"] > 0 for r in serial)  # some points do impact
     for s, p in zip(serial, parallel):

@@ -8,6 +8,7 @@
 
 The child processes run this file as a script: python test_fmi_conformance.py --child DIR CASE.
 """
+
 import ctypes
 import json
 import math
@@ -71,21 +72,60 @@ INTERFACE = {
     "qp_iterations_max": (39, "Integer", "output"),
 }
 START = {
-    "length": 1.2, "width": 0.4, "thickness": 0.01, "youngs_modulus": 2.1e11, "poisson_ratio": 0.3,
-    "density": 7770.0, "nx": 14, "ny": 5, "element": 1, "obstacle_lower": -0.1, "obstacle_upper": 0.1,
-    "obstacle_lower_enabled": True, "obstacle_upper_enabled": True, "dt": 1e-5, "beta": 0.5,
-    "initial_load": 0.0, "modes": 0, "base_input_mode": 3, "load_input_mode": 1, "base_displacement": 0.0,
+    "length": 1.2,
+    "width": 0.4,
+    "thickness": 0.01,
+    "youngs_modulus": 2.1e11,
+    "poisson_ratio": 0.3,
+    "density": 7770.0,
+    "nx": 14,
+    "ny": 5,
+    "element": 1,
+    "obstacle_lower": -0.1,
+    "obstacle_upper": 0.1,
+    "obstacle_lower_enabled": True,
+    "obstacle_upper_enabled": True,
+    "dt": 1e-5,
+    "beta": 0.5,
+    "initial_load": 0.0,
+    "modes": 0,
+    "base_input_mode": 3,
+    "load_input_mode": 1,
+    "base_displacement": 0.0,
     "load": 0.0,
 }
 UNITS = {
-    "length": "m", "width": "m", "thickness": "m", "youngs_modulus": "Pa", "density": "kg/m3",
-    "obstacle_lower": "m", "obstacle_upper": "m", "dt": "s", "initial_load": "Pa",
-    "base_displacement": "m", "load": "Pa", "corner_1": "m", "corner_2": "m", "free_edge_mid": "m",
-    "energy": "J", "energy_dissipated": "J", "energy_input": "J",
+    "length": "m",
+    "width": "m",
+    "thickness": "m",
+    "youngs_modulus": "Pa",
+    "density": "kg/m3",
+    "obstacle_lower": "m",
+    "obstacle_upper": "m",
+    "dt": "s",
+    "initial_load": "Pa",
+    "base_displacement": "m",
+    "load": "Pa",
+    "corner_1": "m",
+    "corner_2": "m",
+    "free_edge_mid": "m",
+    "energy": "J",
+    "energy_dissipated": "J",
+    "energy_input": "J",
 }
 VR = {name: spec[0] for name, spec in INTERFACE.items()}
-REAL_OUTPUTS = [VR[n] for n in ("corner_1", "corner_2", "free_edge_mid", "energy", "energy_dissipated",
-                                "energy_input", "qp_kkt_residual_max")]
+REAL_OUTPUTS = [
+    VR[n]
+    for n in (
+        "corner_1",
+        "corner_2",
+        "free_edge_mid",
+        "energy",
+        "energy_dissipated",
+        "energy_input",
+        "qp_kkt_residual_max",
+    )
+]
 INTEGER_OUTPUTS = [VR[n] for n in ("contact_vertices", "qp_iterations_total", "qp_iterations_max")]
 
 # A short scene with impacts: released from the static shape under 8600 Pa, which presses the
@@ -123,8 +163,9 @@ class Session:
         self.callbacks.logger = self._logger
         self.callbacks.allocateMemory = fmi2CallbackAllocateMemoryTYPE(calloc)
         self.callbacks.freeMemory = fmi2CallbackFreeMemoryTYPE(free)
-        self.fmu = FMU2Slave(guid=self.guid, unzipDirectory=self.unzipdir, modelIdentifier="PlateImpact",
-                             instanceName=name)
+        self.fmu = FMU2Slave(
+            guid=self.guid, unzipDirectory=self.unzipdir, modelIdentifier="PlateImpact", instanceName=name
+        )
         self.instantiated = False
         if instantiate:
             self.instantiate(logging_on)
@@ -324,6 +365,7 @@ def _bad_parameter(values):
         ctx.session.set(values)
         ctx.expect_error(fmu.exitInitializationMode)
         _after_error(ctx, fmu)
+
     return case
 
 
@@ -337,12 +379,13 @@ def _corrupt_state(mutate):
         ctx.expect_error(lambda: fmu.deSerializeFMUstate(mutate(blob)))
         fmu.reset()
         ctx.notes["reset_after_error"] = True
+
     return case
 
 
 def _put_double(blob, index, value):
     offset = 72 + 8 * index
-    return blob[:offset] + struct.pack("d", value) + blob[offset + 8:]
+    return blob[:offset] + struct.pack("d", value) + blob[offset + 8 :]
 
 
 def _case_without_error_log(ctx):
@@ -352,7 +395,7 @@ def _case_without_error_log(ctx):
 
 
 def _me_set_time(ctx):
-    fmu = ctx.start()
+    ctx.start()
     ctx.expect_error(lambda: ctx.raw_call("fmi2SetTime", [ctypes.c_double], 0.0))
 
 
@@ -375,56 +418,98 @@ def _wrong_guid(ctx):
 
 CATALOGUE = {
     # illegal call sequences
-    "dostep_before_init": (lambda c: c.expect_error(lambda: c.open().doStep(0.0, 1e-3)),
-                           ["illegal call sequence", "fmi2DoStep", "instantiated"]),
-    "getreal_before_init": (lambda c: c.expect_error(lambda: c.open().getReal([30])),
-                            ["illegal call sequence", "fmi2GetReal", "instantiated"]),
-    "exit_init_before_enter": (lambda c: c.expect_error(lambda: c.open().exitInitializationMode()),
-                               ["illegal call sequence", "fmi2ExitInitializationMode"]),
-    "setreal_parameter_after_init": (lambda c: c.expect_error(lambda: c.start().setReal([0], [1.0])),
-                                     ["illegal call sequence", "fmi2SetReal", "length", "stepComplete"]),
-    "setinteger_parameter_after_init": (lambda c: c.expect_error(lambda: c.start().setInteger([6], [20])),
-                                        ["illegal call sequence", "fmi2SetInteger", "nx"]),
-    "setboolean_parameter_after_init": (lambda c: c.expect_error(lambda: c.start().setBoolean([11], [False])),
-                                        ["illegal call sequence", "obstacle_lower_enabled"]),
-    "dostep_after_terminate": (lambda c: c.expect_error(lambda: (c.start().terminate(), c.session.fmu.doStep(0.0, 1e-3))),
-                               ["illegal call sequence", "fmi2DoStep", "terminated"]),
-    "cancel_step": (lambda c: c.expect_error(lambda: c.start().cancelStep()),
-                    ["illegal call sequence", "fmi2CancelStep"]),
+    "dostep_before_init": (
+        lambda c: c.expect_error(lambda: c.open().doStep(0.0, 1e-3)),
+        ["illegal call sequence", "fmi2DoStep", "instantiated"],
+    ),
+    "getreal_before_init": (
+        lambda c: c.expect_error(lambda: c.open().getReal([30])),
+        ["illegal call sequence", "fmi2GetReal", "instantiated"],
+    ),
+    "exit_init_before_enter": (
+        lambda c: c.expect_error(lambda: c.open().exitInitializationMode()),
+        ["illegal call sequence", "fmi2ExitInitializationMode"],
+    ),
+    "setreal_parameter_after_init": (
+        lambda c: c.expect_error(lambda: c.start().setReal([0], [1.0])),
+        ["illegal call sequence", "fmi2SetReal", "length", "stepComplete"],
+    ),
+    "setinteger_parameter_after_init": (
+        lambda c: c.expect_error(lambda: c.start().setInteger([6], [20])),
+        ["illegal call sequence", "fmi2SetInteger", "nx"],
+    ),
+    "setboolean_parameter_after_init": (
+        lambda c: c.expect_error(lambda: c.start().setBoolean([11], [False])),
+        ["illegal call sequence", "obstacle_lower_enabled"],
+    ),
+    "dostep_after_terminate": (
+        lambda c: c.expect_error(lambda: (c.start().terminate(), c.session.fmu.doStep(0.0, 1e-3))),
+        ["illegal call sequence", "fmi2DoStep", "terminated"],
+    ),
+    "cancel_step": (
+        lambda c: c.expect_error(lambda: c.start().cancelStep()),
+        ["illegal call sequence", "fmi2CancelStep"],
+    ),
     "setreal_output": (lambda c: c.expect_error(lambda: c.start().setReal([30], [0.0])), ["corner_1", "output"]),
-    "unknown_value_reference": (lambda c: c.expect_error(lambda: c.start().getReal([99])),
-                                ["unknown value reference 99"]),
+    "unknown_value_reference": (
+        lambda c: c.expect_error(lambda: c.start().getReal([99])),
+        ["unknown value reference 99"],
+    ),
     "wrong_type": (lambda c: c.expect_error(lambda: c.start().getReal([6])), ["nx", "Integer"]),
     "no_string_variables": (lambda c: c.expect_error(lambda: c.start().getString([0])), ["String"]),
     # fmi2DoStep arguments
-    "wrong_communication_point": (lambda c: c.expect_error(lambda: c.start().doStep(0.5, 1e-3)),
-                                  ["currentCommunicationPoint", "0.5"]),
-    "step_size_zero": (lambda c: c.expect_error(lambda: c.start().doStep(0.0, 0.0)),
-                       ["communicationStepSize", "must be > 0"]),
-    "step_size_negative": (lambda c: c.expect_error(lambda: c.start().doStep(0.0, -1e-3)),
-                           ["communicationStepSize", "-0.001", "must be > 0"]),
-    "step_size_not_multiple_of_dt": (lambda c: c.expect_error(lambda: c.start().doStep(0.0, 1.5e-5)),
-                                     ["h = 1.5e-05", "dt = 1.0000000000000001e-05", "whole multiple"]),
-    "step_size_below_dt": (lambda c: c.expect_error(lambda: c.start().doStep(0.0, 4e-6)),
-                           ["h = 3.9999999999999998e-06", "whole multiple"]),
+    "wrong_communication_point": (
+        lambda c: c.expect_error(lambda: c.start().doStep(0.5, 1e-3)),
+        ["currentCommunicationPoint", "0.5"],
+    ),
+    "step_size_zero": (
+        lambda c: c.expect_error(lambda: c.start().doStep(0.0, 0.0)),
+        ["communicationStepSize", "must be > 0"],
+    ),
+    "step_size_negative": (
+        lambda c: c.expect_error(lambda: c.start().doStep(0.0, -1e-3)),
+        ["communicationStepSize", "-0.001", "must be > 0"],
+    ),
+    "step_size_not_multiple_of_dt": (
+        lambda c: c.expect_error(lambda: c.start().doStep(0.0, 1.5e-5)),
+        ["h = 1.5e-05", "dt = 1.0000000000000001e-05", "whole multiple"],
+    ),
+    "step_size_below_dt": (
+        lambda c: c.expect_error(lambda: c.start().doStep(0.0, 4e-6)),
+        ["h = 3.9999999999999998e-06", "whole multiple"],
+    ),
     # non-finite values
     "nan_input": (lambda c: c.expect_error(lambda: c.start().setReal([21], [float("nan")])), ["load", "nan"]),
-    "inf_input": (lambda c: c.expect_error(lambda: c.start().setReal([20], [float("inf")])),
-                  ["base_displacement", "inf"]),
-    "nan_parameter": (lambda c: c.expect_error(lambda: c.open().setReal([3], [float("nan")])),
-                      ["youngs_modulus", "nan"]),
-    "nan_input_derivative": (lambda c: c.expect_error(
-        lambda: c.start().setRealInputDerivatives([21], [1], [float("nan")])), ["load", "nan"]),
+    "inf_input": (
+        lambda c: c.expect_error(lambda: c.start().setReal([20], [float("inf")])),
+        ["base_displacement", "inf"],
+    ),
+    "nan_parameter": (
+        lambda c: c.expect_error(lambda: c.open().setReal([3], [float("nan")])),
+        ["youngs_modulus", "nan"],
+    ),
+    "nan_input_derivative": (
+        lambda c: c.expect_error(lambda: c.start().setRealInputDerivatives([21], [1], [float("nan")])),
+        ["load", "nan"],
+    ),
     # input derivatives
-    "input_derivative_order_3": (lambda c: c.expect_error(lambda: c.start().setRealInputDerivatives([21], [3], [1.0])),
-                                 ["order 3", "load"]),
-    "input_derivative_of_parameter": (lambda c: c.expect_error(
-        lambda: c.start().setRealInputDerivatives([0], [1], [1.0])), ["value reference 0", "not a Real input"]),
-    "output_derivatives": (lambda c: c.expect_error(lambda: c.start().getRealOutputDerivatives([30], [1])),
-                           ["fmi2GetRealOutputDerivatives", "not supported"]),
+    "input_derivative_order_3": (
+        lambda c: c.expect_error(lambda: c.start().setRealInputDerivatives([21], [3], [1.0])),
+        ["order 3", "load"],
+    ),
+    "input_derivative_of_parameter": (
+        lambda c: c.expect_error(lambda: c.start().setRealInputDerivatives([0], [1], [1.0])),
+        ["value reference 0", "not a Real input"],
+    ),
+    "output_derivatives": (
+        lambda c: c.expect_error(lambda: c.start().getRealOutputDerivatives([30], [1])),
+        ["fmi2GetRealOutputDerivatives", "not supported"],
+    ),
     # enumeration outside its items
-    "bad_enumeration_item": (lambda c: c.expect_error(lambda: c.open().setInteger([8], [3])),
-                             ["element", "argyris", "fvs"]),
+    "bad_enumeration_item": (
+        lambda c: c.expect_error(lambda: c.open().setInteger([8], [3])),
+        ["element", "argyris", "fvs"],
+    ),
     # invalid parameters, rejected by fmi2ExitInitializationMode
     "poisson_ratio_half": (_bad_parameter({"poisson_ratio": 0.5}), ["invalid parameter", "poisson_ratio"]),
     "poisson_ratio_zero": (_bad_parameter({"poisson_ratio": 0.0}), ["invalid parameter", "poisson_ratio"]),
@@ -445,22 +530,32 @@ CATALOGUE = {
     "dt_negative": (_bad_parameter({"dt": -1e-5}), ["invalid parameter", "dt"]),
     "beta_negative": (_bad_parameter({"beta": -0.1}), ["invalid parameter", "beta"]),
     "beta_above_half": (_bad_parameter({"beta": 0.6}), ["invalid parameter", "beta"]),
-    "beta_zero_dt_unstable": (_bad_parameter({"beta": 0.0, "dt": 1e-5}),
-                              ["invalid parameter", "dt = 1e-05", "beta = 0", ("kappa", "stab")]),
+    "beta_zero_dt_unstable": (
+        _bad_parameter({"beta": 0.0, "dt": 1e-5}),
+        ["invalid parameter", "dt = 1e-05", "beta = 0", ("kappa", "stab")],
+    ),
     # logging
-    "unknown_log_category": (lambda c: c.expect_error(lambda: c.open().setDebugLogging(True, ["logEverything"])),
-                             ["unknown log category", "logEverything"]),
+    "unknown_log_category": (
+        lambda c: c.expect_error(lambda: c.open().setDebugLogging(True, ["logEverything"])),
+        ["unknown log category", "logEverything"],
+    ),
     # corrupt serialized FMU states
     "state_wrong_magic": (_corrupt_state(lambda b: b"X" + b[1:]), ["fmi2DeSerializeFMUstate", "magic"]),
     "state_truncated": (_corrupt_state(lambda b: b[:-8]), ["fmi2DeSerializeFMUstate", "wrong size"]),
     "state_too_short": (_corrupt_state(lambda b: b[:10]), ["fmi2DeSerializeFMUstate", "header"]),
     "state_extra_bytes": (_corrupt_state(lambda b: b + bytes(8)), ["fmi2DeSerializeFMUstate", "wrong size"]),
-    "state_other_guid": (_corrupt_state(lambda b: b[:16] + bytes([b[16] ^ 1]) + b[17:]),
-                         ["fmi2DeSerializeFMUstate", "GUID"]),
-    "state_bad_machine_state": (_corrupt_state(lambda b: _put_double(b, 0, 12345.0)),
-                                ["fmi2DeSerializeFMUstate", "corrupt", "state"]),
-    "state_nan_parameter": (_corrupt_state(lambda b: _put_double(b, 2, float("nan"))),
-                            ["fmi2DeSerializeFMUstate", "corrupt", "length"]),
+    "state_other_guid": (
+        _corrupt_state(lambda b: b[:16] + bytes([b[16] ^ 1]) + b[17:]),
+        ["fmi2DeSerializeFMUstate", "GUID"],
+    ),
+    "state_bad_machine_state": (
+        _corrupt_state(lambda b: _put_double(b, 0, 12345.0)),
+        ["fmi2DeSerializeFMUstate", "corrupt", "state"],
+    ),
+    "state_nan_parameter": (
+        _corrupt_state(lambda b: _put_double(b, 2, float("nan"))),
+        ["fmi2DeSerializeFMUstate", "corrupt", "length"],
+    ),
     # others
     "wrong_guid": (_wrong_guid, ["wrong GUID"]),
     "model_exchange_function": (_me_set_time, ["fmi2SetTime", "Model Exchange"]),
@@ -486,8 +581,9 @@ def _child_main(unzipdir, case):
 
 
 def _run_child(unzipped, case):
-    proc = subprocess.run([sys.executable, __file__, "--child", str(unzipped), case],
-                          capture_output=True, text=True, timeout=120)
+    proc = subprocess.run(
+        [sys.executable, __file__, "--child", str(unzipped), case], capture_output=True, text=True, timeout=120
+    )
     return proc.returncode, proc.stdout, proc.stderr
 
 
@@ -639,8 +735,9 @@ def test_parameter_change_in_initialization_mode_rebuilds(unzipped):
 def test_simulate_fmu_runs(fmu_path):
     from fmpy import simulate_fmu
 
-    result = simulate_fmu(str(fmu_path), stop_time=0.01, output_interval=1e-3,
-                          start_values={"dt": 1e-4, "initial_load": 8600.0})
+    result = simulate_fmu(
+        str(fmu_path), stop_time=0.01, output_interval=1e-3, start_values={"dt": 1e-4, "initial_load": 8600.0}
+    )
     assert len(result) == 11
     assert result["corner_1"][0] != 0.0 and all(math.isfinite(x) for x in result["energy"])
 

@@ -1,6 +1,7 @@
 """The binary of PlateImpact.fmu runs where SuiteSparse is not installed: it needs only glibc
 and the libraries shipped in binaries/linux64, finds them through RPATH=$ORIGIN, links
 libstdc++/libgcc statically and exports nothing but the fmi2* functions."""
+
 import os
 import re
 import shutil
@@ -11,8 +12,10 @@ from pathlib import Path
 import pytest
 
 # glibc's libraries: present on every Linux target, never shipped.
-GLIBC = re.compile(r"^(ld-linux.*|linux-vdso.*|libc|libm|libmvec|libpthread|libdl|librt|libutil|libresolv|"
-                   r"libanl|libnsl)\.so(\.[0-9]+)*$")
+GLIBC = re.compile(
+    r"^(ld-linux.*|linux-vdso.*|libc|libm|libmvec|libpthread|libdl|librt|libutil|libresolv|"
+    r"libanl|libnsl)\.so(\.[0-9]+)*$"
+)
 
 FMI2_FUNCTIONS = """
 fmi2GetTypesPlatform fmi2GetVersion fmi2SetDebugLogging fmi2Instantiate fmi2FreeInstance
@@ -98,8 +101,13 @@ def test_only_fmi2_symbols_are_exported(binaries):
 def test_ldd_resolves_everything_into_the_fmu(binaries):
     # a clean environment: no LD_LIBRARY_PATH that could hide a missing library
     env = {k: v for k, v in os.environ.items() if k != "LD_LIBRARY_PATH"}
-    text = subprocess.run([shutil.which("ldd") or pytest.skip("ldd not installed"), str(binaries / "PlateImpact.so")],
-                          capture_output=True, text=True, check=True, env=env).stdout
+    text = subprocess.run(
+        [shutil.which("ldd") or pytest.skip("ldd not installed"), str(binaries / "PlateImpact.so")],
+        capture_output=True,
+        text=True,
+        check=True,
+        env=env,
+    ).stdout
     assert "not found" not in text, text
     folder = binaries.resolve()
     resolved = re.findall(r"^\s*(\S+) => (\S+) \(0x", text, re.MULTILINE)

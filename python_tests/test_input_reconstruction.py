@@ -16,13 +16,14 @@ The facts checked:
   linear extrapolation of the same values overshoots;
 - bad input: a mode outside the enumeration, NaN derivatives, derivative order 3.
 """
+
 import math
 
 import numpy as np
 import pytest
 from fmpy.fmi1 import FMICallException
-
 from plate_fmu import PlateRun
+
 from plateimpact import PlateImpactFMU
 
 # A small, quick plate; the reconstruction does not depend on the mesh.
@@ -52,7 +53,7 @@ def low_order_start(signal, times, steps, order):
         if k >= 3:
             out.append(signal(t))
             continue
-        ts, zs = times[:k + 1][::-1], [signal(x)[0] for x in times[:k + 1]][::-1]
+        ts, zs = times[: k + 1][::-1], [signal(x)[0] for x in times[: k + 1]][::-1]
         degree = min(order, k)
         z, d1, d2 = zs[0], 0.0, 0.0
         if degree >= 1:
@@ -74,8 +75,7 @@ def corner_trace(fmu_path, steps, base, derivatives, mode=None):
     parameters = dict(SMALL, **({"base_input_mode": mode} if mode else {}))
     first = base[0][0] if isinstance(base[0], tuple) else base[0]
     with PlateRun(fmu_path, base0=first, **parameters) as run:
-        return np.array([run.step(h, base=base[k], derivatives=derivatives)["corner_1"]
-                         for k, h in enumerate(steps)])
+        return np.array([run.step(h, base=base[k], derivatives=derivatives)["corner_1"] for k, h in enumerate(steps)])
 
 
 @pytest.mark.parametrize("signal, mode", [(ramp, 2), (quadratic, 3)], ids=["ramp-linear", "quadratic-quadratic"])

@@ -10,11 +10,11 @@ FMU reconstructs the base inside each step (base_input_mode, default quadratic) 
 Every output after every step must agree to 1e-12 (relative to max(1, |value|)); in fact they
 are bit for bit identical, which the test reports.
 """
+
 import math
 
 import numpy as np
 import pytest
-
 from fmpy import read_model_description
 from plate_fmu import PlateRun
 
@@ -25,11 +25,14 @@ from libcosimpy.CosimManipulator import CosimManipulator  # noqa: E402
 from libcosimpy.CosimObserver import CosimObserver  # noqa: E402
 from libcosimpy.CosimSlave import CosimLocalSlave  # noqa: E402
 
+
 def interface(fmu_path):
     """Output value references by name (Real and Integer) and the base input's, from the FMU."""
     variables = read_model_description(str(fmu_path)).modelVariables
-    outputs = {t: {v.name: v.valueReference for v in variables if v.causality == "output" and v.type == t}
-               for t in ("Real", "Integer")}
+    outputs = {
+        t: {v.name: v.valueReference for v in variables if v.causality == "output" and v.type == t}
+        for t in ("Real", "Integer")
+    }
     base_vr = next(v.valueReference for v in variables if v.name == "base_displacement")
     return outputs["Real"], outputs["Integer"], base_vr
 
@@ -93,5 +96,7 @@ def test_libcosimpy_and_fmpy_give_the_same_outputs(fmu_path):
     error = np.abs(theirs - ours) / np.maximum(1.0, np.abs(ours))
     worst = {n: float(error[:, i].max()) for n, i in column.items()}
     assert max(worst.values()) <= 1e-12, worst
-    print(f"libcosimpy vs fmpy over {STEPS} steps: bit-identical: {bool((theirs == ours).all())}, "
-          f"worst relative difference {max(worst.values()):.1e}")
+    print(
+        f"libcosimpy vs fmpy over {STEPS} steps: bit-identical: {bool((theirs == ours).all())}, "
+        f"worst relative difference {max(worst.values()):.1e}"
+    )

@@ -6,11 +6,11 @@ Numbers in comments are what this build measured (Release, x86-64).
 
 Units: m, s, Pa, J. Plate: 1.2 x 0.4 x 0.01 m steel unless said otherwise; loads +up.
 """
+
 import math
 
 import numpy as np
 import pytest
-
 from plate_fmu import PlateRun
 
 L, W, THICKNESS, YOUNG, NU = 1.2, 0.4, 0.01, 2.1e11, 0.3
@@ -34,8 +34,7 @@ def observed_order(a, b, c):
 
 def static_outputs(fmu_path, element, nx, ny, q, nu=NU):
     """Outputs at t = 0: the static equilibrium under the uniform pressure q (no obstacles)."""
-    with PlateRun(fmu_path, element=element, nx=nx, ny=ny, initial_load=q, poisson_ratio=nu,
-                  **NO_OBSTACLES) as run:
+    with PlateRun(fmu_path, element=element, nx=nx, ny=ny, initial_load=q, poisson_ratio=nu, **NO_OBSTACLES) as run:
         return run.outputs()
 
 
@@ -150,8 +149,7 @@ def smooth_base(t):
     t = 0, so starting from rest does not excite the mesh's highest modes."""
     s, c = math.sin(OMEGA_BASE * t), math.cos(OMEGA_BASE * t)
     w = OMEGA_BASE
-    return (A_BASE * (1 - c) ** 2 / 4, A_BASE / 2 * (1 - c) * w * s,
-            A_BASE / 2 * w * w * (s * s + (1 - c) * c))
+    return (A_BASE * (1 - c) ** 2 / 4, A_BASE / 2 * (1 - c) * w * s, A_BASE / 2 * w * w * (s * s + (1 - c) * c))
 
 
 def corner_at(fmu_path, element, nx, ny, dt, t_end, base):
@@ -182,7 +180,7 @@ def test_time_scheme_is_second_order(fmu_path, element):
     nx, ny = 6, 2
     dts = (4e-4, 2e-4, 1e-4, 5e-5)
     values = [corner_at(fmu_path, element, nx, ny, dt, 0.05, smooth_base) for dt in dts]
-    orders = [observed_order(*values[i:i + 3]) for i in range(2)]
+    orders = [observed_order(*values[i : i + 3]) for i in range(2)]
     assert all(1.8 <= p <= 2.2 for p in orders), (orders, values)
 
 
@@ -191,8 +189,7 @@ def test_time_scheme_is_second_order_for_the_sine_start_once_the_mesh_is_resolve
     time step to resolve all its modes: Argyris 1x1 (ω_max = 3.9e4 s⁻¹), Δt = 1e-6, 5e-7,
     2.5e-7 (ω_max Δt ≤ 0.04), corner_1 at t = 3 ms. Measured order 1.98 (2e-6 … 1.25e-7 at
     t = 5 ms: 1.93, 1.98, 2.00). Band [1.8, 2.2]."""
-    values = [corner_at(fmu_path, "argyris", 1, 1, dt, 0.003, sine_base)
-              for dt in (1e-6, 5e-7, 2.5e-7)]
+    values = [corner_at(fmu_path, "argyris", 1, 1, dt, 0.003, sine_base) for dt in (1e-6, 5e-7, 2.5e-7)]
     order = observed_order(*values)
     assert 1.8 <= order <= 2.2, (order, values)
 
@@ -216,8 +213,9 @@ def test_energy_is_conserved_without_contact_and_input(fmu_path, element, beta):
     or larger. The inputs are zero, so energy_input and energy_dissipated must be exactly 0.
     """
     nx, ny = PAPER_MESH[element]
-    with PlateRun(fmu_path, element=element, nx=nx, ny=ny, initial_load=1000.0, beta=beta,
-                  dt=1e-5, **NO_OBSTACLES) as run:
+    with PlateRun(
+        fmu_path, element=element, nx=nx, ny=ny, initial_load=1000.0, beta=beta, dt=1e-5, **NO_OBSTACLES
+    ) as run:
         out = [run.outputs()]
         for _ in range(1000):
             out.append(run.step(1e-4))
@@ -237,9 +235,17 @@ def test_energy_is_conserved_without_contact_and_input(fmu_path, element, beta):
 
 
 def free_vibration(fmu_path, element, nx, ny, t_end=0.3, h=1e-4):
-    with PlateRun(fmu_path, element=element, nx=nx, ny=ny, initial_load=8600.0, dt=1e-5,
-                  obstacle_lower=-0.1, obstacle_lower_enabled=True,
-                  obstacle_upper_enabled=False) as run:
+    with PlateRun(
+        fmu_path,
+        element=element,
+        nx=nx,
+        ny=ny,
+        initial_load=8600.0,
+        dt=1e-5,
+        obstacle_lower=-0.1,
+        obstacle_lower_enabled=True,
+        obstacle_upper_enabled=False,
+    ) as run:
         out = [run.outputs()]
         for _ in range(round(t_end / h)):
             out.append(run.step(h))
@@ -349,14 +355,17 @@ def test_energy_ledger_with_base_load_and_both_obstacles(fmu_path, element):
     assert_ledger(forced_run(fmu_path, element, nx, ny))
 
 
-@pytest.mark.parametrize("element,modes", [
-    ("argyris", 6),
-    ("argyris", 20),
-    # More vertices touch than the reduced contact operator has rank here (it used to make the
-    # active set singular: 'contact QP did not converge' at t = 0.1236 s / 0.1809 s).
-    ("fvs", 6),
-    ("fvs", 20),
-])
+@pytest.mark.parametrize(
+    "element,modes",
+    [
+        ("argyris", 6),
+        ("argyris", 20),
+        # More vertices touch than the reduced contact operator has rank here (it used to make the
+        # active set singular: 'contact QP did not converge' at t = 0.1236 s / 0.1809 s).
+        ("fvs", 6),
+        ("fvs", 20),
+    ],
+)
 def test_energy_ledger_of_the_reduced_model(fmu_path, element, modes):
     """The reduced model (modes > 0) is the same scheme (3.6) in the span of the lowest modes,
     with contact still enforced at every vertex: its discrete energy identity, its ledger, its

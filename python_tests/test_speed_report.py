@@ -1,6 +1,7 @@
 """The speed-against-error report (examples/speed_vs_error.py) in its --quick form: it writes the
 markdown table and the figures, every error it reports is finite, and the convergence verdicts
 it prints follow its own rule from the differences it prints. No timing is asserted."""
+
 import json
 import math
 import os
@@ -21,8 +22,9 @@ def rule(diffs, resolution):
     resolution counts as the resolution), or within its own resolution."""
     if len(diffs) < 2 or not all(math.isfinite(d) for d in diffs):
         return False
-    return all(d2 <= max(CONTRACTION * max(d1, r1), r2)
-               for d1, d2, r1, r2 in zip(diffs, diffs[1:], resolution, resolution[1:]))
+    return all(
+        d2 <= max(CONTRACTION * max(d1, r1), r2) for d1, d2, r1, r2 in zip(diffs, diffs[1:], resolution, resolution[1:])
+    )
 
 
 @pytest.fixture(scope="module")
@@ -32,9 +34,21 @@ def report(tmp_path_factory, fmu_path):
     pytest.importorskip("osqp")
     out = tmp_path_factory.mktemp("perf")
     proc = subprocess.run(
-        [sys.executable, str(REPO / "examples" / "speed_vs_error.py"), "--quick", "--out", str(out),
-         "--bench", str(BENCH), "--fmu", str(fmu_path)],
-        capture_output=True, text=True, timeout=900)
+        [
+            sys.executable,
+            str(REPO / "examples" / "speed_vs_error.py"),
+            "--quick",
+            "--out",
+            str(out),
+            "--bench",
+            str(BENCH),
+            "--fmu",
+            str(fmu_path),
+        ],
+        capture_output=True,
+        text=True,
+        timeout=900,
+    )
     assert proc.returncode == 0, proc.stdout[-3000:] + proc.stderr[-3000:]
     return out, proc.stdout, json.loads((out / "speed_vs_error.json").read_text())
 
@@ -42,9 +56,12 @@ def report(tmp_path_factory, fmu_path):
 def test_writes_table_and_figures(report):
     out, stdout, _ = report
     md = (out / "performance.md").read_text()
-    for heading in ("## Headline numbers and goals", "## Which quantities converge",
-                    "## Per-step time and floor against the number of dofs",
-                    "## Plain Python/SciPy baseline"):
+    for heading in (
+        "## Headline numbers and goals",
+        "## Which quantities converge",
+        "## Per-step time and floor against the number of dofs",
+        "## Plain Python/SciPy baseline",
+    ):
         assert heading in md
     assert "examples/speed_vs_error.py --quick" in md  # the regenerate command
     assert "| goal | measured | verdict |" in md
@@ -110,7 +127,10 @@ def test_convergence_verdicts_follow_the_rule(report):
     # the markdown's convergence table prints the same verdicts
     md = (out / "performance.md").read_text()
     section = md.split("## Which quantities converge")[1].split("\n## ")[0]
-    rows = [line for line in section.splitlines() if line.startswith("| ") and "sequence" not in line
-            and "envelope" not in line and not line.startswith("|---")]
+    rows = [
+        line
+        for line in section.splitlines()
+        if line.startswith("| ") and "sequence" not in line and "envelope" not in line and not line.startswith("|---")
+    ]
     assert sum(line.rstrip().endswith("| yes |") for line in rows) == n_yes
     assert sum(line.rstrip().endswith("| **no** |") for line in rows) == n_no

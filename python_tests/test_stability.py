@@ -10,6 +10,7 @@ beta = 0 at 1.1x the stability bound must be refused at initialization with fmi2
 naming dt and the bound. examples/stability_report.py runs the same table into
 docs/stability.md.
 """
+
 import pytest
 
 from plateimpact.stability import CASES, FMICallException, failures, run_case
@@ -21,14 +22,17 @@ def test_stability_case(case, fmu_path):
     if case.refused:
         assert isinstance(r.refused_exception, FMICallException), r.refused_exception
     problems = failures(r)
-    assert not problems, f"{case.name} ({case.varied}), parameters {case.params}, dt = {r.dt:.6g} s: " \
-                         + "; ".join(problems)
+    assert not problems, f"{case.name} ({case.varied}), parameters {case.params}, dt = {r.dt:.6g} s: " + "; ".join(
+        problems
+    )
     if not case.refused:
         assert r.steps == case.steps
-        print(f"{case.name}: {r.steps} steps, penetration {r.penetration:.2e} m, ledger "
-              f"{r.ledger_error:.2e}, lost {r.energy_dissipated:.4g} J, QP it/step "
-              f"{r.qp_iterations_mean:.3f} max {r.qp_iterations_max}, KKT {r.kkt_max:.1e}, "
-              f"wall {r.wall:.2f} s")
+        print(
+            f"{case.name}: {r.steps} steps, penetration {r.penetration:.2e} m, ledger "
+            f"{r.ledger_error:.2e}, lost {r.energy_dissipated:.4g} J, QP it/step "
+            f"{r.qp_iterations_mean:.3f} max {r.qp_iterations_max}, KKT {r.kkt_max:.1e}, "
+            f"wall {r.wall:.2f} s"
+        )
 
 
 def test_bound_read_from_the_log_brackets_the_accepted_dt(fmu_path):

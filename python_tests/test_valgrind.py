@@ -10,6 +10,7 @@ The driver is compiled here (cc, the FMI headers of fmu/fmi2) and loads the FMU 
 sanitizer build cannot run under valgrind: it is skipped there (test.sh runs the sanitizer stage
 without this file).
 """
+
 import os
 import re
 import shutil
@@ -41,6 +42,8 @@ SUPPRESSIONS = """
    fun:call_init
 }
 """
+
+
 @pytest.fixture(scope="module")
 def valgrind():
     tool = shutil.which("valgrind")
@@ -63,9 +66,27 @@ def driver(tmp_path_factory):
     assert compiler, "no C compiler (cc) to build python_tests/fmu_driver.c"
     folder = tmp_path_factory.mktemp("fmu_driver")
     exe = folder / "fmu_driver"
-    subprocess.run([compiler, "-std=c99", "-D_DEFAULT_SOURCE", "-g", "-O1", "-Wall", "-Wextra", "-Werror",
-                    f"-I{FMI_HEADERS}", str(DRIVER_SOURCE), "-o", str(exe), "-ldl", "-lm"],
-                   check=True, capture_output=True, text=True)
+    subprocess.run(
+        [
+            compiler,
+            "-std=c99",
+            "-D_DEFAULT_SOURCE",
+            "-g",
+            "-O1",
+            "-Wall",
+            "-Wextra",
+            "-Werror",
+            f"-I{FMI_HEADERS}",
+            str(DRIVER_SOURCE),
+            "-o",
+            str(exe),
+            "-ldl",
+            "-lm",
+        ],
+        check=True,
+        capture_output=True,
+        text=True,
+    )
     (folder / "plateimpact.supp").write_text(SUPPRESSIONS)
     return exe
 
@@ -73,11 +94,25 @@ def driver(tmp_path_factory):
 def memcheck(valgrind, driver, unzipped_fmu, *options):
     env = {k: v for k, v in os.environ.items() if k != "LD_PRELOAD"}  # no sanitizer runtime
     proc = subprocess.run(
-        [valgrind, "--leak-check=full", "--error-exitcode=99", "--errors-for-leak-kinds=definite,indirect",
-         "--show-leak-kinds=definite,indirect", "--num-callers=30", "--keep-debuginfo=yes",
-         f"--suppressions={driver.parent / 'plateimpact.supp'}",
-         str(driver), *options, str(unzipped_fmu), str(STEPS)],
-        capture_output=True, text=True, timeout=600, env=env)
+        [
+            valgrind,
+            "--leak-check=full",
+            "--error-exitcode=99",
+            "--errors-for-leak-kinds=definite,indirect",
+            "--show-leak-kinds=definite,indirect",
+            "--num-callers=30",
+            "--keep-debuginfo=yes",
+            f"--suppressions={driver.parent / 'plateimpact.supp'}",
+            str(driver),
+            *options,
+            str(unzipped_fmu),
+            str(STEPS),
+        ],
+        capture_output=True,
+        text=True,
+        timeout=600,
+        env=env,
+    )
     return proc
 
 

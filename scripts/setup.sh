@@ -14,6 +14,7 @@ command -v readelf >/dev/null || need_apt+=(binutils)
 [ -f /usr/include/suitesparse/cholmod.h ] || need_apt+=(libsuitesparse-dev)
 [ -f /usr/include/gtest/gtest.h ] || need_apt+=(libgtest-dev)
 command -v valgrind >/dev/null || need_apt+=(valgrind)  # python_tests/test_valgrind.py
+command -v clang-format >/dev/null || need_apt+=(clang-format)  # test.sh: the C++ style check
 command -v python3 >/dev/null || need_apt+=(python3)
 python3 -c 'import venv, ensurepip' 2>/dev/null || need_apt+=(python3-venv)
 if [ ${#need_apt[@]} -gt 0 ]; then

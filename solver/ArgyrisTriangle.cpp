@@ -68,8 +68,7 @@ ArgyrisSpace::ArgyrisSpace(const Mesh& mesh) : mesh_(mesh) {
             elements_[t].edges[l] = it->second;
         }
     }
-    dofCount_ = kVertexDofs * static_cast<Eigen::Index>(mesh_.vertexCount()) +
-                static_cast<Eigen::Index>(edges_.size());
+    dofCount_ = kVertexDofs * static_cast<Eigen::Index>(mesh_.vertexCount()) + static_cast<Eigen::Index>(edges_.size());
 
     for (int t = 0; t < nt; ++t) {
         const auto v = mesh_.triangleVertices(t);
@@ -120,8 +119,7 @@ ArgyrisSpace::LocalMatrix ArgyrisSpace::scaledDofMatrix(int element) const {
         for (int l = 0; l < 3; ++l)
             for (int k = 0; k < kVertexDofs; ++k) {
                 const auto& pq = kVertexDerivative[k];
-                V(kVertexDofs * l + k, j) =
-                    monomialDerivative(a, b, pq[0], pq[1], s[l].x(), s[l].y());
+                V(kVertexDofs * l + k, j) = monomialDerivative(a, b, pq[0], pq[1], s[l].x(), s[l].y());
             }
         for (int l = 0; l < 3; ++l) {
             // h ∂/∂n = n_x ∂/∂ξ + n_y ∂/∂η, along the global normal of the edge.
@@ -134,9 +132,7 @@ ArgyrisSpace::LocalMatrix ArgyrisSpace::scaledDofMatrix(int element) const {
     return V;
 }
 
-const std::vector<Eigen::Index>& ArgyrisSpace::elementDofs(int element) const {
-    return elementDofs_[element];
-}
+const std::vector<Eigen::Index>& ArgyrisSpace::elementDofs(int element) const { return elementDofs_[element]; }
 
 std::vector<ElementQuadratureNode> ArgyrisSpace::quadrature(int element) const {
     const auto v = mesh_.triangleVertices(element);
@@ -147,12 +143,9 @@ std::vector<ElementQuadratureNode> ArgyrisSpace::quadrature(int element) const {
     return nodes;
 }
 
-int ArgyrisSpace::elementContaining(const Eigen::Vector2d& x) const {
-    return mesh_.triangleContaining(x);
-}
+int ArgyrisSpace::elementContaining(const Eigen::Vector2d& x) const { return mesh_.triangleContaining(x); }
 
-void ArgyrisSpace::evaluate(int element, int /*piece*/, const Eigen::Vector2d& x,
-                            LocalBasis& out) const {
+void ArgyrisSpace::evaluate(int element, int /*piece*/, const Eigen::Vector2d& x, LocalBasis& out) const {
     const Element& el = elements_[element];
     const double xi = (x.x() - el.centroid.x()) / el.h;
     const double eta = (x.y() - el.centroid.y()) / el.h;
@@ -177,8 +170,7 @@ void ArgyrisSpace::evaluate(int element, int /*piece*/, const Eigen::Vector2d& x
     }
 
     // resize() is a no-op once the vectors have the right size: no allocation per call.
-    for (Eigen::VectorXd* v : {&out.value, &out.dx, &out.dy, &out.dxx, &out.dxy, &out.dyy})
-        v->resize(kN);
+    for (Eigen::VectorXd* v : {&out.value, &out.dx, &out.dy, &out.dxx, &out.dxy, &out.dyy}) v->resize(kN);
     const LocalMatrix& C = el.coefficients;
     const double ih = 1.0 / el.h, ih2 = ih * ih;  // ∂/∂x = (1/h) ∂/∂ξ
     out.value.noalias() = C.transpose() * m;
@@ -198,15 +190,12 @@ std::vector<Eigen::Index> ArgyrisSpace::clampedDofs() const {
         for (int k : {0, 1, 2, 4, 5}) dofs.push_back(kVertexDofs * v + k);
     }
     for (int e = 0; e < edgeCount(); ++e)
-        if (mesh_.isClamped(edges_[e][0]) && mesh_.isClamped(edges_[e][1]))
-            dofs.push_back(edgeDof(e));
+        if (mesh_.isClamped(edges_[e][0]) && mesh_.isClamped(edges_[e][1])) dofs.push_back(edgeDof(e));
     std::sort(dofs.begin(), dofs.end());
     dofs.erase(std::unique(dofs.begin(), dofs.end()), dofs.end());
     return dofs;
 }
 
-std::unique_ptr<FiniteElementSpace> makeArgyrisSpace(const Mesh& mesh) {
-    return std::make_unique<ArgyrisSpace>(mesh);
-}
+std::unique_ptr<FiniteElementSpace> makeArgyrisSpace(const Mesh& mesh) { return std::make_unique<ArgyrisSpace>(mesh); }
 
 }  // namespace plate

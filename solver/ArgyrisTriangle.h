@@ -45,8 +45,7 @@ public:
     int elementContaining(const Eigen::Vector2d& x) const override;
     int pieceContaining(int, const Eigen::Vector2d&) const override { return 0; }
 
-    void evaluate(int element, int piece, const Eigen::Vector2d& x,
-                  LocalBasis& out) const override;
+    void evaluate(int element, int piece, const Eigen::Vector2d& x, LocalBasis& out) const override;
 
     Eigen::Index vertexValueDof(int vertex) const override { return kVertexDofs * vertex; }
 
@@ -60,9 +59,7 @@ public:
     const std::array<int, 2>& edgeVertices(int edge) const { return edges_[edge]; }
     // The global unit normal of the edge, rot(-90°) of the lower-to-higher tangent.
     Eigen::Vector2d edgeNormal(int edge) const;
-    Eigen::Index edgeDof(int edge) const {
-        return kVertexDofs * static_cast<Eigen::Index>(mesh_.vertexCount()) + edge;
-    }
+    Eigen::Index edgeDof(int edge) const { return kVertexDofs * static_cast<Eigen::Index>(mesh_.vertexCount()) + edge; }
 
     // The scaled dof matrix V[i][j] = h^{d_i} dof_i(monomial_j) of an element (d_i the
     // derivative order of dof i), whose inverse gives the local basis. Exposed for diagnostics
@@ -72,7 +69,7 @@ public:
 private:
     struct Element {
         Eigen::Vector2d centroid;
-        double h;                  // scaling length: the longest edge
+        double h;  // scaling length: the longest edge
         std::array<int, 3> edges;  // global edge of local edge (v0 v1), (v1 v2), (v2 v0)
         // Column j = monomial coefficients of local shape function j, already multiplied by
         // h^{d_j} so that it is dual to the unscaled (physical) dof.

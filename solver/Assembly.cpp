@@ -4,8 +4,8 @@
 
 namespace plate {
 
-PlateMatrices assemble(const FiniteElementSpace& space, double surfaceDensity,
-                       double bendingStiffness, double poissonRatio) {
+PlateMatrices assemble(const FiniteElementSpace& space, double surfaceDensity, double bendingStiffness,
+                       double poissonRatio) {
     const Eigen::Index n = space.dofCount();
     std::vector<Eigen::Triplet<double>> massTriplets, stiffnessTriplets;
     Eigen::VectorXd load = Eigen::VectorXd::Zero(n);
@@ -23,8 +23,7 @@ PlateMatrices assemble(const FiniteElementSpace& space, double surfaceDensity,
             // a(u, v) = D ∫ (1−ν)(u_xx v_xx + 2 u_xy v_xy + u_yy v_yy) + ν Δu Δv  (§2.1)
             const Eigen::VectorXd laplacian = basis.dxx + basis.dyy;
             ke.noalias() += (w * bendingStiffness) *
-                            ((1.0 - nu) * (basis.dxx * basis.dxx.transpose() +
-                                           2.0 * basis.dxy * basis.dxy.transpose() +
+                            ((1.0 - nu) * (basis.dxx * basis.dxx.transpose() + 2.0 * basis.dxy * basis.dxy.transpose() +
                                            basis.dyy * basis.dyy.transpose()) +
                              nu * laplacian * laplacian.transpose());
             fe += w * basis.value;
@@ -50,8 +49,7 @@ PlateMatrices assemble(const FiniteElementSpace& space, double surfaceDensity,
 
 namespace {
 
-Eigen::SparseMatrix<double> restrict(const Eigen::SparseMatrix<double>& a,
-                                     const std::vector<Eigen::Index>& freeIndex) {
+Eigen::SparseMatrix<double> restrict(const Eigen::SparseMatrix<double>& a, const std::vector<Eigen::Index>& freeIndex) {
     std::vector<Eigen::Triplet<double>> t;
     t.reserve(a.nonZeros());
     Eigen::Index nFree = 0;

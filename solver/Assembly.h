@@ -9,14 +9,14 @@
 namespace plate {
 
 struct PlateMatrices {
-    Eigen::SparseMatrix<double> mass;       // ∫ ρ t ψ_i ψ_j
+    Eigen::SparseMatrix<double> mass;  // ∫ ρ t ψ_i ψ_j
     Eigen::SparseMatrix<double> stiffness;  // ∫ D[(1−ν) ψ_i,αβ ψ_j,αβ + ν Δψ_i Δψ_j]
-    Eigen::VectorXd pressureLoad;           // ∫ ψ_i (load of a unit uniform pressure)
-    Eigen::VectorXd constant;               // the dof vector of the function 1 (K·1 = 0)
+    Eigen::VectorXd pressureLoad;  // ∫ ψ_i (load of a unit uniform pressure)
+    Eigen::VectorXd constant;  // the dof vector of the function 1 (K·1 = 0)
 };
 
-PlateMatrices assemble(const FiniteElementSpace& space, double surfaceDensity,
-                       double bendingStiffness, double poissonRatio);
+PlateMatrices assemble(const FiniteElementSpace& space, double surfaceDensity, double bendingStiffness,
+                       double poissonRatio);
 
 // A point evaluation w(x) = Σ coefficient_k · w_free[dof_k] over the free dofs.
 struct PointProbe {
@@ -33,13 +33,13 @@ struct PointProbe {
 // enters through `baseInertia` = (M·1)_free (docs/theory.md: u = z·1 + w, w clamped).
 struct ClampedPlate {
     Eigen::SparseMatrix<double> mass, stiffness;  // free x free
-    Eigen::VectorXd pressureLoad;                 // free
-    Eigen::VectorXd baseInertia;                  // (M·1)_free
-    double totalMass = 0.0;                       // 1ᵀ M 1 = ρ t |Ω|
-    std::vector<Eigen::Index> freeDofs;           // full index of each free dof
-    std::vector<int> contactVertices;             // mesh vertices carrying a contact bound
-    std::vector<Eigen::Index> contactDofs;        // their vertex-value dof (free index)
-    std::vector<int> clampedVertices;             // vertices on x = 0 (they move with z)
+    Eigen::VectorXd pressureLoad;  // free
+    Eigen::VectorXd baseInertia;  // (M·1)_free
+    double totalMass = 0.0;  // 1ᵀ M 1 = ρ t |Ω|
+    std::vector<Eigen::Index> freeDofs;  // full index of each free dof
+    std::vector<int> contactVertices;  // mesh vertices carrying a contact bound
+    std::vector<Eigen::Index> contactDofs;  // their vertex-value dof (free index)
+    std::vector<int> clampedVertices;  // vertices on x = 0 (they move with z)
 
     PointProbe probe(const FiniteElementSpace& space, double x, double y) const;
 };

@@ -7,8 +7,7 @@
 namespace plate {
 
 ContactColumns::ContactColumns(int count, ColumnFn column, GatherFn gather)
-    : count_(count), columnFn_(std::move(column)), gatherFn_(std::move(gather)),
-      z_(count), w_(count) {}
+    : count_(count), columnFn_(std::move(column)), gatherFn_(std::move(gather)), z_(count), w_(count) {}
 
 void ContactColumns::ensure(int j) {
     if (z_[j].size() != 0) return;
@@ -29,8 +28,7 @@ BoxQP::BoxQP(ContactColumns& columns, int maxPdasIterations)
 }
 
 namespace {
-inline double target(int i, signed char s, const Eigen::VectorXd& lower,
-                     const Eigen::VectorXd& upper) {
+inline double target(int i, signed char s, const Eigen::VectorXd& lower, const Eigen::VectorXd& upper) {
     return s < 0 ? lower[i] : upper[i];
 }
 // Below this a bound "violation" is roundoff of y = y_free + Wμ, not contact (1e-15 of the
@@ -38,9 +36,8 @@ inline double target(int i, signed char s, const Eigen::VectorXd& lower,
 inline double slack(double bound) { return 1e-15 * (1.0 + std::abs(bound)); }
 }  // namespace
 
-bool BoxQP::solveOnActive(const Eigen::VectorXd& yFree, const Eigen::VectorXd& lower,
-                          const Eigen::VectorXd& upper, const std::vector<signed char>& state,
-                          Eigen::VectorXd& mu, Eigen::VectorXd& y) {
+bool BoxQP::solveOnActive(const Eigen::VectorXd& yFree, const Eigen::VectorXd& lower, const Eigen::VectorXd& upper,
+                          const std::vector<signed char>& state, Eigen::VectorXd& mu, Eigen::VectorXd& y) {
     const int na = static_cast<int>(active_.size());
     y = yFree;
     if (na == 0) return true;
@@ -84,9 +81,8 @@ bool BoxQP::solveOnActive(const Eigen::VectorXd& yFree, const Eigen::VectorXd& l
     return true;
 }
 
-QPResult BoxQP::solve(const Eigen::VectorXd& yFree, const Eigen::VectorXd& lower,
-                      const Eigen::VectorXd& upper, std::vector<signed char>& state,
-                      Eigen::VectorXd& mu, Eigen::VectorXd& y) {
+QPResult BoxQP::solve(const Eigen::VectorXd& yFree, const Eigen::VectorXd& lower, const Eigen::VectorXd& upper,
+                      std::vector<signed char>& state, Eigen::VectorXd& mu, Eigen::VectorXd& y) {
     const int m = columns_.count();
     for (int i : active_) mu[i] = 0.0;  // mu is zero off the active set: clear the old one
     QPResult result;
@@ -130,9 +126,8 @@ QPResult BoxQP::solve(const Eigen::VectorXd& yFree, const Eigen::VectorXd& lower
     return result;
 }
 
-bool BoxQP::primalActiveSet(const Eigen::VectorXd& yFree, const Eigen::VectorXd& lower,
-                            const Eigen::VectorXd& upper, std::vector<signed char>& state,
-                            Eigen::VectorXd& mu, Eigen::VectorXd& y, int& iterations) {
+bool BoxQP::primalActiveSet(const Eigen::VectorXd& yFree, const Eigen::VectorXd& lower, const Eigen::VectorXd& upper,
+                            std::vector<signed char>& state, Eigen::VectorXd& mu, Eigen::VectorXd& y, int& iterations) {
     // Nocedal–Wright Alg. 16.3 for bounds, in y: from a feasible point, step towards the
     // minimizer with the working set fixed on its bounds; block on the first bound hit;
     // drop a bound whose multiplier has the wrong sign. Finite for SPD W.
@@ -143,8 +138,8 @@ bool BoxQP::primalActiveSet(const Eigen::VectorXd& yFree, const Eigen::VectorXd&
     // of C (y = C w) and a blocking bound is always independent of the working set, so W_SS
     // stays nonsingular even for a reduced plate where rank(W) < count.
     const bool zeroFeasible = (lower.array() <= 0.0).all() && (upper.array() >= 0.0).all();
-    Eigen::VectorXd current = zeroFeasible ? Eigen::VectorXd::Zero(m)
-                                           : Eigen::VectorXd(yFree.cwiseMax(lower).cwiseMin(upper));
+    Eigen::VectorXd current =
+        zeroFeasible ? Eigen::VectorXd::Zero(m) : Eigen::VectorXd(yFree.cwiseMax(lower).cwiseMin(upper));
     for (int i = 0; i < m; ++i)
         state[i] = zeroFeasible ? 0 : (yFree[i] < lower[i] ? -1 : (yFree[i] > upper[i] ? +1 : 0));
     const int maxIterations = 10 * m + 100;
@@ -195,9 +190,9 @@ bool BoxQP::primalActiveSet(const Eigen::VectorXd& yFree, const Eigen::VectorXd&
     return false;
 }
 
-double BoxQP::kktResidual(const Eigen::VectorXd& yFree, const Eigen::VectorXd& lower,
-                          const Eigen::VectorXd& upper, const std::vector<signed char>& state,
-                          const Eigen::VectorXd& mu, const Eigen::VectorXd& y) const {
+double BoxQP::kktResidual(const Eigen::VectorXd& yFree, const Eigen::VectorXd& lower, const Eigen::VectorXd& upper,
+                          const std::vector<signed char>& state, const Eigen::VectorXd& mu,
+                          const Eigen::VectorXd& y) const {
     const int m = columns_.count();
     double scaleY = std::numeric_limits<double>::min();
     for (int i = 0; i < m; ++i) {

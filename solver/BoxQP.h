@@ -22,8 +22,14 @@ public:
     ContactColumns(int count, ColumnFn column, GatherFn gather);
 
     int count() const { return count_; }
-    const Eigen::VectorXd& column(int j) { ensure(j); return z_[j]; }
-    const Eigen::VectorXd& contactColumn(int j) { ensure(j); return w_[j]; }  // C z_j = W e_j
+    const Eigen::VectorXd& column(int j) {
+        ensure(j);
+        return z_[j];
+    }
+    const Eigen::VectorXd& contactColumn(int j) {
+        ensure(j);
+        return w_[j];
+    }  // C z_j = W e_j
     int computedColumns() const { return computed_; }
 
 private:
@@ -51,9 +57,8 @@ public:
 
     // state[i]: −1 on the lower bound, +1 on the upper bound, 0 free. In: warm start; out: the
     // solution's set. mu and y are overwritten (mu zero off the active set).
-    QPResult solve(const Eigen::VectorXd& yFree, const Eigen::VectorXd& lower,
-                   const Eigen::VectorXd& upper, std::vector<signed char>& state,
-                   Eigen::VectorXd& mu, Eigen::VectorXd& y);
+    QPResult solve(const Eigen::VectorXd& yFree, const Eigen::VectorXd& lower, const Eigen::VectorXd& upper,
+                   std::vector<signed char>& state, Eigen::VectorXd& mu, Eigen::VectorXd& y);
 
     // Active indices of the last solution.
     const std::vector<int>& active() const { return active_; }
@@ -61,23 +66,21 @@ public:
 private:
     // Solves W_SS μ_S = target_S − yFree_S on the current active list; fills y (all entries).
     // False if W_SS is singular (dependent constraints, possible only for a reduced plate).
-    bool solveOnActive(const Eigen::VectorXd& yFree, const Eigen::VectorXd& lower,
-                       const Eigen::VectorXd& upper, const std::vector<signed char>& state,
-                       Eigen::VectorXd& mu, Eigen::VectorXd& y);
-    bool primalActiveSet(const Eigen::VectorXd& yFree, const Eigen::VectorXd& lower,
-                         const Eigen::VectorXd& upper, std::vector<signed char>& state,
-                         Eigen::VectorXd& mu, Eigen::VectorXd& y, int& iterations);
-    double kktResidual(const Eigen::VectorXd& yFree, const Eigen::VectorXd& lower,
-                       const Eigen::VectorXd& upper, const std::vector<signed char>& state,
-                       const Eigen::VectorXd& mu, const Eigen::VectorXd& y) const;
+    bool solveOnActive(const Eigen::VectorXd& yFree, const Eigen::VectorXd& lower, const Eigen::VectorXd& upper,
+                       const std::vector<signed char>& state, Eigen::VectorXd& mu, Eigen::VectorXd& y);
+    bool primalActiveSet(const Eigen::VectorXd& yFree, const Eigen::VectorXd& lower, const Eigen::VectorXd& upper,
+                         std::vector<signed char>& state, Eigen::VectorXd& mu, Eigen::VectorXd& y, int& iterations);
+    double kktResidual(const Eigen::VectorXd& yFree, const Eigen::VectorXd& lower, const Eigen::VectorXd& upper,
+                       const std::vector<signed char>& state, const Eigen::VectorXd& mu,
+                       const Eigen::VectorXd& y) const;
 
     ContactColumns& columns_;
     int maxPdasIterations_;
     std::vector<int> active_;
-    std::vector<int> factoredSet_;       // the set whose W_SS is factored in wss_
-    Eigen::MatrixXd wss_;                // capacity count x count; top-left block in use
+    std::vector<int> factoredSet_;  // the set whose W_SS is factored in wss_
+    Eigen::MatrixXd wss_;  // capacity count x count; top-left block in use
     Eigen::VectorXd rhs_;
-    Eigen::VectorXd residualOnActive_;   // y_S − target_S before snapping (for the KKT check)
+    Eigen::VectorXd residualOnActive_;  // y_S − target_S before snapping (for the KKT check)
     Eigen::VectorXd yTrial_;
 };
 

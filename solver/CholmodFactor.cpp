@@ -83,8 +83,7 @@ void CholmodFactor::solve(const Eigen::VectorXd& b, Eigen::VectorXd& x) const {
     rhs.x = const_cast<double*>(b.data());
     rhs.xtype = CHOLMOD_REAL;
     rhs.dtype = CHOLMOD_DOUBLE;
-    if (!cholmod_solve2(CHOLMOD_A, ws_->factor, &rhs, nullptr, &ws_->x, nullptr, &ws_->y,
-                        &ws_->e, &ws_->common))
+    if (!cholmod_solve2(CHOLMOD_A, ws_->factor, &rhs, nullptr, &ws_->x, nullptr, &ws_->y, &ws_->e, &ws_->common))
         throw std::runtime_error("CHOLMOD solve failed");
     x.resize(n_);
     std::memcpy(x.data(), ws_->x->x, sizeof(double) * static_cast<size_t>(n_));

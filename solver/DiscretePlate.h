@@ -34,8 +34,8 @@ public:
     virtual double contactRowNormBound() const { return 0.0; }
 
     virtual const Eigen::VectorXd& pressureLoad() const = 0;  // F (unit pressure)
-    virtual const Eigen::VectorXd& baseInertia() const = 0;   // (M·1)_free
-    virtual double totalMass() const = 0;                     // 1ᵀM1
+    virtual const Eigen::VectorXd& baseInertia() const = 0;  // (M·1)_free
+    virtual double totalMass() const = 0;  // 1ᵀM1
 
     // Point evaluation of w (relative to the base) in these coordinates.
     virtual PointProbe probe(double x, double y) const = 0;

@@ -50,8 +50,7 @@ public:
     virtual int pieceContaining(int element, const Eigen::Vector2d& x) const = 0;
 
     // Local shape functions (and their derivatives up to order 2) at x on the given piece.
-    virtual void evaluate(int element, int piece, const Eigen::Vector2d& x,
-                          LocalBasis& out) const = 0;
+    virtual void evaluate(int element, int piece, const Eigen::Vector2d& x, LocalBasis& out) const = 0;
 
     // The dof holding w at mesh vertex v.
     virtual Eigen::Index vertexValueDof(int vertex) const = 0;

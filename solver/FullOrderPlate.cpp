@@ -16,8 +16,7 @@ FullOrderPlate::FullOrderPlate(std::shared_ptr<const FiniteElementSpace> space,
     // The kernel reads each row's diagonal first: it must be stored, even where it is zero.
     for (const auto* m : {&stiffnessUpper_, &massUpper_})
         for (Eigen::Index i = 0; i < m->rows(); ++i)
-            if (m->outerIndexPtr()[i] == m->outerIndexPtr()[i + 1] ||
-                m->innerIndexPtr()[m->outerIndexPtr()[i]] != i)
+            if (m->outerIndexPtr()[i] == m->outerIndexPtr()[i + 1] || m->innerIndexPtr()[m->outerIndexPtr()[i]] != i)
                 throw std::runtime_error("sparse matrix without a stored diagonal");
 }
 
@@ -29,9 +28,7 @@ void FullOrderPlate::applyMass(const Eigen::VectorXd& w, Eigen::VectorXd& out) c
     multiplySymmetricUpper(massUpper_, w, out);
 }
 
-void FullOrderPlate::solveStepMatrix(const Eigen::VectorXd& b, Eigen::VectorXd& x) const {
-    stepFactor_.solve(b, x);
-}
+void FullOrderPlate::solveStepMatrix(const Eigen::VectorXd& b, Eigen::VectorXd& x) const { stepFactor_.solve(b, x); }
 
 DiscretePlate::Solver FullOrderPlate::stiffnessSolver() const {
     auto factor = std::make_shared<const CholmodFactor>(plate_->stiffness);

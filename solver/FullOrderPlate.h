@@ -10,8 +10,8 @@ namespace plate {
 
 class FullOrderPlate : public DiscretePlate {
 public:
-    FullOrderPlate(std::shared_ptr<const FiniteElementSpace> space,
-                   std::shared_ptr<const ClampedPlate> plate, double dt, double beta);
+    FullOrderPlate(std::shared_ptr<const FiniteElementSpace> space, std::shared_ptr<const ClampedPlate> plate,
+                   double dt, double beta);
 
     Eigen::Index size() const override { return plate_->mass.rows(); }
     void applyStiffness(const Eigen::VectorXd& w, Eigen::VectorXd& out) const override;

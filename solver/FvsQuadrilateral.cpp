@@ -50,9 +50,7 @@ Row directionalRow(const Eigen::Vector2d& p, const Eigen::Vector2d& n) {
 
 Eigen::Vector2d perp(const Eigen::Vector2d& e) { return {-e.y(), e.x()}; }
 
-double cross(const Eigen::Vector2d& a, const Eigen::Vector2d& b) {
-    return a.x() * b.y() - a.y() * b.x();
-}
+double cross(const Eigen::Vector2d& a, const Eigen::Vector2d& b) { return a.x() * b.y() - a.y() * b.x(); }
 
 struct Geometry {
     Eigen::Vector2d centre;
@@ -112,9 +110,8 @@ Eigen::MatrixXd constraintMatrix(const Geometry& g, bool reduced) {
         for (int k = 0; k < kPieces; ++k) {
             const Eigen::Vector2d a = g.q[k], b = g.q[(k + 1) % kPieces];
             const Eigen::Vector2d n = -perp(b - a).normalized();  // outward (CCW corners)
-            A.block<1, kM>(row, kM * k) = directionalRow(a, n) -
-                                          2.0 * directionalRow(0.5 * (a + b), n) +
-                                          directionalRow(b, n);
+            A.block<1, kM>(row, kM * k) =
+                directionalRow(a, n) - 2.0 * directionalRow(0.5 * (a + b), n) + directionalRow(b, n);
             ++row;
         }
     }
@@ -238,9 +235,7 @@ FvsSpace::FvsSpace(const Mesh& mesh) : mesh_(mesh) {
     }
 }
 
-const std::vector<Eigen::Index>& FvsSpace::elementDofs(int element) const {
-    return elementDofs_.at(element);
-}
+const std::vector<Eigen::Index>& FvsSpace::elementDofs(int element) const { return elementDofs_.at(element); }
 
 std::vector<ElementQuadratureNode> FvsSpace::quadrature(int element) const {
     const FvsLocalBasis& e = elements_.at(element);
@@ -252,9 +247,7 @@ std::vector<ElementQuadratureNode> FvsSpace::quadrature(int element) const {
     return rule;
 }
 
-int FvsSpace::elementContaining(const Eigen::Vector2d& x) const {
-    return mesh_.cellContaining(x);
-}
+int FvsSpace::elementContaining(const Eigen::Vector2d& x) const { return mesh_.cellContaining(x); }
 
 int FvsSpace::pieceContaining(int element, const Eigen::Vector2d& x) const {
     const FvsLocalBasis& e = elements_.at(element);
@@ -264,8 +257,7 @@ int FvsSpace::pieceContaining(int element, const Eigen::Vector2d& x) const {
     int best = 0;
     double bestMargin = -std::numeric_limits<double>::infinity();
     for (int k = 0; k < kPieces; ++k) {
-        const std::array<Eigen::Vector2d, 3> t = {e.corners[k], e.corners[(k + 1) % kPieces],
-                                                  e.centre};
+        const std::array<Eigen::Vector2d, 3> t = {e.corners[k], e.corners[(k + 1) % kPieces], e.centre};
         double margin = std::numeric_limits<double>::infinity();
         for (int i = 0; i < 3; ++i) {
             const Eigen::Vector2d edge = t[(i + 1) % 3] - t[i];
@@ -279,8 +271,7 @@ int FvsSpace::pieceContaining(int element, const Eigen::Vector2d& x) const {
     return best;
 }
 
-void FvsSpace::evaluate(int element, int piece, const Eigen::Vector2d& x,
-                        LocalBasis& out) const {
+void FvsSpace::evaluate(int element, int piece, const Eigen::Vector2d& x, LocalBasis& out) const {
     const FvsLocalBasis& e = elements_.at(element);
     if (piece < 0 || piece >= kPieces) throw std::out_of_range("FVS: piece out of range");
     const FvsLocalBasis::PieceCoefficients& C = e.coefficients[piece];
@@ -307,8 +298,6 @@ std::vector<Eigen::Index> FvsSpace::clampedDofs() const {
     return dofs;  // increasing v, then j: sorted
 }
 
-std::unique_ptr<FiniteElementSpace> makeFvsSpace(const Mesh& mesh) {
-    return std::make_unique<FvsSpace>(mesh);
-}
+std::unique_ptr<FiniteElementSpace> makeFvsSpace(const Mesh& mesh) { return std::make_unique<FvsSpace>(mesh); }
 
 }  // namespace plate

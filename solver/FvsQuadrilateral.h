@@ -23,7 +23,7 @@ namespace plate {
 // (x - centre) / scale, for conditioning.
 struct FvsLocalBasis {
     static constexpr int kMonomials = 10;  // cubics in 2D
-    static constexpr int kDofs = 12;       // corner k = 0..3, then (w, w_x, w_y)
+    static constexpr int kDofs = 12;  // corner k = 0..3, then (w, w_x, w_y)
     using PieceCoefficients = Eigen::Matrix<double, kMonomials, kDofs>;
 
     std::array<Eigen::Vector2d, 4> corners;
@@ -54,9 +54,7 @@ public:
 
     ElementType type() const override { return ElementType::Fvs; }
     const Mesh& mesh() const override { return mesh_; }
-    Eigen::Index dofCount() const override {
-        return kVertexDofs * static_cast<Eigen::Index>(mesh_.vertexCount());
-    }
+    Eigen::Index dofCount() const override { return kVertexDofs * static_cast<Eigen::Index>(mesh_.vertexCount()); }
     int elementCount() const override { return static_cast<int>(elements_.size()); }
 
     // Local order: corner k of cellVertices(c), k = 0..3, then (w, w_x, w_y).
@@ -72,8 +70,7 @@ public:
     // so w and its gradient agree; only second derivatives jump between pieces).
     int pieceContaining(int element, const Eigen::Vector2d& x) const override;
 
-    void evaluate(int element, int piece, const Eigen::Vector2d& x,
-                  LocalBasis& out) const override;
+    void evaluate(int element, int piece, const Eigen::Vector2d& x, LocalBasis& out) const override;
 
     Eigen::Index vertexValueDof(int vertex) const override { return kVertexDofs * vertex; }
 

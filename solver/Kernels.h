@@ -10,8 +10,8 @@
 
 namespace plate {
 
-inline void multiplySymmetricUpper(const Eigen::SparseMatrix<double, Eigen::RowMajor>& upper,
-                                   const Eigen::VectorXd& x, Eigen::VectorXd& y) {
+inline void multiplySymmetricUpper(const Eigen::SparseMatrix<double, Eigen::RowMajor>& upper, const Eigen::VectorXd& x,
+                                   Eigen::VectorXd& y) {
     const int* outer = upper.outerIndexPtr();
     const int* inner = upper.innerIndexPtr();
     const double* value = upper.valuePtr();
@@ -36,9 +36,9 @@ inline void multiplySymmetricUpper(const Eigen::SparseMatrix<double, Eigen::RowM
 // transposed so each dot product reads contiguous memory. Cloned for x86-64-v3 (AVX2 + FMA)
 // and the baseline, chosen at load time: the FMU stays portable and uses the wide units
 // where the host has them.
-__attribute__((target_clones("arch=x86-64-v3", "default")))
-inline void multiplyTransposed(const Eigen::MatrixXd& rows, const Eigen::VectorXd& x,
-                               Eigen::VectorXd& y) {
+__attribute__((target_clones("arch=x86-64-v3", "default"))) inline void multiplyTransposed(const Eigen::MatrixXd& rows,
+                                                                                           const Eigen::VectorXd& x,
+                                                                                           Eigen::VectorXd& y) {
     const Eigen::Index n = rows.rows(), m = rows.cols();
     y.resize(m);
     const double* xs = x.data();

@@ -5,8 +5,7 @@
 
 namespace plate {
 
-Mesh::Mesh(double length, double width, int nx, int ny)
-    : length_(length), width_(width), nx_(nx), ny_(ny) {}
+Mesh::Mesh(double length, double width, int nx, int ny) : length_(length), width_(width), nx_(nx), ny_(ny) {}
 
 std::array<int, 4> Mesh::cellVertices(int c) const {
     const int i = c / ny_, j = c % ny_;

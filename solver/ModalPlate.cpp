@@ -7,9 +7,8 @@
 
 namespace plate {
 
-ModalPlate::ModalPlate(std::shared_ptr<const FiniteElementSpace> space,
-                       std::shared_ptr<const ClampedPlate> plate, double dt, double beta,
-                       int modes)
+ModalPlate::ModalPlate(std::shared_ptr<const FiniteElementSpace> space, std::shared_ptr<const ClampedPlate> plate,
+                       double dt, double beta, int modes)
     : space_(std::move(space)), plate_(std::move(plate)) {
     lowestModes(*plate_, modes, phi_, omega2_);
     complete_ = phi_.cols() == plate_->mass.rows();
@@ -22,9 +21,7 @@ ModalPlate::ModalPlate(std::shared_ptr<const FiniteElementSpace> space,
     baseInertia_ = phi_.transpose() * plate_->baseInertia;
 }
 
-void ModalPlate::applyStiffness(const Eigen::VectorXd& w, Eigen::VectorXd& out) const {
-    out = omega2_.cwiseProduct(w);
-}
+void ModalPlate::applyStiffness(const Eigen::VectorXd& w, Eigen::VectorXd& out) const { out = omega2_.cwiseProduct(w); }
 
 void ModalPlate::applyMass(const Eigen::VectorXd& w, Eigen::VectorXd& out) const { out = w; }
 
@@ -33,9 +30,7 @@ void ModalPlate::solveStepMatrix(const Eigen::VectorXd& b, Eigen::VectorXd& x) c
 }
 
 DiscretePlate::Solver ModalPlate::stiffnessSolver() const {
-    return [omega2 = omega2_](const Eigen::VectorXd& b, Eigen::VectorXd& x) {
-        x = b.cwiseQuotient(omega2);
-    };
+    return [omega2 = omega2_](const Eigen::VectorXd& b, Eigen::VectorXd& x) { x = b.cwiseQuotient(omega2); };
 }
 
 void ModalPlate::gatherContact(const Eigen::VectorXd& w, Eigen::VectorXd& y) const {
@@ -49,8 +44,7 @@ void ModalPlate::stepMatrixContactColumn(int j, Eigen::VectorXd& z) const {
 PointProbe ModalPlate::probe(double x, double y) const {
     const PointProbe full = plate_->probe(*space_, x, y);
     Eigen::VectorXd row = Eigen::VectorXd::Zero(phi_.cols());
-    for (std::size_t k = 0; k < full.dofs.size(); ++k)
-        row += full.coefficients[k] * phi_.row(full.dofs[k]).transpose();
+    for (std::size_t k = 0; k < full.dofs.size(); ++k) row += full.coefficients[k] * phi_.row(full.dofs[k]).transpose();
     PointProbe modal;
     for (Eigen::Index k = 0; k < row.size(); ++k) {
         modal.dofs.push_back(k);

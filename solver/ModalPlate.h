@@ -17,8 +17,8 @@ class ModalPlate : public DiscretePlate {
 public:
     // modes ≤ 0 or ≥ the dof count: complete basis. Throws std::runtime_error if the eigen
     // solution fails.
-    ModalPlate(std::shared_ptr<const FiniteElementSpace> space,
-               std::shared_ptr<const ClampedPlate> plate, double dt, double beta, int modes);
+    ModalPlate(std::shared_ptr<const FiniteElementSpace> space, std::shared_ptr<const ClampedPlate> plate, double dt,
+               double beta, int modes);
 
     Eigen::Index size() const override { return omega2_.size(); }
     void applyStiffness(const Eigen::VectorXd& w, Eigen::VectorXd& out) const override;
@@ -46,9 +46,9 @@ private:
     std::shared_ptr<const FiniteElementSpace> space_;
     std::shared_ptr<const ClampedPlate> plate_;
     bool complete_ = false;
-    Eigen::MatrixXd phi_;           // free dofs x modes
-    Eigen::VectorXd omega2_;        // Ω²
-    Eigen::VectorXd inverseStep_;   // 1 / (1 + βΔt²ω²)
+    Eigen::MatrixXd phi_;  // free dofs x modes
+    Eigen::VectorXd omega2_;  // Ω²
+    Eigen::VectorXd inverseStep_;  // 1 / (1 + βΔt²ω²)
     Eigen::MatrixXd contactModesT_;  // (CΦ)ᵀ: column j = mode shapes at contact vertex j
     Eigen::VectorXd pressureLoad_, baseInertia_;
     double contactRowNormMax_ = 0.0;  // max_i ‖(CΦ)_i‖₂

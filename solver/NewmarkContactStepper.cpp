@@ -9,8 +9,8 @@
 
 namespace plate {
 
-NewmarkContactStepper::NewmarkContactStepper(std::shared_ptr<const DiscretePlate> plate,
-                                             double dt, double beta, Obstacles obstacles)
+NewmarkContactStepper::NewmarkContactStepper(std::shared_ptr<const DiscretePlate> plate, double dt, double beta,
+                                             Obstacles obstacles)
     : plate_(std::move(plate)), dt_(dt), beta_(beta), obstacles_(obstacles) {
     const auto n = plate_->size();
     const int m = plate_->contactCount();
@@ -68,15 +68,14 @@ void NewmarkContactStepper::step(double zNext, double pNext) {
     NewmarkState& s = state_;
     if (!std::isfinite(zNext) || !std::isfinite(pNext)) {
         std::ostringstream msg;
-        msg << "non-finite input at t = " << (s.step + 1) * dt_ << ": base_displacement = "
-            << zNext << ", load = " << pNext;
+        msg << "non-finite input at t = " << (s.step + 1) * dt_ << ": base_displacement = " << zNext
+            << ", load = " << pNext;
         throw StepError(msg.str());
     }
     if (zNext < obstacles_.lower || zNext > obstacles_.upper) {
         std::ostringstream msg;
         msg.precision(15);  // round-trips what users type (0.7, not 0.69999999999999996)
-        msg << "base_displacement = " << zNext << " at t = " << (s.step + 1) * dt_
-            << " puts the clamped edge past "
+        msg << "base_displacement = " << zNext << " at t = " << (s.step + 1) * dt_ << " puts the clamped edge past "
             << (zNext < obstacles_.lower ? "obstacle_lower = " : "obstacle_upper = ")
             << (zNext < obstacles_.lower ? obstacles_.lower : obstacles_.upper)
             << " (allowed: obstacle_lower <= base_displacement <= obstacle_upper)";
@@ -100,8 +99,8 @@ void NewmarkContactStepper::step(double zNext, double pNext) {
         bool violated = false;
         // 1e-12 m covers the roundoff of the gathered values the bound is compared with.
         const bool mayTouch =
-            checkMargin_ <= 0.0 || rowNormBound_ * (wNext_ - wCheck_).norm() +
-                                           std::abs(zNext - zCheck_) + 1e-12 >= checkMargin_;
+            checkMargin_ <= 0.0 ||
+            rowNormBound_ * (wNext_ - wCheck_).norm() + std::abs(zNext - zCheck_) + 1e-12 >= checkMargin_;
         if (mayTouch) {
             plate_->gatherContact(wNext_, yFree_);
             double margin = std::numeric_limits<double>::infinity();
@@ -125,8 +124,8 @@ void NewmarkContactStepper::step(double zNext, double pNext) {
             kkt = r.kktResidual;
             if (!r.converged || !(kkt <= 1e-10)) {
                 std::ostringstream msg;
-                msg << "contact QP did not converge at t = " << (s.step + 1) * dt_ << " ("
-                    << r.iterations << " iterations, relative KKT residual " << kkt << ")";
+                msg << "contact QP did not converge at t = " << (s.step + 1) * dt_ << " (" << r.iterations
+                    << " iterations, relative KKT residual " << kkt << ")";
                 throw StepError(msg.str());
             }
             plate_->gatherContact(s.wPrev, yPrev_);
@@ -166,8 +165,8 @@ void NewmarkContactStepper::step(double zNext, double pNext) {
     const double mass = plate_->totalMass();
     const double crossNext = zDotNext * (tNext - s.baseCoupling) / dt_ + 0.5 * zDotNext * zDotNext * mass;
     const double cross = zDot * (s.baseCoupling - s.baseCouplingPrev) / dt_ + 0.5 * zDot * zDot * mass;
-    const double work = 0.5 * pBeta * (sNext - s.pressureWorkPrev) - 0.5 * (baseJump / dt2) * (tNext - s.baseCouplingPrev) +
-                        contactWorkOnBase + crossNext - cross;
+    const double work = 0.5 * pBeta * (sNext - s.pressureWorkPrev) -
+                        0.5 * (baseJump / dt2) * (tNext - s.baseCouplingPrev) + contactWorkOnBase + crossNext - cross;
 
     // Commit.
     s.wPrev.swap(s.w);
@@ -202,8 +201,7 @@ double NewmarkContactStepper::energy() const {
     plate_->applyMass(dw, scratch_);
     const double dt2 = dt_ * dt_;
     const double zDot = (s.z - s.zPrev) / dt_;
-    const double kinetic = 0.5 * dw.dot(scratch_) / dt2 +
-                           0.5 * (beta_ - 0.25) * dw.dot(s.kw - s.kwPrev) +
+    const double kinetic = 0.5 * dw.dot(scratch_) / dt2 + 0.5 * (beta_ - 0.25) * dw.dot(s.kw - s.kwPrev) +
                            zDot * (s.baseCoupling - s.baseCouplingPrev) / dt_ + 0.5 * zDot * zDot * plate_->totalMass();
     const double potential = 0.125 * (s.w + s.wPrev).dot(s.kw + s.kwPrev);
     return kinetic + potential;

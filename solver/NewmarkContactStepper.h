@@ -21,8 +21,7 @@ namespace plate {
 
 class NewmarkContactStepper {
 public:
-    NewmarkContactStepper(std::shared_ptr<const DiscretePlate> plate, double dt, double beta,
-                          Obstacles obstacles);
+    NewmarkContactStepper(std::shared_ptr<const DiscretePlate> plate, double dt, double beta, Obstacles obstacles);
 
     // The plate at rest for t ≤ 0 in the shape w0 with the clamp at z0, pressure p0.
     void initialize(const Eigen::VectorXd& w0, double z0, double p0);
@@ -59,8 +58,7 @@ private:
     std::unique_ptr<ContactColumns> columns_;
     std::unique_ptr<BoxQP> qp_;
     // Step buffers, allocated once.
-    Eigen::VectorXd rhs_, d_, wNext_, kwNext_, yFree_, y_, mu_, lowerBound_, upperBound_,
-        yPrev_;
+    Eigen::VectorXd rhs_, d_, wNext_, kwNext_, yFree_, y_, mu_, lowerBound_, upperBound_, yPrev_;
     std::vector<signed char> trialState_;
     // Free flight without looking at every vertex (complete modal basis: the look is a dense
     // product): at the last full look the vertices were at least checkMargin_ from the

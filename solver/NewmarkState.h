@@ -8,10 +8,10 @@ namespace plate {
 // The full mutable state of the scheme: two time levels plus the bookkeeping that makes the
 // energy ledger and the warm start exact. Saving and restoring it continues bit-identically.
 struct NewmarkState {
-    Eigen::VectorXd w, wPrev;        // w_n, w_{n−1}
-    Eigen::VectorXd kw, kwPrev;      // K w_n, K w_{n−1} (reused by the next step and the energy)
-    double z = 0, zPrev = 0;         // base z_n, z_{n−1}
-    double p = 0, pPrev = 0;         // pressure p_n, p_{n−1}
+    Eigen::VectorXd w, wPrev;  // w_n, w_{n−1}
+    Eigen::VectorXd kw, kwPrev;  // K w_n, K w_{n−1} (reused by the next step and the energy)
+    double z = 0, zPrev = 0;  // base z_n, z_{n−1}
+    double p = 0, pPrev = 0;  // pressure p_n, p_{n−1}
     double pressureWork = 0, pressureWorkPrev = 0;  // Fᵀw_n, Fᵀw_{n−1} (work of the pressure)
     double baseCoupling = 0, baseCouplingPrev = 0;  // (M·1)ᵀw: coupling of base and plate inertia
     long long step = 0;

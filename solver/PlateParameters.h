@@ -9,30 +9,29 @@
 namespace plate {
 
 struct PlateParameters {
-    double length = 1.2;           // m
-    double width = 0.4;            // m
-    double thickness = 0.01;       // m
-    double youngsModulus = 2.1e11; // Pa
+    double length = 1.2;  // m
+    double width = 0.4;  // m
+    double thickness = 0.01;  // m
+    double youngsModulus = 2.1e11;  // Pa
     double poissonRatio = 0.3;
-    double density = 7770.0;       // kg/m^3
+    double density = 7770.0;  // kg/m^3
     int nx = 14;
     int ny = 5;
     ElementType element = ElementType::Argyris;
-    double obstacleLower = -0.1;   // m
-    double obstacleUpper = 0.1;    // m
+    double obstacleLower = -0.1;  // m
+    double obstacleUpper = 0.1;  // m
     bool obstacleLowerEnabled = true;
     bool obstacleUpperEnabled = true;
-    double dt = 1e-5;              // s
+    double dt = 1e-5;  // s
     double beta = 0.5;
-    double initialLoad = 0.0;      // Pa
-    int modes = 0;                 // 0 = full space (exact)
+    double initialLoad = 0.0;  // Pa
+    int modes = 0;  // 0 = full space (exact)
     // How exact mode runs (not an FMU parameter: the result is the same scheme either way;
     // benchmarks and tests pin it to compare the two).
     enum class Engine { Auto, SparseFactor, CompleteModal } engine = Engine::Auto;
 
     double bendingStiffness() const {
-        return youngsModulus * thickness * thickness * thickness /
-               (12.0 * (1.0 - poissonRatio * poissonRatio));
+        return youngsModulus * thickness * thickness * thickness / (12.0 * (1.0 - poissonRatio * poissonRatio));
     }
     double surfaceDensity() const { return density * thickness; }
 };

@@ -51,8 +51,7 @@ struct PlateSimulation::Impl {
     mutable double energyCache = 0.0;
 };
 
-PlateSimulation::PlateSimulation(const PlateParameters& p, double baseDisplacement0)
-    : impl_(std::make_unique<Impl>()) {
+PlateSimulation::PlateSimulation(const PlateParameters& p, double baseDisplacement0) : impl_(std::make_unique<Impl>()) {
     validate(p);
     const Obstacles obstacles = obstaclesOf(p);
     if (!std::isfinite(baseDisplacement0) || baseDisplacement0 < obstacles.lower ||
@@ -60,17 +59,15 @@ PlateSimulation::PlateSimulation(const PlateParameters& p, double baseDisplaceme
         std::ostringstream msg;
         msg.precision(15);  // round-trips what users type (0.7, not 0.69999999999999996)
         msg << "invalid initial state: base_displacement = " << baseDisplacement0
-            << " puts the clamped edge outside the obstacles (allowed: obstacle_lower = "
-            << obstacles.lower << " <= base_displacement <= obstacle_upper = " << obstacles.upper
-            << ")";
+            << " puts the clamped edge outside the obstacles (allowed: obstacle_lower = " << obstacles.lower
+            << " <= base_displacement <= obstacle_upper = " << obstacles.upper << ")";
         throw ParameterError(msg.str());
     }
     Impl& s = *impl_;
     s.parameters = p;
     const Mesh mesh(p.length, p.width, p.nx, p.ny);
     s.space = makeSpace(p.element, mesh);
-    const PlateMatrices matrices =
-        assemble(*s.space, p.surfaceDensity(), p.bendingStiffness(), p.poissonRatio);
+    const PlateMatrices matrices = assemble(*s.space, p.surfaceDensity(), p.bendingStiffness(), p.poissonRatio);
     s.clamped = std::make_shared<const ClampedPlate>(clamp(*s.space, matrices));
     if (p.beta < 0.25) {
         // Stability of γ = ½, β < ¼ (docs/theory.md): Δt < 2 / √((1 − 4β) κ_h).
@@ -79,14 +76,14 @@ PlateSimulation::PlateSimulation(const PlateParameters& p, double baseDisplaceme
             std::ostringstream msg;
             msg.precision(6);
             msg << "invalid parameter dt = " << p.dt << " for beta = " << p.beta
-                << " (allowed: dt < 2/sqrt((1-4 beta) kappa_h) = " << bound
-                << " s, kappa_h = " << kappa() << " s^-2; or beta >= 0.25)";
+                << " (allowed: dt < 2/sqrt((1-4 beta) kappa_h) = " << bound << " s, kappa_h = " << kappa()
+                << " s^-2; or beta >= 0.25)";
             throw ParameterError(msg.str());
         }
     }
     using Engine = PlateParameters::Engine;
-    const bool modal = p.modes > 0 || p.engine == Engine::CompleteModal ||
-                       (p.engine == Engine::Auto && completeModalPays(*s.clamped));
+    const bool modal =
+        p.modes > 0 || p.engine == Engine::CompleteModal || (p.engine == Engine::Auto && completeModalPays(*s.clamped));
     if (modal)
         s.discrete = std::make_shared<const ModalPlate>(s.space, s.clamped, p.dt, p.beta, p.modes);
     else
@@ -99,8 +96,7 @@ PlateSimulation::PlateSimulation(const PlateParameters& p, double baseDisplaceme
         // K (roundoff ~eps·cond(K) rather than the dense eigen solution's eps·λ_max/λ_1) and
         // change coordinates, α0 = ΦᵀM w0, exact for the complete basis.
         const FullOrderPlate full(s.space, s.clamped, p.dt, p.beta);
-        w0 = modalPlate->fromFullSpace(
-            staticEquilibrium(full, obstacles, baseDisplacement0, p.initialLoad));
+        w0 = modalPlate->fromFullSpace(staticEquilibrium(full, obstacles, baseDisplacement0, p.initialLoad));
     } else {
         w0 = staticEquilibrium(*s.discrete, obstacles, baseDisplacement0, p.initialLoad);
     }
@@ -190,8 +186,7 @@ double PlateSimulation::firstFrequency() const {
 double PlateSimulation::kappa() const {
     if (impl_->kappa < 0.0) {
         const auto* modal = dynamic_cast<const ModalPlate*>(impl_->discrete.get());
-        impl_->kappa = modal && modal->complete() ? modal->omega2().maxCoeff()
-                                                  : largestEigenvalue(*impl_->clamped);
+        impl_->kappa = modal && modal->complete() ? modal->omega2().maxCoeff() : largestEigenvalue(*impl_->clamped);
     }
     return impl_->kappa;
 }
@@ -202,8 +197,7 @@ double PlateSimulation::measureFloorSolveSeconds(int repeats) const {
     const Impl& s = *impl_;
     if (!s.floorFactor)
         s.floorFactor = std::make_unique<CholmodFactor>(Eigen::SparseMatrix<double>(
-            s.clamped->mass + (s.parameters.beta * s.parameters.dt * s.parameters.dt) *
-                                  s.clamped->stiffness));
+            s.clamped->mass + (s.parameters.beta * s.parameters.dt * s.parameters.dt) * s.clamped->stiffness));
     const CholmodFactor& factor = *s.floorFactor;
     Eigen::VectorXd b = s.clamped->pressureLoad, x(b.size());
     std::vector<double> batches;
@@ -221,9 +215,7 @@ double PlateSimulation::measureFloorSolveSeconds(int repeats) const {
     return batches[batches.size() / 2];
 }
 
-std::vector<double> PlateSimulation::saveState() const {
-    return serialize(impl_->stepper->state());
-}
+std::vector<double> PlateSimulation::saveState() const { return serialize(impl_->stepper->state()); }
 
 void PlateSimulation::restoreState(const std::vector<double>& in) {
     const NewmarkState& current = impl_->stepper->state();

@@ -13,12 +13,12 @@ namespace plate {
 
 struct PlateOutputs {
     double corner1 = 0, corner2 = 0, freeEdgeMid = 0;  // w at (L,0), (L,W), (L,W/2), m
-    double energy = 0;             // discrete energy E^{n-1/2} (docs/theory.md), J
-    double energyDissipated = 0;   // cumulative contact loss, J
-    double energyInput = 0;        // cumulative work of base motion and load, J
-    int contactVertices = 0;       // vertices on an obstacle after the last step
-    double maxKktResidual = 0;     // largest relative KKT residual of all QPs so far
-    int qpIterations = 0;          // active-set iterations of the last step
+    double energy = 0;  // discrete energy E^{n-1/2} (docs/theory.md), J
+    double energyDissipated = 0;  // cumulative contact loss, J
+    double energyInput = 0;  // cumulative work of base motion and load, J
+    int contactVertices = 0;  // vertices on an obstacle after the last step
+    double maxKktResidual = 0;  // largest relative KKT residual of all QPs so far
+    int qpIterations = 0;  // active-set iterations of the last step
     long long qpIterationsTotal = 0;
     int qpIterationsMax = 0;
 };
@@ -34,7 +34,7 @@ public:
     PlateSimulation& operator=(const PlateSimulation&) = delete;
 
     const PlateParameters& parameters() const;
-    double time() const;           // t_n = n Δt
+    double time() const;  // t_n = n Δt
     long long stepCount() const;
     double baseDisplacement() const;  // z(t_n), the clamp position of the last step
 

@@ -39,8 +39,8 @@ void gaussLegendre01(int n, std::vector<double>& nodes, std::vector<double>& wei
     }
 }
 
-std::vector<QuadratureNode> triangleRule(const Eigen::Vector2d& a, const Eigen::Vector2d& b,
-                                         const Eigen::Vector2d& c, int degree) {
+std::vector<QuadratureNode> triangleRule(const Eigen::Vector2d& a, const Eigen::Vector2d& b, const Eigen::Vector2d& c,
+                                         int degree) {
     const int n = (degree + 3) / 2;  // ceil((degree + 2) / 2)
     std::vector<double> x, w;
     gaussLegendre01(n, x, w);

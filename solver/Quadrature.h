@@ -10,14 +10,14 @@ namespace plate {
 
 struct QuadratureNode {
     Eigen::Vector2d point;  // physical coordinates
-    double weight;          // includes the Jacobian
+    double weight;  // includes the Jacobian
 };
 
 // Gauss–Legendre nodes and weights on [0, 1].
 void gaussLegendre01(int n, std::vector<double>& nodes, std::vector<double>& weights);
 
 // Rule on the triangle (a, b, c), exact for total degree <= degree.
-std::vector<QuadratureNode> triangleRule(const Eigen::Vector2d& a, const Eigen::Vector2d& b,
-                                         const Eigen::Vector2d& c, int degree);
+std::vector<QuadratureNode> triangleRule(const Eigen::Vector2d& a, const Eigen::Vector2d& b, const Eigen::Vector2d& c,
+                                         int degree);
 
 }  // namespace plate

@@ -9,17 +9,17 @@ namespace plate {
 enum class SweepLaw { Linear = 1, Logarithmic = 2 };
 
 struct SineSweepParameters {
-    double amplitude = 0.09;        // m
-    double startFrequency = 10.0;   // Hz
-    double endFrequency = 35.0;     // Hz
-    double duration = 1.0;          // s: the frequency goes from start to end over [0, duration]
+    double amplitude = 0.09;  // m
+    double startFrequency = 10.0;  // Hz
+    double endFrequency = 35.0;  // Hz
+    double duration = 1.0;  // s: the frequency goes from start to end over [0, duration]
     SweepLaw law = SweepLaw::Linear;
-    double rampTime = 0.0;          // s: envelope s = sin²(πt / (2 rampTime)) over [0, rampTime]
+    double rampTime = 0.0;  // s: envelope s = sin²(πt / (2 rampTime)) over [0, rampTime]
 };
 
 struct SweepSample {
     double value = 0.0, d1 = 0.0, d2 = 0.0;  // z, dz/dt, d²z/dt²
-    double frequency = 0.0;                  // instantaneous frequency φ'/2π, Hz
+    double frequency = 0.0;  // instantaneous frequency φ'/2π, Hz
 };
 
 class SineSweep {

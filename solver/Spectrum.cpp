@@ -13,8 +13,7 @@ namespace {
 // Dense generalized eigensolver: fine up to a few thousand dofs (O(n³) once at start).
 constexpr Eigen::Index kDenseLimit = 3000;
 
-void denseModes(const ClampedPlate& plate, Eigen::Index modes, Eigen::MatrixXd& phi,
-                Eigen::VectorXd& omega2) {
+void denseModes(const ClampedPlate& plate, Eigen::Index modes, Eigen::MatrixXd& phi, Eigen::VectorXd& omega2) {
     const Eigen::MatrixXd k = Eigen::MatrixXd(plate.stiffness);
     const Eigen::MatrixXd m = Eigen::MatrixXd(plate.mass);
     // Eigen normalizes the eigenvectors to Φᵀ M Φ = I and sorts the eigenvalues ascending.
@@ -26,8 +25,7 @@ void denseModes(const ClampedPlate& plate, Eigen::Index modes, Eigen::MatrixXd& 
 
 // Subspace iteration X ← K⁻¹ M X with Rayleigh–Ritz, p = m + guard vectors: converges like
 // (ω_m / ω_{p+1})^{2k}; stop when the m Ritz values settle to 1e-12.
-void subspaceModes(const ClampedPlate& plate, Eigen::Index modes, Eigen::MatrixXd& phi,
-                   Eigen::VectorXd& omega2) {
+void subspaceModes(const ClampedPlate& plate, Eigen::Index modes, Eigen::MatrixXd& phi, Eigen::VectorXd& omega2) {
     const Eigen::Index n = plate.mass.rows();
     const Eigen::Index p = std::min<Eigen::Index>(n, std::max<Eigen::Index>(2 * modes, modes + 16));
     const CholmodFactor kFactor(plate.stiffness);
@@ -43,8 +41,8 @@ void subspaceModes(const ClampedPlate& plate, Eigen::Index modes, Eigen::MatrixX
         }
         const Eigen::MatrixXd kr = x.transpose() * (plate.stiffness * x);
         const Eigen::MatrixXd mr = x.transpose() * (plate.mass * x);
-        Eigen::GeneralizedSelfAdjointEigenSolver<Eigen::MatrixXd> ritz(
-            0.5 * (kr + kr.transpose()), 0.5 * (mr + mr.transpose()));
+        Eigen::GeneralizedSelfAdjointEigenSolver<Eigen::MatrixXd> ritz(0.5 * (kr + kr.transpose()),
+                                                                       0.5 * (mr + mr.transpose()));
         x = x * ritz.eigenvectors();  // M-orthonormal Ritz vectors, ascending
         omega2 = ritz.eigenvalues().head(modes);
         if (it > 2 && ((omega2 - previous).cwiseAbs().array() <= 1e-12 * omega2.array()).all()) break;
@@ -55,8 +53,7 @@ void subspaceModes(const ClampedPlate& plate, Eigen::Index modes, Eigen::MatrixX
 
 }  // namespace
 
-void lowestModes(const ClampedPlate& plate, int modes, Eigen::MatrixXd& phi,
-                 Eigen::VectorXd& omega2) {
+void lowestModes(const ClampedPlate& plate, int modes, Eigen::MatrixXd& phi, Eigen::VectorXd& omega2) {
     const Eigen::Index n = plate.mass.rows();
     const Eigen::Index m = (modes <= 0 || modes >= n) ? n : modes;
     // A few modes of a large space: subspace iteration (~2m solves per iteration); the dense

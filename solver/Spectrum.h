@@ -10,8 +10,7 @@ namespace plate {
 // The m lowest modes, M-orthonormal, ascending (modes ≤ 0 or ≥ the dof count: all of them).
 // Dense generalized eigensolver for small spaces, subspace iteration with the CHOLMOD factor
 // of K for large ones. Throws std::runtime_error if it fails.
-void lowestModes(const ClampedPlate& plate, int modes, Eigen::MatrixXd& phi,
-                 Eigen::VectorXd& omega2);
+void lowestModes(const ClampedPlate& plate, int modes, Eigen::MatrixXd& phi, Eigen::VectorXd& omega2);
 
 // κ_h = λ_max(M⁻¹K), s⁻² (docs/theory.md).
 double largestEigenvalue(const ClampedPlate& plate);

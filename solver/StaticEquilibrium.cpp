@@ -8,8 +8,7 @@
 namespace plate {
 
 // The same contact-space QP as a time step, with S = K.
-Eigen::VectorXd staticEquilibrium(const DiscretePlate& plate, const Obstacles& obstacles,
-                                  double z0, double p0) {
+Eigen::VectorXd staticEquilibrium(const DiscretePlate& plate, const Obstacles& obstacles, double z0, double p0) {
     const DiscretePlate::Solver solveK = plate.stiffnessSolver();
     Eigen::VectorXd w;
     solveK(Eigen::VectorXd(p0 * plate.pressureLoad()), w);
@@ -33,8 +32,8 @@ Eigen::VectorXd staticEquilibrium(const DiscretePlate& plate, const Obstacles& o
     if (!r.converged || !(r.kktResidual <= 1e-10)) {
         std::ostringstream msg;
         msg << "invalid parameter initial_load = " << p0
-            << ": the static contact problem for the initial state did not converge (relative KKT "
-            << r.kktResidual << ")";
+            << ": the static contact problem for the initial state did not converge (relative KKT " << r.kktResidual
+            << ")";
         throw ParameterError(msg.str());
     }
     for (int i : qp.active()) w.noalias() += mu[i] * columns.column(i);

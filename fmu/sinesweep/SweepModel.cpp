@@ -29,10 +29,10 @@ const fmu::ModelInfo kInfo{
     /*defaultStepSize=*/1e-4,
 };
 
-const fmu::EnumerationType kSweepLaw{"SweepLaw",
-                                     "How the frequency goes from start to end",
-                                     {{"linear", 1, "f = f0 + (f1 - f0) t / duration"},
-                                      {"logarithmic", 2, "f = f0 (f1/f0)^(t / duration)"}}};
+const fmu::EnumerationType kSweepLaw{
+    "SweepLaw",
+    "How the frequency goes from start to end",
+    {{"linear", 1, "f = f0 + (f1 - f0) t / duration"}, {"logarithmic", 2, "f = f0 (f1/f0)^(t / duration)"}}};
 
 enum Vr : fmi2ValueReference {
     kAmplitude = 0,
@@ -54,7 +54,8 @@ const std::vector<fmu::Variable>& sweepVariables() {
     static const std::vector<fmu::Variable> table = {
         parameter(kAmplitude, "amplitude", VariableType::Real, "m", "Amplitude of the displacement"),
         parameter(kStartFrequency, "start_frequency", VariableType::Real, "Hz", "Frequency at t = 0 (> 0)"),
-        parameter(kEndFrequency, "end_frequency", VariableType::Real, "Hz", "Frequency at t = duration and after (> 0)"),
+        parameter(kEndFrequency, "end_frequency", VariableType::Real, "Hz",
+                  "Frequency at t = duration and after (> 0)"),
         parameter(kDuration, "duration", VariableType::Real, "s", "Time over which the frequency sweeps (> 0)"),
         parameter(kLaw, "law", VariableType::Enumeration, nullptr, "Sweep law: linear (1) or logarithmic (2)",
                   &kSweepLaw),
@@ -127,8 +128,10 @@ public:
         const bool wasBuilt = in[0] == 1.0;
         time_ = in[1];
         in += 2;
-        if (wasBuilt) build();
-        else drop();
+        if (wasBuilt)
+            build();
+        else
+            drop();
     }
 
 private:

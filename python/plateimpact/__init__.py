@@ -7,6 +7,7 @@
 - `plateimpact.response_map`: frequency × gap response maps, serial or on Dask.
 - `plateimpact.stability`: the stability matrix (cases, runner, checks).
 """
+
 from .driver import PlateImpactFMU, signal, sine, unzipped
 
 __all__ = ["PlateImpactFMU", "signal", "sine", "unzipped"]

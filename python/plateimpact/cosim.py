@@ -2,6 +2,7 @@
 libcosimpy's execution/connections API, and an SSP file (examples/system_model.ssd) run by
 libcosim and by fmpy's SSP master. Each runner returns corner_1 of the plate after every
 communication step (examples/system_model.py is the command line)."""
+
 from __future__ import annotations
 
 import shutil
@@ -19,6 +20,7 @@ SWEEP = {"amplitude": 0.09, "start_frequency": 10.0, "end_frequency": 10.0, "dur
 
 def variables(fmu):
     from fmpy import read_model_description
+
     return {v.name: v.valueReference for v in read_model_description(str(fmu)).modelVariables}
 
 
@@ -28,6 +30,7 @@ def run_libcosim(sweep_fmu, plate_fmu, h, stop):
     from libcosimpy.CosimExecution import CosimExecution
     from libcosimpy.CosimLogging import CosimLogLevel, log_output_level
     from libcosimpy.CosimSlave import CosimLocalSlave
+
     log_output_level(CosimLogLevel.ERROR)
     sv, pv = variables(sweep_fmu), variables(plate_fmu)
     execution = CosimExecution.from_step_size(round(h * 1e9))  # libcosim's time: integer ns
@@ -45,6 +48,7 @@ def run_libcosim(sweep_fmu, plate_fmu, h, stop):
 def step_and_observe(execution, plate, corner_vr, steps):
     """Steps a libcosim execution; the plate's corner_1 after every step."""
     from libcosimpy.CosimObserver import CosimObserver
+
     observer = CosimObserver.create_last_value()
     execution.add_observer(observer)
     out = np.empty(steps)
@@ -68,6 +72,7 @@ def make_ssp(sweep_fmu, plate_fmu, target, ssd):
 def run_libcosim_ssp(ssp, h, stop):
     from libcosimpy.CosimExecution import CosimExecution
     from libcosimpy.CosimLogging import CosimLogLevel, log_output_level
+
     log_output_level(CosimLogLevel.ERROR)
     unpacked = Path(tempfile.mkdtemp())
     try:
@@ -88,11 +93,17 @@ def run_fmpy_ssp(ssp, h, stop):
 
     from fmpy.ssp.simulation import simulate_ssp
     from fmpy.ssp.ssd import read_ssd
+
     ssd = read_ssd(str(ssp))
-    parameters = [SimpleNamespace(name=f"{c.name}.{p.name}", value=p.value)
-                  for c in ssd.system.elements for b in c.parameterBindings
-                  for s in b.parameterValues for p in s.parameters]
+    parameters = [
+        SimpleNamespace(name=f"{c.name}.{p.name}", value=p.value)
+        for c in ssd.system.elements
+        for b in c.parameterBindings
+        for s in b.parameterValues
+        for p in s.parameters
+    ]
     n = round(stop / h)
-    result = simulate_ssp(str(ssp), stop_time=n * h - 0.5 * h, step_size=h,
-                          parameter_set=SimpleNamespace(parameters=parameters))
+    result = simulate_ssp(
+        str(ssp), stop_time=n * h - 0.5 * h, step_size=h, parameter_set=SimpleNamespace(parameters=parameters)
+    )
     return np.asarray(result["plate.corner_1"][:n])

@@ -13,6 +13,7 @@ read the outputs every communication step.
 The FMU's log messages (status, category, message) are kept in `plate.log`; pass
 `logger=callable(status, category, message)` to see them as they come.
 """
+
 from __future__ import annotations
 
 import atexit
@@ -21,8 +22,13 @@ import shutil
 from pathlib import Path
 
 from fmpy import calloc, extract, free, read_model_description
-from fmpy.fmi2 import (FMU2Slave, fmi2CallbackAllocateMemoryTYPE, fmi2CallbackFreeMemoryTYPE,
-                       fmi2CallbackFunctions, fmi2CallbackLoggerTYPE)
+from fmpy.fmi2 import (
+    FMU2Slave,
+    fmi2CallbackAllocateMemoryTYPE,
+    fmi2CallbackFreeMemoryTYPE,
+    fmi2CallbackFunctions,
+    fmi2CallbackLoggerTYPE,
+)
 
 _extracted = {}  # (resolved path, mtime) -> (unzip directory, model description)
 
@@ -52,8 +58,18 @@ class PlateImpactFMU:
     """One PlateImpact instance: instantiate(), initialize(parameters), then step() and
     outputs(). The constructor does both first steps unless `initialize=False`."""
 
-    def __init__(self, fmu_path, start_time=0.0, instance_name="plate", logger=None,
-                 unzip_dir=None, base0=0.0, load0=0.0, initialize=True, **parameters):
+    def __init__(
+        self,
+        fmu_path,
+        start_time=0.0,
+        instance_name="plate",
+        logger=None,
+        unzip_dir=None,
+        base0=0.0,
+        load0=0.0,
+        initialize=True,
+        **parameters,
+    ):
         if unzip_dir is None:
             self.unzip_dir, self.md = unzipped(fmu_path)
         else:
@@ -67,9 +83,12 @@ class PlateImpactFMU:
         self._callbacks.logger = self._logger
         self._callbacks.allocateMemory = fmi2CallbackAllocateMemoryTYPE(calloc)
         self._callbacks.freeMemory = fmi2CallbackFreeMemoryTYPE(free)
-        self.fmu = FMU2Slave(guid=self.md.guid, unzipDirectory=self.unzip_dir,
-                             modelIdentifier=self.md.coSimulation.modelIdentifier,
-                             instanceName=instance_name)
+        self.fmu = FMU2Slave(
+            guid=self.md.guid,
+            unzipDirectory=self.unzip_dir,
+            modelIdentifier=self.md.coSimulation.modelIdentifier,
+            instanceName=instance_name,
+        )
         self.fmu.instantiate(callbacks=self._callbacks, loggingOn=logger is not None)
         self.time = start_time
         self._initialized = False
@@ -170,5 +189,4 @@ class PlateImpactFMU:
 def sine(amplitude, frequency, t):
     """Value and first two derivatives of amplitude·sin(2πf t)."""
     w = 2.0 * math.pi * frequency
-    return (amplitude * math.sin(w * t), amplitude * w * math.cos(w * t),
-            -amplitude * w * w * math.sin(w * t))
+    return (amplitude * math.sin(w * t), amplitude * w * math.cos(w * t), -amplitude * w * w * math.sin(w * t))

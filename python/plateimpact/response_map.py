@@ -1,6 +1,7 @@
 """Response map of the impacting plate (excitation frequency × obstacle gap): one independent FMU
 simulation per map point, in a loop or as Dask tasks (examples/frequency_response.py is its
 command line)."""
+
 from __future__ import annotations
 
 import shutil
@@ -10,13 +11,31 @@ from pathlib import Path
 
 PACKAGE = Path(__file__).resolve().parent
 
-RESULT_COLUMNS = ("frequency", "gap", "amplitude", "max_abs_corner",
-                  "energy_dissipated_per_cycle", "energy_dissipated", "contact_fraction")
+RESULT_COLUMNS = (
+    "frequency",
+    "gap",
+    "amplitude",
+    "max_abs_corner",
+    "energy_dissipated_per_cycle",
+    "energy_dissipated",
+    "contact_fraction",
+)
 CSV_COLUMNS = RESULT_COLUMNS + ("wall_s",)
 
 
-def simulate_point(fmu, frequency, gap, amplitude=0.01, stop_time=2.0, settle=1.0, dt=1e-4,
-                   comm_step=1e-3, element="argyris", nx=14, ny=5):
+def simulate_point(
+    fmu,
+    frequency,
+    gap,
+    amplitude=0.01,
+    stop_time=2.0,
+    settle=1.0,
+    dt=1e-4,
+    comm_step=1e-3,
+    element="argyris",
+    nx=14,
+    ny=5,
+):
     """One map point: a fresh FMU instance driven by A sin(2πf t) with obstacles at ±gap.
 
     `fmu` is a path, or the FMU file's bytes (then it is written to a private temporary
@@ -24,9 +43,11 @@ def simulate_point(fmu, frequency, gap, amplitude=0.01, stop_time=2.0, settle=1.
     # imported here, on the worker: the task then carries no reference to the driver class
     # (which holds ctypes callbacks and could not be pickled by value)
     from plateimpact.driver import PlateImpactFMU, sine
+
     if amplitude >= gap:
-        raise ValueError(f"amplitude {amplitude} must be below the gap {gap}: the clamped "
-                         "edge may not pass the obstacles")
+        raise ValueError(
+            f"amplitude {amplitude} must be below the gap {gap}: the clamped edge may not pass the obstacles"
+        )
     t_start = time.perf_counter()
     with tempfile.TemporaryDirectory(prefix="plateimpact-task-") as tmp:
         if isinstance(fmu, (bytes, bytearray)):
@@ -38,8 +59,9 @@ def simulate_point(fmu, frequency, gap, amplitude=0.01, stop_time=2.0, settle=1.
         max_c = 0.0
         contact = 0
         e_settle = 0.0
-        with PlateImpactFMU(fmu, unzip_dir=None, element=element, nx=nx, ny=ny, dt=dt,
-                            obstacle_lower=-gap, obstacle_upper=gap) as plate:
+        with PlateImpactFMU(
+            fmu, unzip_dir=None, element=element, nx=nx, ny=ny, dt=dt, obstacle_lower=-gap, obstacle_upper=gap
+        ) as plate:
             for k in range(n):
                 plate.step(comm_step, base=sine(amplitude, frequency, k * comm_step))
                 o = plate.outputs()
@@ -50,10 +72,16 @@ def simulate_point(fmu, frequency, gap, amplitude=0.01, stop_time=2.0, settle=1.
                     contact += 1
             e_end = o["energy_dissipated"]
     cycles = (stop_time - settle) * frequency
-    return {"frequency": float(frequency), "gap": float(gap), "amplitude": float(amplitude),
-            "max_abs_corner": max_c, "energy_dissipated_per_cycle": (e_end - e_settle) / cycles,
-            "energy_dissipated": e_end, "contact_fraction": contact / max(1, n - k_settle),
-            "wall_s": time.perf_counter() - t_start}
+    return {
+        "frequency": float(frequency),
+        "gap": float(gap),
+        "amplitude": float(amplitude),
+        "max_abs_corner": max_c,
+        "energy_dissipated_per_cycle": (e_end - e_settle) / cycles,
+        "energy_dissipated": e_end,
+        "contact_fraction": contact / max(1, n - k_settle),
+        "wall_s": time.perf_counter() - t_start,
+    }
 
 
 def grid(frequencies, gaps):
@@ -78,13 +106,13 @@ def dask_map(client, fmu, points, progress=True, **kw):
         client.upload_file(archive, load=False)
     if isinstance(fmu, (bytes, bytearray)):
         fmu = client.scatter(fmu, broadcast=True)  # sent once to every worker
-    futures = [client.submit(simulate_point, fmu, f, g, pure=False, **kw)
-               for f, g in points]
+    futures = [client.submit(simulate_point, fmu, f, g, pure=False, **kw) for f, g in points]
     index = {fut.key: i for i, fut in enumerate(futures)}
     results = [None] * len(points)
     bar = None
     if progress:
         from tqdm import tqdm
+
         bar = tqdm(total=len(points), unit="sim", desc="map")
     try:
         for fut in as_completed(futures):

@@ -6,6 +6,7 @@ measured against: the run whose base is exact at every internal step.
           (z, z', z'' all start at 0: a causal master loses nothing at the start)
   paper   base 0.09 sin(2 pi 10 t) from t = 0 (a kink out of rest: c w = 5.7 m/s at t = 0+)
 """
+
 from __future__ import annotations
 
 import math
@@ -42,7 +43,7 @@ def run_derivatives(fmu, scene, h, stop):
 def errors(run, ref, h, scene):
     """max |run - ref| before the first impact and over the whole run, at the points k h."""
     stride = round(h / DT)
-    sampled = ref[stride - 1::stride][:len(run)]
+    sampled = ref[stride - 1 :: stride][: len(run)]
     diff = np.abs(run - sampled)
     before = round(FIRST_IMPACT[scene] / h)
     return float(diff[:before].max()), float(diff.max())

@@ -1,5 +1,6 @@
 """Writing the speed-against-error report (docs/performance.md, its figures and headline) from
 what plateimpact.speed_study measured."""
+
 from __future__ import annotations
 
 import datetime
@@ -20,9 +21,15 @@ REPO = Path(__file__).resolve().parents[2]  # the checkout (the package is insta
 # ------------------------------------------------------------------------------------------
 # Figures
 # ------------------------------------------------------------------------------------------
-COLORS = {("argyris", "7x3"): "#9ecae1", ("argyris", "14x5"): "#3182bd",
-          ("argyris", "28x10"): "#08306b", ("fvs", "10x4"): "#fdd0a2", ("fvs", "20x7"): "#fd8d3c",
-          ("fvs", "40x14"): "#d94801", ("fvs", "80x28"): "#7f2704"}
+COLORS = {
+    ("argyris", "7x3"): "#9ecae1",
+    ("argyris", "14x5"): "#3182bd",
+    ("argyris", "28x10"): "#08306b",
+    ("fvs", "10x4"): "#fdd0a2",
+    ("fvs", "20x7"): "#fd8d3c",
+    ("fvs", "40x14"): "#d94801",
+    ("fvs", "80x28"): "#7f2704",
+}
 
 
 DT_MARKERS = {1e-3: "s", 1e-4: "D", 1e-5: "o", 5e-6: "v", 2e-6: "<", 1e-6: "*", 5e-7: "P"}
@@ -30,37 +37,68 @@ DT_MARKERS = {1e-3: "s", 1e-4: "D", 1e-5: "o", 5e-6: "v", 2e-6: "<", 1e-6: "*", 
 
 def plot_speed_vs_error(short, free, path):
     import matplotlib
+
     matplotlib.use("Agg")
     import matplotlib.pyplot as plt
     from matplotlib.lines import Line2D
 
     fig, axes = plt.subplots(2, 2, figsize=(13, 11))
     for ax, key, q, title, unit in (
-            (axes[0, 0], "err_trajectory", "trajectory",
-             "sine scene: corner_1 before the first impact (t ≤ 0.045 s)", "max error / max |corner_1|"),
-            (axes[0, 1], "err_impact", "impact", "sine scene: time of the first impact",
-             "|t₁ − t₁,ref| [s]")):
+        (
+            axes[0, 0],
+            "err_trajectory",
+            "trajectory",
+            "sine scene: corner_1 before the first impact (t ≤ 0.045 s)",
+            "max error / max |corner_1|",
+        ),
+        (axes[0, 1], "err_impact", "impact", "sine scene: time of the first impact", "|t₁ − t₁,ref| [s]"),
+    ):
         info = short["quantities"][q]
         pts = [r for r in short["rows"] if r[key] is not None and r[key] > 0]
         if not info["converges"]:
-            ax.text(0.5, 0.5, "does not converge (convergence table):\nnot used as an error",
-                    ha="center", va="center", transform=ax.transAxes, fontsize=10, color="0.3")
+            ax.text(
+                0.5,
+                0.5,
+                "does not converge (convergence table):\nnot used as an error",
+                ha="center",
+                va="center",
+                transform=ax.transAxes,
+                fontsize=10,
+                color="0.3",
+            )
         for r in pts:
             c = r["cfg"]
             color = COLORS.get((c.element, c.grid), "k")
-            ax.scatter(r["run"]["wall_per_sim_s"], r[key], color=color if not c.modes else "white",
-                       edgecolor=color, marker=DT_MARKERS.get(c.dt, "o"), s=60, zorder=3)
+            ax.scatter(
+                r["run"]["wall_per_sim_s"],
+                r[key],
+                color=color if not c.modes else "white",
+                edgecolor=color,
+                marker=DT_MARKERS.get(c.dt, "o"),
+                s=60,
+                zorder=3,
+            )
             if c.modes:
-                ax.annotate(f"m={c.modes}", (r["run"]["wall_per_sim_s"], r[key]), fontsize=7,
-                            xytext=(4, 2), textcoords="offset points")
+                ax.annotate(
+                    f"m={c.modes}",
+                    (r["run"]["wall_per_sim_s"], r[key]),
+                    fontsize=7,
+                    xytext=(4, 2),
+                    textcoords="offset points",
+                )
         groups = {}
         for r in pts:
             if not r["cfg"].modes and r["cfg"].engine == "auto":
                 groups.setdefault((r["cfg"].element, r["cfg"].grid), []).append(r)
         for g, rs in groups.items():
             rs.sort(key=lambda r: -r["cfg"].dt)
-            ax.plot([r["run"]["wall_per_sim_s"] for r in rs], [r[key] for r in rs],
-                    color=COLORS.get(g, "k"), lw=0.8, zorder=2)
+            ax.plot(
+                [r["run"]["wall_per_sim_s"] for r in rs],
+                [r[key] for r in rs],
+                color=COLORS.get(g, "k"),
+                lw=0.8,
+                zorder=2,
+            )
         unc = info.get("ref_uncertainty", float("nan"))
         ax.set_xscale("log")
         ax.set_yscale("log")
@@ -70,23 +108,31 @@ def plot_speed_vs_error(short, free, path):
             ax.axhline(unc, color="0.5", ls=":", lw=1)
             ax.axhspan(lo, unc, color="0.93", zorder=0)
             ax.set_ylim(lo, hi)
-            ax.text(0.02, unc, " reference uncertainty (below: not resolved)", fontsize=7,
-                    color="0.4", transform=ax.get_yaxis_transform(), va="bottom")
+            ax.text(
+                0.02,
+                unc,
+                " reference uncertainty (below: not resolved)",
+                fontsize=7,
+                color="0.4",
+                transform=ax.get_yaxis_transform(),
+                va="bottom",
+            )
         ax.set_xscale("log")
         ax.set_yscale("log")
         ax.set_xlabel("wall time per simulated second on an idle core [s]  (plate_bench stepping)")
         ax.set_ylabel(unit)
         ax.set_title(title, fontsize=10)
         ax.axvline(1.0, color="0.8", lw=0.8)
-        ax.text(1.0, 0.98, " real time", fontsize=7, color="0.5", transform=ax.get_xaxis_transform(),
-                va="top")
+        ax.text(1.0, 0.98, " real time", fontsize=7, color="0.5", transform=ax.get_xaxis_transform(), va="top")
         ax.grid(True, which="major", color="0.92")
 
     ax = axes[1, 0]
     for dt_ in sorted({m["cfg"].dt for m in free["modes"]}, reverse=True):
         for element in ("argyris", "fvs"):
-            ms = sorted([m for m in free["modes"] if m["cfg"].dt == dt_ and m["cfg"].element == element],
-                        key=lambda m: m["cfg"].modes)
+            ms = sorted(
+                [m for m in free["modes"] if m["cfg"].dt == dt_ and m["cfg"].element == element],
+                key=lambda m: m["cfg"].modes,
+            )
             if not ms:
                 continue
             color = COLORS.get((element, ms[0]["cfg"].grid), "k")
@@ -94,24 +140,34 @@ def plot_speed_vs_error(short, free, path):
             xs = [m["run"]["wall_per_sim_s"] for m in ms]
             ys = [max(abs(m["rel_err"]), 1e-6) for m in ms]
             mesh = replace(ms[0]["cfg"], modes=0).label(dt=False)
-            ax.plot(xs, ys, marker=DT_MARKERS.get(dt_, "o"), color=color, lw=0.8, ls=ls,
-                    label=f"{mesh}, Δt={fmt_dt(dt_)}: modes m (numbers)")
+            ax.plot(
+                xs,
+                ys,
+                marker=DT_MARKERS.get(dt_, "o"),
+                color=color,
+                lw=0.8,
+                ls=ls,
+                label=f"{mesh}, Δt={fmt_dt(dt_)}: modes m (numbers)",
+            )
             for m, x, y in zip(ms, xs, ys):
-                ax.annotate(str(m["cfg"].modes), (x, y), fontsize=7, xytext=(3, 3),
-                            textcoords="offset points")
+                ax.annotate(str(m["cfg"].modes), (x, y), fontsize=7, xytext=(3, 3), textcoords="offset points")
             ax.axvline(ms[0]["exact"]["wall_per_sim_s"], color=color, ls=ls, lw=1.2, alpha=0.6)
     ax.axhline(0.01, color="r", ls="--", lw=0.8)
     errs = [abs(m["rel_err"]) for m in free["modes"] if abs(m["rel_err"]) > 0]
     if errs:
         ax.set_ylim(min(1e-3, min(errs) / 2), max(errs) * 3)
-    ax.text(0.02, 0.01, " 1 % goal", color="r", fontsize=8, transform=ax.get_yaxis_transform(),
-            va="bottom")
+    ax.text(0.02, 0.01, " 1 % goal", color="r", fontsize=8, transform=ax.get_yaxis_transform(), va="bottom")
     ax.set_xscale("log")
     ax.set_yscale("log")
-    ax.set_xlabel("wall time per simulated second on an idle core [s]\n(vertical line: the exact scheme, same mesh and Δt)")
+    ax.set_xlabel(
+        "wall time per simulated second on an idle core [s]\n(vertical line: the exact scheme, same mesh and Δt)"
+    )
     ax.set_ylabel("|E_lost(m) − E_lost(exact)| / E_lost(exact)")
-    ax.set_title("§5.2: energy lost by 0.5 s, modes against the exact scheme (same mesh, Δt)\n"
-                 "(against a fine reference: not converged, see the right panel)", fontsize=10)
+    ax.set_title(
+        "§5.2: energy lost by 0.5 s, modes against the exact scheme (same mesh, Δt)\n"
+        "(against a fine reference: not converged, see the right panel)",
+        fontsize=10,
+    )
     ax.legend(fontsize=7, loc="center left")
     ax.grid(True, which="major", color="0.92")
 
@@ -121,14 +177,24 @@ def plot_speed_vs_error(short, free, path):
             continue
         c0 = cfgs[0]
         rs = [free["runs"][c] for c in cfgs]
-        ax.plot([c.dt for c in cfgs], [r["energy_dissipated"] for r in rs], marker="o",
-                color=COLORS.get((c0.element, c0.grid), "k"), label=c0.label(dt=False))
+        ax.plot(
+            [c.dt for c in cfgs],
+            [r["energy_dissipated"] for r in rs],
+            marker="o",
+            color=COLORS.get((c0.element, c0.grid), "k"),
+            label=c0.label(dt=False),
+        )
     for name, cfgs in free["plan_seqs"]:
         if name.startswith("h"):
             for c in cfgs:
                 if not any(c in cf for n, cf in free["plan_seqs"] if n.startswith("Δt")):
-                    ax.scatter([c.dt], [free["runs"][c]["energy_dissipated"]], marker="^",
-                               color=COLORS.get((c.element, c.grid), "k"), label=c.label(dt=False))
+                    ax.scatter(
+                        [c.dt],
+                        [free["runs"][c]["energy_dissipated"]],
+                        marker="^",
+                        color=COLORS.get((c.element, c.grid), "k"),
+                        label=c.label(dt=False),
+                    )
     ax.set_xscale("log")
     ax.set_xlabel("Δt [s]")
     ax.set_ylabel("energy lost by 0.5 s [J]")
@@ -137,13 +203,17 @@ def plot_speed_vs_error(short, free, path):
     ax.grid(True, which="major", color="0.92")
     ax.invert_xaxis()
 
-    handles = [Line2D([], [], color=col, marker="o", ls="-", label=f"{'Argyris' if e == 'argyris' else 'FVS'} {g}")
-               for (e, g), col in COLORS.items()
-               if any(r["cfg"].element == e and r["cfg"].grid == g for r in short["rows"])]
-    handles += [Line2D([], [], color="k", marker=mk, ls="", label=f"Δt={fmt_dt(d)}")
-                for d, mk in DT_MARKERS.items() if any(r["cfg"].dt == d for r in short["rows"])]
-    handles += [Line2D([], [], color="k", marker="o", markerfacecolor="white", ls="",
-                       label="modes m (hollow)")]
+    handles = [
+        Line2D([], [], color=col, marker="o", ls="-", label=f"{'Argyris' if e == 'argyris' else 'FVS'} {g}")
+        for (e, g), col in COLORS.items()
+        if any(r["cfg"].element == e and r["cfg"].grid == g for r in short["rows"])
+    ]
+    handles += [
+        Line2D([], [], color="k", marker=mk, ls="", label=f"Δt={fmt_dt(d)}")
+        for d, mk in DT_MARKERS.items()
+        if any(r["cfg"].dt == d for r in short["rows"])
+    ]
+    handles += [Line2D([], [], color="k", marker="o", markerfacecolor="white", ls="", label="modes m (hollow)")]
     fig.legend(handles=handles, fontsize=8, loc="lower center", ncol=min(len(handles), 7))
     fig.suptitle("PlateImpact: error against wall time per simulated second", fontsize=12)
     fig.tight_layout(rect=(0, 0.06, 1, 0.97))
@@ -153,6 +223,7 @@ def plot_speed_vs_error(short, free, path):
 
 def plot_scaling(rows, path):
     import matplotlib
+
     matplotlib.use("Agg")
     import matplotlib.pyplot as plt
 
@@ -164,8 +235,9 @@ def plot_scaling(rows, path):
         n = [r["dofs"] for r in rs]
         name = "Argyris" if element == "argyris" else "FVS"
         ax.plot(n, [r["auto"]["step_s"] for r in rs], "o-", color=color, label=f"{name}: step, engine=auto")
-        ax.plot(n, [r["sparse"]["step_s"] for r in rs], "s--", color=color, alpha=0.7,
-                label=f"{name}: step, engine=sparse")
+        ax.plot(
+            n, [r["sparse"]["step_s"] for r in rs], "s--", color=color, alpha=0.7, label=f"{name}: step, engine=sparse"
+        )
         ax.plot(n, [r["auto"]["floor_solve_s"] for r in rs], "x:", color=color, label=f"{name}: floor (one solve)")
     ax.set_xscale("log")
     ax.set_yscale("log")
@@ -192,10 +264,14 @@ def loglog_slope(xs, ys):
 # ------------------------------------------------------------------------------------------
 def git_describe():
     try:
-        rev = subprocess.run(["git", "-C", str(REPO), "rev-parse", "--short", "HEAD"],
-                             capture_output=True, text=True).stdout.strip()
-        dirty = subprocess.run(["git", "-C", str(REPO), "status", "--porcelain", "--untracked-files=no",
-                                "solver", "fmu"], capture_output=True, text=True).stdout.strip()
+        rev = subprocess.run(
+            ["git", "-C", str(REPO), "rev-parse", "--short", "HEAD"], capture_output=True, text=True
+        ).stdout.strip()
+        dirty = subprocess.run(
+            ["git", "-C", str(REPO), "status", "--porcelain", "--untracked-files=no", "solver", "fmu"],
+            capture_output=True,
+            text=True,
+        ).stdout.strip()
         return rev + (" (solver/fmu with uncommitted edits)" if dirty else "")
     except OSError:
         return "unknown"
@@ -206,31 +282,41 @@ def write_report(ctx, path):
     L = []
     w = L.append
     quick = plan["quick"]
-    cmd = ("`.venv/bin/python examples/speed_vs_error.py" + (" --quick" if quick else "") + "`"
-           + " (after `bash run.sh` has built `build/solver/bench/plate_bench` and `build/PlateImpact.fmu`)")
+    cmd = (
+        "`.venv/bin/python examples/speed_vs_error.py"
+        + (" --quick" if quick else "")
+        + "`"
+        + " (after `bash run.sh` has built `build/solver/bench/plate_bench` and `build/PlateImpact.fmu`)"
+    )
     w("# PlateImpact: speed against error")
     w("")
     if quick:
         w("> **--quick smoke run**: tiny grids and horizons; the numbers exercise the pipeline and mean little.")
         w("")
-    w(f"Regenerate: {cmd}. This run: {ctx['elapsed'] / 60:.1f} min wall, {ctx['runs']} `plate_bench` runs, "
-      f"commit {git_describe()}, {datetime.date.today().isoformat()}.")
+    w(
+        f"Regenerate: {cmd}. This run: {ctx['elapsed'] / 60:.1f} min wall, {ctx['runs']} `plate_bench` runs, "
+        f"commit {git_describe()}, {datetime.date.today().isoformat()}."
+    )
     w("")
     lb, la = ctx["load"]
-    w(f"**Machine**: {os.cpu_count()} cores, shared with colleagues' builds and tests while this ran "
-      f"(load average {lb[0]:.1f} at the start, {la[0]:.1f} at the end; {platform.processor() or platform.machine()}, "
-      f"Python {platform.python_version()}). Timings are noisy (±30 % between runs is common here): "
-      "runs that are compared with each other are interleaved and repeated and the fastest kept; "
-      "every step/floor ratio divides two numbers measured in the same process.")
+    w(
+        f"**Machine**: {os.cpu_count()} cores, shared with colleagues' builds and tests while this ran "
+        f"(load average {lb[0]:.1f} at the start, {la[0]:.1f} at the end; {platform.processor() or platform.machine()}, "
+        f"Python {platform.python_version()}). Timings are noisy (±30 % between runs is common here): "
+        "runs that are compared with each other are interleaved and repeated and the fastest kept; "
+        "every step/floor ratio divides two numbers measured in the same process."
+    )
     w("")
-    w("Definitions. *Floor*: one solve with the sparse CHOLMOD factor of A = M + βΔt²K (docs/theory.md), "
-      "measured by `plate_bench` in the same run (median of 20 batches of solves). *Step*: mean time "
-      "of one time step of the stepper over the run (QP steps included, outputs read every "
-      "communication step of 1e-4 s, setup excluded). Both are timed with the process CPU clock "
-      "(`step_cpu_s`, `floor_cpu_s` of plate_bench) — the wall time on an idle core; on this shared "
-      "machine the wall clock also counts the time the process waited for a core (both are in the JSON). *Wall time per "
-      "simulated second* = step / Δt; *real-time factor* (RTF) = Δt / step. *Exact*: `modes = 0` (engine `auto` picks the complete "
-      "modal basis or the sparse factor; both are the same scheme). *m*: `modes = m`, the m lowest modes.")
+    w(
+        "Definitions. *Floor*: one solve with the sparse CHOLMOD factor of A = M + βΔt²K (docs/theory.md), "
+        "measured by `plate_bench` in the same run (median of 20 batches of solves). *Step*: mean time "
+        "of one time step of the stepper over the run (QP steps included, outputs read every "
+        "communication step of 1e-4 s, setup excluded). Both are timed with the process CPU clock "
+        "(`step_cpu_s`, `floor_cpu_s` of plate_bench) — the wall time on an idle core; on this shared "
+        "machine the wall clock also counts the time the process waited for a core (both are in the JSON). *Wall time per "
+        "simulated second* = step / Δt; *real-time factor* (RTF) = Δt / step. *Exact*: `modes = 0` (engine `auto` picks the complete "
+        "modal basis or the sparse factor; both are the same scheme). *m*: `modes = m`, the m lowest modes."
+    )
     w("")
 
     # ---------------- headline ----------------
@@ -252,14 +338,16 @@ def write_report(ctx, path):
     # ---------------- convergence ----------------
     w("## Which quantities converge (checked before any is used as an error)")
     w("")
-    w(f"Rule (`converges()` in the script): a refinement sequence converges when it has at least two "
-      f"successive differences and each is at most {CONTRACTION} × the previous one, or within its "
-      "resolution (the output step for an impact time, whose value is quantized to Δt; a difference "
-      "below its own resolution counts as the resolution when the next one is compared with it). "
-      "A quantity is used as an error "
-      "only if every one of its sequences converges; the reference's uncertainty is the geometric "
-      "tail d·q/(1−q) of the last difference d and ratio q, summed over the Δt and h sequences that "
-      "end at the reference's Δt or mesh.")
+    w(
+        f"Rule (`converges()` in the script): a refinement sequence converges when it has at least two "
+        f"successive differences and each is at most {CONTRACTION} × the previous one, or within its "
+        "resolution (the output step for an impact time, whose value is quantized to Δt; a difference "
+        "below its own resolution counts as the resolution when the next one is compared with it). "
+        "A quantity is used as an error "
+        "only if every one of its sequences converges; the reference's uncertainty is the geometric "
+        "tail d·q/(1−q) of the last difference d and ratio q, summed over the Δt and h sequences that "
+        "end at the reference's Δt or mesh."
+    )
     w("")
     w("| quantity | sequence (coarse → fine) | values | successive differences | ratios | converges |")
     w("|---|---|---|---|---|---|")
@@ -267,21 +355,31 @@ def write_report(ctx, path):
     allseqs += [("time of the first impact (sine)", s) for s in short["quantities"]["impact"]["sequences"]]
     allseqs += [("energy lost by 0.5 s (§5.2)", s) for s in free["sequences"]]
     for qname, s in allseqs:
-        vals = ", ".join(fmt(v, 6 if s["unit"] == "s" else 4) for v in s["values"]) if s["values"][0] is not None else "(series)"
-        w(f"| {qname} | {s['name']}: {', '.join(lab.split(', ')[-1] if s['name'].startswith('Δt') else lab.split(', ')[0] for lab in s['labels'])} "
-          f"| {vals} | {', '.join(fmt(d) for d in s['diffs'])} {s['unit']} | {', '.join(fmt(r, 2) for r in s['ratios'])} "
-          f"| {'yes' if s['converges'] else '**no**'} |")
-    w(f"| envelope max \\|corner\\| (sine, {plan['long_T']:g} s) | every run below | "
-      f"{'all = 0.1 m to 1e-9' if long['pinned'] else 'not all equal'} | — | — | "
-      f"{'**degenerate**' if long['pinned'] else 'see table'} |")
+        vals = (
+            ", ".join(fmt(v, 6 if s["unit"] == "s" else 4) for v in s["values"])
+            if s["values"][0] is not None
+            else "(series)"
+        )
+        w(
+            f"| {qname} | {s['name']}: {', '.join(lab.split(', ')[-1] if s['name'].startswith('Δt') else lab.split(', ')[0] for lab in s['labels'])} "
+            f"| {vals} | {', '.join(fmt(d) for d in s['diffs'])} {s['unit']} | {', '.join(fmt(r, 2) for r in s['ratios'])} "
+            f"| {'yes' if s['converges'] else '**no**'} |"
+        )
+    w(
+        f"| envelope max \\|corner\\| (sine, {plan['long_T']:g} s) | every run below | "
+        f"{'all = 0.1 m to 1e-9' if long['pinned'] else 'not all equal'} | — | — | "
+        f"{'**degenerate**' if long['pinned'] else 'see table'} |"
+    )
     w("")
     q = short["quantities"]
-    w(f"Verdicts: pre-impact trajectory **{'converges' if q['trajectory']['converges'] else 'does not converge'}** "
-      f"(reference {q['trajectory']['ref']}, uncertainty ≈ {fmt(q['trajectory']['ref_uncertainty'])} relative); "
-      f"first-impact time **{'converges' if q['impact']['converges'] else 'does not converge'}** "
-      f"(reference t₁ = {q['impact']['ref_value']:.7f} s, uncertainty ≈ {fmt(q['impact']['ref_uncertainty'])} s); "
-      f"§5.2 energy lost by 0.5 s **{'converges' if free['converges'] else 'does not converge'}**; "
-      f"sine envelope max |corner| **{'is degenerate' if long['pinned'] else 'varies'}**.")
+    w(
+        f"Verdicts: pre-impact trajectory **{'converges' if q['trajectory']['converges'] else 'does not converge'}** "
+        f"(reference {q['trajectory']['ref']}, uncertainty ≈ {fmt(q['trajectory']['ref_uncertainty'])} relative); "
+        f"first-impact time **{'converges' if q['impact']['converges'] else 'does not converge'}** "
+        f"(reference t₁ = {q['impact']['ref_value']:.7f} s, uncertainty ≈ {fmt(q['impact']['ref_uncertainty'])} s); "
+        f"§5.2 energy lost by 0.5 s **{'converges' if free['converges'] else 'does not converge'}**; "
+        f"sine envelope max |corner| **{'is degenerate' if long['pinned'] else 'varies'}**."
+    )
     w("")
     for para in heads["convergence_notes"]:
         w(para)
@@ -290,10 +388,12 @@ def write_report(ctx, path):
     # ---------------- sine matrix ----------------
     w(f"## Sine scene (default §5.1 scene) to {plan['short_T']:g} s: speed and error")
     w("")
-    w(f"Base 0.09 sin(2π·10 t), obstacles ±0.1 m, output every Δt. Errors against {q['trajectory']['ref']}: "
-      f"trajectory = max |corner_1 − ref| over the outputs with t ≤ {plan['pre_impact']:g} s, divided by "
-      "max |corner_1|; |Δt₁| = difference of the first step with a vertex on an obstacle. "
-      "Errors below the reference's uncertainty are marked ≤ref.")
+    w(
+        f"Base 0.09 sin(2π·10 t), obstacles ±0.1 m, output every Δt. Errors against {q['trajectory']['ref']}: "
+        f"trajectory = max |corner_1 − ref| over the outputs with t ≤ {plan['pre_impact']:g} s, divided by "
+        "max |corner_1|; |Δt₁| = difference of the first step with a vertex on an obstacle. "
+        "Errors below the reference's uncertainty are marked ≤ref."
+    )
     w("")
     w("| configuration | dofs | engine | wall / sim s | RTF | step/floor | trajectory error | t₁ [s] | \\|Δt₁\\| [s] |")
     w("|---|---|---|---|---|---|---|---|---|")
@@ -303,24 +403,42 @@ def write_report(ctx, path):
         c, run = r["cfg"], r["run"]
         et = r["err_trajectory"]
         ei = r["err_impact"]
-        ets = "reference" if c == plan["short_ref"] else (fmt(et) + (" ≤ref" if et is not None and math.isfinite(unc_t) and et < unc_t else "")) if et is not None else "n/c"
-        eis = "reference" if c == plan["short_ref"] else (fmt(ei) + (" ≤ref" if ei is not None and math.isfinite(unc_i) and ei < unc_i else "")) if ei is not None else "n/c"
-        w(f"| {c.label()} | {run['dofs']} | {run['engine']} | {fmt(run['wall_per_sim_s'])} | {fmt(run['rtf'])} "
-          f"| {fmt(run['step_over_floor'])} | {ets} | {r['t1']:.7f} | {eis} |")
+        ets = (
+            "reference"
+            if c == plan["short_ref"]
+            else (fmt(et) + (" ≤ref" if et is not None and math.isfinite(unc_t) and et < unc_t else ""))
+            if et is not None
+            else "n/c"
+        )
+        eis = (
+            "reference"
+            if c == plan["short_ref"]
+            else (fmt(ei) + (" ≤ref" if ei is not None and math.isfinite(unc_i) and ei < unc_i else ""))
+            if ei is not None
+            else "n/c"
+        )
+        w(
+            f"| {c.label()} | {run['dofs']} | {run['engine']} | {fmt(run['wall_per_sim_s'])} | {fmt(run['rtf'])} "
+            f"| {fmt(run['step_over_floor'])} | {ets} | {r['t1']:.7f} | {eis} |"
+        )
     w("")
-    w("Timing from a second run of each configuration without output files (communication step "
-      "1e-4 s or Δt). At Δt = 1e-3 a run is 60 steps: its time is rough and includes the one-time "
-      "computation of the contact columns (one solve with A's factor per vertex that ever touches "
-      "an obstacle), spread over few steps.")
+    w(
+        "Timing from a second run of each configuration without output files (communication step "
+        "1e-4 s or Δt). At Δt = 1e-3 a run is 60 steps: its time is rough and includes the one-time "
+        "computation of the contact columns (one solve with A's factor per vertex that ever touches "
+        "an obstacle), spread over few steps."
+    )
     w("")
 
     # ---------------- elements ----------------
     w("## The two elements at equal first-frequency error")
     w("")
-    w("Argyris has two P5 triangles per cell (21 dofs each), reduced FVS one composite-cubic "
-      "quadrilateral (12 dofs); at equal dofs they are not equally accurate, so the pairs below are "
-      "meshes of about equal error in the first natural frequency (the yardstick of a mesh). Sine "
-      "scene, errors as above.")
+    w(
+        "Argyris has two P5 triangles per cell (21 dofs each), reduced FVS one composite-cubic "
+        "quadrilateral (12 dofs); at equal dofs they are not equally accurate, so the pairs below are "
+        "meshes of about equal error in the first natural frequency (the yardstick of a mesh). Sine "
+        "scene, errors as above."
+    )
     w("")
     w("| mesh | dofs | f₁ error | Δt | engine | wall / sim s | trajectory error | \\|Δt₁\\| [s] |")
     w("|---|---|---|---|---|---|---|---|")
@@ -334,8 +452,10 @@ def write_report(ctx, path):
                     continue
                 et = "reference" if r["cfg"] == plan["short_ref"] else fmt(r["err_trajectory"])
                 ei = "reference" if r["cfg"] == plan["short_ref"] else fmt(r["err_impact"])
-                w(f"| {'Argyris' if element == 'argyris' else 'FVS'} {nx}×{ny} | {r['run']['dofs']} | "
-                  f"{fmt(fk['rel_err']) if fk['rel_err'] > 0 else 'reference'} | {fmt_dt(dt_)} | {r['run']['engine']} | {fmt(r['run']['wall_per_sim_s'])} | {et} | {ei} |")
+                w(
+                    f"| {'Argyris' if element == 'argyris' else 'FVS'} {nx}×{ny} | {r['run']['dofs']} | "
+                    f"{fmt(fk['rel_err']) if fk['rel_err'] > 0 else 'reference'} | {fmt_dt(dt_)} | {r['run']['engine']} | {fmt(r['run']['wall_per_sim_s'])} | {et} | {ei} |"
+                )
     w("")
     for para in heads["element_notes"]:
         w(para)
@@ -344,42 +464,58 @@ def write_report(ctx, path):
     # ---------------- §5.2 ----------------
     w(f"## §5.2 free vibration: energy lost by {plan['free_T']:g} s")
     w("")
-    w("Initial shape = static equilibrium under 8600 Pa, released at rest, lower obstacle only "
-      "(`initial_load=8600 lower_only=1 amplitude=0`). The exact scheme's value per mesh and Δt, and "
-      "each `modes` run against the exact scheme on the same mesh and Δt (the truncation error of "
-      "the modal basis; the discretization error of the exact value itself is in the convergence "
-      "table above).")
+    w(
+        "Initial shape = static equilibrium under 8600 Pa, released at rest, lower obstacle only "
+        "(`initial_load=8600 lower_only=1 amplitude=0`). The exact scheme's value per mesh and Δt, and "
+        "each `modes` run against the exact scheme on the same mesh and Δt (the truncation error of "
+        "the modal basis; the discretization error of the exact value itself is in the convergence "
+        "table above)."
+    )
     w("")
-    w("| configuration | dofs | engine | wall / sim s | RTF | step/floor | energy lost [J] | vs exact, same mesh & Δt | speed-up vs exact |")
+    w(
+        "| configuration | dofs | engine | wall / sim s | RTF | step/floor | energy lost [J] | vs exact, same mesh & Δt | speed-up vs exact |"
+    )
     w("|---|---|---|---|---|---|---|---|---|")
     mod = {m["cfg"]: m for m in free["modes"]}
-    for c, run in sorted(free["runs"].items(), key=lambda kv: (kv[0].element, kv[0].nx, kv[0].modes, kv[0].engine, -kv[0].dt)):
+    for c, run in sorted(
+        free["runs"].items(), key=lambda kv: (kv[0].element, kv[0].nx, kv[0].modes, kv[0].engine, -kv[0].dt)
+    ):
         m = mod.get(c)
         rel = f"{100 * m['rel_err']:+.2f} %" if m else ("—" if not c.modes else "n/a")
         sp = f"{m['speedup']:.2f}×" if m else "—"
-        w(f"| {c.label()} | {run['dofs']} | {run['engine']} | {fmt(run['wall_per_sim_s'])} | {fmt(run['rtf'])} "
-          f"| {fmt(run['step_over_floor'])} | {run['energy_dissipated']:.4f} | {rel} | {sp} |")
+        w(
+            f"| {c.label()} | {run['dofs']} | {run['engine']} | {fmt(run['wall_per_sim_s'])} | {fmt(run['rtf'])} "
+            f"| {fmt(run['step_over_floor'])} | {run['energy_dissipated']:.4f} | {rel} | {sp} |"
+        )
     w("")
     if free["roundoff"] is not None:
-        w(f"Roundoff check: the sparse-factor engine and the complete modal basis (same scheme, other "
-          f"coordinates) give energies lost that differ by {fmt(free['roundoff'])} J on "
-          f"{free['base'].label()}: the quantity is reproducible"
-          + ("; its failure to converge is discretization, not chaos." if not free["converges"] else "."))
+        w(
+            f"Roundoff check: the sparse-factor engine and the complete modal basis (same scheme, other "
+            f"coordinates) give energies lost that differ by {fmt(free['roundoff'])} J on "
+            f"{free['base'].label()}: the quantity is reproducible"
+            + ("; its failure to converge is discretization, not chaos." if not free["converges"] else ".")
+        )
         w("")
 
     # ---------------- envelope ----------------
     w(f"## Sine scene envelope ({plan['long_T']:g} s)")
     w("")
-    w("max |corner| = max over the run of |corner_1| and |corner_2|; per-period envelope = mean over "
-      "the forcing periods after the first of max |corner_1 − z| (deflection relative to the clamp).")
+    w(
+        "max |corner| = max over the run of |corner_1| and |corner_2|; per-period envelope = mean over "
+        "the forcing periods after the first of max |corner_1 − z| (deflection relative to the clamp)."
+    )
     w("")
-    w("| configuration | engine | wall / sim s | RTF | step/floor | max \\|corner\\| [m] | per-period envelope [m] | energy lost [J] |")
+    w(
+        "| configuration | engine | wall / sim s | RTF | step/floor | max \\|corner\\| [m] | per-period envelope [m] | energy lost [J] |"
+    )
     w("|---|---|---|---|---|---|---|---|")
     for r in long["rows"]:
         c, run = r["cfg"], r["run"]
-        w(f"| {c.label()} | {run['engine']} | {fmt(run['wall_per_sim_s'])} | {fmt(run['rtf'])} | "
-          f"{fmt(run['step_over_floor'])} | {r['max_corner_any']:.12f} | {r['period_envelope']:.4f} | "
-          f"{r['energy_dissipated']:.1f} |")
+        w(
+            f"| {c.label()} | {run['engine']} | {fmt(run['wall_per_sim_s'])} | {fmt(run['rtf'])} | "
+            f"{fmt(run['step_over_floor'])} | {r['max_corner_any']:.12f} | {r['period_envelope']:.4f} | "
+            f"{r['energy_dissipated']:.1f} |"
+        )
     w("")
     for para in heads["envelope_notes"]:
         w(para)
@@ -388,23 +524,29 @@ def write_report(ctx, path):
     # ---------------- scaling ----------------
     w("## Per-step time and floor against the number of dofs")
     w("")
-    w("Sine scene, Δt = 1e-5, the first N steps (N in the table; the first impact is at step ≈ 4950, so "
-      "N = 6000 includes ~1000 steps of contact, N = 600 is free flight only). engine=auto is what "
-      "the FMU runs; engine=sparse forces the sparse factor of A, engine=modal the complete modal "
-      "basis (small meshes only). Runs: interleaved rounds per mesh, fastest kept. First frequency f₁ "
-      f"of the clamped plate from the exported M, K (SciPy), error against {f_ref_key_label(ctx)}.")
+    w(
+        "Sine scene, Δt = 1e-5, the first N steps (N in the table; the first impact is at step ≈ 4950, so "
+        "N = 6000 includes ~1000 steps of contact, N = 600 is free flight only). engine=auto is what "
+        "the FMU runs; engine=sparse forces the sparse factor of A, engine=modal the complete modal "
+        "basis (small meshes only). Runs: interleaved rounds per mesh, fastest kept. First frequency f₁ "
+        f"of the clamped plate from the exported M, K (SciPy), error against {f_ref_key_label(ctx)}."
+    )
     w("")
-    w("| mesh | dofs | f₁ [Hz] | f₁ error | N × runs | auto engine | step (auto) [µs] | floor [µs] | step/floor (auto) | step (sparse) [µs] | step/floor (sparse) | step (modal) [µs] | setup (auto) [s] |")
+    w(
+        "| mesh | dofs | f₁ [Hz] | f₁ error | N × runs | auto engine | step (auto) [µs] | floor [µs] | step/floor (auto) | step (sparse) [µs] | step/floor (sparse) | step (modal) [µs] | setup (auto) [s] |"
+    )
     w("|---|---|---|---|---|---|---|---|---|---|---|---|---|")
     for r in ctx["scaling"]:
         fk = ctx["freqs"].get((r["element"], r["nx"], r["ny"]))
         a, sp_, mo = r["auto"], r["sparse"], r.get("modal")
         modal_step = f"{1e6 * mo['step_s']:.1f}" if mo else "—"
-        w(f"| {'Argyris' if r['element'] == 'argyris' else 'FVS'} {r['nx']}×{r['ny']} | {r['dofs']} | "
-          f"{fk['f1']:.5f} | {fmt(fk['rel_err']) if fk['rel_err'] > 0 else 'reference'} | {r['steps']} × {r['rounds']} | {a['engine']} | "
-          f"{1e6 * a['step_s']:.1f} | {1e6 * a['floor_solve_s']:.1f} | {a['step_over_floor']:.2f} | "
-          f"{1e6 * sp_['step_s']:.1f} | {sp_['step_over_floor']:.2f} | "
-          f"{modal_step} | {a['setup_s']:.2f} |")
+        w(
+            f"| {'Argyris' if r['element'] == 'argyris' else 'FVS'} {r['nx']}×{r['ny']} | {r['dofs']} | "
+            f"{fk['f1']:.5f} | {fmt(fk['rel_err']) if fk['rel_err'] > 0 else 'reference'} | {r['steps']} × {r['rounds']} | {a['engine']} | "
+            f"{1e6 * a['step_s']:.1f} | {1e6 * a['floor_solve_s']:.1f} | {a['step_over_floor']:.2f} | "
+            f"{1e6 * sp_['step_s']:.1f} | {sp_['step_over_floor']:.2f} | "
+            f"{modal_step} | {a['setup_s']:.2f} |"
+        )
     w("")
     for para in heads["scaling_notes"]:
         w(para)
@@ -419,42 +561,56 @@ def write_report(ctx, path):
     if "error" in py:
         w(f"Not run: {py['error']} (install `osqp` from requirements.txt).")
     else:
-        w(f"The same scheme written the way a user would with SciPy: `plate_bench export=DIR` gives the "
-          f"clamped plate's M, K (Matrix Market), F, M·1, the contact dofs and the probe rows; A is "
-          f"factored once with `scipy.sparse.linalg.factorized` (SuperLU); every step solves for the free "
-          f"solution and, when a vertex violates an obstacle, solves the full step QP "
-          f"min ½wᵀAw − wᵀb over the bounds with OSQP {osqp_version()} (set up once, q/l/u updated, "
-          f"warm-started, eps 1e-9, polished). {bl['cfg'].label()}, {bl['steps']} steps "
-          f"({bl['steps'] * bl['cfg'].dt:g} s; first impact at t = {py['t_impact']:.4f} s, "
-          f"{py['qp_steps']} steps needed the QP), communication step {bl['comm']:g} s.")
+        w(
+            f"The same scheme written the way a user would with SciPy: `plate_bench export=DIR` gives the "
+            f"clamped plate's M, K (Matrix Market), F, M·1, the contact dofs and the probe rows; A is "
+            f"factored once with `scipy.sparse.linalg.factorized` (SuperLU); every step solves for the free "
+            f"solution and, when a vertex violates an obstacle, solves the full step QP "
+            f"min ½wᵀAw − wᵀb over the bounds with OSQP {osqp_version()} (set up once, q/l/u updated, "
+            f"warm-started, eps 1e-9, polished). {bl['cfg'].label()}, {bl['steps']} steps "
+            f"({bl['steps'] * bl['cfg'].dt:g} s; first impact at t = {py['t_impact']:.4f} s, "
+            f"{py['qp_steps']} steps needed the QP), communication step {bl['comm']:g} s."
+        )
         w("")
-        w("| | per step, whole horizon [µs] | free flight [µs] | contact phase [µs] | Python / C++ | free flight | contact phase |")
+        w(
+            "| | per step, whole horizon [µs] | free flight [µs] | contact phase [µs] | Python / C++ | free flight | contact phase |"
+        )
         w("|---|---|---|---|---|---|---|")
-        w(f"| Python/SciPy + OSQP | {1e6 * py['step_s']:.1f} | {1e6 * py['free_phase_step_s']:.1f} | "
-          f"{1e6 * py['contact_phase_step_s']:.0f} | | | |")
+        w(
+            f"| Python/SciPy + OSQP | {1e6 * py['step_s']:.1f} | {1e6 * py['free_phase_step_s']:.1f} | "
+            f"{1e6 * py['contact_phase_step_s']:.0f} | | | |"
+        )
         for e in ("auto", "sparse"):
             cr = cpp[e]
-            w(f"| C++ plate_bench, engine={e} ({cr['run']['engine']}) | {1e6 * cr['run']['step_s']:.2f} | "
-              f"{1e6 * cr['free_step_s']:.2f} | {1e6 * cr['contact_step_s']:.1f} | **{py['ratio'][e]:.0f}×** | "
-              f"{py['ratio_free'][e]:.0f}× | {py['ratio_contact'][e]:.0f}× |")
+            w(
+                f"| C++ plate_bench, engine={e} ({cr['run']['engine']}) | {1e6 * cr['run']['step_s']:.2f} | "
+                f"{1e6 * cr['free_step_s']:.2f} | {1e6 * cr['contact_step_s']:.1f} | **{py['ratio'][e]:.0f}×** | "
+                f"{py['ratio_free'][e]:.0f}× | {py['ratio_contact'][e]:.0f}× |"
+            )
         w("")
-        w(f"Free flight = the first {bl['split']} steps (no vertex reaches an obstacle); contact phase = "
-          f"steps {bl['split'] + 1}–{bl['steps']} (every step counted, with or without a QP). C++: the phase "
-          f"time is (time of {bl['steps']} steps − time of {bl['split']} steps), fastest of 3 interleaved runs each; "
-          f"Python: its CPU clock read at step {bl['split']}, fastest of 2 runs. A Python step with a QP costs "
-          f"{1e3 * py['qp_step_s']:.2f} ms on average ({py['qp_steps']} of them). Python setup "
-          f"(factorization + OSQP setup): {py['setup_s']:.3f} s.")
+        w(
+            f"Free flight = the first {bl['split']} steps (no vertex reaches an obstacle); contact phase = "
+            f"steps {bl['split'] + 1}–{bl['steps']} (every step counted, with or without a QP). C++: the phase "
+            f"time is (time of {bl['steps']} steps − time of {bl['split']} steps), fastest of 3 interleaved runs each; "
+            f"Python: its CPU clock read at step {bl['split']}, fastest of 2 runs. A Python step with a QP costs "
+            f"{1e3 * py['qp_step_s']:.2f} ms on average ({py['qp_steps']} of them). Python setup "
+            f"(factorization + OSQP setup): {py['setup_s']:.3f} s."
+        )
         w("")
         a = py["agree"]
-        w(f"Agreement with `plate_bench` over the horizon (corner_1 at every output): before the first "
-          f"impact max |Δ| = {a['auto']['before']:.1e} m against engine=auto ({cpp['auto']['run']['engine']}) and "
-          f"{a['sparse']['before']:.1e} m against engine=sparse; from the first impact to the end "
-          f"{a['auto']['after']:.1e} m and {a['sparse']['after']:.1e} m. OSQP statuses: "
-          f"{', '.join(f'{k}: {v}' for k, v in py['statuses'].items())}. "
-          + (f"Without the Jacobi scaling OSQP answers '{py['unscaled_status']}' on the first contact QP "
-             "(A's diagonal spans many orders of magnitude), so a user must scale."
-             if py["unscaled_status"] != "solved" else
-             "OSQP also solves the first contact QP without the Jacobi scaling on this mesh."))
+        w(
+            f"Agreement with `plate_bench` over the horizon (corner_1 at every output): before the first "
+            f"impact max |Δ| = {a['auto']['before']:.1e} m against engine=auto ({cpp['auto']['run']['engine']}) and "
+            f"{a['sparse']['before']:.1e} m against engine=sparse; from the first impact to the end "
+            f"{a['auto']['after']:.1e} m and {a['sparse']['after']:.1e} m. OSQP statuses: "
+            f"{', '.join(f'{k}: {v}' for k, v in py['statuses'].items())}. "
+            + (
+                f"Without the Jacobi scaling OSQP answers '{py['unscaled_status']}' on the first contact QP "
+                "(A's diagonal spans many orders of magnitude), so a user must scale."
+                if py["unscaled_status"] != "solved"
+                else "OSQP also solves the first contact QP without the Jacobi scaling on this mesh."
+            )
+        )
     w("")
 
     # ---------------- findings ----------------
@@ -476,6 +632,7 @@ def f_ref_key_label(ctx):
 def osqp_version():
     try:
         import osqp
+
         return osqp.__version__
     except Exception:  # noqa: BLE001
         return "?"
@@ -483,8 +640,9 @@ def osqp_version():
 
 def headline(ctx):
     """Goal verdicts, notes and the JSON summary (everything computed from the measurements)."""
-    plan, short, free, long, py, cpp, dflt, fmu = (ctx[k] for k in (
-        "plan", "short", "free", "long", "py", "cpp", "dflt", "fmu"))
+    plan, short, free, long, py, cpp, dflt, fmu = (
+        ctx[k] for k in ("plan", "short", "free", "long", "py", "cpp", "dflt", "fmu")
+    )
     goals, notes, conv_notes, env_notes, scal_notes, findings, lines = [], [], [], [], [], [], []
 
     # goal 1: exact default scene
@@ -494,95 +652,156 @@ def headline(ctx):
     wall = fmu["total_s"] if fmu else total_bench
     cpu = fmu["cpu_s"] if fmu else d["setup_s"] + d["step_s"] * d["steps"]
     ratio_ok = d["step_over_floor"] <= 1.2
-    fmu_s = (f"FMU through fmpy (instantiation, 10⁴ doStep with input derivatives, outputs read "
-             f"every step): **{fmu['total_s']:.2f} s** wall, {fmu['cpu_s']:.2f} s CPU (instantiation "
-             f"{fmu['init_s']:.2f} s), fastest of {plan['default_repeats']}" if fmu else "FMU not found")
-    goals.append(dict(
-        goal=f"exact default scene ({plan['default'].label()}, {plan['default_T']:g} s) ≤ 2.5 s wall",
-        measured=f"{fmu_s}; plate_bench {total_bench:.2f} s wall (setup {d['setup_s']:.2f} s + stepping "
-                 f"{d['wall_s']:.2f} s, engine {d['engine']})",
-        verdict=("**met**" if wall <= limit else
-                 "**met on CPU time**, not on the wall clock of this shared machine" if cpu <= limit
-                 else "**not met**")))
-    goals.append(dict(
-        goal="step/floor ≤ 1.2 (same scene)",
-        measured=f"{1e6 * d['step_s']:.1f} µs/step against a floor of {1e6 * d['floor_solve_s']:.1f} µs: "
-                 f"**{d['step_over_floor']:.2f}** (RTF {d['rtf']:.2f})",
-        verdict="**met**" if ratio_ok else "**not met**"))
-    lines.append(f"default scene: FMU {fmu['total_s']:.2f} s wall, plate_bench {total_bench:.2f} s, "
-                 f"step {1e6 * d['step_s']:.1f} us, floor {1e6 * d['floor_solve_s']:.1f} us, "
-                 f"step/floor {d['step_over_floor']:.2f}" if fmu else
-                 f"default scene: plate_bench {total_bench:.2f} s, step/floor {d['step_over_floor']:.2f}")
+    fmu_s = (
+        f"FMU through fmpy (instantiation, 10⁴ doStep with input derivatives, outputs read "
+        f"every step): **{fmu['total_s']:.2f} s** wall, {fmu['cpu_s']:.2f} s CPU (instantiation "
+        f"{fmu['init_s']:.2f} s), fastest of {plan['default_repeats']}"
+        if fmu
+        else "FMU not found"
+    )
+    goals.append(
+        dict(
+            goal=f"exact default scene ({plan['default'].label()}, {plan['default_T']:g} s) ≤ 2.5 s wall",
+            measured=f"{fmu_s}; plate_bench {total_bench:.2f} s wall (setup {d['setup_s']:.2f} s + stepping "
+            f"{d['wall_s']:.2f} s, engine {d['engine']})",
+            verdict=(
+                "**met**"
+                if wall <= limit
+                else "**met on CPU time**, not on the wall clock of this shared machine"
+                if cpu <= limit
+                else "**not met**"
+            ),
+        )
+    )
+    goals.append(
+        dict(
+            goal="step/floor ≤ 1.2 (same scene)",
+            measured=f"{1e6 * d['step_s']:.1f} µs/step against a floor of {1e6 * d['floor_solve_s']:.1f} µs: "
+            f"**{d['step_over_floor']:.2f}** (RTF {d['rtf']:.2f})",
+            verdict="**met**" if ratio_ok else "**not met**",
+        )
+    )
+    lines.append(
+        f"default scene: FMU {fmu['total_s']:.2f} s wall, plate_bench {total_bench:.2f} s, "
+        f"step {1e6 * d['step_s']:.1f} us, floor {1e6 * d['floor_solve_s']:.1f} us, "
+        f"step/floor {d['step_over_floor']:.2f}"
+        if fmu
+        else f"default scene: plate_bench {total_bench:.2f} s, step/floor {d['step_over_floor']:.2f}"
+    )
 
     # goal 2: modes
     base = free["base"]
-    ms = sorted([m for m in free["modes"] if m["cfg"].dt == base.dt and m["cfg"].element == base.element
-                 and m["cfg"].nx == base.nx], key=lambda m: m["cfg"].modes)
+    ms = sorted(
+        [
+            m
+            for m in free["modes"]
+            if m["cfg"].dt == base.dt and m["cfg"].element == base.element and m["cfg"].nx == base.nx
+        ],
+        key=lambda m: m["cfg"].modes,
+    )
     within = [m for m in ms if abs(m["rel_err"]) <= 0.01]
     fast = [m for m in ms if m["speedup"] >= 10]
     both = [m for m in ms if abs(m["rel_err"]) <= 0.01 and m["speedup"] >= 10]
     e_exact = free["runs"][base]["energy_dissipated"]
     if ms:
-        lst = ", ".join(f"{m['cfg'].modes}: {m['run']['energy_dissipated']:.2f} J "
-                        f"({100 * m['rel_err']:+.0f} %, {m['speedup']:.1f}×)" for m in ms)
+        lst = ", ".join(
+            f"{m['cfg'].modes}: {m['run']['energy_dissipated']:.2f} J "
+            f"({100 * m['rel_err']:+.0f} %, {m['speedup']:.1f}×)"
+            for m in ms
+        )
         first_ok = within[0] if within else None
         best_fast = fast[-1] if fast else None
-        meas = (f"exact {e_exact:.4f} J; m: {lst}. Smallest m within 1 %: "
-                + (f"**m = {first_ok['cfg'].modes}** at **{first_ok['speedup']:.2f}×**" if first_ok else "none")
-                + "; largest m at ≥ 10×: "
-                + (f"m = {best_fast['cfg'].modes}, error **{100 * best_fast['rel_err']:+.0f} %**" if best_fast else "none"))
-        goals.append(dict(goal=f"`modes` ≥ 10× faster than exact with ≤ 1 % error on the energy lost by 0.5 s (§5.2), {base.label()}",
-                          measured=meas,
-                          verdict="**met** at m = " + str(both[0]["cfg"].modes) if both else "**not met**"))
-        lines.append("modes (§5.2 energy lost): " + (f"<=1% first at m={first_ok['cfg'].modes} ({first_ok['speedup']:.2f}x)" if first_ok else "never within 1%")
-                     + (f"; >=10x at m<={best_fast['cfg'].modes} with {100 * best_fast['rel_err']:+.0f}%" if best_fast else ""))
+        meas = (
+            f"exact {e_exact:.4f} J; m: {lst}. Smallest m within 1 %: "
+            + (f"**m = {first_ok['cfg'].modes}** at **{first_ok['speedup']:.2f}×**" if first_ok else "none")
+            + "; largest m at ≥ 10×: "
+            + (f"m = {best_fast['cfg'].modes}, error **{100 * best_fast['rel_err']:+.0f} %**" if best_fast else "none")
+        )
+        goals.append(
+            dict(
+                goal=f"`modes` ≥ 10× faster than exact with ≤ 1 % error on the energy lost by 0.5 s (§5.2), {base.label()}",
+                measured=meas,
+                verdict="**met** at m = " + str(both[0]["cfg"].modes) if both else "**not met**",
+            )
+        )
+        lines.append(
+            "modes (§5.2 energy lost): "
+            + (
+                f"<=1% first at m={first_ok['cfg'].modes} ({first_ok['speedup']:.2f}x)"
+                if first_ok
+                else "never within 1%"
+            )
+            + (f"; >=10x at m<={best_fast['cfg'].modes} with {100 * best_fast['rel_err']:+.0f}%" if best_fast else "")
+        )
     # envelope goal
     lrows = {r["cfg"]: r for r in long["rows"]}
     lbase = long["base"]
-    lm = sorted([r for c, r in lrows.items() if c.modes and c.nx == lbase.nx and c.dt == lbase.dt],
-                key=lambda r: r["cfg"].modes)
+    lm = sorted(
+        [r for c, r in lrows.items() if c.modes and c.nx == lbase.nx and c.dt == lbase.dt], key=lambda r: r["cfg"].modes
+    )
     if lm and lbase in lrows:
         ex = lrows[lbase]
         parts = []
         for r in lm:
             sp = ex["run"]["step_s"] / r["run"]["step_s"]
-            parts.append(f"{r['cfg'].modes}: {r['period_envelope']:.4f} m "
-                         f"({100 * (r['period_envelope'] / ex['period_envelope'] - 1):+.0f} %, {sp:.1f}×)")
+            parts.append(
+                f"{r['cfg'].modes}: {r['period_envelope']:.4f} m "
+                f"({100 * (r['period_envelope'] / ex['period_envelope'] - 1):+.0f} %, {sp:.1f}×)"
+            )
         noise, dth = long["roundoff_rel"], long["dt_half_rel"]
-        spread = max(x for x in (noise, dth) if math.isfinite(x)) if any(
-            math.isfinite(x) for x in (noise, dth)) else float("nan")
+        spread = (
+            max(x for x in (noise, dth) if math.isfinite(x))
+            if any(math.isfinite(x) for x in (noise, dth))
+            else float("nan")
+        )
         fast_env = [r for r, part in zip(lm, parts) if ex["run"]["step_s"] / r["run"]["step_s"] >= 10]
         verdict = []
         if long["pinned"]:
-            verdict.append("max |corner|: **vacuous** (0 % error for every m: the corner is a mesh vertex "
-                           "held at the obstacle)")
+            verdict.append(
+                "max |corner|: **vacuous** (0 % error for every m: the corner is a mesh vertex held at the obstacle)"
+            )
         if math.isfinite(spread) and spread > 0.01:
-            verdict.append("per-period envelope: **not met / cannot be claimed** (not reproducible to "
-                           f"1 %: {100 * spread:.1f} % from roundoff or Δt/2 alone)")
+            verdict.append(
+                "per-period envelope: **not met / cannot be claimed** (not reproducible to "
+                f"1 %: {100 * spread:.1f} % from roundoff or Δt/2 alone)"
+            )
         else:
             ok_env = [r for r in fast_env if abs(r["period_envelope"] / ex["period_envelope"] - 1) <= 0.01]
-            verdict.append("per-period envelope: " + (f"**met** at m = {ok_env[0]['cfg'].modes}" if ok_env else "**not met**"))
-        goals.append(dict(
-            goal="`modes` ≥ 10× faster with ≤ 1 % error on the sine-scene envelope (max |corner|)",
-            measured=("max |corner| = 0.1 m (the obstacle) in **every** run, exact and every m alike. "
-                      if long["pinned"] else "") +
-                     f"Per-period envelope (mean over the periods after the first of max |corner_1 − z|): "
-                     f"exact {ex['period_envelope']:.4f} m; m: " + "; ".join(parts) +
-                     f". Same scheme with the sparse engine instead of the modal basis: {100 * noise:.1f} % apart"
-                     + (f"; exact with Δt/2: {100 * dth:.1f} % apart" if math.isfinite(dth) else "") + ".",
-            verdict="; ".join(verdict)))
+            verdict.append(
+                "per-period envelope: " + (f"**met** at m = {ok_env[0]['cfg'].modes}" if ok_env else "**not met**")
+            )
+        goals.append(
+            dict(
+                goal="`modes` ≥ 10× faster with ≤ 1 % error on the sine-scene envelope (max |corner|)",
+                measured=(
+                    "max |corner| = 0.1 m (the obstacle) in **every** run, exact and every m alike. "
+                    if long["pinned"]
+                    else ""
+                )
+                + f"Per-period envelope (mean over the periods after the first of max |corner_1 − z|): "
+                f"exact {ex['period_envelope']:.4f} m; m: "
+                + "; ".join(parts)
+                + f". Same scheme with the sparse engine instead of the modal basis: {100 * noise:.1f} % apart"
+                + (f"; exact with Δt/2: {100 * dth:.1f} % apart" if math.isfinite(dth) else "")
+                + ".",
+                verdict="; ".join(verdict),
+            )
+        )
 
     # goal 3: python
     if "error" not in py:
         r = py["ratio"]["auto"]
-        goals.append(dict(
-            goal="≥ 50× faster than the Python/SciPy baseline per step",
-            measured=f"{bl_label(plan)}: Python {1e6 * py['step_s']:.0f} µs/step vs C++ "
-                     f"{1e6 * cpp['auto']['run']['step_s']:.1f} µs/step (engine auto, {cpp['auto']['run']['engine']}): "
-                     f"**{r:.0f}×** (free flight {py['ratio_free']['auto']:.0f}×, contact phase "
-                     f"{py['ratio_contact']['auto']:.0f}×); against engine=sparse (the same algorithm as "
-                     f"the baseline: sparse factor + QP) {py['ratio']['sparse']:.0f}×",
-            verdict="**met**" if r >= 50 else "**not met**"))
+        goals.append(
+            dict(
+                goal="≥ 50× faster than the Python/SciPy baseline per step",
+                measured=f"{bl_label(plan)}: Python {1e6 * py['step_s']:.0f} µs/step vs C++ "
+                f"{1e6 * cpp['auto']['run']['step_s']:.1f} µs/step (engine auto, {cpp['auto']['run']['engine']}): "
+                f"**{r:.0f}×** (free flight {py['ratio_free']['auto']:.0f}×, contact phase "
+                f"{py['ratio_contact']['auto']:.0f}×); against engine=sparse (the same algorithm as "
+                f"the baseline: sparse factor + QP) {py['ratio']['sparse']:.0f}×",
+                verdict="**met**" if r >= 50 else "**not met**",
+            )
+        )
         notes.append(
             f"**Where the {r:.0f}× comes from.** The ratio depends on how many steps "
             f"need a QP: {py['ratio_free']['auto']:.0f}× in free flight, where the C++ step "
@@ -592,9 +811,12 @@ def headline(ctx):
             f"{1e3 * py['qp_step_s']:.1f} ms per QP. The short horizon asked for ({bl_label(plan)}) "
             f"is {plan['baseline']['split'] / plan['baseline']['steps']:.0%} free flight, so the mean sits "
             "near the free-flight ratio; a contact-rich stretch of the scene would sit nearer the "
-            "contact-phase ratio.")
-        lines.append(f"Python/SciPy baseline: {1e6 * py['step_s']:.0f} us/step, {r:.0f}x slower than C++ auto "
-                     f"({py['ratio']['sparse']:.0f}x vs sparse); agreement before impact {py['agree']['auto']['before']:.1e} m")
+            "contact-phase ratio."
+        )
+        lines.append(
+            f"Python/SciPy baseline: {1e6 * py['step_s']:.0f} us/step, {r:.0f}x slower than C++ auto "
+            f"({py['ratio']['sparse']:.0f}x vs sparse); agreement before impact {py['agree']['auto']['before']:.1e} m"
+        )
 
     # notes
     if ms:
@@ -603,7 +825,9 @@ def headline(ctx):
         n_dofs = ms[0]["run"]["dofs"]
         notes.append(
             "**Why `modes` does not reach 1 % on the §5.2 energy cheaply.** The energy lost by 0.5 s goes "
-            + ", ".join(f"{e:.2f}" for e in es) + " J for m = " + ", ".join(str(m["cfg"].modes) for m in ms)
+            + ", ".join(f"{e:.2f}" for e in es)
+            + " J for m = "
+            + ", ".join(str(m["cfg"].modes) for m in ms)
             + f" (of {n_dofs}), {'falling monotonically' if mono else 'not monotonically'} towards the exact "
             f"{e_exact:.3f} J. A truncated basis keeps the contact at every vertex, but it can stop a vertex "
             "only by stopping a smooth (low-mode) field around it, so an impact destroys more kinetic energy "
@@ -611,22 +835,40 @@ def headline(ctx):
             "vibration (our reading of the numbers: the loss reaches the exact value only as the basis "
             "becomes complete). The step of a truncated basis costs O(m × contact vertices), so a nearly "
             "complete basis is hardly faster than the exact scheme."
-            + (" At Δt = 1e-6 the truncation errors are larger still: "
-               + ", ".join(f"m = {m['cfg'].modes}: {100 * m['rel_err']:+.1f} %" for m in sorted(
-                   [m for m in free["modes"] if m["cfg"].dt < base.dt and m["cfg"].nx == base.nx
-                    and m["cfg"].element == base.element], key=lambda m: m["cfg"].modes)) + "."
-               if any(m["cfg"].dt < base.dt and m["cfg"].nx == base.nx for m in free["modes"]) else ""))
+            + (
+                " At Δt = 1e-6 the truncation errors are larger still: "
+                + ", ".join(
+                    f"m = {m['cfg'].modes}: {100 * m['rel_err']:+.1f} %"
+                    for m in sorted(
+                        [
+                            m
+                            for m in free["modes"]
+                            if m["cfg"].dt < base.dt and m["cfg"].nx == base.nx and m["cfg"].element == base.element
+                        ],
+                        key=lambda m: m["cfg"].modes,
+                    )
+                )
+                + "."
+                if any(m["cfg"].dt < base.dt and m["cfg"].nx == base.nx for m in free["modes"])
+                else ""
+            )
+        )
     sq = short["quantities"]
     orders = [(s["name"], s["orders"][-1]) for s in sq["trajectory"]["sequences"] if s["orders"]]
     if orders:
         conv_notes.append(
             "Observed orders of the pre-impact trajectory (from the last two differences): "
-            + ", ".join(f"{n}: {o:.2f}" for n, o in orders) + ". "
-            + ("Below the scheme's second order for smooth data; likely causes: the plate starts at rest "
-               "while the clamp starts moving at 0.09·2π·10 ≈ 5.7 m/s, so the initial velocity is "
-               "incompatible with the clamp (the first step's base-inertia load is an impulse that "
-               "excites every mode), and the clamped–free corners are singular."
-               if any(o < 1.5 for n, o in orders if n.startswith("Δt")) else ""))
+            + ", ".join(f"{n}: {o:.2f}" for n, o in orders)
+            + ". "
+            + (
+                "Below the scheme's second order for smooth data; likely causes: the plate starts at rest "
+                "while the clamp starts moving at 0.09·2π·10 ≈ 5.7 m/s, so the initial velocity is "
+                "incompatible with the clamp (the first step's base-inertia load is an impulse that "
+                "excites every mode), and the clamped–free corners are singular."
+                if any(o < 1.5 for n, o in orders if n.startswith("Δt"))
+                else ""
+            )
+        )
     if not free["converges"]:
         seq = free["sequences"][0]
         conv_notes.append(
@@ -639,13 +881,15 @@ def headline(ctx):
             "that the refinements approach. It is therefore "
             "flagged and never used as an error against a fine reference; the tables use it only to "
             "compare `modes` with the exact scheme on the same mesh and Δt (the goal's sense), which is "
-            "well defined because the exact value is reproducible to roundoff.")
+            "well defined because the exact value is reproducible to roundoff."
+        )
     if long["pinned"]:
         env_notes.append(
             "max |corner| is **degenerate**: both corners are mesh vertices, the contact holds every "
             "vertex between the obstacles, and in every run the corners reach an obstacle, so the envelope "
             "is 0.1 m to 1e-9 (to roundoff, in fact) for every mesh, Δt and m. It would report 0 % error "
-            "for any configuration, so it is flagged and not used.")
+            "for any configuration, so it is flagged and not used."
+        )
     env_notes.append(
         "The per-period envelope of the deflection relative to the clamp is informative, but after the "
         "first impacts the response is chaotic (docs/theory.md): a roundoff-level change (the sparse factor "
@@ -653,7 +897,8 @@ def headline(ctx):
         + (f", halving Δt by {100 * long['dt_half_rel']:.1f} %" if math.isfinite(long["dt_half_rel"]) else "")
         + ". No refinement sequence of it is shown to converge, so it is reported but not used as an "
         "error. (Its peak over the whole run, max |corner_1 − z|, comes before the first impact, "
-        "at t ≈ 0.021 s: that is the pre-impact trajectory again.)")
+        "at t ≈ 0.021 s: that is the pre-impact trajectory again.)"
+    )
 
     # element notes: the pairs at equal first-frequency error
     element_notes = []
@@ -672,7 +917,8 @@ def headline(ctx):
                 f"({rf['run']['dofs']} dofs, f₁ error {fmt(ff['rel_err'])}) at Δt = {fmt_dt(dt_)}: trajectory error "
                 f"{fmt(ta)} against {fmt(tf)}, {fmt(ra['run']['wall_per_sim_s'])} against "
                 f"{fmt(rf['run']['wall_per_sim_s'])} s per simulated second ({ra['run']['engine']} against "
-                f"{rf['run']['engine']}).")
+                f"{rf['run']['engine']})."
+            )
             break
 
     # scaling notes
@@ -687,7 +933,9 @@ def headline(ctx):
             scal_notes.append(
                 f"{'Argyris' if element == 'argyris' else 'FVS'}: between {big[0]['dofs']} and {big[-1]['dofs']} dofs the floor grows like "
                 f"n^{sf:.2f} and the sparse step like n^{ss:.2f}; step/floor with the sparse factor: "
-                + ", ".join(f"{r['dofs']}: {r['sparse']['step_over_floor']:.2f}" for r in sparse_rs) + ".")
+                + ", ".join(f"{r['dofs']}: {r['sparse']['step_over_floor']:.2f}" for r in sparse_rs)
+                + "."
+            )
     sparse_ratios = [r["sparse"]["step_over_floor"] for r in rows if r["sparse"]["engine"] == "sparse"]
     if sparse_ratios:
         over = [r for r in rows if r["auto"]["engine"] == "sparse" and r["auto"]["step_over_floor"] > 1.2]
@@ -695,12 +943,21 @@ def headline(ctx):
             f"With the sparse factor the step costs {min(sparse_ratios):.2f}–{max(sparse_ratios):.2f} floors "
             "(scaling table), so the step/floor ≤ 1.2 of the default scene holds because engine=auto runs the "
             "complete modal basis there"
-            + (", not on the meshes where auto picks the sparse factor ("
-               + ", ".join(f"{'Argyris' if r['element'] == 'argyris' else 'FVS'} {r['nx']}×{r['ny']}: "
-                           f"{r['auto']['step_over_floor']:.2f}" for r in over) + ")" if over else "")
+            + (
+                ", not on the meshes where auto picks the sparse factor ("
+                + ", ".join(
+                    f"{'Argyris' if r['element'] == 'argyris' else 'FVS'} {r['nx']}×{r['ny']}: "
+                    f"{r['auto']['step_over_floor']:.2f}"
+                    for r in over
+                )
+                + ")"
+                if over
+                else ""
+            )
             + ". Profiled once while writing this report, `perf record` of `plate_bench nx=7 ny=3 "
             "engine=sparse gap=0 steps=200000` (no contact at all) put 31 % of the time in `FullOrderPlate::applyStiffness` (the CSR product K·w⁺ of "
-            "every step, which the floor does not count) and ~60 % in CHOLMOD's solve.")
+            "every step, which the floor does not count) and ~60 % in CHOLMOD's solve."
+        )
     for r in rows:
         mo = r.get("modal")
         if mo and r["auto"]["engine"] == "sparse" and mo["step_s"] < 0.8 * r["auto"]["step_s"]:
@@ -708,55 +965,99 @@ def headline(ctx):
                 f"engine=auto runs the sparse factor on {'Argyris' if r['element'] == 'argyris' else 'FVS'} "
                 f"{r['nx']}×{r['ny']} ({r['dofs']} dofs) at {1e6 * r['auto']['step_s']:.1f} µs/step; the complete "
                 f"modal basis measured {1e6 * mo['step_s']:.1f} µs/step in the same interleaved rounds "
-                f"(`plate_bench element={r['element']} nx={r['nx']} ny={r['ny']} engine=modal`).")
+                f"(`plate_bench element={r['element']} nx={r['nx']} ny={r['ny']} engine=modal`)."
+            )
         if mo and r["auto"]["engine"] != "sparse" and r["sparse"]["step_s"] < 0.8 * r["auto"]["step_s"]:
             findings.append(
                 f"engine=auto runs the modal basis on {'Argyris' if r['element'] == 'argyris' else 'FVS'} "
                 f"{r['nx']}×{r['ny']} at {1e6 * r['auto']['step_s']:.1f} µs/step; the sparse factor measured "
-                f"{1e6 * r['sparse']['step_s']:.1f} µs/step in the same rounds.")
+                f"{1e6 * r['sparse']['step_s']:.1f} µs/step in the same rounds."
+            )
     ms_ = ctx.get("modes_setup")
     if ms_:
         c = ms_["cfg"]
         findings.append(
             f"`modes = m` setup: {ms_['run']['setup_s']:.1f} s for m = {c.modes} on "
             f"{c.label(dt=False).split(', m=')[0]} ({ms_['run']['dofs']} dofs) in this run"
-            + (f", against {ms_['exact_setup_s']:.2f} s for the exact engine on the same mesh"
-               if math.isfinite(ms_["exact_setup_s"]) else "")
+            + (
+                f", against {ms_['exact_setup_s']:.2f} s for the exact engine on the same mesh"
+                if math.isfinite(ms_["exact_setup_s"])
+                else ""
+            )
             + f" (`plate_bench element={c.element} nx={c.nx} ny={c.ny} modes={c.modes} steps=100`). "
             "A few modes of a space over 1200 dofs come from subspace iteration with the factor of K "
-            "(Spectrum.cpp); smaller spaces, or most of the modes, from the dense O(n³) solution.")
+            "(Spectrum.cpp); smaller spaces, or most of the modes, from the dense O(n³) solution."
+        )
     summary = dict(
         headline_lines=lines,
         goals=goals,
         quantities={
-            "trajectory": dict(converges=sq["trajectory"]["converges"],
-                               sequences=sq["trajectory"]["sequences"],
-                               ref_uncertainty=sq["trajectory"]["ref_uncertainty"]),
-            "impact": dict(converges=sq["impact"]["converges"], sequences=sq["impact"]["sequences"],
-                           ref_uncertainty=sq["impact"]["ref_uncertainty"]),
+            "trajectory": dict(
+                converges=sq["trajectory"]["converges"],
+                sequences=sq["trajectory"]["sequences"],
+                ref_uncertainty=sq["trajectory"]["ref_uncertainty"],
+            ),
+            "impact": dict(
+                converges=sq["impact"]["converges"],
+                sequences=sq["impact"]["sequences"],
+                ref_uncertainty=sq["impact"]["ref_uncertainty"],
+            ),
             "energy_lost_0p5s": dict(converges=free["converges"], sequences=free["sequences"]),
-            "envelope_max_corner": dict(converges=False, degenerate=long["pinned"],
-                                        roundoff_rel=long["roundoff_rel"]),
+            "envelope_max_corner": dict(converges=False, degenerate=long["pinned"], roundoff_rel=long["roundoff_rel"]),
         },
-        errors=[dict(config=r["cfg"].label(), wall_per_sim_s=r["run"]["wall_per_sim_s"],
-                     rtf=r["run"]["rtf"], step_over_floor=r["run"]["step_over_floor"],
-                     err_trajectory=r["err_trajectory"], err_impact=r["err_impact"])
-                for r in short["rows"]],
-        modes=[dict(config=m["cfg"].label(), rel_err=m["rel_err"], speedup=m["speedup"],
-                    energy_dissipated=m["run"]["energy_dissipated"]) for m in free["modes"]],
-        envelope=[dict(config=r["cfg"].label(), max_corner=r["max_corner_any"],
-                       period_envelope=r["period_envelope"]) for r in long["rows"]],
-        scaling=[dict(element=r["element"], nx=r["nx"], ny=r["ny"], dofs=r["dofs"],
-                      auto=dict((k, r["auto"][k]) for k in ("engine", "step_s", "floor_solve_s", "step_over_floor")),
-                      sparse=dict((k, r["sparse"][k]) for k in ("engine", "step_s", "floor_solve_s", "step_over_floor")))
-                 for r in rows],
+        errors=[
+            dict(
+                config=r["cfg"].label(),
+                wall_per_sim_s=r["run"]["wall_per_sim_s"],
+                rtf=r["run"]["rtf"],
+                step_over_floor=r["run"]["step_over_floor"],
+                err_trajectory=r["err_trajectory"],
+                err_impact=r["err_impact"],
+            )
+            for r in short["rows"]
+        ],
+        modes=[
+            dict(
+                config=m["cfg"].label(),
+                rel_err=m["rel_err"],
+                speedup=m["speedup"],
+                energy_dissipated=m["run"]["energy_dissipated"],
+            )
+            for m in free["modes"]
+        ],
+        envelope=[
+            dict(config=r["cfg"].label(), max_corner=r["max_corner_any"], period_envelope=r["period_envelope"])
+            for r in long["rows"]
+        ],
+        scaling=[
+            dict(
+                element=r["element"],
+                nx=r["nx"],
+                ny=r["ny"],
+                dofs=r["dofs"],
+                auto=dict((k, r["auto"][k]) for k in ("engine", "step_s", "floor_solve_s", "step_over_floor")),
+                sparse=dict((k, r["sparse"][k]) for k in ("engine", "step_s", "floor_solve_s", "step_over_floor")),
+            )
+            for r in rows
+        ],
         baseline=({k: v for k, v in py.items() if k not in ("time", "corner_1")} if py else None),
-        default=dict(fmu=fmu, bench={k: dflt[k] for k in ("setup_s", "wall_s", "step_s", "floor_solve_s", "step_over_floor", "engine")}),
-        elapsed_s=ctx["elapsed"], quick=plan["quick"],
+        default=dict(
+            fmu=fmu,
+            bench={k: dflt[k] for k in ("setup_s", "wall_s", "step_s", "floor_solve_s", "step_over_floor", "engine")},
+        ),
+        elapsed_s=ctx["elapsed"],
+        quick=plan["quick"],
     )
-    return dict(goals=goals, notes=notes, convergence_notes=conv_notes, envelope_notes=env_notes,
-                scaling_notes=scal_notes, findings=findings, summary=summary,
-                element_notes=element_notes)
+    return dict(
+        goals=goals,
+        notes=notes,
+        convergence_notes=conv_notes,
+        envelope_notes=env_notes,
+        scaling_notes=scal_notes,
+        findings=findings,
+        summary=summary,
+        element_notes=element_notes,
+    )
 
 
 def h_trend(sequences):
@@ -766,8 +1067,13 @@ def h_trend(sequences):
         if not seq["name"].startswith("h") or len(seq["values"]) < 2:
             continue
         v = seq["values"]
-        trend = ("rise" if all(b > a for a, b in zip(v, v[1:])) else
-                 "fall" if all(b < a for a, b in zip(v, v[1:])) else "go up and down")
+        trend = (
+            "rise"
+            if all(b > a for a, b in zip(v, v[1:]))
+            else "fall"
+            if all(b < a for a, b in zip(v, v[1:]))
+            else "go up and down"
+        )
         parts.append(f"{seq['name'].split(', ')[1]} values {trend} ({', '.join(f'{x:.3f}' for x in v)} J)")
     if not parts:
         return ""

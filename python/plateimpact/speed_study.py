@@ -3,6 +3,7 @@ plateimpact.speed_report writes the report): runs of plate_bench (the solver wit
 JSON line per run, the floor = one solve with the sparse factor of A = M + βΔt²K measured in the
 same run), the FMU's wall time through fmpy, the plain Python/SciPy baseline, the refinement
 studies and the rule that decides whether a sequence converges (`converges()`)."""
+
 from __future__ import annotations
 
 import json
@@ -13,7 +14,6 @@ from dataclasses import dataclass, replace
 from pathlib import Path
 
 import numpy as np
-
 
 # The two scenes (README, docs/theory.md): the §5.1 forced oscillation (default scene) and the §5.2
 # free vibration (static equilibrium under 8600 Pa, released at rest, lower obstacle only).
@@ -56,8 +56,14 @@ class Cfg:
         return s
 
     def args(self):
-        return [f"element={self.element}", f"nx={self.nx}", f"ny={self.ny}", f"dt={self.dt!r}",
-                f"modes={self.modes}", f"engine={self.engine}"]
+        return [
+            f"element={self.element}",
+            f"nx={self.nx}",
+            f"ny={self.ny}",
+            f"dt={self.dt!r}",
+            f"modes={self.modes}",
+            f"engine={self.engine}",
+        ]
 
 
 def fmt_dt(dt):
@@ -76,8 +82,17 @@ def fmt(x, digits=3):
     return f"{x:.{max(digits - 1, 1)}e}".replace("e-0", "e-").replace("e+0", "e")
 
 
-SERIES_COLUMNS = ("time", "base", "corner_1", "corner_2", "free_edge_mid", "energy",
-                  "energy_input", "energy_dissipated", "contact_vertices")
+SERIES_COLUMNS = (
+    "time",
+    "base",
+    "corner_1",
+    "corner_2",
+    "free_edge_mid",
+    "energy",
+    "energy_input",
+    "energy_dissipated",
+    "contact_vertices",
+)
 
 
 class Bench:
@@ -129,9 +144,12 @@ class Bench:
             r["series"] = {c: data[:, i] for i, c in enumerate(SERIES_COLUMNS)}
             csv.unlink()
         if self.verbose:
-            print(f"  [{self.count:3d}] {cfg.label()} {scene_name(scene)} {horizon:g}s: "
-                  f"{r['engine']}, {1e6 * r['step_s']:.2f} us/step (wall {1e6 * r['step_wall_s']:.2f}), "
-                  f"floor {1e6 * r['floor_solve_s']:.2f} us, {elapsed:.1f} s", flush=True)
+            print(
+                f"  [{self.count:3d}] {cfg.label()} {scene_name(scene)} {horizon:g}s: "
+                f"{r['engine']}, {1e6 * r['step_s']:.2f} us/step (wall {1e6 * r['step_wall_s']:.2f}), "
+                f"floor {1e6 * r['floor_solve_s']:.2f} us, {elapsed:.1f} s",
+                flush=True,
+            )
         return r
 
     def _store(self, key, cfg, runs):
@@ -149,8 +167,7 @@ class Bench:
         key = self._key(cfg, scene, horizon, comm, series)
         if key in self.cache and self.cache[key]["repeats"] >= repeats:
             return self.cache[key]
-        return self._store(key, cfg, [self._once(cfg, scene, horizon, comm, series)
-                                      for _ in range(repeats)])
+        return self._store(key, cfg, [self._once(cfg, scene, horizon, comm, series) for _ in range(repeats)])
 
     def run_group(self, items, rounds):
         """Runs that are compared with each other, interleaved round by round so that a busy
@@ -159,8 +176,10 @@ class Bench:
         for _ in range(rounds):
             for i, (cfg, scene, horizon, comm) in enumerate(items):
                 runs[i].append(self._once(cfg, scene, horizon, comm, False))
-        return [self._store(self._key(cfg, scene, horizon, comm, False), cfg, runs[i])
-                for i, (cfg, scene, horizon, comm) in enumerate(items)]
+        return [
+            self._store(self._key(cfg, scene, horizon, comm, False), cfg, runs[i])
+            for i, (cfg, scene, horizon, comm) in enumerate(items)
+        ]
 
     def export(self, cfg: Cfg, directory):
         Path(directory).mkdir(parents=True, exist_ok=True)
@@ -190,6 +209,7 @@ def scene_name(scene):
 # ------------------------------------------------------------------------------------------
 def load_export(directory):
     import scipy.io
+
     d = Path(directory)
     mass = scipy.io.mmread(d / "mass.mtx").tocsr()
     stiffness = scipy.io.mmread(d / "stiffness.mtx").tocsr()
@@ -202,23 +222,21 @@ def load_export(directory):
             i, c = token.split(":")
             row[int(i)] += float(c)
         probes.append(row)
-    return dict(M=mass, K=stiffness, F=vectors[:, 0], M1=vectors[:, 1], contact=contact,
-                probes=np.array(probes))
+    return dict(M=mass, K=stiffness, F=vectors[:, 0], M1=vectors[:, 1], contact=contact, probes=np.array(probes))
 
 
 def first_frequency(bench, cfg, workdir):
     """Lowest natural frequency of the clamped plate (Hz), from the exported M, K (SciPy)."""
     from scipy.sparse.linalg import eigsh
+
     d = Path(workdir) / f"export_{cfg.element}_{cfg.grid}"
     bench.export(cfg, d)
     e = load_export(d)
-    vals = eigsh(e["K"].tocsc(), k=1, M=e["M"].tocsc(), sigma=0.0, which="LM",
-                 return_eigenvectors=False)
+    vals = eigsh(e["K"].tocsc(), k=1, M=e["M"].tocsc(), sigma=0.0, which="LM", return_eigenvectors=False)
     return float(np.sqrt(vals.min()) / (2 * np.pi)), int(e["M"].shape[0])
 
 
-def python_baseline(export_dir, dt, steps, comm, split, beta=0.5, amplitude=0.09,
-                    frequency=10.0, gap=OBSTACLE):
+def python_baseline(export_dir, dt, steps, comm, split, beta=0.5, amplitude=0.09, frequency=10.0, gap=OBSTACLE):
     """The same three-level scheme as NewmarkContactStepper (docs/theory.md §3–4) in plain
     Python/SciPy: A = M + βΔt²K factored once (scipy.sparse.linalg.factorized), the free
     solution every step, and on steps where it violates a bound the full step QP
@@ -288,9 +306,14 @@ def python_baseline(export_dir, dt, steps, comm, split, beta=0.5, amplitude=0.09
                 if unscaled_status is None:  # once, untimed: what OSQP says on the unscaled QP
                     tu = clock()
                     raw = osqp.OSQP()
-                    raw.setup(sp.triu(A).tocsc(), -b,
-                              sp.csc_matrix((np.ones(m), (np.arange(m), C)), shape=(m, n)),
-                              np.full(m, lo), np.full(m, hi), **settings)
+                    raw.setup(
+                        sp.triu(A).tocsc(),
+                        -b,
+                        sp.csc_matrix((np.ones(m), (np.arange(m), C)), shape=(m, n)),
+                        np.full(m, lo),
+                        np.full(m, hi),
+                        **settings,
+                    )
                     unscaled_status = raw.solve().info.status
                     t0 += clock() - tu
             w_prev, w = w, w_next
@@ -302,11 +325,22 @@ def python_baseline(export_dir, dt, steps, comm, split, beta=0.5, amplitude=0.09
     real = time.perf_counter() - t0_wall
     rows = np.array(rows)
     t_split = wall if t_split is None else t_split
-    return dict(dofs=n, steps=steps, setup_s=setup_s, cpu_s=wall, wall_s=real, step_s=wall / steps,
-                qp_steps=qp_steps, qp_step_s=qp_s / max(qp_steps, 1),
-                free_phase_step_s=t_split / split,
-                contact_phase_step_s=(wall - t_split) / max(steps - split, 1), statuses=statuses,
-                unscaled_status=unscaled_status, time=rows[:, 0], corner_1=rows[:, 1])
+    return dict(
+        dofs=n,
+        steps=steps,
+        setup_s=setup_s,
+        cpu_s=wall,
+        wall_s=real,
+        step_s=wall / steps,
+        qp_steps=qp_steps,
+        qp_step_s=qp_s / max(qp_steps, 1),
+        free_phase_step_s=t_split / split,
+        contact_phase_step_s=(wall - t_split) / max(steps - split, 1),
+        statuses=statuses,
+        unscaled_status=unscaled_status,
+        time=rows[:, 0],
+        corner_1=rows[:, 1],
+    )
 
 
 def fmu_wall(fmu, horizon, comm=1e-4, **parameters):
@@ -321,8 +355,7 @@ def fmu_wall(fmu, horizon, comm=1e-4, **parameters):
             plate.step(comm, base=sine(SINE["amplitude"], SINE["frequency"], k * comm))
             plate.outputs()
         t2 = time.perf_counter()
-    return dict(total_s=time.perf_counter() - t0, cpu_s=time.process_time() - c0, init_s=t1 - t0,
-                stepping_s=t2 - t1)
+    return dict(total_s=time.perf_counter() - t0, cpu_s=time.process_time() - c0, init_s=t1 - t0, stepping_s=t2 - t1)
 
 
 # ------------------------------------------------------------------------------------------
@@ -352,8 +385,10 @@ def converges(diffs, resolution):
     its own resolution counts as its resolution when the next one is compared with it."""
     if len(diffs) < 2 or not all(np.isfinite(diffs)):
         return False
-    return all(d2 <= max(CONTRACTION * max(d1, r1), r2)
-               for d1, d2, r1, r2 in zip(diffs[:-1], diffs[1:], resolution[:-1], resolution[1:]))
+    return all(
+        d2 <= max(CONTRACTION * max(d1, r1), r2)
+        for d1, d2, r1, r2 in zip(diffs[:-1], diffs[1:], resolution[:-1], resolution[1:])
+    )
 
 
 def refinement_factors(cfgs):
@@ -375,9 +410,18 @@ def sequence_report(name, labels, values, diffs, resolution, unit="", factors=No
     tail = diffs[-1] * q / (1 - q) if ok and ratios and 0 <= q < 1 else float("nan")
     if ok and ratios and q == 0:
         tail = max(resolution[-1], diffs[-1])
-    return dict(name=name, labels=labels, values=values, diffs=list(map(float, diffs)),
-                resolution=list(map(float, resolution)), ratios=ratios, converges=ok,
-                tail=float(tail), unit=unit, orders=orders)
+    return dict(
+        name=name,
+        labels=labels,
+        values=values,
+        diffs=list(map(float, diffs)),
+        resolution=list(map(float, resolution)),
+        ratios=ratios,
+        converges=ok,
+        tail=float(tail),
+        unit=unit,
+        orders=orders,
+    )
 
 
 # ------------------------------------------------------------------------------------------
@@ -388,24 +432,31 @@ def make_plan(quick):
     if quick:
         return dict(
             quick=True,
-            scaling=[(A, 7, 3), (F, 10, 4)], scaling_steps=2000, scaling_repeats=1,
-            short_T=0.06, pre_impact=0.045,
+            scaling=[(A, 7, 3), (F, 10, 4)],
+            scaling_steps=2000,
+            scaling_repeats=1,
+            short_T=0.06,
+            pre_impact=0.045,
             short=[Cfg(A, 7, 3, dt) for dt in (1e-3, 1e-4, 1e-5)]
             + [Cfg(F, nx, ny, 1e-5) for nx, ny in ((10, 4), (20, 7), (40, 14))]
             + [Cfg(A, 7, 3, 1e-5, modes=m) for m in (10, 40)],
             short_ref=Cfg(F, 40, 14, 1e-5),
-            short_seqs=[("Δt, Argyris 7×3", [Cfg(A, 7, 3, dt) for dt in (1e-3, 1e-4, 1e-5)], "dt"),
-                        ("h, FVS, Δt=1e-5", [Cfg(F, nx, ny, 1e-5) for nx, ny in ((10, 4), (20, 7), (40, 14))], "h")],
+            short_seqs=[
+                ("Δt, Argyris 7×3", [Cfg(A, 7, 3, dt) for dt in (1e-3, 1e-4, 1e-5)], "dt"),
+                ("h, FVS, Δt=1e-5", [Cfg(F, nx, ny, 1e-5) for nx, ny in ((10, 4), (20, 7), (40, 14))], "h"),
+            ],
             free_T=0.5,
             free=[Cfg(A, 7, 3, dt) for dt in (1e-4, 1e-5, 5e-6)]
             + [Cfg(A, 7, 3, 1e-5, modes=m) for m in (10, 40, 120)]
             + [Cfg(A, 7, 3, 1e-5, engine="sparse")],
             free_seqs=[("Δt, Argyris 7×3", [Cfg(A, 7, 3, dt) for dt in (1e-4, 1e-5, 5e-6)])],
-            free_modes_base=Cfg(A, 7, 3, 1e-5), free_modes=(10, 40, 120),
+            free_modes_base=Cfg(A, 7, 3, 1e-5),
+            free_modes=(10, 40, 120),
             long_T=0.3,
-            long=[Cfg(A, 7, 3, 1e-5), Cfg(A, 7, 3, 1e-5, engine="sparse"),
-                  Cfg(A, 7, 3, 1e-5, modes=40)],
-            default=Cfg(A, 7, 3, 1e-4), default_T=0.05, default_repeats=1,
+            long=[Cfg(A, 7, 3, 1e-5), Cfg(A, 7, 3, 1e-5, engine="sparse"), Cfg(A, 7, 3, 1e-5, modes=40)],
+            default=Cfg(A, 7, 3, 1e-4),
+            default_T=0.05,
+            default_repeats=1,
             baseline=dict(cfg=Cfg(A, 7, 3, 1e-4), steps=600, comm=1e-4, split=490),
             pairs=[((A, 7, 3), (F, 20, 7))],
             modes_setup=Cfg(F, 20, 7, 1e-5, modes=40),
@@ -432,32 +483,46 @@ def make_plan(quick):
     free += [Cfg(F, 20, 7, 1e-5, modes=m) for m in (10, 40, 160, 320, 440)]
     return dict(
         quick=False,
-        scaling=[(A, 7, 3), (A, 14, 5), (A, 28, 10), (A, 56, 20),
-                 (F, 10, 4), (F, 20, 7), (F, 40, 14), (F, 80, 28)],
-        scaling_steps=6000, scaling_repeats=3,
-        short_T=0.06, pre_impact=0.045, short=short,
+        scaling=[(A, 7, 3), (A, 14, 5), (A, 28, 10), (A, 56, 20), (F, 10, 4), (F, 20, 7), (F, 40, 14), (F, 80, 28)],
+        scaling_steps=6000,
+        scaling_repeats=3,
+        short_T=0.06,
+        pre_impact=0.045,
+        short=short,
         short_ref=Cfg(A, 28, 10, 1e-6),
-        short_seqs=[("Δt, Argyris 14×5", [Cfg(A, 14, 5, dt) for dt in decades], "dt"),
-                    ("Δt, FVS 20×7", [Cfg(F, 20, 7, dt) for dt in decades], "dt"),
-                    ("h, Argyris, Δt=1e-6", [Cfg(A, nx, ny, 1e-6) for nx, ny in grids_a], "h"),
-                    ("h, FVS, Δt=1e-6", [Cfg(F, nx, ny, 1e-6) for nx, ny in grids_f], "h")],
-        free_T=0.5, free=free,
-        free_seqs=[("Δt, Argyris 14×5", [Cfg(A, 14, 5, dt) for dt in fine_dt]),
-                   ("Δt, Argyris 7×3", [Cfg(A, 7, 3, dt) for dt in fine_dt]),
-                   ("Δt, FVS 20×7", [Cfg(F, 20, 7, dt) for dt in fine_dt[:-1]]),
-                   ("h, Argyris, Δt=1e-5", [Cfg(A, nx, ny, 1e-5) for nx, ny in grids_a]),
-                   ("h, FVS, Δt=1e-5", [Cfg(F, nx, ny, 1e-5) for nx, ny in grids_f[:2]])],
-        free_modes_base=Cfg(A, 14, 5, 1e-5), free_modes=modes_a,
+        short_seqs=[
+            ("Δt, Argyris 14×5", [Cfg(A, 14, 5, dt) for dt in decades], "dt"),
+            ("Δt, FVS 20×7", [Cfg(F, 20, 7, dt) for dt in decades], "dt"),
+            ("h, Argyris, Δt=1e-6", [Cfg(A, nx, ny, 1e-6) for nx, ny in grids_a], "h"),
+            ("h, FVS, Δt=1e-6", [Cfg(F, nx, ny, 1e-6) for nx, ny in grids_f], "h"),
+        ],
+        free_T=0.5,
+        free=free,
+        free_seqs=[
+            ("Δt, Argyris 14×5", [Cfg(A, 14, 5, dt) for dt in fine_dt]),
+            ("Δt, Argyris 7×3", [Cfg(A, 7, 3, dt) for dt in fine_dt]),
+            ("Δt, FVS 20×7", [Cfg(F, 20, 7, dt) for dt in fine_dt[:-1]]),
+            ("h, Argyris, Δt=1e-5", [Cfg(A, nx, ny, 1e-5) for nx, ny in grids_a]),
+            ("h, FVS, Δt=1e-5", [Cfg(F, nx, ny, 1e-5) for nx, ny in grids_f[:2]]),
+        ],
+        free_modes_base=Cfg(A, 14, 5, 1e-5),
+        free_modes=modes_a,
         long_T=1.0,
-        long=[Cfg(A, 14, 5, 1e-5), Cfg(A, 14, 5, 1e-5, engine="sparse"), Cfg(A, 14, 5, 5e-6),
-              Cfg(A, 7, 3, 1e-5), Cfg(F, 20, 7, 1e-5)]
+        long=[
+            Cfg(A, 14, 5, 1e-5),
+            Cfg(A, 14, 5, 1e-5, engine="sparse"),
+            Cfg(A, 14, 5, 5e-6),
+            Cfg(A, 7, 3, 1e-5),
+            Cfg(F, 20, 7, 1e-5),
+        ]
         + [Cfg(A, 14, 5, 1e-5, modes=m) for m in (10, 40, 160, 400, 650)],
-        default=Cfg(A, 14, 5, 1e-5), default_T=1.0, default_repeats=3,
+        default=Cfg(A, 14, 5, 1e-5),
+        default_T=1.0,
+        default_repeats=3,
         baseline=dict(cfg=Cfg(A, 14, 5, 1e-5), steps=6000, comm=1e-4, split=4900),
         pairs=[((A, 7, 3), (F, 20, 7)), ((A, 14, 5), (F, 40, 14)), ((A, 28, 10), (F, 80, 28))],
         modes_setup=Cfg(F, 40, 14, 1e-5, modes=40),
-        freq_grids=[(A, 7, 3), (A, 14, 5), (A, 28, 10), (A, 56, 20),
-                    (F, 10, 4), (F, 20, 7), (F, 40, 14), (F, 80, 28)],
+        freq_grids=[(A, 7, 3), (A, 14, 5), (A, 28, 10), (A, 56, 20), (F, 10, 4), (F, 20, 7), (F, 40, 14), (F, 80, 28)],
     )
 
 
@@ -475,10 +540,24 @@ def study_scaling(bench, plan):
         items = [(Cfg(element, nx, ny, 1e-5, engine=e), SINE, steps * 1e-5, None) for e in engines]
         res = dict(zip(engines, bench.run_group(items, rounds)))
         if "sparse" not in res:
-            res["sparse"] = (res["auto"] if res["auto"]["engine"] == "sparse" else
-                             bench.run(Cfg(element, nx, ny, 1e-5, engine="sparse"), SINE, steps * 1e-5))
-        rows.append(dict(element=element, nx=nx, ny=ny, dofs=res["auto"]["dofs"], steps=steps,
-                         rounds=rounds, auto=res["auto"], sparse=res["sparse"], modal=res.get("modal")))
+            res["sparse"] = (
+                res["auto"]
+                if res["auto"]["engine"] == "sparse"
+                else bench.run(Cfg(element, nx, ny, 1e-5, engine="sparse"), SINE, steps * 1e-5)
+            )
+        rows.append(
+            dict(
+                element=element,
+                nx=nx,
+                ny=ny,
+                dofs=res["auto"]["dofs"],
+                steps=steps,
+                rounds=rounds,
+                auto=res["auto"],
+                sparse=res["sparse"],
+                modal=res.get("modal"),
+            )
+        )
     return rows
 
 
@@ -495,34 +574,40 @@ def study_short(bench, plan):
         rs = [runs[c] for c in cfgs]
         labels = [c.label() for c in cfgs]
         dtraj = [traj_difference(a, b, until) for a, b in zip(rs[:-1], rs[1:])]
-        seqs["trajectory"].append(sequence_report(
-            name, labels, [None] * len(rs), dtraj, [1e-12] * len(dtraj), "relative",
-            refinement_factors(cfgs)))
+        seqs["trajectory"].append(
+            sequence_report(
+                name, labels, [None] * len(rs), dtraj, [1e-12] * len(dtraj), "relative", refinement_factors(cfgs)
+            )
+        )
         t1 = [first_impact(r) for r in rs]
         dt1 = [abs(b - a) for a, b in zip(t1[:-1], t1[1:])]
         res = [max(a.dt, b.dt) for a, b in zip(cfgs[:-1], cfgs[1:])]
-        seqs["impact"].append(sequence_report(name, labels, t1, dt1, res, "s",
-                                              refinement_factors(cfgs)))
+        seqs["impact"].append(sequence_report(name, labels, t1, dt1, res, "s", refinement_factors(cfgs)))
     quantities = {}
     for q in ("trajectory", "impact"):
         ok = all(s["converges"] for s in seqs[q])
         # uncertainty of the reference: the worst Δt tail among the Δt sequences that end at the
         # reference's Δt, plus the worst h tail among the h sequences that end at the reference
-        dt_tails = [s["tail"] for s, (_, cfgs, kind) in zip(seqs[q], plan["short_seqs"])
-                    if kind == "dt" and cfgs[-1].dt == ref.dt]
-        h_tails = [s["tail"] for s, (_, cfgs, kind) in zip(seqs[q], plan["short_seqs"])
-                   if kind == "h" and cfgs[-1] == ref]
+        dt_tails = [
+            s["tail"]
+            for s, (_, cfgs, kind) in zip(seqs[q], plan["short_seqs"])
+            if kind == "dt" and cfgs[-1].dt == ref.dt
+        ]
+        h_tails = [
+            s["tail"] for s, (_, cfgs, kind) in zip(seqs[q], plan["short_seqs"]) if kind == "h" and cfgs[-1] == ref
+        ]
         unc = max(dt_tails, default=0.0) + max(h_tails, default=0.0)
-        quantities[q] = dict(converges=ok, sequences=seqs[q], ref=ref.label(),
-                             ref_uncertainty=unc if ok else float("nan"))
+        quantities[q] = dict(
+            converges=ok, sequences=seqs[q], ref=ref.label(), ref_uncertainty=unc if ok else float("nan")
+        )
     t1_ref = first_impact(runs[ref])
     rows = []
     for c, r in runs.items():
         row = dict(cfg=c, run=timing[c], t1=first_impact(r))
-        row["err_trajectory"] = (traj_difference(r, runs[ref], until)
-                                 if quantities["trajectory"]["converges"] and c != ref else None)
-        row["err_impact"] = (abs(row["t1"] - t1_ref)
-                             if quantities["impact"]["converges"] and c != ref else None)
+        row["err_trajectory"] = (
+            traj_difference(r, runs[ref], until) if quantities["trajectory"]["converges"] and c != ref else None
+        )
+        row["err_impact"] = abs(row["t1"] - t1_ref) if quantities["impact"]["converges"] and c != ref else None
         rows.append(row)
     quantities["impact"]["ref_value"] = t1_ref
     return dict(rows=rows, quantities=quantities, runs=runs)
@@ -531,10 +616,12 @@ def study_short(bench, plan):
 def study_free(bench, plan):
     base = plan["free_modes_base"]
     # the modes-against-exact speed-ups are headline numbers: exact and modes interleaved, 3 rounds
-    group = [c for c in plan["free"] if (c.element, c.nx, c.ny, c.dt, c.engine)
-             == (base.element, base.nx, base.ny, base.dt, "auto")]
-    runs = dict(zip(group, bench.run_group(
-        [(c, FREE, plan["free_T"], max(c.dt, 1e-4)) for c in group], rounds=3)))
+    group = [
+        c
+        for c in plan["free"]
+        if (c.element, c.nx, c.ny, c.dt, c.engine) == (base.element, base.nx, base.ny, base.dt, "auto")
+    ]
+    runs = dict(zip(group, bench.run_group([(c, FREE, plan["free_T"], max(c.dt, 1e-4)) for c in group], rounds=3)))
     for c in plan["free"]:
         if c not in runs:
             runs[c] = bench.run(c, FREE, plan["free_T"], comm=max(c.dt, 1e-4))
@@ -542,8 +629,9 @@ def study_free(bench, plan):
     for name, cfgs in plan["free_seqs"]:
         e = [runs[c]["energy_dissipated"] for c in cfgs]
         d = [abs(b - a) for a, b in zip(e[:-1], e[1:])]
-        seqs.append(sequence_report(name, [c.label() for c in cfgs], e, d, [1e-6] * len(d), "J",
-                                    refinement_factors(cfgs)))
+        seqs.append(
+            sequence_report(name, [c.label() for c in cfgs], e, d, [1e-6] * len(d), "J", refinement_factors(cfgs))
+        )
     ok = all(s["converges"] for s in seqs)
     exact = runs[base]
     modes = []
@@ -552,14 +640,18 @@ def study_free(bench, plan):
             ex = runs.get(replace(c, modes=0))
             if ex is None:
                 continue
-            modes.append(dict(cfg=c, run=r, exact=ex,
-                              rel_err=(r["energy_dissipated"] - ex["energy_dissipated"])
-                              / ex["energy_dissipated"],
-                              speedup=ex["step_s"] / r["step_s"]))
+            modes.append(
+                dict(
+                    cfg=c,
+                    run=r,
+                    exact=ex,
+                    rel_err=(r["energy_dissipated"] - ex["energy_dissipated"]) / ex["energy_dissipated"],
+                    speedup=ex["step_s"] / r["step_s"],
+                )
+            )
     sparse = runs.get(replace(base, engine="sparse"))
-    roundoff = (abs(sparse["energy_dissipated"] - exact["energy_dissipated"]) if sparse else None)
-    return dict(runs=runs, sequences=seqs, converges=ok, modes=modes, roundoff=roundoff,
-                base=base)
+    roundoff = abs(sparse["energy_dissipated"] - exact["energy_dissipated"]) if sparse else None
+    return dict(runs=runs, sequences=seqs, converges=ok, modes=modes, roundoff=roundoff, base=base)
 
 
 def study_long(bench, plan):
@@ -571,18 +663,29 @@ def study_long(bench, plan):
         period = 1.0 / SINE["frequency"]
         k = np.floor(s["time"] / period + 1e-9).astype(int)
         periods = [rel[k == i].max() for i in range(1, int(plan["long_T"] / period)) if (k == i).any()]
-        rows.append(dict(cfg=c, run=r, max_corner=float(np.max(np.abs(s["corner_1"]))),
-                         max_corner_any=float(max(np.max(np.abs(s["corner_1"])),
-                                                  np.max(np.abs(s["corner_2"])))),
-                         period_envelope=float(np.mean(periods)) if periods else float("nan"),
-                         energy_dissipated=r["energy_dissipated"]))
+        rows.append(
+            dict(
+                cfg=c,
+                run=r,
+                max_corner=float(np.max(np.abs(s["corner_1"]))),
+                max_corner_any=float(max(np.max(np.abs(s["corner_1"])), np.max(np.abs(s["corner_2"])))),
+                period_envelope=float(np.mean(periods)) if periods else float("nan"),
+                energy_dissipated=r["energy_dissipated"],
+            )
+        )
     pinned = all(abs(row["max_corner_any"] - OBSTACLE) < 1e-9 for row in rows)
     by = {row["cfg"]: row for row in rows}
     base = plan["long"][0]
     sparse = by.get(replace(base, engine="sparse"))
-    noise = (abs(sparse["period_envelope"] - by[base]["period_envelope"])
-             / by[base]["period_envelope"]) if sparse else float("nan")
+    noise = (
+        (abs(sparse["period_envelope"] - by[base]["period_envelope"]) / by[base]["period_envelope"])
+        if sparse
+        else float("nan")
+    )
     half = by.get(replace(base, dt=base.dt / 2))
-    dt_change = (abs(half["period_envelope"] - by[base]["period_envelope"])
-                 / by[base]["period_envelope"]) if half else float("nan")
+    dt_change = (
+        (abs(half["period_envelope"] - by[base]["period_envelope"]) / by[base]["period_envelope"])
+        if half
+        else float("nan")
+    )
     return dict(rows=rows, pinned=pinned, roundoff_rel=noise, dt_half_rel=dt_change, base=base)

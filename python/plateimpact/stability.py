@@ -23,6 +23,7 @@ the energy ledger energy = E0 + energy_input - energy_dissipated closes to 1e-9 
 energy seen; energy_dissipated never decreases; every contact QP converged (KKT residual
 <= 1e-10); and contact actually happened (otherwise the case proves nothing about contact).
 """
+
 from __future__ import annotations
 
 import math
@@ -39,9 +40,9 @@ from .driver import PlateImpactFMU
 # ---------------------------------------------------------------------------------------------
 # Limits of the checks (the issue's numbers)
 
-PENETRATION_LIMIT = 1e-12   # m, a vertex past an obstacle
-LEDGER_LIMIT = 1e-9         # |E - (E0 + input - dissipated)| / largest |E| seen
-KKT_LIMIT = 1e-10           # relative KKT residual of every per-step QP
+PENETRATION_LIMIT = 1e-12  # m, a vertex past an obstacle
+LEDGER_LIMIT = 1e-9  # |E - (E0 + input - dissipated)| / largest |E| seen
+KKT_LIMIT = 1e-10  # relative KKT residual of every per-step QP
 
 # ---------------------------------------------------------------------------------------------
 # Input laws: callables t -> (value, first derivative, second derivative) at a communication
@@ -67,8 +68,9 @@ class Steps:
     """Piecewise constant: value levels[j] from times[j] on (times as fractions of the horizon),
     held through each communication step (derivatives 0). The switching times are rounded to
     communication points."""
-    levels: tuple      # Pa
-    fractions: tuple   # of the horizon, increasing, first 0
+
+    levels: tuple  # Pa
+    fractions: tuple  # of the horizon, increasing, first 0
 
     def bind(self, horizon):
         return _BoundSteps(self, horizon)
@@ -109,15 +111,15 @@ class Constant:
 @dataclass(frozen=True)
 class Case:
     name: str
-    varied: str                    # what differs from the base case (for the report)
-    params: dict                   # FMU parameters set in initialization mode (beyond defaults)
+    varied: str  # what differs from the base case (for the report)
+    params: dict  # FMU parameters set in initialization mode (beyond defaults)
     base: Sine
-    load: object                   # Constant or Steps
-    steps: int                     # internal steps of the fast horizon (the test)
-    per_comm: int = 10             # internal steps per communication step
+    load: object  # Constant or Steps
+    steps: int  # internal steps of the fast horizon (the test)
+    per_comm: int = 10  # internal steps per communication step
     full_steps: Optional[int] = None  # internal steps with --full (report); default: steps
     bound_factor: Optional[float] = None  # beta < 1/4: dt = factor x the FMU's stability bound
-    refused: bool = False          # initialization must fail (fmi2Error naming dt and the bound)
+    refused: bool = False  # initialization must fail (fmi2Error naming dt and the bound)
     starts_in_contact: bool = False  # the initial static state must already touch an obstacle
 
     @property
@@ -125,22 +127,46 @@ class Case:
         return (self.params.get("obstacle_lower", -0.1), self.params.get("obstacle_upper", 0.1))
 
 
-GAP = 0.1            # m, default obstacles at -/+ GAP
-AMPLITUDE = 0.9      # base amplitude as a fraction of the gap
-F0 = 10.0            # Hz, base-case frequency
-DT0 = 1e-5           # s, base-case time step
+GAP = 0.1  # m, default obstacles at -/+ GAP
+AMPLITUDE = 0.9  # base amplitude as a fraction of the gap
+F0 = 10.0  # Hz, base-case frequency
+DT0 = 1e-5  # s, base-case time step
 COARSE = {"nx": 7, "ny": 3}  # the beta = 0 cases: larger bound, 1e5 steps stay cheap
 
 
-def _case(name, varied, *, gap=GAP, amplitude=AMPLITUDE, frequency=F0, dt=DT0, load=Constant(0.0),
-          steps, per_comm=10, full_steps=None, bound_factor=None, refused=False,
-          starts_in_contact=False, **params):
+def _case(
+    name,
+    varied,
+    *,
+    gap=GAP,
+    amplitude=AMPLITUDE,
+    frequency=F0,
+    dt=DT0,
+    load=Constant(0.0),
+    steps,
+    per_comm=10,
+    full_steps=None,
+    bound_factor=None,
+    refused=False,
+    starts_in_contact=False,
+    **params,
+):
     p = {"obstacle_lower": -gap, "obstacle_upper": gap, **params}
     if bound_factor is None:
         p["dt"] = dt
-    return Case(name=name, varied=varied, params=p, base=Sine(amplitude * gap, frequency),
-                load=load, steps=steps, per_comm=per_comm, full_steps=full_steps,
-                bound_factor=bound_factor, refused=refused, starts_in_contact=starts_in_contact)
+    return Case(
+        name=name,
+        varied=varied,
+        params=p,
+        base=Sine(amplitude * gap, frequency),
+        load=load,
+        steps=steps,
+        per_comm=per_comm,
+        full_steps=full_steps,
+        bound_factor=bound_factor,
+        refused=refused,
+        starts_in_contact=starts_in_contact,
+    )
 
 
 CASES = [
@@ -148,10 +174,8 @@ CASES = [
     # obstacles: the gap (base amplitude stays 0.9 of it)
     _case("gap_0.01", "gap 0.01 m", gap=0.01, steps=20_000, full_steps=100_000),
     _case("gap_0.001", "gap 0.001 m", gap=0.001, steps=20_000, full_steps=100_000),
-    _case("gap_1e-4", "obstacles 1e-4 m from the plate on both sides", gap=1e-4,
-          steps=20_000, full_steps=100_000),
-    _case("base_0.99_gap", "base amplitude 0.99 of the gap", amplitude=0.99,
-          steps=20_000, full_steps=100_000),
+    _case("gap_1e-4", "obstacles 1e-4 m from the plate on both sides", gap=1e-4, steps=20_000, full_steps=100_000),
+    _case("base_0.99_gap", "base amplitude 0.99 of the gap", amplitude=0.99, steps=20_000, full_steps=100_000),
     # base frequency
     _case("f_35Hz", "base at 35 Hz", frequency=35.0, steps=20_000, full_steps=100_000),
     _case("f_100Hz", "base at 100 Hz", frequency=100.0, steps=20_000, full_steps=100_000),
@@ -161,29 +185,63 @@ CASES = [
     _case("dt_1e-6", "dt = 1e-6 s", dt=1e-6, per_comm=10, steps=70_000, full_steps=500_000),
     # Newmark beta
     _case("beta_0.25", "β = ¼", beta=0.25, steps=20_000, full_steps=100_000),
-    _case("beta_0_0.9x_bound", "β = 0, dt = 0.9 × bound, 7 × 3 cells", beta=0.0, bound_factor=0.9,
-          steps=100_000, full_steps=1_000_000, **COARSE),
-    _case("beta_0_1.1x_bound", "β = 0, dt = 1.1 × bound, 7 × 3 cells (refused)", beta=0.0,
-          bound_factor=1.1, refused=True, steps=0, **COARSE),
-    _case("beta_0_1.1x_bound_14x5", "β = 0, dt = 1.1 × bound, default cells (refused)", beta=0.0,
-          bound_factor=1.1, refused=True, steps=0),
+    _case(
+        "beta_0_0.9x_bound",
+        "β = 0, dt = 0.9 × bound, 7 × 3 cells",
+        beta=0.0,
+        bound_factor=0.9,
+        steps=100_000,
+        full_steps=1_000_000,
+        **COARSE,
+    ),
+    _case(
+        "beta_0_1.1x_bound",
+        "β = 0, dt = 1.1 × bound, 7 × 3 cells (refused)",
+        beta=0.0,
+        bound_factor=1.1,
+        refused=True,
+        steps=0,
+        **COARSE,
+    ),
+    _case(
+        "beta_0_1.1x_bound_14x5",
+        "β = 0, dt = 1.1 × bound, default cells (refused)",
+        beta=0.0,
+        bound_factor=1.1,
+        refused=True,
+        steps=0,
+    ),
     # plate
     _case("thickness_0.001", "thickness 0.001 m", thickness=0.001, steps=20_000, full_steps=100_000),
     # 56 x 20 cells cost ~10 ms per step (10.6k dofs) and the first impact of the base case is
     # at t = 0.0496 s: at dt = 1e-5 that is 5000 steps before anything happens, so this case
     # runs at dt = 1e-4 (beta = 1/2, unconditionally stable) to reach contact in 800 steps.
-    _case("grid_56x20", "56 × 20 cells (dt = 1e-4 s)", nx=56, ny=20, dt=1e-4, per_comm=1,
-          steps=800, full_steps=5_000),
+    _case("grid_56x20", "56 × 20 cells (dt = 1e-4 s)", nx=56, ny=20, dt=1e-4, per_comm=1, steps=800, full_steps=5_000),
     # initial state and load
-    _case("pressed_held", "starts pressed onto the lower obstacle (initial_load = load = -2e4 Pa)",
-          initial_load=-2e4, load=Constant(-2e4), starts_in_contact=True,
-          steps=20_000, full_steps=100_000),
-    _case("pressed_released", "starts pressed onto the lower obstacle (initial_load = -2e4 Pa), "
-          "load 0 from t = 0", initial_load=-2e4, starts_in_contact=True,
-          steps=20_000, full_steps=100_000),
-    _case("load_steps_1e5", "load steps of 1e5 Pa: 0, +1e5, 0, -1e5, 0",
-          load=Steps((0.0, 1e5, 0.0, -1e5, 0.0), (0.0, 0.2, 0.4, 0.6, 0.8)),
-          steps=20_000, full_steps=100_000),
+    _case(
+        "pressed_held",
+        "starts pressed onto the lower obstacle (initial_load = load = -2e4 Pa)",
+        initial_load=-2e4,
+        load=Constant(-2e4),
+        starts_in_contact=True,
+        steps=20_000,
+        full_steps=100_000,
+    ),
+    _case(
+        "pressed_released",
+        "starts pressed onto the lower obstacle (initial_load = -2e4 Pa), load 0 from t = 0",
+        initial_load=-2e4,
+        starts_in_contact=True,
+        steps=20_000,
+        full_steps=100_000,
+    ),
+    _case(
+        "load_steps_1e5",
+        "load steps of 1e5 Pa: 0, +1e5, 0, -1e5, 0",
+        load=Steps((0.0, 1e5, 0.0, -1e5, 0.0), (0.0, 0.2, 0.4, 0.6, 0.8)),
+        steps=20_000,
+        full_steps=100_000,
+    ),
 ]
 
 CASE_NAMES = [c.name for c in CASES]
@@ -191,6 +249,7 @@ assert len(set(CASE_NAMES)) == len(CASE_NAMES)
 
 # ---------------------------------------------------------------------------------------------
 # Driving the FMU
+
 
 class _Instance(PlateImpactFMU):
     """One FMU instance, initialized by the runner (so a refused initialization keeps its
@@ -259,30 +318,30 @@ def _vertex_probes(params):
 class Result:
     case: Case
     dt: float = float("nan")
-    bound: Optional[float] = None        # beta < 1/4: the FMU's stability bound
-    steps: int = 0                       # internal steps taken
+    bound: Optional[float] = None  # beta < 1/4: the FMU's stability bound
+    steps: int = 0  # internal steps taken
     comm_steps: int = 0
-    horizon: float = 0.0                 # s simulated
-    wall: float = 0.0                    # s of wall time (initialization included)
+    horizon: float = 0.0  # s simulated
+    wall: float = 0.0  # s of wall time (initialization included)
     refused_exception: Optional[Exception] = None  # the exception of a refused initialization
     refused_log: list = field(default_factory=list)
-    step_error: Optional[str] = None     # a failed fmi2DoStep/initialization (with the log)
-    nonfinite: Optional[str] = None      # first non-finite output (name and time)
+    step_error: Optional[str] = None  # a failed fmi2DoStep/initialization (with the log)
+    nonfinite: Optional[str] = None  # first non-finite output (name and time)
     e0: float = float("nan")
-    energy_max: float = 0.0              # largest |energy| seen (E0 included)
-    ledger_error: float = 0.0            # max over comm points of |E - (E0 + in - diss)| / max|E| so far
-    ledger_error_abs: float = 0.0        # the same, in J
-    energy_input: float = 0.0            # final values
+    energy_max: float = 0.0  # largest |energy| seen (E0 included)
+    ledger_error: float = 0.0  # max over comm points of |E - (E0 + in - diss)| / max|E| so far
+    ledger_error_abs: float = 0.0  # the same, in J
+    energy_input: float = 0.0  # final values
     energy_dissipated: float = 0.0
     energy_final: float = float("nan")
-    energy_min: float = math.inf         # smallest energy seen (a norm of the state when stable)
-    dissipation_drop: float = 0.0        # most negative change of energy_dissipated (0: never)
-    penetration: float = -math.inf       # max over comm points and vertex probes of (lower - u, u - upper)
+    energy_min: float = math.inf  # smallest energy seen (a norm of the state when stable)
+    dissipation_drop: float = 0.0  # most negative change of energy_dissipated (0: never)
+    penetration: float = -math.inf  # max over comm points and vertex probes of (lower - u, u - upper)
     penetration_time: float = float("nan")  # where it occurred, s
     midedge_overshoot: float = -math.inf  # the same for free_edge_mid when it is not a vertex
-    contact_start: int = 0               # contact_vertices of the initial state
-    contact_max: int = 0                 # largest contact_vertices seen at a communication point
-    comm_with_contact: int = 0           # communication points with contact_vertices > 0
+    contact_start: int = 0  # contact_vertices of the initial state
+    contact_max: int = 0  # largest contact_vertices seen at a communication point
+    comm_with_contact: int = 0  # communication points with contact_vertices > 0
     kkt_max: float = 0.0
     qp_iterations_total: int = 0
     qp_iterations_max: int = 0
@@ -400,8 +459,11 @@ def failures(r):
         msgs = []
         text = " ".join(r.refused_log)
         e = r.refused_exception
-        if not isinstance(e, FMICallException) or "fmi2ExitInitializationMode" not in str(e) \
-                or "status 3" not in str(e):  # fmi2Error = 3
+        if (
+            not isinstance(e, FMICallException)
+            or "fmi2ExitInitializationMode" not in str(e)
+            or "status 3" not in str(e)
+        ):  # fmi2Error = 3
             msgs.append(f"initialization not refused with fmi2Error: {e!r}")
         if f"dt = {r.dt:g}" not in text:
             msgs.append(f"the log does not name dt = {r.dt:g}: {r.refused_log}")
@@ -417,8 +479,10 @@ def failures(r):
     if not r.penetration <= PENETRATION_LIMIT:
         msgs.append(f"a probe vertex is {r.penetration:.3g} m past an obstacle (limit {PENETRATION_LIMIT:g})")
     if not r.ledger_error <= LEDGER_LIMIT:
-        msgs.append(f"energy ledger off by {r.ledger_error:.3g} of the largest energy "
-                    f"({r.ledger_error_abs:.3g} J; limit {LEDGER_LIMIT:g})")
+        msgs.append(
+            f"energy ledger off by {r.ledger_error:.3g} of the largest energy "
+            f"({r.ledger_error_abs:.3g} J; limit {LEDGER_LIMIT:g})"
+        )
     # For beta >= 1/4, and for beta < 1/4 below the bound, the discrete energy is a norm of the
     # state: a negative value would mean the scheme left its stability region.
     if not r.energy_min >= -LEDGER_LIMIT * r.energy_max:

@@ -7,14 +7,25 @@ it through input derivatives (examples/sine_sweep.py is its command line).
 
 After t = T the frequency stays at f1 (docs/theory.md §9; SineSweep.fmu computes the same).
 """
+
 from __future__ import annotations
 
 import math
 
 from .driver import PlateImpactFMU
 
-CSV_COLUMNS = ("time", "frequency", "base", "corner_1", "corner_2", "free_edge_mid", "energy",
-               "energy_dissipated", "energy_input", "contact_vertices")
+CSV_COLUMNS = (
+    "time",
+    "frequency",
+    "base",
+    "corner_1",
+    "corner_2",
+    "free_edge_mid",
+    "energy",
+    "energy_dissipated",
+    "energy_input",
+    "contact_vertices",
+)
 
 
 class SineSweep:
@@ -79,8 +90,9 @@ def run_sweep(fmu, sweep, stop_time, comm_step, progress=None, **parameters):
 
     def record(t, plate):
         o = plate.outputs()
-        rows.append({"time": t, "frequency": sweep.frequency(t), "base": sweep(t)[0],
-                     **{k: o[k] for k in CSV_COLUMNS[3:]}})
+        rows.append(
+            {"time": t, "frequency": sweep.frequency(t), "base": sweep(t)[0], **{k: o[k] for k in CSV_COLUMNS[3:]}}
+        )
 
     with PlateImpactFMU(fmu, **parameters) as plate:
         record(0.0, plate)

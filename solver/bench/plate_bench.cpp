@@ -46,11 +46,10 @@ double processCpuSeconds() {
 double floorCpuSeconds(const plate::PlateParameters& p, int repeats) {
     const plate::Mesh mesh(p.length, p.width, p.nx, p.ny);
     const auto space = plate::makeSpace(p.element, mesh);
-    const auto matrices =
-        plate::assemble(*space, p.surfaceDensity(), p.bendingStiffness(), p.poissonRatio);
+    const auto matrices = plate::assemble(*space, p.surfaceDensity(), p.bendingStiffness(), p.poissonRatio);
     const auto clamped = plate::clamp(*space, matrices);
-    const plate::CholmodFactor factor(Eigen::SparseMatrix<double>(
-        clamped.mass + (p.beta * p.dt * p.dt) * clamped.stiffness));
+    const plate::CholmodFactor factor(
+        Eigen::SparseMatrix<double>(clamped.mass + (p.beta * p.dt * p.dt) * clamped.stiffness));
     Eigen::VectorXd b = clamped.pressureLoad, x(b.size());
     const int perBatch = std::max(1, repeats / 20);
     std::vector<double> batches;
@@ -70,8 +69,7 @@ double floorCpuSeconds(const plate::PlateParameters& p, int repeats) {
 int exportMatrices(const plate::PlateParameters& p, const std::string& dir) {
     const plate::Mesh mesh(p.length, p.width, p.nx, p.ny);
     const auto space = plate::makeSpace(p.element, mesh);
-    const auto matrices =
-        plate::assemble(*space, p.surfaceDensity(), p.bendingStiffness(), p.poissonRatio);
+    const auto matrices = plate::assemble(*space, p.surfaceDensity(), p.bendingStiffness(), p.poissonRatio);
     const auto clamped = plate::clamp(*space, matrices);
     Eigen::saveMarket(clamped.mass, dir + "/mass.mtx");
     Eigen::saveMarket(clamped.stiffness, dir + "/stiffness.mtx");
@@ -84,8 +82,8 @@ int exportMatrices(const plate::PlateParameters& p, const std::string& dir) {
     for (auto d : clamped.contactDofs) contact << d << "\n";
     std::ofstream probes(dir + "/probes.txt");
     probes.precision(17);
-    for (const auto& xy : {std::pair{p.length, 0.0}, std::pair{p.length, p.width},
-                           std::pair{p.length, 0.5 * p.width}}) {
+    for (const auto& xy :
+         {std::pair{p.length, 0.0}, std::pair{p.length, p.width}, std::pair{p.length, 0.5 * p.width}}) {
         const auto probe = clamped.probe(*space, xy.first, xy.second);
         for (std::size_t k = 0; k < probe.dofs.size(); ++k)
             probes << probe.dofs[k] << ":" << probe.coefficients[k] << " ";
@@ -114,8 +112,8 @@ int main(int argc, char** argv) {
         return it == args.end() ? fallback : std::atof(it->second.c_str());
     };
     plate::PlateParameters p;
-    p.element = args.count("element") && args["element"] == "fvs" ? plate::ElementType::Fvs
-                                                                   : plate::ElementType::Argyris;
+    p.element =
+        args.count("element") && args["element"] == "fvs" ? plate::ElementType::Fvs : plate::ElementType::Argyris;
     p.nx = static_cast<int>(num("nx", p.nx));
     p.ny = static_cast<int>(num("ny", p.ny));
     p.dt = num("dt", p.dt);
@@ -145,14 +143,14 @@ int main(int argc, char** argv) {
         const long long perComm = std::max(1LL, std::llround(num("comm", 1e-4) / p.dt));
         std::FILE* series = args.count("series") ? std::fopen(args["series"].c_str(), "w") : nullptr;
         if (series)
-            std::fprintf(series, "time,base,corner_1,corner_2,free_edge_mid,energy,energy_input,"
-                                 "energy_dissipated,contact_vertices\n");
+            std::fprintf(series,
+                         "time,base,corner_1,corner_2,free_edge_mid,energy,energy_input,"
+                         "energy_dissipated,contact_vertices\n");
         auto record = [&](double base) {
             if (!series) return;
             const auto o = sim.outputs();
-            std::fprintf(series, "%.10g,%.17g,%.17g,%.17g,%.17g,%.17g,%.17g,%.17g,%d\n", sim.time(),
-                         base, o.corner1, o.corner2, o.freeEdgeMid, o.energy, o.energyInput,
-                         o.energyDissipated, o.contactVertices);
+            std::fprintf(series, "%.10g,%.17g,%.17g,%.17g,%.17g,%.17g,%.17g,%.17g,%d\n", sim.time(), base, o.corner1,
+                         o.corner2, o.freeEdgeMid, o.energy, o.energyInput, o.energyDissipated, o.contactVertices);
         };
         record(0.0);
         const double omega = 2.0 * M_PI * frequency;
@@ -161,8 +159,7 @@ int main(int argc, char** argv) {
         const double cpu2 = processCpuSeconds();
         for (long long done = 0; done < steps; done += perComm) {
             const double t = sim.time();
-            const plate::InputSignal base{amplitude * std::sin(omega * t),
-                                          amplitude * omega * std::cos(omega * t),
+            const plate::InputSignal base{amplitude * std::sin(omega * t), amplitude * omega * std::cos(omega * t),
                                           -amplitude * omega * omega * std::sin(omega * t)};
             sim.advance(std::min(perComm, steps - done), base, plate::InputSignal{});
             energySum += sim.outputs().energy;  // outputs are read every communication step
@@ -186,16 +183,16 @@ int main(int argc, char** argv) {
         }
         std::printf(
             "{\"element\": \"%s\", \"nx\": %d, \"ny\": %d, \"dt\": %g, \"beta\": %g, \"modes\": %d, "
-            "\"engine\": \"%s\", \"dofs\": %ld, \"steps\": %lld, \"setup_s\": %.6g, \"wall_s\": %.6g, \"step_s\": %.6g, "
+            "\"engine\": \"%s\", \"dofs\": %ld, \"steps\": %lld, \"setup_s\": %.6g, \"wall_s\": %.6g, \"step_s\": "
+            "%.6g, "
             "\"step_cpu_s\": %.6g, \"floor_cpu_s\": %.6g, "
             "\"floor_solve_s\": %.6g, \"step_over_floor\": %.4g, \"qp_iterations_total\": %lld, "
             "\"energy_dissipated\": %.10g, \"checksum\": %.10g%s}\n",
-            p.element == plate::ElementType::Fvs ? "fvs" : "argyris", p.nx, p.ny, p.dt, p.beta,
-            p.modes, sim.engine().c_str(), static_cast<long>(sim.dofCount()), steps, std::chrono::duration<double>(t1 - t0).count(),
-            std::chrono::duration<double>(t3 - t2).count(), perStep, (cpu3 - cpu2) / steps, floorCpu,
-            floor,
-            perStep / floor,
-            o.qpIterationsTotal, o.energyDissipated, energySum, spectrum.c_str());
+            p.element == plate::ElementType::Fvs ? "fvs" : "argyris", p.nx, p.ny, p.dt, p.beta, p.modes,
+            sim.engine().c_str(), static_cast<long>(sim.dofCount()), steps,
+            std::chrono::duration<double>(t1 - t0).count(), std::chrono::duration<double>(t3 - t2).count(), perStep,
+            (cpu3 - cpu2) / steps, floorCpu, floor, perStep / floor, o.qpIterationsTotal, o.energyDissipated, energySum,
+            spectrum.c_str());
     } catch (const std::exception& e) {
         std::fprintf(stderr, "plate_bench: %s\n", e.what());
         return 1;

@@ -40,8 +40,7 @@ struct Polynomial {
     Eigen::Vector2d origin;
     double scale;
 
-    Polynomial(int degree, const Eigen::Vector2d& o, double L, std::mt19937& rng)
-        : origin(o), scale(L) {
+    Polynomial(int degree, const Eigen::Vector2d& o, double L, std::mt19937& rng) : origin(o), scale(L) {
         std::uniform_real_distribution<double> u(-1.0, 1.0);
         for (int d = 0; d <= degree; ++d)
             for (int q = 0; q <= d; ++q) {
@@ -54,8 +53,7 @@ struct Polynomial {
     double operator()(const Eigen::Vector2d& x, int p = 0, int q = 0) const {
         const double xi = (x.x() - origin.x()) / scale, eta = (x.y() - origin.y()) / scale;
         double s = 0.0;
-        for (size_t j = 0; j < c.size(); ++j)
-            s += c[j] * monomialDerivative(a[j], b[j], p, q, xi, eta);
+        for (size_t j = 0; j < c.size(); ++j) s += c[j] * monomialDerivative(a[j], b[j], p, q, xi, eta);
         return s / std::pow(scale, p + q);
     }
 };
@@ -67,8 +65,7 @@ Eigen::VectorXd interpolate(const ArgyrisSpace& space, const Polynomial& p) {
     const Mesh& mesh = space.mesh();
     Eigen::VectorXd u(space.dofCount());
     for (int v = 0; v < mesh.vertexCount(); ++v)
-        for (int k = 0; k < 6; ++k)
-            u[6 * v + k] = p(mesh.point(v), kVertexDerivative[k][0], kVertexDerivative[k][1]);
+        for (int k = 0; k < 6; ++k) u[6 * v + k] = p(mesh.point(v), kVertexDerivative[k][0], kVertexDerivative[k][1]);
     for (int e = 0; e < space.edgeCount(); ++e) {
         const auto& ev = space.edgeVertices(e);
         const Eigen::Vector2d mid = 0.5 * (mesh.point(ev[0]) + mesh.point(ev[1]));
@@ -79,8 +76,7 @@ Eigen::VectorXd interpolate(const ArgyrisSpace& space, const Polynomial& p) {
 }
 
 // w, w_x, w_y, w_xx, w_xy, w_yy of the global field u at x, from element t.
-std::array<double, 6> field(const ArgyrisSpace& space, const Eigen::VectorXd& u, int t,
-                            const Eigen::Vector2d& x) {
+std::array<double, 6> field(const ArgyrisSpace& space, const Eigen::VectorXd& u, int t, const Eigen::Vector2d& x) {
     LocalBasis basis;
     space.evaluate(t, space.pieceContaining(t, x), x, basis);
     const auto& dofs = space.elementDofs(t);
@@ -98,8 +94,7 @@ Eigen::Vector2d randomPointIn(const Mesh& mesh, int t, std::mt19937& rng) {
         s = 1.0 - s;
     }
     const auto v = mesh.triangleVertices(t);
-    return mesh.point(v[0]) + r * (mesh.point(v[1]) - mesh.point(v[0])) +
-           s * (mesh.point(v[2]) - mesh.point(v[0]));
+    return mesh.point(v[0]) + r * (mesh.point(v[1]) - mesh.point(v[0])) + s * (mesh.point(v[2]) - mesh.point(v[0]));
 }
 
 double longestEdge(const Mesh& mesh, int t) {
@@ -246,8 +241,7 @@ TEST(Argyris, ReproducesQuinticPolynomials) {
                     }
                     samples.push_back(smp);
                 }
-            const double orderScale[3] = {std::max(scale[0], 0.0),
-                                          std::max(scale[1], scale[2]),
+            const double orderScale[3] = {std::max(scale[0], 0.0), std::max(scale[1], scale[2]),
                                           std::max({scale[3], scale[4], scale[5]})};
             double worst = 0.0;
             for (const auto& smp : samples)
@@ -291,8 +285,7 @@ TEST(Argyris, GlobalFieldIsC1AcrossEdges) {
         std::map<int, std::vector<int>> edgeElements;
         for (int t = 0; t < space.elementCount(); ++t)
             for (int l = 0; l < 3; ++l)
-                edgeElements[static_cast<int>(space.elementDofs(t)[18 + l] - 6 * mesh.vertexCount())]
-                    .push_back(t);
+                edgeElements[static_cast<int>(space.elementDofs(t)[18 + l] - 6 * mesh.vertexCount())].push_back(t);
         struct Pair {
             std::array<double, 6> left, right;
             Eigen::Vector2d n;
@@ -322,8 +315,7 @@ TEST(Argyris, GlobalFieldIsC1AcrossEdges) {
                                 std::abs(pr.left[1] - pr.right[1]) / gradScale,
                                 std::abs(pr.left[2] - pr.right[2]) / gradScale});
             const auto wnn = [&](const std::array<double, 6>& f) {
-                return pr.n.x() * pr.n.x() * f[3] + 2 * pr.n.x() * pr.n.y() * f[4] +
-                       pr.n.y() * pr.n.y() * f[5];
+                return pr.n.x() * pr.n.x() * f[3] + 2 * pr.n.x() * pr.n.y() * f[4] + pr.n.y() * pr.n.y() * f[5];
             };
             worstNormalCurvatureJump =
                 std::max(worstNormalCurvatureJump, std::abs(wnn(pr.left) - wnn(pr.right)) / hessScale);
@@ -358,8 +350,7 @@ TEST(Argyris, ExactClampAlongXEqualsZero) {
         std::vector<int> boundaryElements;
         for (int t = 0; t < space.elementCount(); ++t) {
             const auto v = mesh.triangleVertices(t);
-            if (mesh.isClamped(v[0]) || mesh.isClamped(v[1]) || mesh.isClamped(v[2]))
-                boundaryElements.push_back(t);
+            if (mesh.isClamped(v[0]) || mesh.isClamped(v[1]) || mesh.isClamped(v[2])) boundaryElements.push_back(t);
         }
         // Trace of (w, w_x) on x = 0, from every column-0 element: along its edge on x = 0,
         // or at its single vertex there.
@@ -372,9 +363,8 @@ TEST(Argyris, ExactClampAlongXEqualsZero) {
                 const int samples = onAxis.size() == 2 ? 9 : 1;
                 for (int j = 0; j < samples; ++j) {
                     const double s = samples == 1 ? 0.0 : j / (samples - 1.0);
-                    const Eigen::Vector2d x = onAxis.size() == 2
-                                                  ? ((1 - s) * onAxis[0] + s * onAxis[1]).eval()
-                                                  : onAxis[0];
+                    const Eigen::Vector2d x =
+                        onAxis.size() == 2 ? ((1 - s) * onAxis[0] + s * onAxis[1]).eval() : onAxis[0];
                     const auto f = field(space, u, t, x);
                     wMax = std::max(wMax, std::abs(f[0]));
                     wxMax = std::max(wxMax, std::abs(f[1]));
@@ -453,8 +443,8 @@ TEST(Argyris, QuadratureIntegratesDegreeTenExactly) {
                 double s = 0.0;
                 for (const auto& q : nodes)
                     s += q.weight * std::pow(q.point.x() - o.x(), a) * std::pow(q.point.y() - o.y(), b);
-                const double exact = std::pow(hx, a + 1) * std::pow(hy, b + 1) /
-                                     ((t % 2 == 0 ? b + 1 : a + 1) * (a + b + 2.0));
+                const double exact =
+                    std::pow(hx, a + 1) * std::pow(hy, b + 1) / ((t % 2 == 0 ? b + 1 : a + 1) * (a + b + 2.0));
                 EXPECT_NEAR(s, exact, 1e-13 * exact) << "t " << t << " a " << a << " b " << b;
             }
     }

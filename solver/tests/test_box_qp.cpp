@@ -14,9 +14,9 @@
 namespace {
 
 struct Problem {
-    Eigen::MatrixXd s;              // SPD n x n
+    Eigen::MatrixXd s;  // SPD n x n
     Eigen::VectorXd b;
-    std::vector<int> constrained;   // C picks these entries of w
+    std::vector<int> constrained;  // C picks these entries of w
     Eigen::VectorXd lower, upper;
 };
 
@@ -84,14 +84,13 @@ double fullKkt(const Problem& p, const Solution& s) {
     const int m = static_cast<int>(p.constrained.size());
     Eigen::VectorXd ctmu = Eigen::VectorXd::Zero(p.s.rows());
     for (int i = 0; i < m; ++i) ctmu[p.constrained[i]] += s.mu[i];
-    const double stationarity =
-        (p.s * s.w - p.b - ctmu).norm() / (p.s.norm() * s.w.norm() + p.b.norm());
+    const double stationarity = (p.s * s.w - p.b - ctmu).norm() / (p.s.norm() * s.w.norm() + p.b.norm());
     double r = stationarity;
     const double scaleMu = std::max(1e-300, s.mu.cwiseAbs().maxCoeff());
     for (int i = 0; i < m; ++i) {
         const double y = s.w[p.constrained[i]];
         const double gap = std::isfinite(p.upper[i]) ? p.upper[i] - p.lower[i] : 1.0;
-        r = std::max(r, std::max(p.lower[i] - y, y - p.upper[i]) / gap);          // feasibility
+        r = std::max(r, std::max(p.lower[i] - y, y - p.upper[i]) / gap);  // feasibility
         if (s.mu[i] > 0) r = std::max(r, s.mu[i] * (y - p.lower[i]) / (scaleMu * gap));  // compl.
         if (s.mu[i] < 0) r = std::max(r, -s.mu[i] * (p.upper[i] - y) / (scaleMu * gap));
     }
@@ -147,8 +146,8 @@ TEST(BoxQP, BothPathsAgreeWithBruteForceOverAllActiveSets) {
             bool ok = true;
             for (int i = 0; i < m && ok; ++i) {
                 const double y = x[p.constrained[i]], mu = x[n + i];
-                ok = y >= p.lower[i] - 1e-12 && y <= p.upper[i] + 1e-12 &&
-                     (code[i] >= 0 || mu >= -1e-12) && (code[i] <= 0 || mu <= 1e-12);
+                ok = y >= p.lower[i] - 1e-12 && y <= p.upper[i] + 1e-12 && (code[i] >= 0 || mu >= -1e-12) &&
+                     (code[i] <= 0 || mu <= 1e-12);
             }
             if (ok) {
                 ++found;
@@ -196,8 +195,8 @@ TEST(BoxQP, RankDeficientContactOperatorOfAReducedPlate) {
         const Eigen::MatrixXd s = a * a.transpose() + Eigen::MatrixXd::Identity(n, n);
         const Eigen::VectorXd b = Eigen::VectorXd::NullaryExpr(n, [&] { return 4.0 * g(rng); });
         const Eigen::VectorXd lower = Eigen::VectorXd::Constant(m, -0.5);
-        const Eigen::VectorXd upper = trial % 2 ? Eigen::VectorXd::Constant(m, 0.7)
-                                                : Eigen::VectorXd::Constant(m, INFINITY);
+        const Eigen::VectorXd upper =
+            trial % 2 ? Eigen::VectorXd::Constant(m, 0.7) : Eigen::VectorXd::Constant(m, INFINITY);
         const Eigen::LLT<Eigen::MatrixXd> llt(s);
         plate::ContactColumns columns(
             m, [&](int j, Eigen::VectorXd& z) { z = llt.solve(Eigen::VectorXd(gm.row(j).transpose())); },

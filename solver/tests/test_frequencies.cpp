@@ -72,8 +72,7 @@ Assembled build(ElementType type, int n, double nu) {
 }
 
 // All generalized eigenvalues K φ = ω² M φ, dense (the matrices here are < 2000 dofs).
-Eigen::VectorXd denseSpectrum(const Eigen::SparseMatrix<double>& k,
-                              const Eigen::SparseMatrix<double>& m) {
+Eigen::VectorXd denseSpectrum(const Eigen::SparseMatrix<double>& k, const Eigen::SparseMatrix<double>& m) {
     const Eigen::MatrixXd kd(k), md(m);
     Eigen::GeneralizedSelfAdjointEigenSolver<Eigen::MatrixXd> es(kd, md, Eigen::EigenvaluesOnly);
     EXPECT_EQ(es.info(), Eigen::Success);
@@ -105,8 +104,8 @@ Eigen::VectorXd lowestSpectrum(const ClampedPlate& p, int count) {
         const Eigen::MatrixXd mr = y.transpose() * (p.mass * y);
         Eigen::GeneralizedSelfAdjointEigenSolver<Eigen::MatrixXd> es(kr, mr);
         x = y * es.eigenvectors();  // M-orthonormal Ritz vectors, ascending
-        const bool done = ((es.eigenvalues() - ritz).cwiseAbs().array() <=
-                           1e-15 * es.eigenvalues().array()).head(count).all();
+        const bool done =
+            ((es.eigenvalues() - ritz).cwiseAbs().array() <= 1e-15 * es.eigenvalues().array()).head(count).all();
         ritz = es.eigenvalues();
         if (done) break;
     }
@@ -122,9 +121,7 @@ std::vector<double> frequencies(const Eigen::VectorXd& omega2, int count, double
 
 // Observed order from three meshes refined by 2: log2 of the ratio of successive differences
 // (no reference value needed).
-double observedOrder(double coarse, double mid, double fine) {
-    return std::log2((coarse - mid) / (mid - fine));
-}
+double observedOrder(double coarse, double mid, double fine) { return std::log2((coarse - mid) / (mid - fine)); }
 
 // ---------------------------------------------------------------------------------------------
 // Identities of the assembled (unclamped) matrices.
@@ -160,8 +157,8 @@ TEST_P(MatrixIdentities, MassSpdStiffnessPsdWithExactlyThreeRigidModes) {
     // orders of magnitude, so "zero" = below 1e-7 μ₄ is unambiguous.
     const Eigen::VectorXd mu = denseSpectrum(k, m);
     const double mu4 = mu[3];
-    std::cout << "  unclamped spectrum: mu1..4 = " << mu[0] << " " << mu[1] << " " << mu[2]
-              << " " << mu4 << ", mu_max = " << mu[mu.size() - 1] << "\n";
+    std::cout << "  unclamped spectrum: mu1..4 = " << mu[0] << " " << mu[1] << " " << mu[2] << " " << mu4
+              << ", mu_max = " << mu[mu.size() - 1] << "\n";
     for (int j = 0; j < 3; ++j) EXPECT_LE(std::abs(mu[j]), 1e-7 * mu4) << "rigid mode " << j;
     EXPECT_GT(mu4, 0.0);
     // μ₄ is the first elastic free–free mode of the square (λ = 13.468 for ν = 0.3, Leissa):
@@ -179,11 +176,8 @@ TEST_P(MatrixIdentities, MassSpdStiffnessPsdWithExactlyThreeRigidModes) {
     EXPECT_EQ(kllt.info(), Eigen::Success);
 }
 
-INSTANTIATE_TEST_SUITE_P(BothElements, MatrixIdentities,
-                         ::testing::Values(ElementType::Argyris, ElementType::Fvs),
-                         [](const auto& info) {
-                             return info.param == ElementType::Argyris ? "Argyris" : "Fvs";
-                         });
+INSTANTIATE_TEST_SUITE_P(BothElements, MatrixIdentities, ::testing::Values(ElementType::Argyris, ElementType::Fvs),
+                         [](const auto& info) { return info.param == ElementType::Argyris ? "Argyris" : "Fvs"; });
 
 // ---------------------------------------------------------------------------------------------
 // Published values, ν = 0.3.
@@ -194,8 +188,8 @@ TEST(CantileverFrequencies, ArgyrisEightByEightBelowAndWithinOnePercentOfPublish
     const auto lam = frequencies(dense, 5, 0.3);
     // Measured: 3.47153 8.50812 21.2882 27.1991 30.9614.
     for (int k = 0; k < 5; ++k) {
-        std::cout << "  Argyris 8x8 lambda" << k + 1 << " = " << lam[k] << " (published "
-                  << kPublished[k] << ", " << 100.0 * (lam[k] / kPublished[k] - 1.0) << " %)\n";
+        std::cout << "  Argyris 8x8 lambda" << k + 1 << " = " << lam[k] << " (published " << kPublished[k] << ", "
+                  << 100.0 * (lam[k] / kPublished[k] - 1.0) << " %)\n";
         // Conforming Galerkin eigenvalues converge from above to the exact ones, which lie
         // 0.2–0.7 % below the published Ritz bounds: so a fine-enough conforming result must be
         // below the published value, by less than 1 %.
@@ -218,8 +212,8 @@ TEST(CantileverFrequencies, FvsFirstFiveBelowAndWithinOnePercentOfPublished) {
     const auto lam = frequencies(dense, 5, 0.3);
     // Measured: 3.47211 8.51890 21.2946 27.2364 31.0338.
     for (int k = 0; k < 5; ++k) {
-        std::cout << "  FVS 16x16 lambda" << k + 1 << " = " << lam[k] << " (published "
-                  << kPublished[k] << ", " << 100.0 * (lam[k] / kPublished[k] - 1.0) << " %)\n";
+        std::cout << "  FVS 16x16 lambda" << k + 1 << " = " << lam[k] << " (published " << kPublished[k] << ", "
+                  << 100.0 * (lam[k] / kPublished[k] - 1.0) << " %)\n";
         EXPECT_LT(lam[k], kPublished[k]) << "mode " << k + 1;
         EXPECT_GT(lam[k], 0.99 * kPublished[k]) << "mode " << k + 1;
     }
@@ -233,12 +227,11 @@ TEST(CantileverFrequencies, FvsFirstFiveBelowAndWithinOnePercentOfPublished) {
 TEST(CantileverFrequencies, ArgyrisFirstFrequencyConvergesAtTheCornerSingularityRate) {
     std::vector<double> lam1;
     const std::vector<int> grids = {2, 4, 8, 16, 32};  // 32 x 32: 9473 dofs
-    for (int n : grids) lam1.push_back(frequencies(lowestSpectrum(build(ElementType::Argyris, n,
-                                                                        0.3).clamped, 1),
-                                                   1, 0.3)[0]);
+    for (int n : grids)
+        lam1.push_back(frequencies(lowestSpectrum(build(ElementType::Argyris, n, 0.3).clamped, 1), 1, 0.3)[0]);
     for (std::size_t i = 0; i < grids.size(); ++i)
-        std::cout << "  Argyris " << grids[i] << "x" << grids[i] << " lambda1 = "
-                  << std::setprecision(10) << lam1[i] << "\n";
+        std::cout << "  Argyris " << grids[i] << "x" << grids[i] << " lambda1 = " << std::setprecision(10) << lam1[i]
+                  << "\n";
     // Successive differences shrink. (Argyris spaces are not nested under refinement — C² at
     // the new vertices — so monotone decrease is not a theorem, but each value is an upper
     // bound of the exact one by min–max, and the differences must go to zero.)
@@ -263,17 +256,13 @@ TEST(CantileverFrequencies, ArgyrisFirstFrequencyConvergesAtTheCornerSingularity
 TEST(CantileverFrequencies, FvsConvergesToTheArgyrisLimitAtOrderTwo) {
     std::vector<std::vector<double>> lam;
     const std::vector<int> grids = {8, 16, 32, 64};  // 64 x 64: 12480 dofs
-    for (int n : grids)
-        lam.push_back(frequencies(lowestSpectrum(build(ElementType::Fvs, n, 0.3).clamped, 3), 3,
-                                  0.3));
+    for (int n : grids) lam.push_back(frequencies(lowestSpectrum(build(ElementType::Fvs, n, 0.3).clamped, 3), 3, 0.3));
     for (std::size_t i = 0; i < grids.size(); ++i)
-        std::cout << "  FVS " << grids[i] << "x" << grids[i] << " lambda1..3 = "
-                  << std::setprecision(10) << lam[i][0] << " " << lam[i][1] << " " << lam[i][2]
-                  << "\n";
+        std::cout << "  FVS " << grids[i] << "x" << grids[i] << " lambda1..3 = " << std::setprecision(10) << lam[i][0]
+                  << " " << lam[i][1] << " " << lam[i][2] << "\n";
     for (int k = 0; k < 3; ++k)
         for (std::size_t i = 2; i < lam.size(); ++i)
-            EXPECT_LT(std::abs(lam[i][k] - lam[i - 1][k]), std::abs(lam[i - 1][k] - lam[i - 2][k]))
-                << "mode " << k + 1;
+            EXPECT_LT(std::abs(lam[i][k] - lam[i - 1][k]), std::abs(lam[i - 1][k] - lam[i - 2][k])) << "mode " << k + 1;
     // Torsion mode (k = 1): measured orders 1.90 (8-16-32), 2.02 (16-32-64). Theory O(h²)
     // (P2-complete conforming space → energy O(h), eigenvalue O(h²); the corner term is
     // O(h^2.14), higher). Band [1.7, 2.4] for pre-asymptotic drift.
@@ -284,8 +273,7 @@ TEST(CantileverFrequencies, FvsConvergesToTheArgyrisLimitAtOrderTwo) {
     // > 1) and the order not falling under refinement.
     const double p1 = observedOrder(lam[0][0], lam[1][0], lam[2][0]);
     const double p2 = observedOrder(lam[1][0], lam[2][0], lam[3][0]);
-    std::cout << "  FVS observed orders, mode 2: " << q1 << " " << q2 << "; mode 1: " << p1
-              << " " << p2 << "\n";
+    std::cout << "  FVS observed orders, mode 2: " << q1 << " " << q2 << "; mode 1: " << p1 << " " << p2 << "\n";
     EXPECT_GE(q1, 1.7);
     EXPECT_LE(q1, 2.4);
     EXPECT_GE(q2, 1.7);
@@ -297,8 +285,7 @@ TEST(CantileverFrequencies, FvsConvergesToTheArgyrisLimitAtOrderTwo) {
     // remaining error, measured 1.3e-4, which order ≥ 1.2 bounds by ~2·(last difference)
     // = 5.5e-4. Assert FVS(64) − Argyris(32) in (0, 6e-4) — positive because both converge
     // from above and Argyris is much closer.
-    const double argyris32 =
-        frequencies(lowestSpectrum(build(ElementType::Argyris, 32, 0.3).clamped, 1), 1, 0.3)[0];
+    const double argyris32 = frequencies(lowestSpectrum(build(ElementType::Argyris, 32, 0.3).clamped, 1), 1, 0.3)[0];
     std::cout << "  FVS 64x64 - Argyris 32x32, lambda1: " << lam[3][0] - argyris32 << "\n";
     EXPECT_GT(lam[3][0] - argyris32, 0.0);
     EXPECT_LT(lam[3][0] - argyris32, 6e-4);
@@ -312,9 +299,8 @@ TEST(CantileverFrequencies, PoissonZeroReproducesTheExactBeamModes) {
     {
         const Assembled a = build(ElementType::Argyris, 2, 0.0);
         const auto lam = frequencies(denseSpectrum(a.clamped.stiffness, a.clamped.mass), 3, 0.0);
-        std::cout << std::setprecision(12) << "  Argyris 2x2, nu = 0: lambda1 = " << lam[0]
-                  << " (exact " << kBeam1 << "), lambda3 = " << lam[2] << " (exact " << kBeam2
-                  << ")\n";
+        std::cout << std::setprecision(12) << "  Argyris 2x2, nu = 0: lambda1 = " << lam[0] << " (exact " << kBeam1
+                  << "), lambda3 = " << lam[2] << " (exact " << kBeam2 << ")\n";
         // Measured relative errors 1.1e-8 (mode 1) and 6.9e-6 (mode 3, the second beam mode,
         // with only two P5 cells along its 1.5 wavelengths). Bounds 1e-7 and 2e-5; from above
         // (min–max), allowing 1e-12 for the dense solver's rounding.
@@ -327,11 +313,10 @@ TEST(CantileverFrequencies, PoissonZeroReproducesTheExactBeamModes) {
     std::vector<double> err;
     const std::vector<int> grids = {2, 4, 8};
     for (int n : grids) {
-        const double lam =
-            frequencies(lowestSpectrum(build(ElementType::Fvs, n, 0.0).clamped, 1), 1, 0.0)[0];
+        const double lam = frequencies(lowestSpectrum(build(ElementType::Fvs, n, 0.0).clamped, 1), 1, 0.0)[0];
         err.push_back(lam - kBeam1);
-        std::cout << std::setprecision(12) << "  FVS " << n << "x" << n
-                  << ", nu = 0: lambda1 - exact = " << err.back() << "\n";
+        std::cout << std::setprecision(12) << "  FVS " << n << "x" << n << ", nu = 0: lambda1 - exact = " << err.back()
+                  << "\n";
         EXPECT_GT(err.back(), 0.0);  // conforming: from above
     }
     for (std::size_t i = 1; i < err.size(); ++i) {

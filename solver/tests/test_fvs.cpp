@@ -18,8 +18,8 @@ struct Jet {
     double w = 0, wx = 0, wy = 0, wxx = 0, wxy = 0, wyy = 0;
 };
 
-Jet evaluateField(const FiniteElementSpace& space, const Eigen::VectorXd& u, int element,
-                  int piece, const Eigen::Vector2d& x) {
+Jet evaluateField(const FiniteElementSpace& space, const Eigen::VectorXd& u, int element, int piece,
+                  const Eigen::Vector2d& x) {
     LocalBasis b;
     space.evaluate(element, piece, x, b);
     const auto& dofs = space.elementDofs(element);
@@ -43,8 +43,8 @@ struct Poly {
     Jet at(const Eigen::Vector2d& p) const {
         const double x = p.x(), y = p.y();
         Jet j;
-        j.w = a[0] + a[1] * x + a[2] * y + a[3] * x * x + a[4] * x * y + a[5] * y * y +
-              a[6] * x * x * x + a[7] * x * x * y + a[8] * x * y * y + a[9] * y * y * y;
+        j.w = a[0] + a[1] * x + a[2] * y + a[3] * x * x + a[4] * x * y + a[5] * y * y + a[6] * x * x * x +
+              a[7] * x * x * y + a[8] * x * y * y + a[9] * y * y * y;
         j.wx = a[1] + 2 * a[3] * x + a[4] * y + 3 * a[6] * x * x + 2 * a[7] * x * y + a[8] * y * y;
         j.wy = a[2] + a[4] * x + 2 * a[5] * y + a[7] * x * x + 2 * a[8] * x * y + 3 * a[9] * y * y;
         j.wxx = 2 * a[3] + 6 * a[6] * x + 2 * a[7] * y;
@@ -93,9 +93,8 @@ ReproductionError reproductionError(const FvsSpace& space, const Poly& p, std::m
                     l1 = 1 - l1;
                     l2 = 1 - l2;
                 }
-                const Eigen::Vector2d x = e.corners[k] +
-                                          l1 * (e.corners[(k + 1) % 4] - e.corners[k]) +
-                                          l2 * (e.centre - e.corners[k]);
+                const Eigen::Vector2d x =
+                    e.corners[k] + l1 * (e.corners[(k + 1) % 4] - e.corners[k]) + l2 * (e.centre - e.corners[k]);
                 EXPECT_EQ(space.pieceContaining(c, x), k);
                 samples.push_back({p.at(x), evaluateField(space, u, c, k, x)});
                 const Jet& j = samples.back().exact;
@@ -112,10 +111,8 @@ ReproductionError reproductionError(const FvsSpace& space, const Poly& p, std::m
     s2 = std::max(s2, s0 / (h * h));
     for (const auto& s : samples) {
         err.value = std::max(err.value, std::abs(s.fe.w - s.exact.w) / s0);
-        err.first = std::max({err.first, std::abs(s.fe.wx - s.exact.wx) / s1,
-                              std::abs(s.fe.wy - s.exact.wy) / s1});
-        err.second = std::max({err.second, std::abs(s.fe.wxx - s.exact.wxx) / s2,
-                               std::abs(s.fe.wxy - s.exact.wxy) / s2,
+        err.first = std::max({err.first, std::abs(s.fe.wx - s.exact.wx) / s1, std::abs(s.fe.wy - s.exact.wy) / s1});
+        err.second = std::max({err.second, std::abs(s.fe.wxx - s.exact.wxx) / s2, std::abs(s.fe.wxy - s.exact.wxy) / s2,
                                std::abs(s.fe.wyy - s.exact.wyy) / s2});
     }
     return err;
@@ -224,10 +221,10 @@ TEST(FvsQuadrilateral, IsC1AcrossCellEdges) {
                     const Eigen::Vector2d x = a + t * (b - a);
                     const Jet p = evaluateField(space, u, c, space.pieceContaining(c, x), x);
                     const Jet q = evaluateField(space, u, d, space.pieceContaining(d, x), x);
-                    maxJump = std::max({maxJump, std::abs(p.w - q.w), std::abs(p.wx - q.wx) / g,
-                                        std::abs(p.wy - q.wy) / g});
-                    maxHessJump = std::max({maxHessJump, std::abs(p.wxx - q.wxx) / (g * g),
-                                            std::abs(p.wyy - q.wyy) / (g * g)});
+                    maxJump =
+                        std::max({maxJump, std::abs(p.w - q.w), std::abs(p.wx - q.wx) / g, std::abs(p.wy - q.wy) / g});
+                    maxHessJump =
+                        std::max({maxHessJump, std::abs(p.wxx - q.wxx) / (g * g), std::abs(p.wyy - q.wyy) / (g * g)});
                 }
             }
         }
@@ -253,11 +250,10 @@ TEST(FvsQuadrilateral, IsC1AcrossInternalSubTriangleEdges) {
                 const Eigen::Vector2d x = e.centre + t * (e.corners[k] - e.centre);
                 const Jet p = evaluateField(space, u, c, (k + 3) % 4, x);
                 const Jet q = evaluateField(space, u, c, k, x);
-                maxJump = std::max({maxJump, std::abs(p.w - q.w), std::abs(p.wx - q.wx) / g,
-                                    std::abs(p.wy - q.wy) / g});
+                maxJump =
+                    std::max({maxJump, std::abs(p.w - q.w), std::abs(p.wx - q.wx) / g, std::abs(p.wy - q.wy) / g});
                 maxHessJump = std::max({maxHessJump, std::abs(p.wxx - q.wxx) / (g * g),
-                                        std::abs(p.wxy - q.wxy) / (g * g),
-                                        std::abs(p.wyy - q.wyy) / (g * g)});
+                                        std::abs(p.wxy - q.wxy) / (g * g), std::abs(p.wyy - q.wyy) / (g * g)});
             }
         }
     }
@@ -266,9 +262,8 @@ TEST(FvsQuadrilateral, IsC1AcrossInternalSubTriangleEdges) {
 }
 
 // d/dn w at 5 equispaced points of a segment, evaluated on the given piece.
-std::array<double, 5> normalDerivative(const FvsSpace& space, const Eigen::VectorXd& u, int c,
-                                       int piece, const Eigen::Vector2d& a,
-                                       const Eigen::Vector2d& b) {
+std::array<double, 5> normalDerivative(const FvsSpace& space, const Eigen::VectorXd& u, int c, int piece,
+                                       const Eigen::Vector2d& a, const Eigen::Vector2d& b) {
     const Eigen::Vector2d e = b - a;
     const Eigen::Vector2d n = Eigen::Vector2d(e.y(), -e.x()).normalized();
     std::array<double, 5> dn{};
@@ -296,12 +291,12 @@ TEST(FvsQuadrilateral, NormalDerivativeIsLinearAlongOuterEdges) {
     for (int c = 0; c < space.elementCount(); ++c) {
         const FvsLocalBasis& e = space.localBasis(c);
         for (int k = 0; k < 4; ++k) {
-            outer = std::max(outer, maxSecondDifference(normalDerivative(
-                                        space, u, c, k, e.corners[k], e.corners[(k + 1) % 4])));
+            outer = std::max(
+                outer, maxSecondDifference(normalDerivative(space, u, c, k, e.corners[k], e.corners[(k + 1) % 4])));
             // The reduced condition is imposed on outer edges only: along the internal edges
             // the normal derivative stays a genuine quadratic (so the check can fail).
-            internal = std::max(internal, maxSecondDifference(normalDerivative(
-                                              space, u, c, k, e.centre, e.corners[k])));
+            internal =
+                std::max(internal, maxSecondDifference(normalDerivative(space, u, c, k, e.centre, e.corners[k])));
         }
     }
     EXPECT_LT(outer / g, 1e-10);
@@ -373,10 +368,7 @@ TEST(FvsQuadrilateral, SharedShapeBasisMatchesAFreshOne) {
         EXPECT_LT((fresh.centre - shared.centre).norm(), 1e-15);
         for (int k = 0; k < 4; ++k) {
             const double scale = fresh.coefficients[k].cwiseAbs().maxCoeff();
-            maxDiff = std::max(maxDiff, (fresh.coefficients[k] - shared.coefficients[k])
-                                                .cwiseAbs()
-                                                .maxCoeff() /
-                                            scale);
+            maxDiff = std::max(maxDiff, (fresh.coefficients[k] - shared.coefficients[k]).cwiseAbs().maxCoeff() / scale);
         }
     }
     EXPECT_LT(maxDiff, 1e-11);

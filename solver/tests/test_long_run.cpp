@@ -32,7 +32,7 @@ bool allFinite(const plate::PlateOutputs& o) {
 TEST(LongRun, MillionStepsOfTheSineSceneStayFiniteBoundedAndBalanced) {
     constexpr long long kSteps = 1000000;
     constexpr long long kPerComm = 10;  // communication step 1e-4 s
-    const plate::PlateParameters p;      // the default scene
+    const plate::PlateParameters p;  // the default scene
     plate::PlateSimulation sim(p, sineBase(0.0).value);
     const plate::PlateOutputs start = sim.outputs();
     ASSERT_TRUE(allFinite(start));
@@ -70,10 +70,11 @@ TEST(LongRun, MillionStepsOfTheSineSceneStayFiniteBoundedAndBalanced) {
     EXPECT_GT(end.energyDissipated, 0.0);
     // The corners are vertices of the mesh: never past an obstacle by more than roundoff.
     EXPECT_LE(maxCorner, 0.1 + 1e-12);
-    std::printf("[ long run ] %s engine, %lld steps in %.1f s (%.1f us/step): E0 %.6g J, E_end %.6g J, "
-                "E_max %.6g J, input %.6g J, dissipated %.6g J, communication steps in contact %lld, worst "
-                "ledger %.1e, worst (E - E0 - input)/E_max %.1e, max KKT %.1e, QP iterations %lld (max %d)\n",
-                sim.engine().c_str(), kSteps, seconds, 1e6 * seconds / kSteps, e0, end.energy, maxEnergy,
-                end.energyInput, end.energyDissipated, impactSteps, worstLedger, worstExcess,
-                end.maxKktResidual, end.qpIterationsTotal, end.qpIterationsMax);
+    std::printf(
+        "[ long run ] %s engine, %lld steps in %.1f s (%.1f us/step): E0 %.6g J, E_end %.6g J, "
+        "E_max %.6g J, input %.6g J, dissipated %.6g J, communication steps in contact %lld, worst "
+        "ledger %.1e, worst (E - E0 - input)/E_max %.1e, max KKT %.1e, QP iterations %lld (max %d)\n",
+        sim.engine().c_str(), kSteps, seconds, 1e6 * seconds / kSteps, e0, end.energy, maxEnergy, end.energyInput,
+        end.energyDissipated, impactSteps, worstLedger, worstExcess, end.maxKktResidual, end.qpIterationsTotal,
+        end.qpIterationsMax);
 }

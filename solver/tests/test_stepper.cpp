@@ -28,8 +28,7 @@ namespace {
 
 plate::InputSignal sine(double amplitude, double frequency, double t) {
     const double w = 2.0 * M_PI * frequency;
-    return {amplitude * std::sin(w * t), amplitude * w * std::cos(w * t),
-            -amplitude * w * w * std::sin(w * t)};
+    return {amplitude * std::sin(w * t), amplitude * w * std::cos(w * t), -amplitude * w * w * std::sin(w * t)};
 }
 
 void run(plate::PlateSimulation& sim, long long steps, long long perComm = 10) {
@@ -57,14 +56,12 @@ TEST(Stepper, SparseAndModalEnginesRunTheSameScheme) {
         ASSERT_EQ(sparse.outputs().contactVertices, 0);
         const double a = sparse.outputs().corner1, b = modal.outputs().corner1;
         EXPECT_NEAR(a, b, 3e-9) << "t = " << sparse.time();
-        EXPECT_NEAR(sparse.outputs().energy, modal.outputs().energy,
-                    1e-7 * std::abs(sparse.outputs().energy));
+        EXPECT_NEAR(sparse.outputs().energy, modal.outputs().energy, 1e-7 * std::abs(sparse.outputs().energy));
     }
 }
 
 TEST(Stepper, TimeStepDoesNotAllocate) {
-    for (auto engine : {plate::PlateParameters::Engine::SparseFactor,
-                        plate::PlateParameters::Engine::CompleteModal}) {
+    for (auto engine : {plate::PlateParameters::Engine::SparseFactor, plate::PlateParameters::Engine::CompleteModal}) {
         plate::PlateParameters p;
         p.engine = engine;
         plate::PlateSimulation sim(p, 0.0);
