@@ -1,0 +1,71 @@
+"""The FMU's interface as a user reads it: the README's table of variables, written from the
+model description (which the build writes from the FMU's own table of variables), so that the
+README cannot drift from the binary. python_tests/test_readme.py checks the README against it.
+
+    python -m plateimpact.interface build/PlateImpact.fmu README.md   # rewrite the table in place
+"""
+
+from __future__ import annotations
+
+import sys
+from pathlib import Path
+
+from fmpy import read_model_description
+
+BEGIN = "<!-- variables: written by `python -m plateimpact.interface`; do not edit by hand -->"
+END = "<!-- variables: end -->"
+
+
+def start_text(v):
+    """A variable's start value as the README shows it (enumeration items by name)."""
+    if v.causality == "output" or v.start is None:
+        return ""
+    if v.type == "Enumeration":
+        items = {str(i.value): i.name for i in v.declaredType.items}
+        return f"`{items.get(str(v.start), v.start)}`"
+    if v.type == "Boolean":
+        return str(v.start).lower()
+    return str(v.start)
+
+
+def variables_table(fmu) -> str:
+    """The Markdown table of every variable: name, causality, type, start, unit, description."""
+    md = read_model_description(str(fmu))
+    rows = [
+        "| name | causality | type | default | unit | meaning |",
+        "|---|---|---|---|---|---|",
+    ]
+    for v in md.modelVariables:
+        kind = v.type
+        if v.type == "Enumeration":
+            items = ", ".join(f"`{i.name}`" for i in v.declaredType.items)
+            kind = f"Enumeration ({items})"
+        description = (v.description or "").replace("|", "\\|")
+        rows.append(f"| `{v.name}` | {v.causality} | {kind} | {start_text(v)} | {v.unit or ''} | {description} |")
+    return "\n".join(rows)
+
+
+def block(fmu) -> str:
+    return f"{BEGIN}\n{variables_table(fmu)}\n{END}"
+
+
+def current_block(text: str) -> str:
+    """The table block of a README's text (between the markers)."""
+    begin, end = text.index(BEGIN), text.index(END)
+    return text[begin : end + len(END)]
+
+
+def main(argv=None):
+    argv = sys.argv[1:] if argv is None else argv
+    if len(argv) != 2:
+        print(__doc__, file=sys.stderr)
+        return 2
+    fmu, readme = argv
+    path = Path(readme)
+    text = path.read_text()
+    path.write_text(text.replace(current_block(text), block(fmu)))
+    return 0
+
+
+if __name__ == "__main__":
+    sys.exit(main())
