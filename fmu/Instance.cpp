@@ -39,16 +39,6 @@ std::string escapePercent(const std::string& text) {
     return out;
 }
 
-const char* typeName(VariableType type) {
-    switch (type) {
-        case VariableType::Real: return "Real";
-        case VariableType::Integer: return "Integer";
-        case VariableType::Boolean: return "Boolean";
-        case VariableType::Enumeration: return "Enumeration";
-    }
-    return "?";
-}
-
 }  // namespace
 
 // ---------------------------------------------------------------------------------------------

@@ -4,6 +4,16 @@
 
 namespace fmu {
 
+const char* typeName(VariableType type) {
+    switch (type) {
+        case VariableType::Real: return "Real";
+        case VariableType::Integer: return "Integer";
+        case VariableType::Boolean: return "Boolean";
+        case VariableType::Enumeration: return "Enumeration";
+    }
+    return "?";
+}
+
 bool EnumerationType::contains(int value) const {
     for (const EnumerationItem& item : items)
         if (item.value == value) return true;

@@ -17,6 +17,7 @@ namespace fmu {
 
 enum class VariableType { Real, Integer, Boolean, Enumeration };
 enum class Causality { Parameter, Input, Output };
+const char* typeName(VariableType type);  // as modelDescription.xml spells it: "Real", ...
 
 struct EnumerationItem {
     const char* name;

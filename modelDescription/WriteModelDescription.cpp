@@ -62,16 +62,6 @@ const std::map<std::string, std::string>& baseUnits() {
     return units;
 }
 
-const char* typeElement(VariableType type) {
-    switch (type) {
-        case VariableType::Real: return "Real";
-        case VariableType::Integer: return "Integer";
-        case VariableType::Boolean: return "Boolean";
-        case VariableType::Enumeration: return "Enumeration";
-    }
-    return "?";
-}
-
 std::string startText(const Variable& v, double x) {
     switch (v.type) {
         case VariableType::Real: return real(x);
@@ -155,7 +145,7 @@ void writeVariables(std::ostream& xml, const fmu::Model& model) {
                 outputs.push_back(i + 1);
                 break;
         }
-        xml << " description=\"" << escape(v.description) << "\">\n      <" << typeElement(v.type);
+        xml << " description=\"" << escape(v.description) << "\">\n      <" << fmu::typeName(v.type);
         if (v.enumeration) xml << " declaredType=\"" << v.enumeration->name << "\"";
         if (v.unit) xml << " unit=\"" << escape(v.unit) << "\"";
         if (v.causality != Causality::Output) xml << " start=\"" << startText(v, model.get(v)) << "\"";
