@@ -4,6 +4,10 @@
 #include <cstring>
 #include <string>
 
+// xxHash (Debian's libxxhash-dev), header-only: XXH64 checksums the serialized state.
+#define XXH_INLINE_ALL
+#include <xxhash.h>
+
 namespace fmu {
 
 namespace {
@@ -13,7 +17,17 @@ constexpr char kMagic[8] = {'P', 'L', 'A', 'T', 'E', 'I', 'M', 'P'};
 // recomputed from the model's state). States of versions 1 and 2 are refused by name.
 constexpr std::uint32_t kFormatVersion = 3;
 constexpr std::size_t kGuidField = 48;
-constexpr std::size_t kHeaderBytes = 8 + 4 + 4 + kGuidField + 8;
+constexpr std::size_t kChecksumOffset = 8 + 4 + 4 + kGuidField + 8;
+constexpr std::size_t kHeaderBytes = kChecksumOffset + 8;
+
+// XXH64 of every byte of a serialized state but the checksum field itself.
+std::uint64_t checksum(const fmi2Byte* bytes, std::size_t size) {
+    XXH64_state_t state;
+    XXH64_reset(&state, 0);
+    XXH64_update(&state, bytes, kChecksumOffset);
+    XXH64_update(&state, bytes + kHeaderBytes, size - kHeaderBytes);
+    return XXH64_digest(&state);
+}
 
 bool isStateOfSnapshot(double code) {
     for (unsigned s : {unsigned(Instantiated), unsigned(InitializationMode), unsigned(StepComplete),
@@ -78,6 +92,8 @@ void serialize(const Snapshot& s, const char* guid, fmi2Byte* out, std::size_t s
     std::memcpy(out + 16, guid, guidLength);
     std::memcpy(out + 16 + kGuidField, &count, 8);
     std::memcpy(out + kHeaderBytes, data.data(), sizeof(double) * data.size());
+    const std::uint64_t sum = checksum(out, size);
+    std::memcpy(out + kChecksumOffset, &sum, 8);
 }
 
 Snapshot deserialize(const fmi2Byte* bytes, std::size_t size, const char* guid, const Model& model) {
@@ -101,6 +117,12 @@ Snapshot deserialize(const fmi2Byte* bytes, std::size_t size, const char* guid, 
     if (payloadBytes % sizeof(double) != 0 || count != payloadBytes / sizeof(double))
         throw CorruptState("wrong size, " + std::to_string(size) + " bytes for the " + std::to_string(count) +
                            " values its header announces");
+    // Before any value is decoded: a state damaged on disk or on the way (a flipped bit, a
+    // patched byte) is refused here as a whole.
+    std::uint64_t stored = 0;
+    std::memcpy(&stored, bytes + kChecksumOffset, 8);
+    if (stored != checksum(bytes, size))
+        throw CorruptState("checksum mismatch (XXH64 of the state's bytes): the state is damaged");
     std::vector<double> data(static_cast<std::size_t>(count));
     if (count > 0) std::memcpy(data.data(), bytes + kHeaderBytes, payloadBytes);
 

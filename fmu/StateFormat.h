@@ -37,11 +37,14 @@ public:
 //   bytes 12..15  uint32 length of the GUID
 //   bytes 16..63  GUID of the FMU build that wrote it (NUL padded)
 //   bytes 64..71  uint64 number n of doubles that follow
-//   bytes 72..    n doubles: the state-machine state, the start time, the values of the
+//   bytes 72..79  uint64 XXH64 checksum of all the other bytes (verified before any value is
+//                 decoded)
+//   bytes 80..    n doubles: the state-machine state, the start time, the values of the
 //                 settable variables in table order, then the model's state.
 std::size_t serializedSize(const Snapshot& snapshot);
 void serialize(const Snapshot& snapshot, const char* guid, fmi2Byte* out, std::size_t size);
-// Throws CorruptState naming what is wrong (magic, version, GUID, size, a value out of range).
+// Throws CorruptState naming what is wrong (magic, version, GUID, size, checksum, a value out
+// of range), in that order.
 Snapshot deserialize(const fmi2Byte* bytes, std::size_t size, const char* guid, const Model& model);
 
 }  // namespace fmu

@@ -33,6 +33,7 @@ from fmpy.fmi2 import (
     fmi2LastSuccessfulTime,
     fmi2Terminated,
 )
+from state_bytes import with_checksum
 
 FMI_ERROR = 3
 FMI_DISCARD = 2
@@ -384,8 +385,11 @@ def _corrupt_state(mutate):
 
 
 def _put_double(blob, index, value):
-    offset = 72 + 8 * index
-    return blob[:offset] + struct.pack("d", value) + blob[offset + 8 :]
+    """Patch value `index` of a serialized state and repair its checksum, so that the decoder's
+    own checks of the values are what the case exercises (a plain patch is refused earlier, by
+    the checksum: test_state_integrity.py)."""
+    offset = 80 + 8 * index
+    return with_checksum(blob[:offset] + struct.pack("d", value) + blob[offset + 8 :])
 
 
 def _case_without_error_log(ctx):
