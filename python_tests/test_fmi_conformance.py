@@ -532,6 +532,13 @@ CATALOGUE = {
     "obstacle_upper_negative": (_bad_parameter({"obstacle_upper": -0.05}), ["invalid parameter", "obstacle_upper"]),
     "dt_zero": (_bad_parameter({"dt": 0.0}), ["invalid parameter", "dt"]),
     "dt_negative": (_bad_parameter({"dt": -1e-5}), ["invalid parameter", "dt"]),
+    # found by fuzz/parameters.cpp: a denormal dt was accepted and the energy came out NaN; every
+    # parameter now has a range that keeps the scheme's arithmetic finite
+    "dt_denormal": (_bad_parameter({"dt": 5e-324}), ["invalid parameter", "dt", "1e-12"]),
+    "youngs_modulus_huge": (_bad_parameter({"youngs_modulus": 1e300}), ["invalid parameter", "youngs_modulus"]),
+    "density_denormal": (_bad_parameter({"density": 5e-324}), ["invalid parameter", "density"]),
+    "length_huge": (_bad_parameter({"length": 1e200}), ["invalid parameter", "length"]),
+    "initial_load_huge": (_bad_parameter({"initial_load": 1e300}), ["invalid parameter", "initial_load"]),
     "beta_negative": (_bad_parameter({"beta": -0.1}), ["invalid parameter", "beta"]),
     "beta_above_half": (_bad_parameter({"beta": 0.6}), ["invalid parameter", "beta"]),
     "beta_zero_dt_unstable": (

@@ -72,6 +72,13 @@ void NewmarkContactStepper::step(double zNext, double pNext) {
             << ", load = " << pNext;
         throw StepError(msg.str());
     }
+    if (!(std::fabs(zNext) <= kMaxDisplacement && std::fabs(pNext) <= kMaxLoad)) {
+        std::ostringstream msg;
+        msg << "input out of range at t = " << (s.step + 1) * dt_ << ": base_displacement = " << zNext
+            << ", load = " << pNext << " (allowed: |base_displacement| <= " << kMaxDisplacement
+            << " m, |load| <= " << kMaxLoad << " Pa)";
+        throw StepError(msg.str());
+    }
     if (zNext < obstacles_.lower || zNext > obstacles_.upper) {
         std::ostringstream msg;
         msg.precision(15);  // round-trips what users type (0.7, not 0.69999999999999996)

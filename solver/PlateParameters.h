@@ -36,6 +36,11 @@ struct PlateParameters {
     double surfaceDensity() const { return density * thickness; }
 };
 
+// Bounds of the inputs and of what the parameters place (obstacles): far beyond any plate,
+// inside what the arithmetic of the scheme keeps finite.
+constexpr double kMaxDisplacement = 1e4;  // m, |base_displacement|, |obstacle heights|
+constexpr double kMaxLoad = 1e12;  // Pa, |load|, |initial_load|
+
 // Checks everything that can be checked without assembling (throws ParameterError).
 // The β < 1/4 stability bound needs κ_h and is checked by PlateSimulation.
 void validate(const PlateParameters& p);

@@ -1,0 +1,94 @@
+#!/usr/bin/env bash
+# Coverage-guided fuzzing of the FMU's C API (fuzz/): builds the libFuzzer harnesses with clang,
+# ASan and UBSan in build-fuzz/ and runs each on a working copy of its seed corpus
+# (fuzz/corpus/<harness>). Any crash, leak, timeout or sanitizer report fails the run; the
+# input that caused it is left in build-fuzz/findings/ (copy it into fuzz/corpus/<harness> as a
+# regression case once fixed).
+#
+#   bash scripts/fuzz.sh                       # 60 s per harness (what test.sh runs)
+#   bash scripts/fuzz.sh --seconds 600         # longer
+#   bash scripts/fuzz.sh --runs 1000000        # a number of executions per harness
+#   bash scripts/fuzz.sh --coverage            # replay the corpora with source-based coverage:
+#                                              # line coverage of fmu/ and solver/ (build-cov/)
+#   bash scripts/fuzz.sh --merge               # minimize the working corpora into fuzz/corpus/
+set -euo pipefail
+repo="$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)"
+cd "$repo"
+harnesses=(call_sequence deserialize_state parameters)
+limit=(-max_total_time=60)
+mode=run
+while [ $# -gt 0 ]; do
+  case "$1" in
+    --seconds) limit=(-max_total_time="$2"); shift 2 ;;
+    --runs) limit=(-runs="$2"); shift 2 ;;
+    --coverage) mode=coverage; shift ;;
+    --merge) mode=merge; shift ;;
+    *) echo "fuzz.sh: unknown argument $1" >&2; exit 2 ;;
+  esac
+done
+
+need=()
+command -v clang++ >/dev/null || need+=(clang)
+command -v llvm-cov >/dev/null || need+=(llvm)
+[ -f /usr/include/xxhash.h ] || need+=(libxxhash-dev)
+if [ ${#need[@]} -gt 0 ]; then
+  echo "fuzz.sh: installing Debian packages: ${need[*]}"
+  export DEBIAN_FRONTEND=noninteractive
+  apt-get update -qq
+  apt-get install -y -qq "${need[@]}" >/dev/null
+fi
+
+build() {  # build <dir> <extra cmake args...>
+  local dir="$1"; shift
+  if [ ! -f "$dir/CMakeCache.txt" ]; then
+    CC=clang CXX=clang++ cmake -S "$repo" -B "$dir" -DCMAKE_BUILD_TYPE=Release -DPLATEIMPACT_FUZZ=ON \
+      -DPLATEIMPACT_TESTS=OFF "$@" >/dev/null
+  fi
+  cmake --build "$dir" -j"$(nproc)" --target fuzzers -- --no-print-directory >/dev/null
+}
+
+if [ "$mode" = coverage ]; then
+  build "$repo/build-cov" -DPLATEIMPACT_COVERAGE=ON
+  profiles="$repo/build-cov/profiles"
+  rm -rf "$profiles" && mkdir -p "$profiles"
+  objects=()
+  for h in "${harnesses[@]}"; do
+    corpus="$repo/build-fuzz/corpus/$h"
+    [ -d "$corpus" ] || corpus="$repo/fuzz/corpus/$h"
+    LLVM_PROFILE_FILE="$profiles/$h.profraw" ASAN_OPTIONS=detect_leaks=0 \
+      "$repo/build-cov/fuzz/fuzz_$h" -runs=0 "$corpus" >/dev/null 2>&1
+    objects+=(-object "$repo/build-cov/fuzz/fuzz_$h")
+  done
+  llvm-profdata merge -sparse "$profiles"/*.profraw -o "$profiles/all.profdata"
+  llvm-cov report "${objects[@]:1}" -instr-profile="$profiles/all.profdata" \
+    "$repo/fmu" "$repo/solver" | tail -n 25
+  exit 0
+fi
+
+build "$repo/build-fuzz"
+findings="$repo/build-fuzz/findings"
+mkdir -p "$findings"
+status=0
+for h in "${harnesses[@]}"; do
+  corpus="$repo/build-fuzz/corpus/$h"
+  mkdir -p "$corpus"
+  if [ "$mode" = merge ]; then
+    rm -rf "$repo/fuzz/corpus/$h.new" && mkdir -p "$repo/fuzz/corpus/$h.new"
+    "$repo/build-fuzz/fuzz/fuzz_$h" -merge=1 "$repo/fuzz/corpus/$h.new" "$repo/fuzz/corpus/$h" "$corpus" 2>/dev/null
+    rm -rf "$repo/fuzz/corpus/$h" && mv "$repo/fuzz/corpus/$h.new" "$repo/fuzz/corpus/$h"
+    echo "fuzz.sh: $h: $(ls "$repo/fuzz/corpus/$h" | wc -l) inputs in fuzz/corpus/$h"
+    continue
+  fi
+  log="$repo/build-fuzz/$h.log"
+  # The seed corpus first (regressions included), then new inputs into the working copy.
+  if "$repo/build-fuzz/fuzz/fuzz_$h" "${limit[@]}" -timeout=30 -rss_limit_mb=4096 -print_final_stats=1 \
+       -artifact_prefix="$findings/$h-" "$corpus" "$repo/fuzz/corpus/$h" >"$log" 2>&1; then
+    runs=$(grep -o 'stat::number_of_executed_units: [0-9]*' "$log" | grep -o '[0-9]*$' || true)
+    echo "fuzz.sh: $h: ${runs:-?} executions, no finding"
+  else
+    status=1
+    echo "fuzz.sh: $h: FINDING (log $log, input in $findings):" >&2
+    grep -E "ERROR|SUMMARY|runtime error|#[0-9]+ " "$log" | head -n 30 >&2
+  fi
+done
+exit "$status"
