@@ -88,7 +88,12 @@ public:
         values_.load.history.record(now, values_.load.signal.value);
         const double span = double(steps) * dt;  // the step as taken (h up to roundoff)
         try {
-            simulation_->advance(steps, values_.baseDisplacement.stepSignal(span), values_.load.stepSignal(span));
+            // A reconstructed clamp stays between the obstacles the master's values respect.
+            const plate::PlateParameters& p = simulation_->parameters();
+            const double lower = p.obstacleLowerEnabled ? p.obstacleLower : -plate::kMaxDisplacement;
+            const double upper = p.obstacleUpperEnabled ? p.obstacleUpper : plate::kMaxDisplacement;
+            simulation_->advance(steps, values_.baseDisplacement.stepSignal(span, lower, upper),
+                                 values_.load.stepSignal(span, -plate::kMaxLoad, plate::kMaxLoad));
         } catch (const plate::StepError& e) {
             refreshOutputs();  // the simulation stays at its last good step (for debugging)
             throw fmu::ModelError(

@@ -24,9 +24,10 @@ struct InputPort {
         signal = plate::InputSignal{x, 0.0, 0.0};
         derivativesGiven = false;
     }
-    // The signal over the step of length h that starts now.
-    plate::InputSignal stepSignal(double h) {
-        if (!derivativesGiven) return history.continueStep(mode, h);
+    // The signal over the step of length h that starts now; a reconstruction stays inside
+    // [lower, upper] (the obstacles, for the clamp).
+    plate::InputSignal stepSignal(double h, double lower = -HUGE_VAL, double upper = HUGE_VAL) {
+        if (!derivativesGiven) return history.continueStep(mode, h, lower, upper);
         history.reached(signal.at(h));
         return signal;
     }

@@ -137,7 +137,8 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
                     if (fmi2SerializeFMUstate(c, state, blob.data(), blob.size()) != fmi2OK) break;
                     if (!blob.empty() && in.ConsumeBool())
                         blob[in.ConsumeIntegralInRange<size_t>(0, blob.size() - 1)] ^= in.ConsumeIntegral<fmi2Byte>();
-                    const size_t cut = in.ConsumeBool() ? blob.size() : in.ConsumeIntegralInRange<size_t>(0, blob.size());
+                    const size_t cut =
+                        in.ConsumeBool() ? blob.size() : in.ConsumeIntegralInRange<size_t>(0, blob.size());
                     fmi2FMUstate back = nullptr;
                     if (fmi2DeSerializeFMUstate(c, blob.data(), cut, &back) == fmi2OK) s.states.emplace_back(i, back);
                 }
@@ -174,7 +175,8 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
             case 20: fmi2SetReal(c, &vr, 1, nullptr); break;  // NULL values with nvr > 0: an error, not a crash
             default: {
                 fmi2FMUstate junk = nullptr;
-                fmi2DeSerializeFMUstate(c, reinterpret_cast<const fmi2Byte*>(data), size, &junk);  // the raw input as a state
+                fmi2DeSerializeFMUstate(c, reinterpret_cast<const fmi2Byte*>(data), size,
+                                        &junk);  // the raw input as a state
                 if (junk) fmi2FreeFMUstate(c, &junk);
                 break;
             }

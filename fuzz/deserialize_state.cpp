@@ -58,8 +58,8 @@ const std::vector<fmi2Byte>& realHeader() {
 extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size) {
     if (size == 0) return 0;
     const bool repaired = data[0] & 1;
-    const std::vector<fmi2Byte> blob = repaired ? withHeader(data + 1, size - 1, realHeader())
-                                                : std::vector<fmi2Byte>(data + 1, data + size);
+    const std::vector<fmi2Byte> blob =
+        repaired ? withHeader(data + 1, size - 1, realHeader()) : std::vector<fmi2Byte>(data + 1, data + size);
     fmi2Component c = fuzz::instantiate();
     fuzz::smallPlate(c, 1, 1);
     fmi2FMUstate state = nullptr;

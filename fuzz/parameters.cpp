@@ -51,8 +51,10 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
                         if (p.causality != fmu::Causality::Parameter) continue;
                         fmi2Real value = 0.0;
                         fmi2Integer item = 0;
-                        if (p.type == fmu::VariableType::Real) fmi2GetReal(c, &p.vr, 1, &value);
-                        else if (p.type != fmu::VariableType::Boolean) fmi2GetInteger(c, &p.vr, 1, &item), value = item;
+                        if (p.type == fmu::VariableType::Real)
+                            fmi2GetReal(c, &p.vr, 1, &value);
+                        else if (p.type != fmu::VariableType::Boolean)
+                            fmi2GetInteger(c, &p.vr, 1, &item), value = item;
                         std::fprintf(stderr, "  %s = %.17g\n", p.name, value);
                     }
                     std::fprintf(stderr, "fuzz_parameters: %s = %g after an accepted step\n", v.name, x);

@@ -8,6 +8,7 @@
 #   bash scripts/fuzz.sh                       # 60 s per harness (what test.sh runs)
 #   bash scripts/fuzz.sh --seconds 600         # longer
 #   bash scripts/fuzz.sh --runs 1000000        # a number of executions per harness
+#   bash scripts/fuzz.sh --parallel ...        # the three harnesses at once (one process each)
 #   bash scripts/fuzz.sh --coverage            # replay the corpora with source-based coverage:
 #                                              # line coverage of fmu/ and solver/ (build-cov/)
 #   bash scripts/fuzz.sh --merge               # minimize the working corpora into fuzz/corpus/
@@ -17,12 +18,14 @@ cd "$repo"
 harnesses=(call_sequence deserialize_state parameters)
 limit=(-max_total_time=60)
 mode=run
+parallel=0
 while [ $# -gt 0 ]; do
   case "$1" in
     --seconds) limit=(-max_total_time="$2"); shift 2 ;;
     --runs) limit=(-runs="$2"); shift 2 ;;
     --coverage) mode=coverage; shift ;;
     --merge) mode=merge; shift ;;
+    --parallel) parallel=1; shift ;;
     *) echo "fuzz.sh: unknown argument $1" >&2; exit 2 ;;
   esac
 done
@@ -68,27 +71,38 @@ fi
 build "$repo/build-fuzz"
 findings="$repo/build-fuzz/findings"
 mkdir -p "$findings"
-status=0
-for h in "${harnesses[@]}"; do
-  corpus="$repo/build-fuzz/corpus/$h"
+
+fuzz_one() {  # fuzz_one <harness>: runs it, prints its verdict, returns non-zero on a finding
+  local h="$1" corpus="$repo/build-fuzz/corpus/$1" log="$repo/build-fuzz/$1.log"
   mkdir -p "$corpus"
-  if [ "$mode" = merge ]; then
+  # The seed corpus first (regressions included), then new inputs into the working copy.
+  if "$repo/build-fuzz/fuzz/fuzz_$h" "${limit[@]}" -timeout=30 -rss_limit_mb=4096 -print_final_stats=1 \
+       -artifact_prefix="$findings/$h-" "$corpus" "$repo/fuzz/corpus/$h" >"$log" 2>&1; then
+    local runs
+    runs=$(grep -o 'stat::number_of_executed_units: [0-9]*' "$log" | grep -o '[0-9]*$' || true)
+    echo "fuzz.sh: $h: ${runs:-?} executions, no finding"
+  else
+    echo "fuzz.sh: $h: FINDING (log $log, input in $findings):" >&2
+    grep -E "ERROR|SUMMARY|runtime error|#[0-9]+ " "$log" | head -n 30 >&2
+    return 1
+  fi
+}
+
+status=0
+if [ "$mode" = merge ]; then
+  for h in "${harnesses[@]}"; do
+    corpus="$repo/build-fuzz/corpus/$h"
+    mkdir -p "$corpus"
     rm -rf "$repo/fuzz/corpus/$h.new" && mkdir -p "$repo/fuzz/corpus/$h.new"
     "$repo/build-fuzz/fuzz/fuzz_$h" -merge=1 "$repo/fuzz/corpus/$h.new" "$repo/fuzz/corpus/$h" "$corpus" 2>/dev/null
     rm -rf "$repo/fuzz/corpus/$h" && mv "$repo/fuzz/corpus/$h.new" "$repo/fuzz/corpus/$h"
     echo "fuzz.sh: $h: $(ls "$repo/fuzz/corpus/$h" | wc -l) inputs in fuzz/corpus/$h"
-    continue
-  fi
-  log="$repo/build-fuzz/$h.log"
-  # The seed corpus first (regressions included), then new inputs into the working copy.
-  if "$repo/build-fuzz/fuzz/fuzz_$h" "${limit[@]}" -timeout=30 -rss_limit_mb=4096 -print_final_stats=1 \
-       -artifact_prefix="$findings/$h-" "$corpus" "$repo/fuzz/corpus/$h" >"$log" 2>&1; then
-    runs=$(grep -o 'stat::number_of_executed_units: [0-9]*' "$log" | grep -o '[0-9]*$' || true)
-    echo "fuzz.sh: $h: ${runs:-?} executions, no finding"
-  else
-    status=1
-    echo "fuzz.sh: $h: FINDING (log $log, input in $findings):" >&2
-    grep -E "ERROR|SUMMARY|runtime error|#[0-9]+ " "$log" | head -n 30 >&2
-  fi
-done
+  done
+elif [ "$parallel" = 1 ]; then
+  pids=()
+  for h in "${harnesses[@]}"; do fuzz_one "$h" & pids+=($!); done
+  for pid in "${pids[@]}"; do wait "$pid" || status=1; done
+else
+  for h in "${harnesses[@]}"; do fuzz_one "$h" || status=1; done
+fi
 exit "$status"

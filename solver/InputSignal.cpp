@@ -39,14 +39,34 @@ InputSignal InputHistory::extrapolate(InputMode mode) const {
     return s;
 }
 
-InputSignal InputHistory::continueStep(InputMode mode, double h) {
-    InputSignal s = extrapolate(mode);
-    if (mode != InputMode::Hold && hasReached_) {
-        s.d1 += (s.value - reached_) / h;  // start where the input is, end on the extrapolation
-        s.value = reached_;
+namespace {
+
+// Whether value + d1 τ + d2 τ²/2 stays in [lower, upper] for τ in [0, h] (ends and vertex).
+bool staysWithin(const InputSignal& s, double h, double lower, double upper) {
+    const auto inside = [&](double x) { return x >= lower && x <= upper; };
+    if (!inside(s.value) || !inside(s.at(h))) return false;
+    if (s.d2 != 0.0) {
+        const double vertex = -s.d1 / s.d2;
+        if (vertex > 0.0 && vertex < h && !inside(s.at(vertex))) return false;
     }
-    reached(s.at(h));
-    return s;
+    return true;
+}
+
+}  // namespace
+
+InputSignal InputHistory::continueStep(InputMode mode, double h, double lower, double upper) {
+    for (int order = static_cast<int>(mode);; --order) {
+        const InputMode m = static_cast<InputMode>(order);
+        InputSignal s = extrapolate(m);
+        if (m != InputMode::Hold && hasReached_) {
+            s.d1 += (s.value - reached_) / h;  // start where the input is, end on the extrapolation
+            s.value = reached_;
+        }
+        if (m == InputMode::Hold || staysWithin(s, h, lower, upper)) {
+            reached(s.at(h));
+            return s;
+        }
+    }
 }
 
 void InputHistory::serialize(std::vector<double>& out) const {

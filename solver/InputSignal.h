@@ -2,6 +2,7 @@
 // An input of the plate over one communication step, and its causal reconstruction when the
 // master gives only values (docs/theory.md, "Inputs between communication points").
 #include <array>
+#include <cmath>
 #include <vector>
 
 namespace plate {
@@ -42,8 +43,10 @@ public:
     // the extrapolation, made continuous — the step starts where the input ended the last
     // step and the miss (newest value − that end) is spread over the step as a slope miss/h,
     // so the input never jumps (a jump Δz of the clamp is a velocity kick Δz/Δt on one
-    // internal step). Remembers where this step ends.
-    InputSignal continueStep(InputMode mode, double h);
+    // internal step). Where that signal would leave [lower, upper] inside the step (an
+    // extrapolated clamp past an obstacle the master's values never passed), the order drops
+    // (quadratic → linear → hold) until it stays. Remembers where this step ends.
+    InputSignal continueStep(InputMode mode, double h, double lower = -HUGE_VAL, double upper = HUGE_VAL);
     // Where the input ended the last step taken through continueStep (no step yet: none).
     bool hasReached() const { return hasReached_; }
     // Records where the input ended a step that the master's derivatives drove.

@@ -97,3 +97,27 @@ TEST(InputHistory, SerializationRoundTripAndDamagedData) {
 }
 
 }  // namespace
+
+namespace {
+
+// Found by the property test (python_tests/test_properties.py): values 0, 0, 0.0078 near an
+// obstacle at 0.01 extrapolate to 0.0234 by the end of the next step; the reconstruction must
+// drop its order rather than drive the clamp past an obstacle the values never passed.
+TEST(InputHistory, ReconstructionStaysBetweenTheBounds) {
+    InputHistory h;
+    const double step = 1e-4, lower = -0.01, upper = 0.01;
+    const double values[] = {0.0, 0.0, 0.0078};
+    plate::InputSignal s;
+    for (int k = 0; k < 3; ++k) {
+        h.record(k * step, values[k]);
+        s = h.continueStep(InputMode::Quadratic, step, lower, upper);
+    }
+    for (int i = 0; i <= 100; ++i) {
+        const double x = s.at(step * i / 100.0);
+        EXPECT_GE(x, lower);
+        EXPECT_LE(x, upper);
+    }
+    EXPECT_GT(h.extrapolate(InputMode::Quadratic).at(step), upper);  // what the unbounded parabola would do
+}
+
+}  // namespace
