@@ -3,8 +3,9 @@
 # suite through fmpy (pytest); then the
 # sanitizer stage: an AddressSanitizer + UndefinedBehaviorSanitizer build of the FMU in
 # build-asan/ and the part of the Python suite that reaches every code path of the FMU, run
-# against it. Any sanitizer report fails the stage. Arguments go to both pytest runs;
-# PLATEIMPACT_SANITIZER_STAGE=0 skips the sanitizer stage.
+# against it. Any sanitizer report fails the stage. Then the fuzz stage: the libFuzzer
+# harnesses of fuzz/ for 60 s each (scripts/fuzz.sh), any finding fails it. Arguments go to
+# both pytest runs; PLATEIMPACT_SANITIZER_STAGE=0 / PLATEIMPACT_FUZZ_STAGE=0 skip a stage.
 set -euo pipefail
 repo="$(cd "$(dirname "${BASH_SOURCE[0]}")" && pwd)"
 bash "$repo/scripts/setup.sh"
@@ -14,7 +15,16 @@ ctest --output-on-failure -j"$(nproc)"
 cd "$repo"
 "$repo/.venv/bin/python" -m pytest -q python_tests "$@"
 
-[ "${PLATEIMPACT_SANITIZER_STAGE:-1}" = 0 ] && exit 0
+fuzz_stage() {
+  [ "${PLATEIMPACT_FUZZ_STAGE:-1}" = 0 ] && return 0
+  echo "test.sh: fuzz stage: fuzz/ harnesses, ${PLATEIMPACT_FUZZ_SECONDS:-60} s each (scripts/fuzz.sh)"
+  bash "$repo/scripts/fuzz.sh" --seconds "${PLATEIMPACT_FUZZ_SECONDS:-60}"
+}
+
+if [ "${PLATEIMPACT_SANITIZER_STAGE:-1}" = 0 ]; then
+  fuzz_stage
+  exit 0
+fi
 
 # --- Sanitizer stage ------------------------------------------------------------------------
 # Only the FMU (no unit tests, no benchmark), optimized as shipped plus line tables for the
@@ -43,6 +53,9 @@ sanitizer_tests=(
   python_tests/test_fmi_conformance.py  # the FMI layer: wrong calls (child processes), states, reset, threads
   python_tests/test_physics.py          # both elements, static and dynamic, contact, reduced modal model
   python_tests/test_libcosimpy.py       # a second importer's call sequence
+  python_tests/test_input_reconstruction.py  # inputs without derivatives, their history in FMU states
+  python_tests/test_state_integrity.py  # damaged serialized states
+  python_tests/test_properties.py       # random legal call sequences
   python_tests/test_stability.py        # the cases below: many contacts, large dt, beta = 0 and its bound,
 )                                       # the sparse engine (56 x 20), a start pressed onto an obstacle
 sanitizer_k="not second_order and not midpoint and not converges and (not test_stability_case \
@@ -63,4 +76,5 @@ if [ -n "$(ls -A "$reports")" ]; then
   exit 1
 fi
 [ "$status" = 0 ] || echo "test.sh: sanitizer stage FAILED (pytest exit code $status)" >&2
+fuzz_stage || status=1
 exit "$status"
