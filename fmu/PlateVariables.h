@@ -43,8 +43,40 @@ struct PlateValues {
     plate::PlateOutputs outputs;  // copy of PlateSimulation::outputs() after each change
 };
 
-// Value references the binding needs by name.
-enum PlateVr : fmi2ValueReference { kVrBaseDisplacement = 20, kVrLoad = 21 };
+// The value references: part of the interface, never renumbered (a gap leaves room to group).
+enum PlateVr : fmi2ValueReference {
+    kVrLength = 0,
+    kVrWidth = 1,
+    kVrThickness = 2,
+    kVrYoungsModulus = 3,
+    kVrPoissonRatio = 4,
+    kVrDensity = 5,
+    kVrNx = 6,
+    kVrNy = 7,
+    kVrElement = 8,
+    kVrObstacleLower = 9,
+    kVrObstacleUpper = 10,
+    kVrObstacleLowerEnabled = 11,
+    kVrObstacleUpperEnabled = 12,
+    kVrDt = 13,
+    kVrBeta = 14,
+    kVrInitialLoad = 15,
+    kVrModes = 16,
+    kVrBaseInputMode = 17,
+    kVrLoadInputMode = 18,
+    kVrBaseDisplacement = 20,
+    kVrLoad = 21,
+    kVrCorner1 = 30,
+    kVrCorner2 = 31,
+    kVrFreeEdgeMid = 32,
+    kVrEnergy = 33,
+    kVrEnergyDissipated = 34,
+    kVrEnergyInput = 35,
+    kVrContactVertices = 36,
+    kVrQpKktResidualMax = 37,
+    kVrQpIterationsTotal = 38,
+    kVrQpIterationsMax = 39,
+};
 
 const std::vector<fmu::Variable>& plateVariables();
 double getValue(const PlateValues& values, const fmu::Variable& v);

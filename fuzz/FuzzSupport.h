@@ -9,6 +9,7 @@
 #include <limits>
 
 #include "Model.h"
+#include "PlateVariables.h"
 #include "fmi2Functions.h"
 
 namespace fuzz {
@@ -54,8 +55,9 @@ inline double awkwardReal(FuzzedDataProvider& in) {
     return x;
 }
 
-// Value references of PlateImpact (fmu/PlateVariables.cpp), kept small for the harnesses.
-enum : fmi2ValueReference { kNx = 6, kNy = 7, kElement = 8, kDt = 13, kModes = 16, kBase = 20, kLoad = 21 };
+// Value references of PlateImpact the harnesses treat specially (mesh sizes stay small).
+constexpr fmi2ValueReference kNx = plateimpact::kVrNx, kNy = plateimpact::kVrNy, kDt = plateimpact::kVrDt,
+                             kModes = plateimpact::kVrModes;
 
 // Parameters that make a plate that builds fast (1-3 x 1-2 cells, dt = 1e-4 s).
 inline void smallPlate(fmi2Component c, int nx, int ny) {

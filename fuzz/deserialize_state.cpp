@@ -69,7 +69,8 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
             fmi2GetRealStatus(c, fmi2LastSuccessfulTime, &t);
             fmi2DoStep(c, t, 1e-4, fmi2True);
             fmi2Real out[3];
-            const fmi2ValueReference vr[3] = {30, 33, 34};
+            const fmi2ValueReference vr[3] = {plateimpact::kVrCorner1, plateimpact::kVrEnergy,
+                                              plateimpact::kVrEnergyDissipated};
             fmi2GetReal(c, vr, 3, out);
         }
         fmi2FreeFMUstate(c, &state);
