@@ -285,13 +285,25 @@ void Instance::capture(Snapshot& snapshot) const {
 }
 
 void Instance::restore(const Snapshot& snapshot) {
-    std::size_t next = 0;
-    for (const Variable& v : model_->variables())
-        if (isSettable(v)) model_->set(v, snapshot.values.at(next++));
-    const double* in = snapshot.modelState.data();
-    model_->restoreState(in, in + snapshot.modelState.size());
-    state_ = snapshot.state;
-    startTime_ = snapshot.startTime;
+    const auto apply = [this](const Snapshot& s) {
+        std::size_t next = 0;
+        for (const Variable& v : model_->variables())
+            if (isSettable(v)) model_->set(v, s.values.at(next++));
+        const double* in = s.modelState.data();
+        model_->restoreState(in, in + s.modelState.size());
+        state_ = s.state;
+        startTime_ = s.startTime;
+    };
+    // All or nothing: a state the model refuses (its part is checked only here) leaves the
+    // instance as it was.
+    Snapshot before;
+    capture(before);
+    try {
+        apply(snapshot);
+    } catch (...) {
+        apply(before);
+        throw;
+    }
 }
 
 fmi2Status Instance::getFMUstate(fmi2FMUstate* state) {

@@ -4,6 +4,7 @@ state, and 10 000 random single-bit flips of the default plate's state, must be 
 message naming what failed; the instance stays usable (a good state restores it and the run
 continues bit-identically)."""
 
+import math
 import random
 
 import pytest
@@ -84,3 +85,38 @@ def test_other_damage_is_refused(fmu_path, damage):
         blob = saved_state(run)
         bad = {"truncated": blob[: len(blob) // 2], "zeros": bytes(len(blob)), "empty": b""}[damage]
         assert refused(run, bad)
+
+
+@pytest.mark.parametrize("field, offset", [("z", 0), ("qp_iterations_max", 13)])
+def test_a_state_the_model_refuses_leaves_the_instance_as_it_was(fmu_path, field, offset):
+    """A deliberate edit (checksum repaired) that puts NaN into the simulation's part of a state:
+    the value table accepts it, the model refuses it at fmi2SetFMUstate with a clear error (a NaN
+    count was cast to int before — undefined behaviour found by fuzz/deserialize_state.cpp), and
+    the instance is left as it was: a good state still continues bit-identically."""
+    import struct
+
+    from state_bytes import with_checksum
+
+    with PlateRun(fmu_path, **TINY) as run:
+        blob = saved_state(run)
+        values = struct.unpack(f"{(len(blob) - HEADER) // 8}d", blob[HEADER:])
+        simulation = 2 + sum(1 for v in run.md.modelVariables if v.causality != "output") + 2 * 12 + 2
+        n = int(values[simulation + 1])
+        index = simulation + 3 + 4 * n + offset
+        patched = list(values)
+        patched[index] = float("nan")
+        bad = with_checksum(blob[:HEADER] + struct.pack(f"{len(patched)}d", *patched))
+        state = run.fmu.deSerializeFMUstate(bad)
+        before = len(run.log)
+        with pytest.raises(FMICallException):
+            run.fmu.setFMUstate(state)
+        run.fmu.freeFMUstate(state)
+        assert any("corrupt state" in m for _, _, m in run.log[before:]), run.log[before:]
+        t = run.time
+        run.time = t
+        good = outputs_after(run, blob)
+        assert all(map(math.isfinite, good))
+    with PlateRun(fmu_path, **TINY) as fresh:
+        saved_state(fresh)
+        fresh.time = t
+        assert outputs_after(fresh, blob) == good  # the same continuation as a fresh instance's

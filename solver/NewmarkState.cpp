@@ -1,5 +1,8 @@
 #include "NewmarkState.h"
 
+#include <cmath>
+#include <string>
+
 #include <stdexcept>
 
 namespace plate {
@@ -37,22 +40,35 @@ NewmarkState deserialize(const std::vector<double>& in, Eigen::Index n, std::siz
         *v = Eigen::Map<const Eigen::VectorXd>(in.data() + k, n);
         k += nn;
     }
-    s.z = in[k++];
-    s.zPrev = in[k++];
-    s.p = in[k++];
-    s.pPrev = in[k++];
-    s.pressureWork = in[k++];
-    s.pressureWorkPrev = in[k++];
-    s.baseCoupling = in[k++];
-    s.baseCouplingPrev = in[k++];
-    s.step = static_cast<long long>(in[k++]);
-    s.energyInput = in[k++];
-    s.energyDissipated = in[k++];
-    s.maxKktResidual = in[k++];
-    s.qpIterationsTotal = static_cast<long long>(in[k++]);
-    s.qpIterationsMax = static_cast<int>(in[k++]);
-    s.qpIterationsLast = static_cast<int>(in[k++]);
-    s.contactVertices = static_cast<int>(in[k++]);
+    // Every scalar finite and every count a whole number in range before any cast (a cast
+    // of NaN or of a value out of range is undefined; fuzz/deserialize_state.cpp found one).
+    const auto finite = [&](const char* what) {
+        const double x = in[k++];
+        if (!std::isfinite(x)) throw std::invalid_argument(std::string("corrupt state: ") + what + " is not finite");
+        return x;
+    };
+    const auto count = [&](const char* what, double hi) {
+        const double x = in[k++];
+        if (!(x >= 0.0 && x <= hi) || std::floor(x) != x)
+            throw std::invalid_argument(std::string("corrupt state: ") + what + " is not a count in range");
+        return x;
+    };
+    s.z = finite("z");
+    s.zPrev = finite("z_prev");
+    s.p = finite("p");
+    s.pPrev = finite("p_prev");
+    s.pressureWork = finite("pressure work");
+    s.pressureWorkPrev = finite("pressure work");
+    s.baseCoupling = finite("base coupling");
+    s.baseCouplingPrev = finite("base coupling");
+    s.step = static_cast<long long>(count("step", 9.0e15));
+    s.energyInput = finite("energy input");
+    s.energyDissipated = finite("energy dissipated");
+    s.maxKktResidual = finite("KKT residual");
+    s.qpIterationsTotal = static_cast<long long>(count("QP iterations", 9.0e15));
+    s.qpIterationsMax = static_cast<int>(count("QP iterations", 2147483647.0));
+    s.qpIterationsLast = static_cast<int>(count("QP iterations", 2147483647.0));
+    s.contactVertices = static_cast<int>(count("contact vertices", static_cast<double>(m)));
     s.contactState.resize(m);
     for (std::size_t i = 0; i < m; ++i) {
         const double c = in[k++];
