@@ -25,7 +25,7 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
             case fmu::VariableType::Integer:
             case fmu::VariableType::Enumeration: {
                 const bool size = v.vr == fuzz::kNx || v.vr == fuzz::kNy || v.vr == fuzz::kModes;
-                const fmi2Integer x = size ? in.ConsumeIntegralInRange(-1, 3) : in.ConsumeIntegralInRange(-2, 5);
+                const fmi2Integer x = size ? in.ConsumeIntegralInRange(-1, 2) : in.ConsumeIntegralInRange(-2, 5);
                 fmi2SetInteger(c, &v.vr, 1, &x);
                 break;
             }
