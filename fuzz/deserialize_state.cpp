@@ -64,7 +64,16 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
     fuzz::smallPlate(c, 1, 1);
     fmi2FMUstate state = nullptr;
     if (fmi2DeSerializeFMUstate(c, blob.data(), blob.size(), &state) == fmi2OK) {
-        if (fmi2SetFMUstate(c, state) == fmi2OK) {
+        // A state of a large mesh is legal, only slow to rebuild: set only small ones (nx, ny
+        // and modes are values 8, 9 and 18 of the state: after the machine state and the start
+        // time, in table order).
+        const auto value = [&](std::size_t i) {
+            double x = 0.0;
+            std::memcpy(&x, blob.data() + kHeaderBytes + 8 * i, sizeof x);
+            return x;
+        };
+        const bool small = blob.size() >= kHeaderBytes + 8 * 19 && value(8) <= 2 && value(9) <= 2 && value(18) <= 8;
+        if (small && fmi2SetFMUstate(c, state) == fmi2OK) {
             fmi2Real t = 0.0;
             fmi2GetRealStatus(c, fmi2LastSuccessfulTime, &t);
             fmi2DoStep(c, t, 1e-4, fmi2True);

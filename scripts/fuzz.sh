@@ -64,7 +64,12 @@ if [ "$mode" = coverage ]; then
   done
   llvm-profdata merge -sparse "$profiles"/*.profraw -o "$profiles/all.profdata"
   llvm-cov report "${objects[@]:1}" -instr-profile="$profiles/all.profdata" \
-    "$repo/fmu" "$repo/solver" | tail -n 25
+    "$repo/fmu" "$repo/solver" > "$profiles/report.txt"
+  cat "$profiles/report.txt"
+  # Line coverage per directory (columns: lines, missed lines of llvm-cov's report)
+  awk '/^(fmu|solver)\// && $8 ~ /^[0-9]+$/ { d = substr($1, 1, index($1, "/") - 1); L[d] += $8; M[d] += $9 }
+       END { for (d in L) printf "fuzz.sh: coverage of %s/: %d of %d lines (%.1f %%)\n", d, L[d] - M[d], L[d], 100 * (L[d] - M[d]) / L[d] }' \
+    "$profiles/report.txt"
   exit 0
 fi
 
