@@ -9,6 +9,7 @@
 #   bash scripts/fuzz.sh --seconds 600         # longer
 #   bash scripts/fuzz.sh --runs 1000000        # a number of executions per harness
 #   bash scripts/fuzz.sh --parallel ...        # the three harnesses at once (one process each)
+#   bash scripts/fuzz.sh --harness parameters  # one harness only (repeatable)
 #   bash scripts/fuzz.sh --coverage            # replay the corpora with source-based coverage:
 #                                              # line coverage of fmu/ and solver/ (build-cov/)
 #   bash scripts/fuzz.sh --merge               # minimize the working corpora into fuzz/corpus/
@@ -19,6 +20,7 @@ harnesses=(call_sequence deserialize_state parameters)
 limit=(-max_total_time=60)
 mode=run
 parallel=0
+chosen=()
 while [ $# -gt 0 ]; do
   case "$1" in
     --seconds) limit=(-max_total_time="$2"); shift 2 ;;
@@ -26,9 +28,11 @@ while [ $# -gt 0 ]; do
     --coverage) mode=coverage; shift ;;
     --merge) mode=merge; shift ;;
     --parallel) parallel=1; shift ;;
+    --harness) chosen+=("$2"); shift 2 ;;
     *) echo "fuzz.sh: unknown argument $1" >&2; exit 2 ;;
   esac
 done
+if [ ${#chosen[@]} -gt 0 ]; then harnesses=("${chosen[@]}"); fi
 
 need=()
 command -v clang++ >/dev/null || need+=(clang)
