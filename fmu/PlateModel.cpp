@@ -51,8 +51,8 @@ public:
 
     void build() override {
         // A plate::ParameterError names the parameter, its value and the allowed range.
-        simulation_ =
-            std::make_unique<plate::PlateSimulation>(values_.parameters, values_.baseDisplacement.signal.value);
+        simulation_ = std::make_unique<plate::PlateSimulation>(
+            values_.parameters, values_.baseDisplacement.signal.value, values_.load.signal.value);
         builtWith_ = configuration();
         simulationBase0_ = values_.baseDisplacement.signal.value;
         refreshOutputs();

@@ -11,6 +11,7 @@ using fmu::Causality;
 using fmu::VariableType;
 using plate::ElementType;
 using plate::InputMode;
+using plate::MassModel;
 
 const fmu::EnumerationType kElementType{
     "ElementType",
@@ -25,6 +26,15 @@ const fmu::EnumerationType kInputMode{
     {{"hold", 1, "Held constant over the step"},
      {"linear", 2, "Extrapolated along the line through the last two communicated values"},
      {"quadratic", 3, "Extrapolated along the parabola through the last three communicated values"}}};
+
+const fmu::EnumerationType kMassModel{
+    "MassModel",
+    "Mass matrix of the plate (docs/theory.md §11)",
+    {{"consistent", 1, "Consistent mass of the finite element space (the paper's scheme)"},
+     {"singular_p0", 2,
+      "Singular mass projected on element-wise constants: no inertia at the contact vertices, energy-consistent "
+      "impacts as dt -> 0"},
+     {"singular_p1dg", 3, "Singular mass projected on element-wise linear functions (Argyris only)"}}};
 
 // A row: the variable as modelDescription.xml declares it, and how its value is read and set.
 struct Row {
@@ -111,6 +121,23 @@ const std::vector<Row>& rows() {
                    &kInputMode),
          [](const PlateValues& v) { return double(static_cast<int>(v.load.mode)); },
          [](PlateValues& v, double x) { v.load.mode = static_cast<InputMode>(int(x)); }},
+        {parameter(kVrMass, "mass", VariableType::Enumeration, nullptr,
+                   "Mass matrix: consistent (the paper's scheme; impacts lose energy at every mesh vertex), "
+                   "singular_p0 (energy-consistent impacts, results converge after impact) or singular_p1dg",
+                   &kMassModel),
+         [](const PlateValues& v) { return double(static_cast<int>(v.parameters.mass)); },
+         [](PlateValues& v, double x) { v.parameters.mass = static_cast<MassModel>(int(x)); }},
+        {parameter(kVrRestitution, "restitution", VariableType::Real, "1",
+                   "Restitution coefficient e in [0, 1] of the impact law on (u+ + e u-)/(1 + e); 0 is the paper's "
+                   "scheme"),
+         PARAMETER_FIELD(restitution)},
+        {parameter(kVrDampingMass, "damping_mass", VariableType::Real, "1/s",
+                   "Rayleigh damping, mass-proportional coefficient a (C = a M + b K; damping ratio a/(2 omega) + "
+                   "b omega/2), >= 0"),
+         PARAMETER_FIELD(dampingMass)},
+        {parameter(kVrDampingStiffness, "damping_stiffness", VariableType::Real, "s",
+                   "Rayleigh damping, stiffness-proportional coefficient b (C = a M + b K), >= 0"),
+         PARAMETER_FIELD(dampingStiffness)},
         {input(kVrBaseDisplacement, "base_displacement", "m", true,
                "Vertical displacement z of the clamped edge (base motion); its value at initialization places "
                "the clamp at t = 0"),
@@ -131,11 +158,15 @@ const std::vector<Row>& rows() {
         {output(kVrEnergy, "energy", VariableType::Real, "J", "Discrete energy of the scheme (kinetic + bending)"),
          OUTPUT_FIELD(energy)},
         {output(kVrEnergyDissipated, "energy_dissipated", VariableType::Real, "J",
-                "Energy lost in impacts since t = 0 (cumulative, non-negative)"),
+                "Energy lost in impacts since t = 0 (cumulative; non-negative with the paper's scheme, a net "
+                "amount with restitution > 0 or a singular mass)"),
          OUTPUT_FIELD(energyDissipated)},
         {output(kVrEnergyInput, "energy_input", VariableType::Real, "J",
                 "Work done by base motion and load since t = 0 (cumulative)"),
          OUTPUT_FIELD(energyInput)},
+        {output(kVrEnergyDamped, "energy_damped", VariableType::Real, "J",
+                "Energy dissipated by the Rayleigh damping since t = 0 (cumulative)"),
+         OUTPUT_FIELD(energyDamped)},
         {output(kVrContactVertices, "contact_vertices", VariableType::Integer, nullptr,
                 "Number of mesh vertices on an obstacle after the last step"),
          OUTPUT_FIELD(contactVertices)},

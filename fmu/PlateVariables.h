@@ -76,6 +76,11 @@ enum PlateVr : fmi2ValueReference {
     kVrQpKktResidualMax = 37,
     kVrQpIterationsTotal = 38,
     kVrQpIterationsMax = 39,
+    kVrEnergyDamped = 40,
+    kVrMass = 50,
+    kVrRestitution = 51,
+    kVrDampingMass = 52,
+    kVrDampingStiffness = 53,
 };
 
 const std::vector<fmu::Variable>& plateVariables();

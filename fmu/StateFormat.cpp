@@ -14,8 +14,9 @@ namespace {
 
 constexpr char kMagic[8] = {'P', 'L', 'A', 'T', 'E', 'I', 'M', 'P'};
 // Version 3: values walked from the table of variables, outputs no longer stored (they are
-// recomputed from the model's state). States of versions 1 and 2 are refused by name.
-constexpr std::uint32_t kFormatVersion = 3;
+// recomputed from the model's state). Version 4: the impact-law parameters and the scheme's
+// damping energy and contact impulses (docs/theory.md §11–13). Older states are refused by name.
+constexpr std::uint32_t kFormatVersion = 4;
 constexpr std::size_t kGuidField = 48;
 constexpr std::size_t kChecksumOffset = 8 + 4 + 4 + kGuidField + 8;
 constexpr std::size_t kHeaderBytes = kChecksumOffset + 8;

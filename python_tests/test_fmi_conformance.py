@@ -67,10 +67,15 @@ INTERFACE = {
     "energy": (33, "Real", "output"),
     "energy_dissipated": (34, "Real", "output"),
     "energy_input": (35, "Real", "output"),
+    "energy_damped": (40, "Real", "output"),
     "contact_vertices": (36, "Integer", "output"),
     "qp_kkt_residual_max": (37, "Real", "output"),
     "qp_iterations_total": (38, "Integer", "output"),
     "qp_iterations_max": (39, "Integer", "output"),
+    "mass": (50, "Enumeration", "parameter"),
+    "restitution": (51, "Real", "parameter"),
+    "damping_mass": (52, "Real", "parameter"),
+    "damping_stiffness": (53, "Real", "parameter"),
 }
 START = {
     "length": 1.2,
@@ -94,6 +99,10 @@ START = {
     "load_input_mode": 1,
     "base_displacement": 0.0,
     "load": 0.0,
+    "mass": 1,
+    "restitution": 0.0,
+    "damping_mass": 0.0,
+    "damping_stiffness": 0.0,
 }
 UNITS = {
     "length": "m",
@@ -113,6 +122,9 @@ UNITS = {
     "energy": "J",
     "energy_dissipated": "J",
     "energy_input": "J",
+    "energy_damped": "J",
+    "damping_mass": "1/s",
+    "damping_stiffness": "s",
 }
 VR = {name: spec[0] for name, spec in INTERFACE.items()}
 REAL_OUTPUTS = [
@@ -125,6 +137,7 @@ REAL_OUTPUTS = [
         "energy_dissipated",
         "energy_input",
         "qp_kkt_residual_max",
+        "energy_damped",
     )
 ]
 INTEGER_OUTPUTS = [VR[n] for n in ("contact_vertices", "qp_iterations_total", "qp_iterations_max")]

@@ -15,7 +15,8 @@ public:
     virtual Eigen::Index size() const = 0;
     virtual void applyStiffness(const Eigen::VectorXd& w, Eigen::VectorXd& out) const = 0;
     virtual void applyMass(const Eigen::VectorXd& w, Eigen::VectorXd& out) const = 0;
-    // x = A⁻¹ b with A = M + βΔt²K, factored once (docs/theory.md: never a refactorization per step).
+    // x = A⁻¹ b with A = M + βΔt²K, factored once (docs/theory.md: never a refactorization per step);
+    // with Rayleigh damping C = a M + b K, A = (1 + aΔt/2) M + (βΔt² + bΔt/2) K (docs/theory.md §13).
     virtual void solveStepMatrix(const Eigen::VectorXd& b, Eigen::VectorXd& x) const = 0;
 
     // A solver x = K⁻¹ b for the static problem of the initial state (§5.2); it owns whatever
@@ -28,6 +29,7 @@ public:
     virtual void gatherContact(const Eigen::VectorXd& w, Eigen::VectorXd& y) const = 0;
     virtual void stepMatrixContactColumn(int j, Eigen::VectorXd& z) const = 0;
     virtual void contactDirection(int j, Eigen::VectorXd& c) const = 0;  // Cᵀ e_j
+    virtual void scatterContact(const Eigen::VectorXd& y, Eigen::VectorXd& w) const = 0;  // w += Cᵀ y
     // max_i ‖C_i‖₂ over the rows of C, when gathering y = C w is expensive enough that a step
     // should first bound how far the vertices can have moved (|Δy_i| ≤ ‖C_i‖₂ ‖Δw‖₂); 0 when
     // the gather is as cheap as that bound.

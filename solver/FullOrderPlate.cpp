@@ -6,11 +6,22 @@
 
 namespace plate {
 
+namespace {
+
+// A = M + βΔt²K, or (1 + aΔt/2) M + (βΔt² + bΔt/2) K with Rayleigh damping a M + b K (§13).
+Eigen::SparseMatrix<double> stepMatrix(const ClampedPlate& p, double dt, double beta, double a, double b) {
+    if (a == 0.0 && b == 0.0) return p.mass + (beta * dt * dt) * p.stiffness;  // the undamped bits as always
+    return (1.0 + 0.5 * a * dt) * p.mass + (beta * dt * dt + 0.5 * b * dt) * p.stiffness;
+}
+
+}  // namespace
+
 FullOrderPlate::FullOrderPlate(std::shared_ptr<const FiniteElementSpace> space,
-                               std::shared_ptr<const ClampedPlate> plate, double dt, double beta)
+                               std::shared_ptr<const ClampedPlate> plate, double dt, double beta, double dampingMass,
+                               double dampingStiffness)
     : space_(std::move(space)),
       plate_(std::move(plate)),
-      stepFactor_(Eigen::SparseMatrix<double>(plate_->mass + (beta * dt * dt) * plate_->stiffness)),
+      stepFactor_(stepMatrix(*plate_, dt, beta, dampingMass, dampingStiffness)),
       stiffnessUpper_(plate_->stiffness.triangularView<Eigen::Upper>()),
       massUpper_(plate_->mass.triangularView<Eigen::Upper>()) {
     // The kernel reads each row's diagonal first: it must be stored, even where it is zero.
@@ -44,6 +55,11 @@ void FullOrderPlate::gatherContact(const Eigen::VectorXd& w, Eigen::VectorXd& y)
 void FullOrderPlate::contactDirection(int j, Eigen::VectorXd& c) const {
     c = Eigen::VectorXd::Zero(size());
     c[plate_->contactDofs[j]] = 1.0;
+}
+
+void FullOrderPlate::scatterContact(const Eigen::VectorXd& y, Eigen::VectorXd& w) const {
+    const auto& dofs = plate_->contactDofs;
+    for (std::size_t i = 0; i < dofs.size(); ++i) w[dofs[i]] += y[static_cast<Eigen::Index>(i)];
 }
 
 void FullOrderPlate::stepMatrixContactColumn(int j, Eigen::VectorXd& z) const {

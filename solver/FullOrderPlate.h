@@ -11,7 +11,7 @@ namespace plate {
 class FullOrderPlate : public DiscretePlate {
 public:
     FullOrderPlate(std::shared_ptr<const FiniteElementSpace> space, std::shared_ptr<const ClampedPlate> plate,
-                   double dt, double beta);
+                   double dt, double beta, double dampingMass = 0.0, double dampingStiffness = 0.0);
 
     Eigen::Index size() const override { return plate_->mass.rows(); }
     void applyStiffness(const Eigen::VectorXd& w, Eigen::VectorXd& out) const override;
@@ -22,6 +22,7 @@ public:
     void gatherContact(const Eigen::VectorXd& w, Eigen::VectorXd& y) const override;
     void stepMatrixContactColumn(int j, Eigen::VectorXd& z) const override;
     void contactDirection(int j, Eigen::VectorXd& c) const override;
+    void scatterContact(const Eigen::VectorXd& y, Eigen::VectorXd& w) const override;
     const Eigen::VectorXd& pressureLoad() const override { return plate_->pressureLoad; }
     const Eigen::VectorXd& baseInertia() const override { return plate_->baseInertia; }
     double totalMass() const override { return plate_->totalMass; }

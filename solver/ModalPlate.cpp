@@ -8,11 +8,17 @@
 namespace plate {
 
 ModalPlate::ModalPlate(std::shared_ptr<const FiniteElementSpace> space, std::shared_ptr<const ClampedPlate> plate,
-                       double dt, double beta, int modes)
+                       double dt, double beta, int modes, double dampingMass, double dampingStiffness)
     : space_(std::move(space)), plate_(std::move(plate)) {
     lowestModes(*plate_, modes, phi_, omega2_);
     complete_ = phi_.cols() == plate_->mass.rows();
-    inverseStep_ = (1.0 + beta * dt * dt * omega2_.array()).inverse().matrix();
+    // Rayleigh damping is diagonal in modal coordinates (§13): ζ_k = a/(2ω_k) + bω_k/2.
+    if (dampingMass == 0.0 && dampingStiffness == 0.0)
+        inverseStep_ = (1.0 + beta * dt * dt * omega2_.array()).inverse().matrix();
+    else
+        inverseStep_ = ((1.0 + 0.5 * dampingMass * dt) + (beta * dt * dt + 0.5 * dampingStiffness * dt) * omega2_.array())
+                           .inverse()
+                           .matrix();
     const auto& dofs = plate_->contactDofs;
     contactModesT_.resize(phi_.cols(), static_cast<Eigen::Index>(dofs.size()));
     for (std::size_t i = 0; i < dofs.size(); ++i) contactModesT_.col(i) = phi_.row(dofs[i]).transpose();

@@ -18,7 +18,7 @@ public:
     // modes ≤ 0 or ≥ the dof count: complete basis. Throws std::runtime_error if the eigen
     // solution fails.
     ModalPlate(std::shared_ptr<const FiniteElementSpace> space, std::shared_ptr<const ClampedPlate> plate, double dt,
-               double beta, int modes);
+               double beta, int modes, double dampingMass = 0.0, double dampingStiffness = 0.0);
 
     Eigen::Index size() const override { return omega2_.size(); }
     void applyStiffness(const Eigen::VectorXd& w, Eigen::VectorXd& out) const override;
@@ -29,6 +29,9 @@ public:
     void gatherContact(const Eigen::VectorXd& w, Eigen::VectorXd& y) const override;
     void stepMatrixContactColumn(int j, Eigen::VectorXd& z) const override;
     void contactDirection(int j, Eigen::VectorXd& c) const override { c = contactModesT_.col(j); }
+    void scatterContact(const Eigen::VectorXd& y, Eigen::VectorXd& w) const override {
+        w.noalias() += contactModesT_ * y;
+    }
     double contactRowNormBound() const override { return contactRowNormMax_; }
     const Eigen::VectorXd& pressureLoad() const override { return pressureLoad_; }
     const Eigen::VectorXd& baseInertia() const override { return baseInertia_; }
@@ -48,7 +51,7 @@ private:
     bool complete_ = false;
     Eigen::MatrixXd phi_;  // free dofs x modes
     Eigen::VectorXd omega2_;  // Ω²
-    Eigen::VectorXd inverseStep_;  // 1 / (1 + βΔt²ω²)
+    Eigen::VectorXd inverseStep_;  // 1 / (1 + βΔt²ω²), damped: 1 / (1 + aΔt/2 + (βΔt² + bΔt/2)ω²)
     Eigen::MatrixXd contactModesT_;  // (CΦ)ᵀ: column j = mode shapes at contact vertex j
     Eigen::VectorXd pressureLoad_, baseInertia_;
     double contactRowNormMax_ = 0.0;  // max_i ‖(CΦ)_i‖₂

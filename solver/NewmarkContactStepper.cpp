@@ -10,14 +10,24 @@
 namespace plate {
 
 NewmarkContactStepper::NewmarkContactStepper(std::shared_ptr<const DiscretePlate> plate, double dt, double beta,
-                                             Obstacles obstacles)
-    : plate_(std::move(plate)), dt_(dt), beta_(beta), obstacles_(obstacles) {
+                                             Obstacles obstacles, SchemeOptions options)
+    : plate_(std::move(plate)), dt_(dt), beta_(beta), obstacles_(obstacles), options_(options) {
     const auto n = plate_->size();
     const int m = plate_->contactCount();
     rhs_.resize(n);
     d_.resize(n);
     wNext_.resize(n);
     kwNext_.resize(n);
+    if (!obstacles_.any()) options_.singularMass = false;  // no contact, no impulses to carry
+    generalLaw_ = options_.restitution > 0.0 || options_.singularMass;
+    if (options_.dampingMass > 0.0 || options_.dampingStiffness > 0.0) {
+        dampingBuffer_.resize(n);
+        dampingProduct_.resize(n);
+    }
+    if (options_.singularMass) {
+        impulseHistory_.resize(m);
+        impulseNext_.resize(m);
+    }
     if (obstacles_.any()) {
         const DiscretePlate* p = plate_.get();
         columns_ = std::make_unique<ContactColumns>(
@@ -48,6 +58,10 @@ void NewmarkContactStepper::initialize(const Eigen::VectorXd& w0, double z0, dou
     s.pressureWork = s.pressureWorkPrev = plate_->pressureLoad().dot(w0);
     s.baseCoupling = s.baseCouplingPrev = plate_->baseInertia().dot(w0);
     s.contactState.assign(obstacles_.any() ? plate_->contactCount() : 0, 0);
+    if (options_.singularMass) {
+        s.contactImpulse = Eigen::VectorXd::Zero(plate_->contactCount());
+        s.contactImpulsePrev = s.contactImpulse;
+    }
     checkMargin_ = -1.0;
     if (obstacles_.any()) {
         plate_->gatherContact(w0, y_);
@@ -60,8 +74,16 @@ void NewmarkContactStepper::initialize(const Eigen::VectorXd& w0, double z0, dou
     }
 }
 
+void NewmarkContactStepper::setInitialContactForce(const Eigen::VectorXd& force) {
+    if (!options_.singularMass || state_.step != 0) return;
+    state_.contactImpulse = (beta_ * dt_ * dt_) * force;
+    state_.contactImpulsePrev = state_.contactImpulse;
+}
+
 void NewmarkContactStepper::setLoadAtStart(double p0) {
-    if (state_.step == 0) state_.p = state_.pPrev = p0;
+    // With a singular mass the load before t = 0 stays the one the initial state's massless part
+    // is in equilibrium with (docs/theory.md §11).
+    if (state_.step == 0 && !options_.singularMass) state_.p = state_.pPrev = p0;
 }
 
 void NewmarkContactStepper::step(double zNext, double pNext) {
@@ -94,6 +116,22 @@ void NewmarkContactStepper::step(double zNext, double pNext) {
     // (3.6) as A d = Δt²(f^{nβ} − K w) − (M·1) Δt² z̈  for d = w⁺ − 2w + w⁻.
     rhs_.noalias() = (dt2 * pBeta) * plate_->pressureLoad() - dt2 * s.kw;
     rhs_.noalias() -= baseJump * plate_->baseInertia();
+    if (dampingBuffer_.size() > 0) {
+        // Centered damping C(w⁺ − w⁻)/(2Δt) with w⁺ − w⁻ = d + 2(w − w⁻): A carries C d Δt/2, the
+        // rest is −Δt C(w − w⁻) (§13); K w and K w⁻ are kept, so the stiffness part is free.
+        if (options_.dampingStiffness > 0.0) rhs_.noalias() -= (dt_ * options_.dampingStiffness) * (s.kw - s.kwPrev);
+        if (options_.dampingMass > 0.0) {
+            dampingBuffer_.noalias() = s.w - s.wPrev;
+            plate_->applyMass(dampingBuffer_, dampingProduct_);
+            rhs_.noalias() -= (dt_ * options_.dampingMass) * dampingProduct_;
+        }
+    }
+    if (options_.singularMass) {
+        // Cᵀν with ν = ((1−2β)/β) μ_n + μ_{n−1}: the β-average of the contact forces of the massless
+        // equilibria at t_{n−1}, t_n, t_{n+1} (§11); μ_{n+1} comes from this step's QP.
+        impulseHistory_.noalias() = ((1.0 - 2.0 * beta_) / beta_) * s.contactImpulse + s.contactImpulsePrev;
+        plate_->scatterContact(impulseHistory_, rhs_);
+    }
     plate_->solveStepMatrix(rhs_, d_);
     wNext_.noalias() = 2.0 * s.w - s.wPrev + d_;
 
@@ -108,7 +146,19 @@ void NewmarkContactStepper::step(double zNext, double pNext) {
         const bool mayTouch =
             checkMargin_ <= 0.0 ||
             rowNormBound_ * (wNext_ - wCheck_).norm() + std::abs(zNext - zCheck_) + 1e-12 >= checkMargin_;
-        if (mayTouch) {
+        if (generalLaw_) {
+            // The constraint on (u⁺ + e u⁻)/(1 + e) (§12): per-vertex bounds on y⁺ = C w⁺,
+            // (1+e)·obstacle − e u⁻ − z⁺. Every vertex is looked at, every step.
+            const double e = options_.restitution;
+            plate_->gatherContact(s.wPrev, yPrev_);
+            plate_->gatherContact(wNext_, yFree_);
+            for (int i = 0; i < yFree_.size(); ++i) {
+                const double uPrev = yPrev_[i] + s.zPrev;
+                lowerBound_[i] = e > 0.0 ? (1.0 + e) * obstacles_.lower - e * uPrev - zNext : lo;
+                upperBound_[i] = e > 0.0 ? (1.0 + e) * obstacles_.upper - e * uPrev - zNext : hi;
+                violated |= (yFree_[i] < lowerBound_[i]) | (yFree_[i] > upperBound_[i]);
+            }
+        } else if (mayTouch) {
             plate_->gatherContact(wNext_, yFree_);
             double margin = std::numeric_limits<double>::infinity();
             for (int i = 0; i < yFree_.size(); ++i) {
@@ -123,8 +173,10 @@ void NewmarkContactStepper::step(double zNext, double pNext) {
             }
         }
         if (violated) {
-            lowerBound_.setConstant(lo);
-            upperBound_.setConstant(hi);
+            if (!generalLaw_) {
+                lowerBound_.setConstant(lo);
+                upperBound_.setConstant(hi);
+            }
             trialState_ = s.contactState;
             const QPResult r = qp_->solve(yFree_, lowerBound_, upperBound_, trialState_, mu_, y_);
             iterations = r.iterations;
@@ -135,7 +187,7 @@ void NewmarkContactStepper::step(double zNext, double pNext) {
                     << " iterations, relative KKT residual " << kkt << ")";
                 throw StepError(msg.str());
             }
-            plate_->gatherContact(s.wPrev, yPrev_);
+            if (!generalLaw_) plate_->gatherContact(s.wPrev, yPrev_);
             double muSum = 0.0;
             for (int i : qp_->active()) {
                 wNext_.noalias() += mu_[i] * columns_->column(i);
@@ -147,16 +199,49 @@ void NewmarkContactStepper::step(double zNext, double pNext) {
                 // is no physical work at all, so it is dropped — energy_dissipated never
                 // decreases, energy_input stays exactly 0 without inputs, and the ledger keeps
                 // closing to roundoff (the dropped amounts are of that size).
-                dissipated += std::max(0.0, mu_[i] * ((yPrev_[i] + s.zPrev) - (y_[i] + zNext)));
+                if (!generalLaw_) dissipated += std::max(0.0, mu_[i] * ((yPrev_[i] + s.zPrev) - (y_[i] + zNext)));
             }
-            dissipated /= 2.0 * dt2;
-            contactWorkOnBase = -muSum * (zNext - s.zPrev) / (2.0 * dt2);
+            if (!generalLaw_) {
+                dissipated /= 2.0 * dt2;
+                contactWorkOnBase = -muSum * (zNext - s.zPrev) / (2.0 * dt2);
+            }
             contactCount = static_cast<int>(qp_->active().size());
         } else {
             std::fill(trialState_.begin(), trialState_.end(), 0);
         }
+        if (generalLaw_) {
+            // The contact work of the step, ½ τᵀ(u⁺ − u⁻)/Δt² with τ = μ (+ ν with a singular mass)
+            // the whole impulse: at a vertex on the law's constraint u⁺ − u⁻ = (1+e)(obstacle − u⁻)
+            // (§12). Not clamped: with e > 0 or a singular mass it can return energy (§12, §11).
+            const Eigen::VectorXd& yNext = violated ? y_ : yFree_;
+            double tauSum = 0.0;
+            for (int i = 0; i < yNext.size(); ++i) {
+                double tau = violated ? mu_[i] : 0.0;
+                if (options_.singularMass) {
+                    impulseNext_[i] = tau;
+                    tau += impulseHistory_[i];
+                }
+                if (tau == 0.0) continue;
+                dissipated += tau * ((yPrev_[i] + s.zPrev) - (yNext[i] + zNext));
+                tauSum += tau;
+            }
+            dissipated /= 2.0 * dt2;
+            contactWorkOnBase = -tauSum * (zNext - s.zPrev) / (2.0 * dt2);
+        }
     }
     plate_->applyStiffness(wNext_, kwNext_);
+    double damped = 0.0;
+    if (dampingBuffer_.size() > 0) {
+        // (w⁺ − w⁻)ᵀ C (w⁺ − w⁻) / (4Δt): the damping term of the step times (w⁺ − w⁻)/2 (§13).
+        dampingBuffer_.noalias() = wNext_ - s.wPrev;
+        if (options_.dampingStiffness > 0.0)
+            damped += options_.dampingStiffness * dampingBuffer_.dot(kwNext_ - s.kwPrev);
+        if (options_.dampingMass > 0.0) {
+            plate_->applyMass(dampingBuffer_, dampingProduct_);
+            damped += options_.dampingMass * dampingBuffer_.dot(dampingProduct_);
+        }
+        damped /= 4.0 * dt_;
+    }
     const double sNext = plate_->pressureLoad().dot(wNext_);
     const double tNext = plate_->baseInertia().dot(wNext_);
     if (!std::isfinite(sNext) || !std::isfinite(tNext)) {
@@ -191,6 +276,11 @@ void NewmarkContactStepper::step(double zNext, double pNext) {
     ++s.step;
     s.energyInput += work;
     s.energyDissipated += dissipated;
+    s.energyDamped += damped;
+    if (options_.singularMass) {
+        s.contactImpulsePrev.swap(s.contactImpulse);
+        s.contactImpulse.swap(impulseNext_);
+    }
     if (qp_) s.contactState.swap(trialState_);
     s.contactVertices = contactCount;
     s.qpIterationsLast = iterations;

@@ -5,6 +5,11 @@
 //   M d + Δt² K (w + β d) = Δt² p^{nβ} F − (M·1)(z⁺ − 2z + z⁻) + Cᵀμ,   d = w⁺ − 2w + w⁻,
 //   lower − z⁺ ≤ C w⁺ ≤ upper − z⁺,  μ the contact multipliers of the step's QP.
 //
+// Beyond the paper (SchemeOptions, all off by default: then the step is the above, bit for bit):
+// the restitution law on (u⁺ + e u⁻)/(1 + e) (§12), Rayleigh damping (§13), and with a singular
+// mass the contact impulses of the two previous steps on the right-hand side, which keep the
+// massless part in equilibrium at every t_n (§11).
+//
 // Each step: one solve with the factor of A = M + βΔt²K for the free solution, a look at the
 // contact vertices, and the contact-space QP (BoxQP) only where an obstacle is violated.
 #include <Eigen/Core>
@@ -19,12 +24,24 @@
 
 namespace plate {
 
+struct SchemeOptions {
+    double restitution = 0.0;  // e ∈ [0, 1]
+    double dampingMass = 0.0, dampingStiffness = 0.0;  // Rayleigh C = a M + b K on w
+    // The plate's mass is singular: carry the contact impulses (docs/theory.md §11). Off with a
+    // singular mass gives the plain Newmark step with M_s (kept to measure what it changes).
+    bool singularMass = false;
+};
+
 class NewmarkContactStepper {
 public:
-    NewmarkContactStepper(std::shared_ptr<const DiscretePlate> plate, double dt, double beta, Obstacles obstacles);
+    NewmarkContactStepper(std::shared_ptr<const DiscretePlate> plate, double dt, double beta, Obstacles obstacles,
+                          SchemeOptions options = {});
 
     // The plate at rest for t ≤ 0 in the shape w0 with the clamp at z0, pressure p0.
     void initialize(const Eigen::VectorXd& w0, double z0, double p0);
+    // Singular mass: the contact forces λ0 (per contact vertex) that hold the initial state's
+    // massless part in equilibrium; the impulse history becomes βΔt²λ0 at t_0 and t_{−1}.
+    void setInitialContactForce(const Eigen::VectorXd& force);
 
     // The load input at t = 0, known only when the master starts stepping: the history holds
     // it for t ≤ 0 (docs/theory.md: the load acts from t = 0 on; the initial load only shapes u⁰).
@@ -46,6 +63,7 @@ public:
     const DiscretePlate& plate() const { return *plate_; }
     double dt() const { return dt_; }
     double beta() const { return beta_; }
+    const SchemeOptions& options() const { return options_; }
     const Obstacles& obstacles() const { return obstacles_; }
     int computedContactColumns() const { return columns_ ? columns_->computedColumns() : 0; }
 
@@ -53,12 +71,15 @@ private:
     std::shared_ptr<const DiscretePlate> plate_;
     double dt_, beta_;
     Obstacles obstacles_;
+    SchemeOptions options_;
+    bool generalLaw_ = false;  // restitution or singular mass: the contact work of §12, unclamped
     NewmarkState state_;
     // Contact machinery exists only when an obstacle does (no obstacle → no QP).
     std::unique_ptr<ContactColumns> columns_;
     std::unique_ptr<BoxQP> qp_;
     // Step buffers, allocated once.
     Eigen::VectorXd rhs_, d_, wNext_, kwNext_, yFree_, y_, mu_, lowerBound_, upperBound_, yPrev_;
+    Eigen::VectorXd dampingBuffer_, dampingProduct_, impulseHistory_, impulseNext_;
     std::vector<signed char> trialState_;
     // Free flight without looking at every vertex (complete modal basis: the look is a dense
     // product): at the last full look the vertices were at least checkMargin_ from the

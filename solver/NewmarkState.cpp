@@ -8,34 +8,38 @@
 namespace plate {
 
 namespace {
-constexpr double kFormatVersion = 1.0;
-constexpr std::size_t kScalars = 16;
+constexpr double kFormatVersion = 2.0;
+constexpr std::size_t kScalars = 17;
 }  // namespace
 
 std::vector<double> serialize(const NewmarkState& s) {
     const auto n = static_cast<std::size_t>(s.w.size());
     std::vector<double> out;
-    out.reserve(3 + 4 * n + kScalars + s.contactState.size());
+    const auto k = static_cast<std::size_t>(s.contactImpulse.size());
+    out.reserve(4 + 4 * n + kScalars + s.contactState.size() + 2 * k);
     out.push_back(kFormatVersion);
     out.push_back(static_cast<double>(n));
     out.push_back(static_cast<double>(s.contactState.size()));
+    out.push_back(static_cast<double>(k));
     for (const Eigen::VectorXd* v : {&s.w, &s.wPrev, &s.kw, &s.kwPrev}) out.insert(out.end(), v->data(), v->data() + n);
     for (double x : {s.z, s.zPrev, s.p, s.pPrev, s.pressureWork, s.pressureWorkPrev, s.baseCoupling, s.baseCouplingPrev,
                      static_cast<double>(s.step), s.energyInput, s.energyDissipated, s.maxKktResidual,
                      static_cast<double>(s.qpIterationsTotal), static_cast<double>(s.qpIterationsMax),
-                     static_cast<double>(s.qpIterationsLast), static_cast<double>(s.contactVertices)})
+                     static_cast<double>(s.qpIterationsLast), static_cast<double>(s.contactVertices), s.energyDamped})
         out.push_back(x);
     for (signed char c : s.contactState) out.push_back(c);
+    for (const Eigen::VectorXd* v : {&s.contactImpulse, &s.contactImpulsePrev})
+        out.insert(out.end(), v->data(), v->data() + k);
     return out;
 }
 
-NewmarkState deserialize(const std::vector<double>& in, Eigen::Index n, std::size_t m) {
+NewmarkState deserialize(const std::vector<double>& in, Eigen::Index n, std::size_t m, std::size_t impulses) {
     const auto nn = static_cast<std::size_t>(n);
-    if (in.size() != 3 + 4 * nn + kScalars + m || in[0] != kFormatVersion || in[1] != static_cast<double>(n) ||
-        in[2] != static_cast<double>(m))
+    if (in.size() != 4 + 4 * nn + kScalars + m + 2 * impulses || in[0] != kFormatVersion ||
+        in[1] != static_cast<double>(n) || in[2] != static_cast<double>(m) || in[3] != static_cast<double>(impulses))
         throw std::invalid_argument("state does not belong to this plate (size or format differs)");
     NewmarkState s;
-    std::size_t k = 3;
+    std::size_t k = 4;
     for (Eigen::VectorXd* v : {&s.w, &s.wPrev, &s.kw, &s.kwPrev}) {
         *v = Eigen::Map<const Eigen::VectorXd>(in.data() + k, n);
         k += nn;
@@ -69,11 +73,18 @@ NewmarkState deserialize(const std::vector<double>& in, Eigen::Index n, std::siz
     s.qpIterationsMax = static_cast<int>(count("QP iterations", 2147483647.0));
     s.qpIterationsLast = static_cast<int>(count("QP iterations", 2147483647.0));
     s.contactVertices = static_cast<int>(count("contact vertices", static_cast<double>(m)));
+    s.energyDamped = finite("energy damped");
     s.contactState.resize(m);
     for (std::size_t i = 0; i < m; ++i) {
         const double c = in[k++];
         if (c != -1.0 && c != 0.0 && c != 1.0) throw std::invalid_argument("corrupt contact state");
         s.contactState[i] = static_cast<signed char>(c);
+    }
+    const auto ni = static_cast<Eigen::Index>(impulses);
+    for (Eigen::VectorXd* v : {&s.contactImpulse, &s.contactImpulsePrev}) {
+        *v = Eigen::Map<const Eigen::VectorXd>(in.data() + k, ni);
+        k += impulses;
+        if (!v->allFinite()) throw std::invalid_argument("corrupt state: non-finite contact impulse");
     }
     for (const Eigen::VectorXd* v : {&s.w, &s.wPrev, &s.kw, &s.kwPrev})
         if (!v->allFinite()) throw std::invalid_argument("corrupt state: non-finite displacement");

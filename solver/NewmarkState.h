@@ -16,17 +16,22 @@ struct NewmarkState {
     double baseCoupling = 0, baseCouplingPrev = 0;  // (M·1)ᵀw: coupling of base and plate inertia
     long long step = 0;
     double energyInput = 0, energyDissipated = 0;
+    double energyDamped = 0;  // cumulative work of the Rayleigh damping (docs/theory.md §13)
     double maxKktResidual = 0;
     long long qpIterationsTotal = 0;
     int qpIterationsMax = 0, qpIterationsLast = 0;
     int contactVertices = 0;
     std::vector<signed char> contactState;  // −1 on lower, +1 on upper, 0 free (warm start)
+    // Singular mass only (empty otherwise): the contact impulses μ_n, μ_{n−1} of the last two
+    // steps, which keep the massless part in equilibrium (docs/theory.md §11).
+    Eigen::VectorXd contactImpulse, contactImpulsePrev;
 };
 
-// Flat form: format version, sizes, the four vectors, the scalars, the contact set.
+// Flat form: format version, sizes, the four vectors, the scalars, the contact set, the impulses.
 std::vector<double> serialize(const NewmarkState& state);
-// Throws std::invalid_argument if the data does not fit a plate with n coordinates and m
-// contact vertices, or is corrupt (non-finite displacements, an impossible contact state).
-NewmarkState deserialize(const std::vector<double>& data, Eigen::Index n, std::size_t m);
+// Throws std::invalid_argument if the data does not fit a plate with n coordinates, m contact
+// vertices and `impulses` stored impulses per level (0, or m with a singular mass), or is corrupt
+// (non-finite displacements, an impossible contact state).
+NewmarkState deserialize(const std::vector<double>& data, Eigen::Index n, std::size_t m, std::size_t impulses);
 
 }  // namespace plate

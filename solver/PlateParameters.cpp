@@ -49,6 +49,18 @@ void validate(const PlateParameters& p) {
     if (!(p.beta >= 0.0 && p.beta <= 0.5)) reject("beta", p.beta, "0 <= beta <= 0.5");
     requireRange("initial_load", p.initialLoad, -kMaxLoad, kMaxLoad);
     if (p.modes < 0) reject("modes", p.modes, "modes >= 0 (0 = full space)");
+    if (p.mass != MassModel::Consistent && p.mass != MassModel::SingularP0 && p.mass != MassModel::SingularP1dg)
+        reject("mass", static_cast<int>(p.mass), "1 (consistent), 2 (singular_p0) or 3 (singular_p1dg)");
+    if (p.singularMass() && p.modes != 0)
+        reject("modes", p.modes, "modes = 0 with a singular mass (the modal reduction needs the consistent mass)");
+    if (p.singularMass() && p.beta < 0.25)
+        reject("beta", p.beta,
+               "0.25 <= beta <= 0.5 with a singular mass (massless dofs have no explicit stability bound)");
+    if (!(p.restitution >= 0.0 && p.restitution <= 1.0))
+        reject("restitution", p.restitution, "0 <= restitution <= 1");
+    // 1e6 1/s and 1 s: damping ratios up to ~1e6 at 1 Hz and at 1e6 Hz, far past critical.
+    requireRange("damping_mass", p.dampingMass, 0.0, 1e6);
+    requireRange("damping_stiffness", p.dampingStiffness, 0.0, 1.0);
 }
 
 }  // namespace plate

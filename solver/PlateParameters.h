@@ -8,6 +8,11 @@
 
 namespace plate {
 
+// The plate's mass matrix (docs/theory.md §11): the consistent one of (3.4), or a singular
+// (redistributed) mass B C⁻¹ Bᵀ projected on piecewise constants (P0) or on discontinuous
+// piecewise linears (P1dg), with no inertia left on the contact vertex values.
+enum class MassModel { Consistent = 1, SingularP0 = 2, SingularP1dg = 3 };
+
 struct PlateParameters {
     double length = 1.2;  // m
     double width = 0.4;  // m
@@ -26,14 +31,27 @@ struct PlateParameters {
     double beta = 0.5;
     double initialLoad = 0.0;  // Pa
     int modes = 0;  // 0 = full space (exact)
+    MassModel mass = MassModel::Consistent;
+    // Impact law (docs/theory.md §12): the contact constraint holds on (u⁺ + e u⁻)/(1 + e);
+    // e = 0 is the paper's scheme.
+    double restitution = 0.0;
+    // Rayleigh damping C = dampingMass·M + dampingStiffness·K on the motion relative to the
+    // clamp (docs/theory.md §13).
+    double dampingMass = 0.0;  // 1/s
+    double dampingStiffness = 0.0;  // s
     // How exact mode runs (not an FMU parameter: the result is the same scheme either way;
     // benchmarks and tests pin it to compare the two).
     enum class Engine { Auto, SparseFactor, CompleteModal } engine = Engine::Auto;
+    // Singular mass: carry the contact impulses that keep the massless part in equilibrium
+    // (docs/theory.md §11). Not an FMU parameter: tests and benchmarks switch it off to measure
+    // the plain Newmark step with the singular mass.
+    bool singularEquilibrium = true;
 
     double bendingStiffness() const {
         return youngsModulus * thickness * thickness * thickness / (12.0 * (1.0 - poissonRatio * poissonRatio));
     }
     double surfaceDensity() const { return density * thickness; }
+    bool singularMass() const { return mass != MassModel::Consistent; }
 };
 
 // Bounds of the inputs and of what the parameters place (obstacles): far beyond any plate,

@@ -11,6 +11,7 @@
 #include "FullOrderPlate.h"
 #include "ModalPlate.h"
 #include "NewmarkContactStepper.h"
+#include "SingularMass.h"
 #include "Spectrum.h"
 #include "StaticEquilibrium.h"
 
@@ -49,9 +50,11 @@ struct PlateSimulation::Impl {
     mutable double kappa = -1.0;
     mutable long long energyStep = -1;
     mutable double energyCache = 0.0;
+    double unprojectedEnergy = 0.0;
 };
 
-PlateSimulation::PlateSimulation(const PlateParameters& p, double baseDisplacement0) : impl_(std::make_unique<Impl>()) {
+PlateSimulation::PlateSimulation(const PlateParameters& p, double baseDisplacement0, double loadAtStart)
+    : impl_(std::make_unique<Impl>()) {
     validate(p);
     const Obstacles obstacles = obstaclesOf(p);
     if (!std::isfinite(baseDisplacement0) || baseDisplacement0 < obstacles.lower ||
@@ -67,8 +70,22 @@ PlateSimulation::PlateSimulation(const PlateParameters& p, double baseDisplaceme
     s.parameters = p;
     const Mesh mesh(p.length, p.width, p.nx, p.ny);
     s.space = makeSpace(p.element, mesh);
-    const PlateMatrices matrices = assemble(*s.space, p.surfaceDensity(), p.bendingStiffness(), p.poissonRatio);
+    PlateMatrices matrices = assemble(*s.space, p.surfaceDensity(), p.bendingStiffness(), p.poissonRatio);
+    Eigen::SparseMatrix<double> coupling;  // B of the singular mass, all dofs
+    if (p.singularMass()) {
+        SingularMass singular =
+            assembleSingularMass(*s.space, p.surfaceDensity(),
+                                 p.mass == MassModel::SingularP0 ? MassProjection::P0 : MassProjection::P1dg);
+        matrices.mass = std::move(singular.mass);
+        coupling = std::move(singular.coupling);
+    }
     s.clamped = std::make_shared<const ClampedPlate>(clamp(*s.space, matrices));
+    Eigen::SparseMatrix<double> couplingFree;
+    if (p.singularMass()) {
+        couplingFree = freeRows(coupling, *s.clamped);
+        requireMasslessContact(couplingFree, *s.clamped,
+                               p.mass == MassModel::SingularP0 ? "singular_p0" : "singular_p1dg");
+    }
     if (p.beta < 0.25) {
         // Stability of γ = ½, β < ¼ (docs/theory.md): Δt < 2 / √((1 − 4β) κ_h).
         const double bound = 2.0 / std::sqrt((1.0 - 4.0 * p.beta) * kappa());
@@ -82,13 +99,21 @@ PlateSimulation::PlateSimulation(const PlateParameters& p, double baseDisplaceme
         }
     }
     using Engine = PlateParameters::Engine;
-    const bool modal =
-        p.modes > 0 || p.engine == Engine::CompleteModal || (p.engine == Engine::Auto && completeModalPays(*s.clamped));
+    // A singular mass has no M-orthonormal modal basis: it runs on the sparse factor.
+    const bool modal = !p.singularMass() && (p.modes > 0 || p.engine == Engine::CompleteModal ||
+                                             (p.engine == Engine::Auto && completeModalPays(*s.clamped)));
     if (modal)
-        s.discrete = std::make_shared<const ModalPlate>(s.space, s.clamped, p.dt, p.beta, p.modes);
+        s.discrete = std::make_shared<const ModalPlate>(s.space, s.clamped, p.dt, p.beta, p.modes, p.dampingMass,
+                                                        p.dampingStiffness);
     else
-        s.discrete = std::make_shared<const FullOrderPlate>(s.space, s.clamped, p.dt, p.beta);
-    s.stepper = std::make_unique<NewmarkContactStepper>(s.discrete, p.dt, p.beta, obstacles);
+        s.discrete = std::make_shared<const FullOrderPlate>(s.space, s.clamped, p.dt, p.beta, p.dampingMass,
+                                                            p.dampingStiffness);
+    SchemeOptions options;
+    options.restitution = p.restitution;
+    options.dampingMass = p.dampingMass;
+    options.dampingStiffness = p.dampingStiffness;
+    options.singularMass = p.singularMass() && p.singularEquilibrium;
+    s.stepper = std::make_unique<NewmarkContactStepper>(s.discrete, p.dt, p.beta, obstacles, options);
     Eigen::VectorXd w0;
     const auto* modalPlate = dynamic_cast<const ModalPlate*>(s.discrete.get());
     if (modalPlate && modalPlate->complete()) {
@@ -97,10 +122,25 @@ PlateSimulation::PlateSimulation(const PlateParameters& p, double baseDisplaceme
         // change coordinates, α0 = ΦᵀM w0, exact for the complete basis.
         const FullOrderPlate full(s.space, s.clamped, p.dt, p.beta);
         w0 = modalPlate->fromFullSpace(staticEquilibrium(full, obstacles, baseDisplacement0, p.initialLoad));
-    } else {
+    } else if (!p.singularMass()) {
         w0 = staticEquilibrium(*s.discrete, obstacles, baseDisplacement0, p.initialLoad);
     }
-    s.stepper->initialize(w0, baseDisplacement0, 0.0);
+    if (!p.singularMass()) {
+        s.stepper->initialize(w0, baseDisplacement0, 0.0);
+        s.unprojectedEnergy = s.stepper->energy();
+    } else {
+        // §11: only the part of w0 the singular mass sees is initial data; the massless part
+        // is in equilibrium with the load at t = 0 (unless the static state already is).
+        Eigen::VectorXd force;
+        w0 = staticEquilibrium(*s.discrete, obstacles, baseDisplacement0, p.initialLoad, &force);
+        s.stepper->initialize(w0, baseDisplacement0, loadAtStart);
+        s.unprojectedEnergy = s.stepper->energy();
+        if (loadAtStart != p.initialLoad) {
+            w0 = masslessEquilibrium(*s.clamped, couplingFree, obstacles, baseDisplacement0, loadAtStart, w0, force);
+            s.stepper->initialize(w0, baseDisplacement0, loadAtStart);
+        }
+        s.stepper->setInitialContactForce(force);
+    }
     s.corner1 = s.discrete->probe(p.length, 0.0);
     s.corner2 = s.discrete->probe(p.length, p.width);
     s.freeEdgeMid = s.discrete->probe(p.length, 0.5 * p.width);
@@ -137,6 +177,7 @@ PlateOutputs PlateSimulation::outputs() const {
     o.energy = s.energyCache;
     o.energyDissipated = st.energyDissipated;
     o.energyInput = st.energyInput;
+    o.energyDamped = st.energyDamped;
     o.contactVertices = st.contactVertices;
     o.maxKktResidual = st.maxKktResidual;
     o.qpIterations = st.qpIterationsLast;
@@ -215,11 +256,14 @@ double PlateSimulation::measureFloorSolveSeconds(int repeats) const {
     return batches[batches.size() / 2];
 }
 
+double PlateSimulation::unprojectedInitialEnergy() const { return impl_->unprojectedEnergy; }
+
 std::vector<double> PlateSimulation::saveState() const { return serialize(impl_->stepper->state()); }
 
 void PlateSimulation::restoreState(const std::vector<double>& in) {
     const NewmarkState& current = impl_->stepper->state();
-    impl_->stepper->setState(deserialize(in, current.w.size(), current.contactState.size()));
+    impl_->stepper->setState(
+        deserialize(in, current.w.size(), current.contactState.size(), current.contactImpulse.size()));
     impl_->energyStep = -1;
 }
 

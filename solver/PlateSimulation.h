@@ -16,6 +16,7 @@ struct PlateOutputs {
     double energy = 0;  // discrete energy E^{n-1/2} (docs/theory.md), J
     double energyDissipated = 0;  // cumulative contact loss, J
     double energyInput = 0;  // cumulative work of base motion and load, J
+    double energyDamped = 0;  // cumulative work of the Rayleigh damping, J
     int contactVertices = 0;  // vertices on an obstacle after the last step
     double maxKktResidual = 0;  // largest relative KKT residual of all QPs so far
     int qpIterations = 0;  // active-set iterations of the last step
@@ -26,9 +27,11 @@ struct PlateOutputs {
 class PlateSimulation {
 public:
     // Builds the discretization, factors A, and computes the initial static state
-    // (equilibrium under initialLoad between the obstacles, clamp at baseDisplacement0).
+    // (equilibrium under initialLoad between the obstacles, clamp at baseDisplacement0). With a
+    // singular mass the massless part is then brought to equilibrium under loadAtStart, the
+    // load input at t = 0 (docs/theory.md §11).
     // Throws ParameterError with a message naming the parameter, value and allowed range.
-    PlateSimulation(const PlateParameters& parameters, double baseDisplacement0);
+    PlateSimulation(const PlateParameters& parameters, double baseDisplacement0, double loadAtStart = 0.0);
     ~PlateSimulation();
     PlateSimulation(const PlateSimulation&) = delete;
     PlateSimulation& operator=(const PlateSimulation&) = delete;
@@ -60,6 +63,10 @@ public:
     double kappa() const;
     // Time of one solve with the factor of A, measured now (median of repeats), s.
     double measureFloorSolveSeconds(int repeats = 2000) const;
+
+    // Energy of the initial state before the singular mass's massless part was brought to
+    // equilibrium (equal to outputs().energy at t = 0 otherwise), J.
+    double unprojectedInitialEnergy() const;
 
     // Full mutable state: serialize for FMU states (bit-identical continuation).
     std::vector<double> saveState() const;

@@ -16,6 +16,25 @@ constexpr Eigen::Index kDenseLimit = 3000;
 void denseModes(const ClampedPlate& plate, Eigen::Index modes, Eigen::MatrixXd& phi, Eigen::VectorXd& omega2) {
     const Eigen::MatrixXd k = Eigen::MatrixXd(plate.stiffness);
     const Eigen::MatrixXd m = Eigen::MatrixXd(plate.mass);
+    if (Eigen::LLT<Eigen::MatrixXd>(m).info() != Eigen::Success) {
+        // A singular mass (docs/theory.md §11): M φ = (1/ω²) K φ with K SPD; the massless
+        // directions are the zero eigenvalues (ω = ∞) and are left out.
+        Eigen::GeneralizedSelfAdjointEigenSolver<Eigen::MatrixXd> eig(m, k);  // Φᵀ K Φ = I, ascending
+        if (eig.info() != Eigen::Success) throw std::runtime_error("modal analysis failed");
+        const Eigen::VectorXd& mu = eig.eigenvalues();
+        const double cut = 1e-12 * mu.maxCoeff();
+        Eigen::Index massive = 0;
+        while (massive < mu.size() && mu[mu.size() - 1 - massive] > cut) ++massive;
+        const Eigen::Index count = std::min(modes, massive);
+        phi.resize(m.rows(), count);
+        omega2.resize(count);
+        for (Eigen::Index j = 0; j < count; ++j) {
+            const Eigen::Index c = mu.size() - 1 - j;  // largest 1/ω² first
+            omega2[j] = 1.0 / mu[c];
+            phi.col(j) = eig.eigenvectors().col(c) * std::sqrt(omega2[j]);  // Φᵀ M Φ = I
+        }
+        return;
+    }
     // Eigen normalizes the eigenvectors to Φᵀ M Φ = I and sorts the eigenvalues ascending.
     Eigen::GeneralizedSelfAdjointEigenSolver<Eigen::MatrixXd> eig(k, m);
     if (eig.info() != Eigen::Success) throw std::runtime_error("modal analysis failed");
