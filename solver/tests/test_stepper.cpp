@@ -61,9 +61,24 @@ TEST(Stepper, SparseAndModalEnginesRunTheSameScheme) {
 }
 
 TEST(Stepper, TimeStepDoesNotAllocate) {
-    for (auto engine : {plate::PlateParameters::Engine::SparseFactor, plate::PlateParameters::Engine::CompleteModal}) {
+    // Both engines with the paper's scheme, then the laws of docs/theory.md §11–13 (restitution
+    // and damping on the modal engine, the singular mass on the sparse one, all three at once).
+    using Engine = plate::PlateParameters::Engine;
+    struct Case {
+        Engine engine;
+        plate::MassModel mass;
+        double e, a, b;
+    };
+    for (const Case c : {Case{Engine::SparseFactor, plate::MassModel::Consistent, 0, 0, 0},
+                         Case{Engine::CompleteModal, plate::MassModel::Consistent, 0, 0, 0},
+                         Case{Engine::CompleteModal, plate::MassModel::Consistent, 0.5, 2.0, 1e-5},
+                         Case{Engine::SparseFactor, plate::MassModel::SingularP0, 0.5, 2.0, 1e-5}}) {
         plate::PlateParameters p;
-        p.engine = engine;
+        p.engine = c.engine;
+        p.mass = c.mass;
+        p.restitution = c.e;
+        p.dampingMass = c.a;
+        p.dampingStiffness = c.b;
         plate::PlateSimulation sim(p, 0.0);
         run(sim, 20000);  // warm up through several impacts (contact columns get computed)
         ASSERT_GT(sim.outputs().qpIterationsTotal, 0);
