@@ -55,9 +55,14 @@ std::string real(double x) {
 // SI units as FMI 2.0 BaseUnit exponents.
 const std::map<std::string, std::string>& baseUnits() {
     static const std::map<std::string, std::string> units = {
-        {"m", "m=\"1\""},   {"Pa", "kg=\"1\" m=\"-1\" s=\"-2\""}, {"kg/m3", "kg=\"1\" m=\"-3\""},
-        {"s", "s=\"1\""},   {"J", "kg=\"1\" m=\"2\" s=\"-2\""},   {"1", ""},
-        {"Hz", "s=\"-1\""}, {"1/s", "s=\"-1\""},
+        {"m", "m=\"1\""},
+        {"Pa", "kg=\"1\" m=\"-1\" s=\"-2\""},
+        {"kg/m3", "kg=\"1\" m=\"-3\""},
+        {"s", "s=\"1\""},
+        {"J", "kg=\"1\" m=\"2\" s=\"-2\""},
+        {"1", ""},
+        {"Hz", "s=\"-1\""},
+        {"1/s", "s=\"-1\""},
     };
     return units;
 }

@@ -155,6 +155,9 @@ CONFIGS = {
     "argyris_fine": dict(SCENE, nx=28, ny=10),
     "fvs": dict(SCENE, element=2, nx=20, ny=7),
     "reduced_modal": dict(SCENE, modes=20),
+    # the laws of docs/theory.md §11-13: the singular mass carries contact impulses in its state
+    "singular_laws": dict(SCENE, mass=2, restitution=0.5, damping_mass=5.0, damping_stiffness=1e-5),
+    "modal_restitution_damping": dict(SCENE, restitution=0.3, damping_mass=2.0),
 }
 # A coarse mesh for the checks of the FMI layer that do not depend on the discretization.
 FAST = {"nx": 4, "ny": 2}
@@ -527,7 +530,39 @@ CATALOGUE = {
         lambda c: c.expect_error(lambda: c.open().setInteger([8], [3])),
         ["element", "argyris", "fvs"],
     ),
+    "bad_mass_item": (
+        lambda c: c.expect_error(lambda: c.open().setInteger([50], [4])),
+        ["mass", "consistent", "singular_p0", "singular_p1dg"],
+    ),
     # invalid parameters, rejected by fmi2ExitInitializationMode
+    "restitution_negative": (
+        _bad_parameter({"restitution": -0.1}),
+        ["invalid parameter", "restitution", "0 <= restitution <= 1"],
+    ),
+    "restitution_above_one": (
+        _bad_parameter({"restitution": 1.5}),
+        ["invalid parameter", "restitution", "0 <= restitution <= 1"],
+    ),
+    "damping_mass_negative": (
+        _bad_parameter({"damping_mass": -1.0}),
+        ["invalid parameter", "damping_mass", "0 <= damping_mass"],
+    ),
+    "damping_stiffness_negative": (
+        _bad_parameter({"damping_stiffness": -1e-5}),
+        ["invalid parameter", "damping_stiffness", "0 <= damping_stiffness"],
+    ),
+    "singular_mass_without_massless_vertices": (
+        _bad_parameter({"element": 2, "mass": 3}),
+        ["invalid parameter mass = singular_p1dg", "massless directions", "contact vertices"],
+    ),
+    "singular_mass_with_modes": (
+        _bad_parameter({"mass": 2, "modes": 10}),
+        ["invalid parameter", "modes", "singular mass"],
+    ),
+    "singular_mass_with_small_beta": (
+        _bad_parameter({"mass": 2, "beta": 0.2}),
+        ["invalid parameter", "beta", "0.25 <= beta", "singular mass"],
+    ),
     "poisson_ratio_half": (_bad_parameter({"poisson_ratio": 0.5}), ["invalid parameter", "poisson_ratio"]),
     "poisson_ratio_zero": (_bad_parameter({"poisson_ratio": 0.0}), ["invalid parameter", "poisson_ratio"]),
     "poisson_ratio_negative": (_bad_parameter({"poisson_ratio": -0.2}), ["invalid parameter", "poisson_ratio"]),

@@ -16,9 +16,10 @@ ModalPlate::ModalPlate(std::shared_ptr<const FiniteElementSpace> space, std::sha
     if (dampingMass == 0.0 && dampingStiffness == 0.0)
         inverseStep_ = (1.0 + beta * dt * dt * omega2_.array()).inverse().matrix();
     else
-        inverseStep_ = ((1.0 + 0.5 * dampingMass * dt) + (beta * dt * dt + 0.5 * dampingStiffness * dt) * omega2_.array())
-                           .inverse()
-                           .matrix();
+        inverseStep_ =
+            ((1.0 + 0.5 * dampingMass * dt) + (beta * dt * dt + 0.5 * dampingStiffness * dt) * omega2_.array())
+                .inverse()
+                .matrix();
     const auto& dofs = plate_->contactDofs;
     contactModesT_.resize(phi_.cols(), static_cast<Eigen::Index>(dofs.size()));
     for (std::size_t i = 0; i < dofs.size(); ++i) contactModesT_.col(i) = phi_.row(dofs[i]).transpose();

@@ -56,8 +56,7 @@ void validate(const PlateParameters& p) {
     if (p.singularMass() && p.beta < 0.25)
         reject("beta", p.beta,
                "0.25 <= beta <= 0.5 with a singular mass (massless dofs have no explicit stability bound)");
-    if (!(p.restitution >= 0.0 && p.restitution <= 1.0))
-        reject("restitution", p.restitution, "0 <= restitution <= 1");
+    if (!(p.restitution >= 0.0 && p.restitution <= 1.0)) reject("restitution", p.restitution, "0 <= restitution <= 1");
     // 1e6 1/s and 1 s: damping ratios up to ~1e6 at 1 Hz and at 1e6 Hz, far past critical.
     requireRange("damping_mass", p.dampingMass, 0.0, 1e6);
     requireRange("damping_stiffness", p.dampingStiffness, 0.0, 1.0);

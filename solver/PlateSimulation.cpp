@@ -73,9 +73,8 @@ PlateSimulation::PlateSimulation(const PlateParameters& p, double baseDisplaceme
     PlateMatrices matrices = assemble(*s.space, p.surfaceDensity(), p.bendingStiffness(), p.poissonRatio);
     Eigen::SparseMatrix<double> coupling;  // B of the singular mass, all dofs
     if (p.singularMass()) {
-        SingularMass singular =
-            assembleSingularMass(*s.space, p.surfaceDensity(),
-                                 p.mass == MassModel::SingularP0 ? MassProjection::P0 : MassProjection::P1dg);
+        SingularMass singular = assembleSingularMass(
+            *s.space, p.surfaceDensity(), p.mass == MassModel::SingularP0 ? MassProjection::P0 : MassProjection::P1dg);
         matrices.mass = std::move(singular.mass);
         coupling = std::move(singular.coupling);
     }
@@ -106,8 +105,8 @@ PlateSimulation::PlateSimulation(const PlateParameters& p, double baseDisplaceme
         s.discrete = std::make_shared<const ModalPlate>(s.space, s.clamped, p.dt, p.beta, p.modes, p.dampingMass,
                                                         p.dampingStiffness);
     else
-        s.discrete = std::make_shared<const FullOrderPlate>(s.space, s.clamped, p.dt, p.beta, p.dampingMass,
-                                                            p.dampingStiffness);
+        s.discrete =
+            std::make_shared<const FullOrderPlate>(s.space, s.clamped, p.dt, p.beta, p.dampingMass, p.dampingStiffness);
     SchemeOptions options;
     options.restitution = p.restitution;
     options.dampingMass = p.dampingMass;

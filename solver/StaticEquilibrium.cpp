@@ -83,7 +83,8 @@ Eigen::VectorXd masslessEquilibrium(const ClampedPlate& plate, const Eigen::Spar
     if (!obstacles.any()) return w;
     const auto gather = [&plate](const Eigen::VectorXd& v, Eigen::VectorXd& y) {
         y.resize(static_cast<Eigen::Index>(plate.contactDofs.size()));
-        for (std::size_t i = 0; i < plate.contactDofs.size(); ++i) y[static_cast<Eigen::Index>(i)] = v[plate.contactDofs[i]];
+        for (std::size_t i = 0; i < plate.contactDofs.size(); ++i)
+            y[static_cast<Eigen::Index>(i)] = v[plate.contactDofs[i]];
     };
     ContactColumns columns(
         m,

@@ -25,8 +25,8 @@ public:
         std::vector<Eigen::Triplet<double>> k, m;
         for (int e = 0; e < elements; ++e) {
             const int i = e, j = e + 1;
-            for (auto [r, c, sk] : {std::tuple{i, i, 1.0}, std::tuple{j, j, 1.0}, std::tuple{i, j, -1.0},
-                                    std::tuple{j, i, -1.0}}) {
+            for (auto [r, c, sk] :
+                 {std::tuple{i, i, 1.0}, std::tuple{j, j, 1.0}, std::tuple{i, j, -1.0}, std::tuple{j, i, -1.0}}) {
                 k.emplace_back(r, c, sk / h);
                 // consistent: h/6 [2 1; 1 2]; singular (P0 projection): h/4 [1 1; 1 1]
                 const double sm = singular ? h / 4 : (r == c ? h / 3 : h / 6);
@@ -119,8 +119,8 @@ TEST(BarImpact, SingularMassKeepsTheEnergyAndTheContactIntervalIsTwoLOverC) {
         const double dt = 1.0 / elements;  // Δt = h/c, the 1D CFL number 1
         const BarImpact s = simulate(elements, dt, true);
         const double error = std::abs(s.energyAfter - 0.125) / 0.125;
-        std::printf("[ bar ] N = %d, dt = %g: singular energy %.6f (rel. error %.2e), contact [%.4f, %.4f]\n",
-                    elements, dt, s.energyAfter, error, s.contactStart, s.contactEnd);
+        std::printf("[ bar ] N = %d, dt = %g: singular energy %.6f (rel. error %.2e), contact [%.4f, %.4f]\n", elements,
+                    dt, s.energyAfter, error, s.contactStart, s.contactEnd);
         EXPECT_NEAR(s.contactStart, 0.2, 2 * dt);
         EXPECT_NEAR(s.contactEnd - s.contactStart, 2.0, 4 * dt);
         EXPECT_LE(error, 0.6 * previousError);  // converging at order ≥ ~1

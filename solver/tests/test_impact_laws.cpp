@@ -107,9 +107,9 @@ TEST(SingularMass, EveryContactVertexNeedsAMasslessDirection) {
         EXPECT_NE(std::string(e.what()).find("massless directions"), std::string::npos) << e.what();
         EXPECT_NE(std::string(e.what()).find("singular_p1dg"), std::string::npos) << e.what();
     }
-    for (auto [element, mass] : {std::pair{ElementType::Fvs, MassModel::SingularP0},
-                                 std::pair{ElementType::Argyris, MassModel::SingularP0},
-                                 std::pair{ElementType::Argyris, MassModel::SingularP1dg}}) {
+    for (auto [element, mass] :
+         {std::pair{ElementType::Fvs, MassModel::SingularP0}, std::pair{ElementType::Argyris, MassModel::SingularP0},
+          std::pair{ElementType::Argyris, MassModel::SingularP1dg}}) {
         p.element = element;
         p.mass = mass;
         EXPECT_NO_THROW(PlateSimulation(p, 0.0));
@@ -224,10 +224,11 @@ TEST(ImpactLaws, PerStepEnergyIdentityWithContact) {
             stepper.step(0.0, 0.0);
             const Eigen::VectorXd& wNext = stepper.state().w;
             // Force balance of the step; off the contact vertices it is zero, on them it is τ.
-            const Eigen::VectorXd damping = c.a * (plate->mass * (wNext - wPrev)) + c.b * (plate->stiffness * (wNext - wPrev));
-            Eigen::VectorXd residual = plate->mass * (wNext - 2 * w + wPrev) +
-                                       dt * dt * (plate->stiffness * (beta * wNext + (1 - 2 * beta) * w + beta * wPrev)) +
-                                       0.5 * dt * damping;
+            const Eigen::VectorXd damping =
+                c.a * (plate->mass * (wNext - wPrev)) + c.b * (plate->stiffness * (wNext - wPrev));
+            Eigen::VectorXd residual =
+                plate->mass * (wNext - 2 * w + wPrev) +
+                dt * dt * (plate->stiffness * (beta * wNext + (1 - 2 * beta) * w + beta * wPrev)) + 0.5 * dt * damping;
             double contactTerm = 0, lawTerm = 0;
             for (std::size_t i = 0; i < dofs.size(); ++i) {
                 const double tau = residual[dofs[i]];
@@ -244,13 +245,14 @@ TEST(ImpactLaws, PerStepEnergyIdentityWithContact) {
                 }
             }
             worstBalance = std::max(worstBalance, residual.cwiseAbs().maxCoeff() / plate->mass.diagonal().maxCoeff());
-            const double change = discreteEnergy(*plate, dt, beta, wNext, w) - discreteEnergy(*plate, dt, beta, w, wPrev);
+            const double change =
+                discreteEnergy(*plate, dt, beta, wNext, w) - discreteEnergy(*plate, dt, beta, w, wPrev);
             const double damped = (wNext - wPrev).dot(damping) / (4 * dt);
             worstIdentity = std::max(worstIdentity, std::abs(change - contactTerm + damped) / e0);
             if (!c.singular) worstIdentity = std::max(worstIdentity, std::abs(lawTerm - contactTerm) / e0);
             // The stepper's own ledger books the same amounts.
-            const double booked = -(stepper.state().energyDissipated - dissipatedBefore) -
-                                  (stepper.state().energyDamped - dampedBefore);
+            const double booked =
+                -(stepper.state().energyDissipated - dissipatedBefore) - (stepper.state().energyDamped - dampedBefore);
             worstLedger = std::max(worstLedger, std::abs(change - booked) / e0);
         }
         SCOPED_TRACE(::testing::Message() << "singular " << c.singular << ", e = " << c.e << ", a = " << c.a);
