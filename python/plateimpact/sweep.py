@@ -24,8 +24,17 @@ CSV_COLUMNS = (
     "energy",
     "energy_dissipated",
     "energy_input",
+    "energy_damped",
     "contact_vertices",
 )
+
+
+def rayleigh_for_band(zeta, f_low, f_high):
+    """Rayleigh coefficients (a, b) of C = a M + b K with damping ratio zeta at f_low and at
+    f_high (docs/theory.md §13: zeta(w) = a/(2w) + b w/2; between the two it is a little below
+    zeta, outside it grows)."""
+    w1, w2 = 2 * math.pi * f_low, 2 * math.pi * f_high
+    return 2 * zeta * w1 * w2 / (w1 + w2), 2 * zeta / (w1 + w2)
 
 
 class SineSweep:
