@@ -11,6 +11,13 @@
 #include "Model.h"
 #include "fmi2Functions.h"
 
+// printf-style checking of the log formats; mingw-w64 formats with its own C99 stdio.
+#if defined(__MINGW32__)
+#define PLATEIMPACT_PRINTF_FORMAT(f, a) __attribute__((format(gnu_printf, f, a)))
+#else
+#define PLATEIMPACT_PRINTF_FORMAT(f, a) __attribute__((format(printf, f, a)))
+#endif
+
 namespace fmu {
 
 // States of the FMI 2.0 co-simulation state machine (FMI 2.0.4, section 4.2.4), as bits so
@@ -38,7 +45,7 @@ const char* logCategoryName(LogCategory category);
 
 // Logging without an instance (fmi2Instantiate failures).
 void logWithoutInstance(const fmi2CallbackFunctions* functions, fmi2String instanceName, const char* format, ...)
-    __attribute__((format(printf, 3, 4)));
+    PLATEIMPACT_PRINTF_FORMAT(3, 4);
 
 struct Snapshot;
 
@@ -84,8 +91,8 @@ public:
     double currentTime() const;
 
     // Logs "<function>: <message>" as an fmi2Error and returns fmi2Error.
-    fmi2Status fail(const char* format, ...) __attribute__((format(printf, 2, 3)));
-    void log(fmi2Status status, LogCategory category, const char* format, ...) __attribute__((format(printf, 4, 5)));
+    fmi2Status fail(const char* format, ...) PLATEIMPACT_PRINTF_FORMAT(2, 3);
+    void log(fmi2Status status, LogCategory category, const char* format, ...) PLATEIMPACT_PRINTF_FORMAT(4, 5);
 
     State state() const { return state_; }
 

@@ -2,9 +2,13 @@
  * (python_tests/test_valgrind.py) and as a ctest smoke test.
  *
  *     fmu_driver [--keep-loaded] UNZIPPED_FMU_DIR [STEPS]
+ *     fmu_driver --scene OUT.csv UNZIPPED_FMU_DIR      (the default scene for 0.1 s, see below)
+ *     fmu_driver --bad-step UNZIPPED_FMU_DIR           (h not a multiple of dt -> fmi2Error)
  *
- * dlopens UNZIPPED_FMU_DIR/binaries/linux64/PlateImpact.so (so the shipped CHOLMOD is the one
- * loaded, through the library's RPATH=$ORIGIN), reads the GUID from modelDescription.xml and
+ * The same source builds for linux64 and, cross-compiled with mingw-w64, for win64 (run under
+ * Wine by python_tests/test_win64.py): it loads UNZIPPED_FMU_DIR/binaries/linux64/PlateImpact.so
+ * with dlopen (so the shipped libraries are the ones loaded, through RPATH=$ORIGIN) or
+ * binaries/win64/PlateImpact.dll with LoadLibrary, reads the GUID from modelDescription.xml and
  * runs, for three small configurations (Argyris exact, FVS, reduced modal; 4 x 2 cells):
  * instantiate (logAll on) -> parameters -> initialize -> STEPS communication steps with input
  * derivatives -> get/set/serialize/deserialize/free FMU states (also into a second instance
@@ -17,7 +21,23 @@
  * shows as lost; --keep-loaded skips the dlclose (the library stays loaded until exit, as in an
  * importer that keeps it for the whole session).
  */
+#if defined(_WIN32)
+#include <windows.h>
+typedef HMODULE Library;
+static Library open_library(const char* path) { return LoadLibraryA(path); }
+static void* symbol(Library lib, const char* name) { return (void*)GetProcAddress(lib, name); }
+static int close_library(Library lib) { return FreeLibrary(lib) ? 0 : 1; }
+static const char* library_error(void) { return "LoadLibrary/GetProcAddress failed"; }
+#define PLATFORM_LIBRARY "binaries/win64/PlateImpact.dll"
+#else
 #include <dlfcn.h>
+typedef void* Library;
+static Library open_library(const char* path) { return dlopen(path, RTLD_NOW | RTLD_LOCAL); }
+static void* symbol(Library lib, const char* name) { return dlsym(lib, name); }
+static int close_library(Library lib) { return dlclose(lib); }
+static const char* library_error(void) { return dlerror(); }
+#define PLATFORM_LIBRARY "binaries/linux64/PlateImpact.so"
+#endif
 #include <math.h>
 #include <stdarg.h>
 #include <stdio.h>
@@ -28,11 +48,11 @@
 
 // Declares `name` as the FMU's function of that name (used as a statement: LOAD(x);).
 #define LOAD(name)                                     \
-    name##TYPE* name = (name##TYPE*)dlsym(lib, #name); \
+    name##TYPE* name = (name##TYPE*)symbol(lib, #name); \
     if (!name) return missing(#name)
 
 static int missing(const char* name) {
-    fprintf(stderr, "fmu_driver: %s not exported: %s\n", name, dlerror());
+    fprintf(stderr, "fmu_driver: %s not exported: %s\n", name, library_error());
     return 1;
 }
 
@@ -70,6 +90,7 @@ typedef struct {
 } Outputs;
 
 static unsigned long log_messages = 0;
+static char last_error[2048] = "";  /* the last message logged with fmi2Error or worse */
 
 static void logger(fmi2ComponentEnvironment env, fmi2String instance, fmi2Status status, fmi2String category,
                    fmi2String message, ...) {
@@ -80,6 +101,7 @@ static void logger(fmi2ComponentEnvironment env, fmi2String instance, fmi2Status
     vsnprintf(text, sizeof text, message, args);
     va_end(args);
     ++log_messages;
+    if (status >= fmi2Error) snprintf(last_error, sizeof last_error, "%s", text);
     if (status >= fmi2Error && getenv("FMU_DRIVER_VERBOSE"))
         fprintf(stderr, "[%s %s %d] %s\n", instance ? instance : "?", category, (int)status, text);
 }
@@ -259,7 +281,67 @@ static char* read_guid(const char* dir) {
     return guid;
 }
 
+/* The default scene (14 x 5 Argyris, dt = 1e-5 s, obstacles at +-0.1 m, base 0.09 sin(2 pi 10 t)
+ * given with its derivatives every h = 1e-4 s) for 0.1 s: one CSV row per communication point,
+ * every Real output with 17 digits. */
+static void run_scene(const char* out, const char* guid, const char* resources, const fmi2CallbackFunctions* cb) {
+    FILE* f = fopen(out, "w");
+    CHECK(f != NULL);
+    fmi2Component c = F.instantiate("scene", fmi2CoSimulation, guid, resources, cb, fmi2False, fmi2False);
+    CHECK(c != NULL);
+    OK(F.setupExperiment(c, fmi2False, 0.0, 0.0, fmi2False, 0.0));
+    OK(F.enterInit(c));
+    OK(F.exitInit(c));
+    const double h = 1e-4, w = 2.0 * 3.14159265358979323846 * 10.0, a = 0.09;
+    fprintf(f, "time,corner_1,corner_2,free_edge_mid,energy,energy_dissipated,energy_input,qp_kkt_residual_max\n");
+    for (int k = 0; k <= 1000; ++k) {
+        const double t = k * h;
+        fmi2Real r[N_REAL];
+        OK(F.getReal(c, REAL_OUT, N_REAL, r));
+        fprintf(f, "%.17g", t);
+        for (size_t j = 0; j < N_REAL; ++j) fprintf(f, ",%.17g", r[j]);
+        fprintf(f, "\n");
+        if (k == 1000) break;
+        const fmi2ValueReference base = VR_BASE;
+        const fmi2ValueReference vr2[] = {VR_BASE, VR_BASE};
+        const fmi2Integer orders[] = {1, 2};
+        const fmi2Real z = a * sin(w * t), rates[] = {a * w * cos(w * t), -a * w * w * sin(w * t)};
+        OK(F.setReal(c, &base, 1, &z));
+        OK(F.setRealInputDerivatives(c, vr2, 2, orders, rates));
+        OK(F.doStep(c, t, h, fmi2True));
+    }
+    OK(F.terminate(c));
+    F.freeInstance(c);
+    fclose(f);
+    printf("fmu_driver: wrote %s\n", out);
+}
+
+/* A communication step that is not a whole multiple of dt: fmi2Error, and the logged message
+ * says so (printed for the caller to check); the instance is then reset and freed. */
+static void run_bad_step(const char* guid, const char* resources, const fmi2CallbackFunctions* cb) {
+    fmi2Component c = F.instantiate("bad", fmi2CoSimulation, guid, resources, cb, fmi2False, fmi2True);
+    CHECK(c != NULL);
+    OK(F.setupExperiment(c, fmi2False, 0.0, 0.0, fmi2False, 0.0));
+    OK(F.enterInit(c));
+    OK(F.exitInit(c));
+    CHECK(F.doStep(c, 0.0, 1.5e-5, fmi2True) == fmi2Error);
+    printf("fmu_driver: fmi2DoStep(h = 1.5e-5) -> fmi2Error: %s\n", last_error);
+    OK(F.reset(c));
+    F.freeInstance(c);
+}
+
 int main(int argc, char** argv) {
+    const char* scene_out = NULL;
+    int bad_step = 0;
+    if (argc > 2 && strcmp(argv[1], "--scene") == 0) {
+        scene_out = argv[2];
+        argv += 2;
+        argc -= 2;
+    } else if (argc > 1 && strcmp(argv[1], "--bad-step") == 0) {
+        bad_step = 1;
+        argv += 1;
+        argc -= 1;
+    }
     const int keep_loaded = argc > 1 && strcmp(argv[1], "--keep-loaded") == 0;
     argv += keep_loaded;
     argc -= keep_loaded;
@@ -279,11 +361,11 @@ int main(int argc, char** argv) {
         return 1;
     }
     char so[4096], resources[4200];
-    snprintf(so, sizeof so, "%s/binaries/linux64/PlateImpact.so", dir);
+    snprintf(so, sizeof so, "%s/" PLATFORM_LIBRARY, dir);
     snprintf(resources, sizeof resources, "file://%s/resources", dir);
-    void* lib = dlopen(so, RTLD_NOW | RTLD_LOCAL);
+    Library lib = open_library(so);
     if (!lib) {
-        fprintf(stderr, "fmu_driver: dlopen %s: %s\n", so, dlerror());
+        fprintf(stderr, "fmu_driver: loading %s: %s\n", so, library_error());
         free(guid);
         return 1;
     }
@@ -333,6 +415,13 @@ int main(int argc, char** argv) {
     }
 
     const fmi2CallbackFunctions callbacks = {logger, calloc, free, NULL, NULL};
+    if (scene_out || bad_step) {
+        if (scene_out) run_scene(scene_out, guid, resources, &callbacks);
+        if (bad_step) run_bad_step(guid, resources, &callbacks);
+        free(guid);
+        CHECK(close_library(lib) == 0);
+        return 0;
+    }
     const Config configs[] = {{"argyris", 1, 0}, {"fvs", 2, 0}, {"modal", 1, 6}};
     for (size_t k = 0; k < sizeof configs / sizeof configs[0]; ++k)
         run_config(&configs[k], guid, resources, steps, &callbacks);
@@ -341,6 +430,6 @@ int main(int argc, char** argv) {
 
     free(guid);
     /* Unloading the FMU is part of the check: its static destructors run here. */
-    if (!keep_loaded) CHECK(dlclose(lib) == 0);
+    if (!keep_loaded) CHECK(close_library(lib) == 0);
     return 0;
 }

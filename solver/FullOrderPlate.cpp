@@ -42,7 +42,7 @@ void FullOrderPlate::applyMass(const Eigen::VectorXd& w, Eigen::VectorXd& out) c
 void FullOrderPlate::solveStepMatrix(const Eigen::VectorXd& b, Eigen::VectorXd& x) const { stepFactor_.solve(b, x); }
 
 DiscretePlate::Solver FullOrderPlate::stiffnessSolver() const {
-    auto factor = std::make_shared<const CholmodFactor>(plate_->stiffness);
+    auto factor = std::make_shared<const SparseCholesky>(plate_->stiffness);
     return [factor](const Eigen::VectorXd& b, Eigen::VectorXd& x) { factor->solve(b, x); };
 }
 

@@ -3,7 +3,7 @@
 #include <memory>
 
 #include "Assembly.h"
-#include "CholmodFactor.h"
+#include "SparseCholesky.h"
 #include "DiscretePlate.h"
 
 namespace plate {
@@ -28,12 +28,12 @@ public:
     double totalMass() const override { return plate_->totalMass; }
     PointProbe probe(double x, double y) const override { return plate_->probe(*space_, x, y); }
 
-    const CholmodFactor& stepFactor() const { return stepFactor_; }
+    const SparseCholesky& stepFactor() const { return stepFactor_; }
 
 private:
     std::shared_ptr<const FiniteElementSpace> space_;
     std::shared_ptr<const ClampedPlate> plate_;
-    CholmodFactor stepFactor_;
+    SparseCholesky stepFactor_;
     // Upper triangles in row storage for the per-step product K w and the energy's M v
     // (Kernels.h); every row starts with its diagonal entry.
     Eigen::SparseMatrix<double, Eigen::RowMajor> stiffnessUpper_, massUpper_;

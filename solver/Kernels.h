@@ -33,12 +33,13 @@ inline void multiplySymmetricUpper(const Eigen::SparseMatrix<double, Eigen::RowM
 }
 
 // y_i = rows.col(i) · x: the vertex values y = (CΦ) α of ModalPlate, with CΦ stored
-// transposed so each dot product reads contiguous memory. Cloned for x86-64-v3 (AVX2 + FMA)
-// and the baseline, chosen at load time: the FMU stays portable and uses the wide units
-// where the host has them.
-__attribute__((target_clones("arch=x86-64-v3", "default"))) inline void multiplyTransposed(const Eigen::MatrixXd& rows,
-                                                                                           const Eigen::VectorXd& x,
-                                                                                           Eigen::VectorXd& y) {
+// transposed so each dot product reads contiguous memory. Compiled for x86-64-v3 (AVX2 + FMA)
+// and for the baseline, chosen at load time: the FMU stays portable and uses the wide units
+// where the host has them. ELF builds let GCC's target_clones choose (an ifunc); the win64
+// build (PE has no ifuncs) chooses the same way by hand, so both platforms compute the same
+// bits on the same CPU.
+__attribute__((always_inline)) inline void multiplyTransposedBody(const Eigen::MatrixXd& rows, const Eigen::VectorXd& x,
+                                                                  Eigen::VectorXd& y) {
     const Eigen::Index n = rows.rows(), m = rows.cols();
     y.resize(m);
     const double* xs = x.data();
@@ -53,5 +54,26 @@ __attribute__((target_clones("arch=x86-64-v3", "default"))) inline void multiply
         y[i] = total;
     }
 }
+
+#if defined(__ELF__)
+__attribute__((target_clones("arch=x86-64-v3", "default"))) inline void multiplyTransposed(const Eigen::MatrixXd& rows,
+                                                                                           const Eigen::VectorXd& x,
+                                                                                           Eigen::VectorXd& y) {
+    multiplyTransposedBody(rows, x, y);
+}
+#else
+__attribute__((target("arch=x86-64-v3"))) inline void multiplyTransposedWide(const Eigen::MatrixXd& rows,
+                                                                             const Eigen::VectorXd& x,
+                                                                             Eigen::VectorXd& y) {
+    multiplyTransposedBody(rows, x, y);
+}
+inline void multiplyTransposed(const Eigen::MatrixXd& rows, const Eigen::VectorXd& x, Eigen::VectorXd& y) {
+    static const bool wide = __builtin_cpu_supports("x86-64-v3");
+    if (wide)
+        multiplyTransposedWide(rows, x, y);
+    else
+        multiplyTransposedBody(rows, x, y);
+}
+#endif
 
 }  // namespace plate

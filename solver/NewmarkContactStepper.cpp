@@ -22,7 +22,8 @@ NewmarkContactStepper::NewmarkContactStepper(std::shared_ptr<const DiscretePlate
     generalLaw_ = options_.restitution > 0.0 || options_.singularMass;
     if (options_.dampingMass > 0.0 || options_.dampingStiffness > 0.0) {
         dampingBuffer_.resize(n);
-        dampingProduct_.resize(n);
+        massVelocity_.resize(n);
+        massVelocityNext_.resize(n);
     }
     if (options_.singularMass) {
         impulseHistory_.resize(m);
@@ -49,6 +50,7 @@ NewmarkContactStepper::NewmarkContactStepper(std::shared_ptr<const DiscretePlate
 void NewmarkContactStepper::initialize(const Eigen::VectorXd& w0, double z0, double p0) {
     NewmarkState& s = state_;
     s = NewmarkState{};
+    massVelocityValid_ = false;
     s.w = w0;
     s.wPrev = w0;
     plate_->applyStiffness(w0, s.kw);
@@ -121,9 +123,12 @@ void NewmarkContactStepper::step(double zNext, double pNext) {
         // rest is −Δt C(w − w⁻) (§13); K w and K w⁻ are kept, so the stiffness part is free.
         if (options_.dampingStiffness > 0.0) rhs_.noalias() -= (dt_ * options_.dampingStiffness) * (s.kw - s.kwPrev);
         if (options_.dampingMass > 0.0) {
-            dampingBuffer_.noalias() = s.w - s.wPrev;
-            plate_->applyMass(dampingBuffer_, dampingProduct_);
-            rhs_.noalias() -= (dt_ * options_.dampingMass) * dampingProduct_;
+            if (!massVelocityValid_) {
+                dampingBuffer_.noalias() = s.w - s.wPrev;
+                plate_->applyMass(dampingBuffer_, massVelocity_);
+                massVelocityValid_ = true;
+            }
+            rhs_.noalias() -= (dt_ * options_.dampingMass) * massVelocity_;
         }
     }
     if (options_.singularMass) {
@@ -233,13 +238,17 @@ void NewmarkContactStepper::step(double zNext, double pNext) {
     double damped = 0.0;
     if (dampingBuffer_.size() > 0) {
         // (w⁺ − w⁻)ᵀ C (w⁺ − w⁻) / (4Δt): the damping term of the step times (w⁺ − w⁻)/2 (§13).
+        if (options_.dampingMass > 0.0) {
+            // M(w⁺ − w⁻) = M(w⁺ − w) + M(w − w⁻): one product per step, the first part kept
+            // for the next step's right-hand side.
+            dampingBuffer_.noalias() = wNext_ - s.w;
+            plate_->applyMass(dampingBuffer_, massVelocityNext_);
+        }
         dampingBuffer_.noalias() = wNext_ - s.wPrev;
         if (options_.dampingStiffness > 0.0)
             damped += options_.dampingStiffness * dampingBuffer_.dot(kwNext_ - s.kwPrev);
-        if (options_.dampingMass > 0.0) {
-            plate_->applyMass(dampingBuffer_, dampingProduct_);
-            damped += options_.dampingMass * dampingBuffer_.dot(dampingProduct_);
-        }
+        if (options_.dampingMass > 0.0)
+            damped += options_.dampingMass * dampingBuffer_.dot(massVelocityNext_ + massVelocity_);
         damped /= 4.0 * dt_;
     }
     const double sNext = plate_->pressureLoad().dot(wNext_);
@@ -277,6 +286,7 @@ void NewmarkContactStepper::step(double zNext, double pNext) {
     s.energyInput += work;
     s.energyDissipated += dissipated;
     s.energyDamped += damped;
+    if (options_.dampingMass > 0.0) massVelocity_.swap(massVelocityNext_);
     if (options_.singularMass) {
         s.contactImpulsePrev.swap(s.contactImpulse);
         s.contactImpulse.swap(impulseNext_);

@@ -59,6 +59,7 @@ public:
     void setState(const NewmarkState& s) {
         state_ = s;
         checkMargin_ = -1.0;  // the free-flight bound restarts from a full look
+        massVelocityValid_ = false;
     }
     const DiscretePlate& plate() const { return *plate_; }
     double dt() const { return dt_; }
@@ -79,7 +80,11 @@ private:
     std::unique_ptr<BoxQP> qp_;
     // Step buffers, allocated once.
     Eigen::VectorXd rhs_, d_, wNext_, kwNext_, yFree_, y_, mu_, lowerBound_, upperBound_, yPrev_;
-    Eigen::VectorXd dampingBuffer_, dampingProduct_, impulseHistory_, impulseNext_;
+    Eigen::VectorXd dampingBuffer_, impulseHistory_, impulseNext_;
+    // Mass-proportional damping: M(w − w⁻), a function of the state, computed once per step (at
+    // the end of the previous one) and recomputed after setState/initialize.
+    Eigen::VectorXd massVelocity_, massVelocityNext_;
+    bool massVelocityValid_ = false;
     std::vector<signed char> trialState_;
     // Free flight without looking at every vertex (complete modal basis: the look is a dense
     // product): at the last full look the vertices were at least checkMargin_ from the

@@ -7,7 +7,7 @@
 
 #include "Assembly.h"
 #include "BoxQP.h"
-#include "CholmodFactor.h"
+#include "SparseCholesky.h"
 #include "FullOrderPlate.h"
 #include "ModalPlate.h"
 #include "NewmarkContactStepper.h"
@@ -44,7 +44,7 @@ struct PlateSimulation::Impl {
     std::shared_ptr<const FiniteElementSpace> space;
     std::shared_ptr<const ClampedPlate> clamped;
     std::shared_ptr<const DiscretePlate> discrete;
-    mutable std::unique_ptr<CholmodFactor> floorFactor;  // sparse A, for the floor measurement
+    mutable std::unique_ptr<SparseCholesky> floorFactor;  // sparse A, for the floor measurement
     std::unique_ptr<NewmarkContactStepper> stepper;
     PointProbe corner1, corner2, freeEdgeMid;
     mutable double kappa = -1.0;
@@ -236,9 +236,9 @@ double PlateSimulation::measureFloorSolveSeconds(int repeats) const {
     // coordinates the stepper runs in.
     const Impl& s = *impl_;
     if (!s.floorFactor)
-        s.floorFactor = std::make_unique<CholmodFactor>(Eigen::SparseMatrix<double>(
+        s.floorFactor = std::make_unique<SparseCholesky>(Eigen::SparseMatrix<double>(
             s.clamped->mass + (s.parameters.beta * s.parameters.dt * s.parameters.dt) * s.clamped->stiffness));
-    const CholmodFactor& factor = *s.floorFactor;
+    const SparseCholesky& factor = *s.floorFactor;
     Eigen::VectorXd b = s.clamped->pressureLoad, x(b.size());
     std::vector<double> batches;
     const int perBatch = std::max(1, repeats / 20);

@@ -4,7 +4,7 @@
 #include <cmath>
 #include <stdexcept>
 
-#include "CholmodFactor.h"
+#include "SparseCholesky.h"
 
 namespace plate {
 
@@ -47,7 +47,7 @@ void denseModes(const ClampedPlate& plate, Eigen::Index modes, Eigen::MatrixXd& 
 void subspaceModes(const ClampedPlate& plate, Eigen::Index modes, Eigen::MatrixXd& phi, Eigen::VectorXd& omega2) {
     const Eigen::Index n = plate.mass.rows();
     const Eigen::Index p = std::min<Eigen::Index>(n, std::max<Eigen::Index>(2 * modes, modes + 16));
-    const CholmodFactor kFactor(plate.stiffness);
+    const SparseCholesky kFactor(plate.stiffness);
     Eigen::MatrixXd x(n, p);
     for (Eigen::Index j = 0; j < p; ++j)
         for (Eigen::Index i = 0; i < n; ++i) x(i, j) = std::sin(1.0 + 0.7 * i * (j + 1) + 0.3 * j);
@@ -93,7 +93,7 @@ void lowestModes(const ClampedPlate& plate, int modes, Eigen::MatrixXd& phi, Eig
 // spectrum is clustered, so the quotient is within a fraction of a percent after a few hundred
 // iterations even where the eigenvector converges slowly.
 double largestEigenvalue(const ClampedPlate& plate) {
-    const CholmodFactor massFactor(plate.mass);
+    const SparseCholesky massFactor(plate.mass);
     Eigen::VectorXd x = Eigen::VectorXd::Ones(plate.mass.rows());
     for (Eigen::Index i = 0; i < x.size(); ++i) x[i] += 0.37 * std::sin(1.0 + 7.0 * i);
     Eigen::VectorXd kx, y, mx;

@@ -30,7 +30,7 @@
 #include <unsupported/Eigen/SparseExtra>
 
 #include "Assembly.h"
-#include "CholmodFactor.h"
+#include "SparseCholesky.h"
 #include "PlateSimulation.h"
 
 namespace {
@@ -48,7 +48,7 @@ double floorCpuSeconds(const plate::PlateParameters& p, int repeats) {
     const auto space = plate::makeSpace(p.element, mesh);
     const auto matrices = plate::assemble(*space, p.surfaceDensity(), p.bendingStiffness(), p.poissonRatio);
     const auto clamped = plate::clamp(*space, matrices);
-    const plate::CholmodFactor factor(
+    const plate::SparseCholesky factor(
         Eigen::SparseMatrix<double>(clamped.mass + (p.beta * p.dt * p.dt) * clamped.stiffness));
     Eigen::VectorXd b = clamped.pressureLoad, x(b.size());
     const int perBatch = std::max(1, repeats / 20);

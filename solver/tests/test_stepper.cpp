@@ -15,7 +15,7 @@ std::atomic<long> allocations{0};
 }  // namespace
 
 // Count every operator new while `counting` is on (CHOLMOD's own malloc is not seen here; it
-// reuses its solve workspace by construction, see CholmodFactor::solve).
+// reuses its solve workspace by construction, see SparseCholesky::solve).
 void* operator new(std::size_t size) {
     if (counting.load(std::memory_order_relaxed)) allocations.fetch_add(1);
     if (void* p = std::malloc(size ? size : 1)) return p;

@@ -1,4 +1,4 @@
-#include "CholmodFactor.h"
+#include "SparseCholesky.h"
 
 #include <cholmod.h>
 
@@ -7,7 +7,7 @@
 
 namespace plate {
 
-struct CholmodFactor::Workspace {
+struct SparseCholesky::Workspace {
     cholmod_common common;
     cholmod_factor* factor = nullptr;
     cholmod_dense* x = nullptr;  // solution and solver workspaces kept between solves
@@ -34,7 +34,7 @@ struct CholmodFactor::Workspace {
     }
 };
 
-CholmodFactor::CholmodFactor(const Eigen::SparseMatrix<double>& spd)
+SparseCholesky::SparseCholesky(const Eigen::SparseMatrix<double>& spd)
     : n_(spd.rows()), ws_(std::make_unique<Workspace>()) {
     Eigen::SparseMatrix<double> lower = spd.triangularView<Eigen::Lower>();
     lower.makeCompressed();
@@ -58,9 +58,9 @@ CholmodFactor::CholmodFactor(const Eigen::SparseMatrix<double>& spd)
         throw std::runtime_error("matrix is not positive definite (CHOLMOD)");
 }
 
-CholmodFactor::~CholmodFactor() = default;
+SparseCholesky::~SparseCholesky() = default;
 
-long long CholmodFactor::factorNonZeros() const {
+long long SparseCholesky::factorNonZeros() const {
     const auto* f = ws_->factor;
     if (f->is_super) {
         // Supernodal storage holds dense column blocks; count what it stores.
@@ -72,9 +72,11 @@ long long CholmodFactor::factorNonZeros() const {
     return nnz;
 }
 
-bool CholmodFactor::supernodal() const { return ws_->factor->is_super != 0; }
+bool SparseCholesky::supernodal() const { return ws_->factor->is_super != 0; }
 
-void CholmodFactor::solve(const Eigen::VectorXd& b, Eigen::VectorXd& x) const {
+const char* SparseCholesky::backend() { return "CHOLMOD"; }
+
+void SparseCholesky::solve(const Eigen::VectorXd& b, Eigen::VectorXd& x) const {
     cholmod_dense rhs{};
     rhs.nrow = static_cast<size_t>(n_);
     rhs.ncol = 1;

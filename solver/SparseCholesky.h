@@ -1,0 +1,37 @@
+#pragma once
+// A sparse SPD matrix factored once and solved many times without allocation (the per-step
+// solve with A = M + βΔt²K of (3.6) is the floor of one time step). Two implementations, one
+// chosen by the build (PLATEIMPACT_FACTOR): CHOLMOD's simplicial LLᵀ (SparseCholeskyCholmod.cpp,
+// linux64) and Eigen's SimplicialLLT with AMD ordering (SparseCholeskyEigen.cpp: no library
+// outside the binary, the win64 build).
+#include <Eigen/Core>
+#include <Eigen/Sparse>
+#include <memory>
+
+namespace plate {
+
+class SparseCholesky {
+public:
+    // Factors the symmetric matrix (both triangles stored; the lower one is read).
+    // Throws std::runtime_error if the matrix is not positive definite.
+    explicit SparseCholesky(const Eigen::SparseMatrix<double>& spd);
+    ~SparseCholesky();
+    SparseCholesky(const SparseCholesky&) = delete;
+    SparseCholesky& operator=(const SparseCholesky&) = delete;
+
+    Eigen::Index size() const { return n_; }
+    long long factorNonZeros() const;
+    bool supernodal() const;
+    static const char* backend();  // "CHOLMOD" or "Eigen"
+
+    // x = S^{-1} b. Reuses the backend's workspace: no allocation after the first call.
+    // Not for concurrent use of one factor (each plate instance owns its factors).
+    void solve(const Eigen::VectorXd& b, Eigen::VectorXd& x) const;
+
+private:
+    struct Workspace;
+    Eigen::Index n_;
+    std::unique_ptr<Workspace> ws_;
+};
+
+}  // namespace plate
