@@ -4,8 +4,10 @@
 # sanitizer stage: an AddressSanitizer + UndefinedBehaviorSanitizer build of the FMU in
 # build-asan/ and the part of the Python suite that reaches every code path of the FMU, run
 # against it. Any sanitizer report fails the stage. Then the fuzz stage: the libFuzzer
-# harnesses of fuzz/ for 60 s each (scripts/fuzz.sh), any finding fails it. Arguments go to
-# both pytest runs; PLATEIMPACT_SANITIZER_STAGE=0 / PLATEIMPACT_FUZZ_STAGE=0 skip a stage.
+# harnesses of fuzz/ for 60 s each (scripts/fuzz.sh), any finding fails it. Before the Python
+# suite, the win64 stage builds the dual-platform FMU (scripts/build-win64.sh, mingw-w64) so
+# that python_tests/test_win64.py runs it under Wine. Arguments go to both pytest runs;
+# PLATEIMPACT_WIN64_STAGE=0 / PLATEIMPACT_SANITIZER_STAGE=0 / PLATEIMPACT_FUZZ_STAGE=0 skip a stage.
 set -euo pipefail
 repo="$(cd "$(dirname "${BASH_SOURCE[0]}")" && pwd)"
 bash "$repo/scripts/setup.sh"
@@ -13,6 +15,10 @@ bash "$repo/scripts/check-format.sh"
 cd "$repo/build"
 ctest --output-on-failure -j"$(nproc)"
 cd "$repo"
+if [ "${PLATEIMPACT_WIN64_STAGE:-1}" != 0 ]; then
+  echo "test.sh: win64 stage: build/dist/PlateImpact.fmu (linux64 + win64), tested under Wine by test_win64.py"
+  bash "$repo/scripts/build-win64.sh"
+fi
 "$repo/.venv/bin/python" -m pytest -q python_tests "$@"
 
 fuzz_stage() {

@@ -60,6 +60,9 @@ struct ModelInfo {
     int maxOutputDerivativeOrder;
     bool canGetAndSetFMUstate;  // and canSerializeFMUstate
     double defaultStopTime, defaultStepSize;
+    // HTML for documentation/index.html beside the table of variables (what the model is, its
+    // default scene, its limits); nullptr: the table only.
+    const char* documentationHtml = nullptr;
 };
 
 // A value or call the model rejects; the message names what, the value and what is allowed.

@@ -27,6 +27,41 @@ const fmu::ModelInfo kInfo{
     /*canGetAndSetFMUstate=*/true,
     /*defaultStopTime=*/0.2,
     /*defaultStepSize=*/0.001,
+    R"(<h2>What it computes</h2>
+<p>A Kirchhoff&ndash;Love plate [0, length] &times; [0, width], clamped along x = 0 and free elsewhere, between a flat
+obstacle below (obstacle_lower) and one above (obstacle_upper). The master moves the clamped edge
+(base_displacement) and may press on the plate (load, a uniform pressure). C1 finite elements (Argyris
+triangles or reduced Fraeijs de Veubeke&ndash;Sander quadrilaterals), the Newmark scheme (gamma = 1/2, beta)
+at the fixed internal step dt, and one exact contact QP per step keeping every mesh vertex between the
+obstacles (Pozzolini, Renard &amp; Salaün 2013). Beyond the paper: a singular mass (mass = singular_p0)
+whose impacts keep their energy as dt &rarr; 0, a restitution coefficient and Rayleigh damping.</p>
+<h2>The default scene</h2>
+<p>A 1.2 &times; 0.4 &times; 0.01 m steel plate (E = 210 GPa, &nu; = 0.3, &rho; = 7770 kg/m<sup>3</sup>),
+14 &times; 5 cells (140 Argyris triangles), obstacles at &plusmn;0.1 m, dt = 1e-5 s; driven with
+base_displacement = 0.09 sin(2&pi; 10 t) m it hits the obstacles from t &asymp; 0.05 s on.</p>
+<h2>Using it</h2>
+<ul>
+<li>Every communication step must be a whole multiple of dt (relative tolerance 1e-9).</li>
+<li>Inputs: give their first and second derivatives (fmi2SetRealInputDerivatives) when you can; otherwise
+the FMU extrapolates the communicated values (base_input_mode, load_input_mode).</li>
+<li>Outputs are absolute displacements; the energy ledger energy = E0 + energy_input &minus; energy_dissipated
+&minus; energy_damped holds to roundoff.</li>
+</ul>
+<h2>Limits: what the FMU refuses</h2>
+<p>Each refusal returns fmi2Error and logs what was wrong and the allowed range. Parameters outside their ranges
+(1e-4 &le; length, width &le; 1e4 m; 1e-6 &le; thickness &le; 100 m; 1 &le; youngs_modulus &le; 1e14 Pa;
+0 &lt; poisson_ratio &lt; 0.5; 0.01 &le; density &le; 1e6 kg/m<sup>3</sup>; 1 &le; nx, ny &le; 400;
+&minus;1e4 &le; obstacle_lower &lt; 0 &lt; obstacle_upper &le; 1e4 m; 1e-12 &le; dt &le; 1 s; 0 &le; beta &le; 0.5,
+below 0.25 with the stability bound on dt; |initial_load| &le; 1e12 Pa; modes &ge; 0; 0 &le; restitution &le; 1;
+0 &le; damping_mass &le; 1e6 1/s; 0 &le; damping_stiffness &le; 1 s; a singular mass needs modes = 0, beta &ge; 0.25
+and massless directions at every contact vertex); NaN or Inf inputs; a base displacement past an obstacle;
+a load beyond 1e12 Pa; a step that is not a whole multiple of dt; calls outside the states FMI 2.0 allows;
+FMU states of another build or damaged (XXH64 checksum).</p>
+<h2>Licences</h2>
+<p>The sparse factor is CHOLMOD's simplicial Cholesky (SuiteSparse 5.12.0: CHOLMOD Core and Cholesky, LGPL-2.1+;
+AMD and COLAMD, BSD-3-Clause), linked statically; texts in licenses/. The win64 binary links the GCC
+runtime libraries (GPL-3.0 with the GCC Runtime Library Exception) and mingw-w64's winpthreads (MIT).</p>
+)",
 };
 
 std::string format(const char* fmt, double a, double b, double c = 0.0) {

@@ -166,11 +166,41 @@ void writeVariables(std::ostream& xml, const fmu::Model& model) {
     xml << "    </InitialUnknowns>\n  </ModelStructure>\n\n</fmiModelDescription>\n";
 }
 
+// documentation/index.html (FMI 2.0, section 2.4): the model's own page and the same table of
+// variables the XML declares.
+void writeDocumentation(std::ostream& html, const fmu::Model& model) {
+    const fmu::ModelInfo& info = model.info();
+    html << "<!DOCTYPE html>\n<html lang=\"en\">\n<head><meta charset=\"utf-8\"><title>" << info.modelName
+         << "</title>\n<style>body{font-family:sans-serif;max-width:60em;margin:2em auto;line-height:1.4}"
+            "table{border-collapse:collapse}td,th{border:1px solid #bbb;padding:.2em .5em;vertical-align:top}"
+            "</style></head>\n<body>\n<h1>"
+         << info.modelName << "</h1>\n<p>" << escape(info.description) << "</p>\n";
+    if (info.documentationHtml) html << info.documentationHtml;
+    html << "<h2>Variables</h2>\n<table>\n<tr><th>name</th><th>value reference</th><th>causality</th><th>type</th>"
+            "<th>start</th><th>unit</th><th>description</th></tr>\n";
+    for (const Variable& v : model.variables()) {
+        const char* causality = v.causality == Causality::Parameter ? "parameter"
+                                : v.causality == Causality::Input   ? "input"
+                                                                    : "output";
+        html << "<tr><td><code>" << v.name << "</code></td><td>" << v.vr << "</td><td>" << causality << "</td><td>"
+             << fmu::typeName(v.type);
+        if (v.enumeration) {
+            html << " (";
+            for (std::size_t k = 0; k < v.enumeration->items.size(); ++k)
+                html << (k ? ", " : "") << v.enumeration->items[k].name << " = " << v.enumeration->items[k].value;
+            html << ")";
+        }
+        html << "</td><td>" << (v.causality == Causality::Output ? "" : escape(startText(v, model.get(v))))
+             << "</td><td>" << (v.unit ? escape(v.unit) : "") << "</td><td>" << escape(v.description) << "</td></tr>\n";
+    }
+    html << "</table>\n</body>\n</html>\n";
+}
+
 }  // namespace
 
 int main(int argc, char** argv) {
-    if (argc != 2) {
-        std::cerr << "usage: " << argv[0] << " <modelDescription.xml>\n";
+    if (argc != 2 && argc != 3) {
+        std::cerr << "usage: " << argv[0] << " <modelDescription.xml> [<documentation/index.html>]\n";
         return 2;
     }
     try {
@@ -182,6 +212,11 @@ int main(int argc, char** argv) {
             << "\" stepSize=\"" << real(model->info().defaultStepSize) << "\"/>\n\n";
         writeVariables(xml, *model);
         if (!xml) throw std::runtime_error(std::string("cannot write ") + argv[1]);
+        if (argc == 3) {
+            std::ofstream html(argv[2]);
+            writeDocumentation(html, *model);
+            if (!html) throw std::runtime_error(std::string("cannot write ") + argv[2]);
+        }
     } catch (const std::exception& e) {
         std::cerr << argv[0] << ": " << e.what() << "\n";
         return 1;

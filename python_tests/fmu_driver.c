@@ -47,7 +47,7 @@ static const char* library_error(void) { return dlerror(); }
 #include "fmi2Functions.h"
 
 // Declares `name` as the FMU's function of that name (used as a statement: LOAD(x);).
-#define LOAD(name)                                     \
+#define LOAD(name)                                      \
     name##TYPE* name = (name##TYPE*)symbol(lib, #name); \
     if (!name) return missing(#name)
 
@@ -90,7 +90,7 @@ typedef struct {
 } Outputs;
 
 static unsigned long log_messages = 0;
-static char last_error[2048] = "";  /* the last message logged with fmi2Error or worse */
+static char last_error[2048] = ""; /* the last message logged with fmi2Error or worse */
 
 static void logger(fmi2ComponentEnvironment env, fmi2String instance, fmi2Status status, fmi2String category,
                    fmi2String message, ...) {
@@ -285,7 +285,7 @@ static char* read_guid(const char* dir) {
  * given with its derivatives every h = 1e-4 s) for 0.1 s: one CSV row per communication point,
  * every Real output with 17 digits. */
 static void run_scene(const char* out, const char* guid, const char* resources, const fmi2CallbackFunctions* cb) {
-    FILE* f = fopen(out, "w");
+    FILE* f = fopen(out, "wb"); /* "\n" line ends on every platform */
     CHECK(f != NULL);
     fmi2Component c = F.instantiate("scene", fmi2CoSimulation, guid, resources, cb, fmi2False, fmi2False);
     CHECK(c != NULL);

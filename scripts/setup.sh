@@ -11,7 +11,6 @@ command -v g++ >/dev/null || need_apt+=(g++)
 command -v make >/dev/null || need_apt+=(make)
 command -v readelf >/dev/null || need_apt+=(binutils)
 [ -f /usr/include/eigen3/Eigen/Core ] || need_apt+=(libeigen3-dev)
-[ -f /usr/include/suitesparse/cholmod.h ] || need_apt+=(libsuitesparse-dev)
 [ -f /usr/include/gtest/gtest.h ] || need_apt+=(libgtest-dev)
 [ -f /usr/include/xxhash.h ] || need_apt+=(libxxhash-dev)  # the FMU-state checksum (header-only)
 command -v valgrind >/dev/null || need_apt+=(valgrind)  # python_tests/test_valgrind.py

@@ -59,8 +59,25 @@ endforeach()
 list(JOIN shipped ", " shipped_text)
 message(STATUS "${MODEL_IDENTIFIER}.fmu ships: ${shipped_text}")
 
+# documentation/index.html (the model's page, written from its table) and the licence texts of
+# what the binary links statically (documentation/licenses/).
+set(contents modelDescription.xml binaries)
+if(DEFINED DOCUMENTATION AND EXISTS "${DOCUMENTATION}")
+  configure_file("${DOCUMENTATION}" "${STAGING_DIR}/documentation/index.html" COPYONLY)
+  foreach(license IN LISTS LICENSES)
+    get_filename_component(part "${license}" DIRECTORY)
+    get_filename_component(part "${part}" DIRECTORY)  # .../AMD/Doc/License.txt -> AMD
+    get_filename_component(part "${part}" NAME)
+    if(part STREQUAL "CHOLMOD")
+      set(part "CHOLMOD-Core-Cholesky")  # .../CHOLMOD/Core/lesser.txt
+    endif()
+    configure_file("${license}" "${STAGING_DIR}/documentation/licenses/${part}.txt" COPYONLY)
+  endforeach()
+  list(APPEND contents documentation)
+endif()
+
 file(REMOVE "${FMU_FILE}")
-execute_process(COMMAND "${CMAKE_COMMAND}" -E tar cf "${FMU_FILE}" --format=zip modelDescription.xml binaries
+execute_process(COMMAND "${CMAKE_COMMAND}" -E tar cf "${FMU_FILE}" --format=zip ${contents}
                 WORKING_DIRECTORY "${STAGING_DIR}" RESULT_VARIABLE zip_result)
 if(NOT zip_result EQUAL 0)
   message(FATAL_ERROR "PackageFmu.cmake: zipping ${FMU_FILE} failed")
