@@ -10,6 +10,33 @@
 
 namespace plate {
 
+namespace {
+
+// The contact-space QP of a static problem (BoxQP.h with the given S): w ← w + S⁻¹Cᵀλ within
+// the obstacles (clamp at z0); returns λ, one entry per contact vertex. `failure` opens the
+// message of the ParameterError thrown if the QP does not converge.
+Eigen::VectorXd solveStaticContact(ContactColumns& columns, const ContactColumns::GatherFn& gather,
+                                   const Obstacles& obstacles, double z0, Eigen::VectorXd& w,
+                                   const std::string& failure) {
+    const int m = columns.count();
+    Eigen::VectorXd yFree, y, mu = Eigen::VectorXd::Zero(m);
+    gather(w, yFree);
+    const Eigen::VectorXd lower = Eigen::VectorXd::Constant(m, obstacles.lower - z0);
+    const Eigen::VectorXd upper = Eigen::VectorXd::Constant(m, obstacles.upper - z0);
+    std::vector<signed char> state(m, 0);
+    BoxQP qp(columns);
+    const QPResult r = qp.solve(yFree, lower, upper, state, mu, y);
+    if (!r.converged || !(r.kktResidual <= 1e-10)) {
+        std::ostringstream msg;
+        msg << failure << " did not converge (relative KKT " << r.kktResidual << ")";
+        throw ParameterError(msg.str());
+    }
+    for (int i : qp.active()) w.noalias() += mu[i] * columns.column(i);
+    return mu;
+}
+
+}  // namespace
+
 // The same contact-space QP as a time step, with S = K.
 Eigen::VectorXd staticEquilibrium(const DiscretePlate& plate, const Obstacles& obstacles, double z0, double p0,
                                   Eigen::VectorXd* contactForce) {
@@ -19,6 +46,9 @@ Eigen::VectorXd staticEquilibrium(const DiscretePlate& plate, const Obstacles& o
     if (contactForce) *contactForce = Eigen::VectorXd::Zero(obstacles.any() ? plate.contactCount() : 0);
     if (!obstacles.any()) return w;
     const int m = plate.contactCount();
+    const ContactColumns::GatherFn gather = [&plate](const Eigen::VectorXd& z, Eigen::VectorXd& y) {
+        plate.gatherContact(z, y);
+    };
     ContactColumns columns(
         m,
         [&](int j, Eigen::VectorXd& z) {
@@ -26,22 +56,10 @@ Eigen::VectorXd staticEquilibrium(const DiscretePlate& plate, const Obstacles& o
             plate.contactDirection(j, c);
             solveK(c, z);
         },
-        [&plate](const Eigen::VectorXd& z, Eigen::VectorXd& y) { plate.gatherContact(z, y); });
-    Eigen::VectorXd yFree, y, mu = Eigen::VectorXd::Zero(m);
-    plate.gatherContact(w, yFree);
-    const Eigen::VectorXd lower = Eigen::VectorXd::Constant(m, obstacles.lower - z0);
-    const Eigen::VectorXd upper = Eigen::VectorXd::Constant(m, obstacles.upper - z0);
-    std::vector<signed char> state(m, 0);
-    BoxQP qp(columns);
-    const QPResult r = qp.solve(yFree, lower, upper, state, mu, y);
-    if (!r.converged || !(r.kktResidual <= 1e-10)) {
-        std::ostringstream msg;
-        msg << "invalid parameter initial_load = " << p0
-            << ": the static contact problem for the initial state did not converge (relative KKT " << r.kktResidual
-            << ")";
-        throw ParameterError(msg.str());
-    }
-    for (int i : qp.active()) w.noalias() += mu[i] * columns.column(i);
+        gather);
+    std::ostringstream what;
+    what << "invalid parameter initial_load = " << p0 << ": the static contact problem for the initial state";
+    const Eigen::VectorXd mu = solveStaticContact(columns, gather, obstacles, z0, w, what.str());
     if (contactForce) *contactForce = mu;
     return w;
 }
@@ -81,7 +99,7 @@ Eigen::VectorXd masslessEquilibrium(const ClampedPlate& plate, const Eigen::Spar
     w += w0;
     contactForce = Eigen::VectorXd::Zero(obstacles.any() ? m : 0);
     if (!obstacles.any()) return w;
-    const auto gather = [&plate](const Eigen::VectorXd& v, Eigen::VectorXd& y) {
+    const ContactColumns::GatherFn gather = [&plate](const Eigen::VectorXd& v, Eigen::VectorXd& y) {
         y.resize(static_cast<Eigen::Index>(plate.contactDofs.size()));
         for (std::size_t i = 0; i < plate.contactDofs.size(); ++i)
             y[static_cast<Eigen::Index>(i)] = v[plate.contactDofs[i]];
@@ -94,20 +112,8 @@ Eigen::VectorXd masslessEquilibrium(const ClampedPlate& plate, const Eigen::Spar
             correction(c, z);
         },
         gather);
-    Eigen::VectorXd yFree, y, mu = Eigen::VectorXd::Zero(m);
-    gather(w, yFree);
-    const Eigen::VectorXd lower = Eigen::VectorXd::Constant(m, obstacles.lower - z0);
-    const Eigen::VectorXd upper = Eigen::VectorXd::Constant(m, obstacles.upper - z0);
-    std::vector<signed char> state(m, 0);
-    BoxQP qp(columns);
-    const QPResult res = qp.solve(yFree, lower, upper, state, mu, y);
-    if (!res.converged || !(res.kktResidual <= 1e-10)) {
-        std::ostringstream msg;
-        msg << "the contact problem of the singular mass's initial equilibrium did not converge (relative KKT "
-            << res.kktResidual << ")";
-        throw ParameterError(msg.str());
-    }
-    for (int i : qp.active()) w.noalias() += mu[i] * columns.column(i);
+    const Eigen::VectorXd mu = solveStaticContact(columns, gather, obstacles, z0, w,
+                                                  "the contact problem of the singular mass's initial equilibrium");
     contactForce = mu;
     return w;
 }

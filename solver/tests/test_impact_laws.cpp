@@ -4,6 +4,7 @@
 #include <gtest/gtest.h>
 
 #include <Eigen/Dense>
+#include <Eigen/SparseCholesky>
 #include <cmath>
 #include <cstdio>
 #include <memory>
@@ -305,4 +306,38 @@ TEST(ImpactLaws, RayleighDampingDecaysEachModeAtItsRate) {
     EXPECT_LE(worst, 1e-5);
     // Ledger: what the energy lost is what the damping booked.
     EXPECT_NEAR(stepper.energy() + stepper.state().energyDamped, e0, 1e-10 * e0);
+}
+
+TEST(SingularMass, InitialStateIsBroughtToMasslessEquilibrium) {
+    // A start that is not balanced on the massless directions: the static shape under a force
+    // at one dof, released (load 0). The projection keeps what the singular mass sees
+    // (Bᵀ(w − w0) = 0) and balances the rest (K w in range B + contact); a start pressed onto
+    // an obstacle (large force) exercises the contact QP of the projection.
+    const Rig rig;
+    const MasslessBalance balance(rig);
+    const auto& plate = *rig.withSingular;
+    Eigen::SimplicialLDLT<Eigen::SparseMatrix<double>> k(plate.stiffness);
+    Obstacles obstacles;
+    obstacles.lower = -0.1;
+    obstacles.upper = 0.1;
+    for (double force : {1e3, 3e4}) {
+        Eigen::VectorXd f = Eigen::VectorXd::Zero(plate.stiffness.rows());
+        f[plate.contactDofs.back()] = force;  // a point force at the corner vertex (length, width)
+        Eigen::VectorXd w0 = k.solve(f);
+        if (force > 1e4) w0 = w0.cwiseMin(0.1);  // past the obstacle only where a vertex would be
+        Eigen::VectorXd lambda;
+        const Eigen::VectorXd w = masslessEquilibrium(plate, rig.couplingFree, obstacles, 0.0, 0.0, w0, lambda);
+        EXPECT_LE((rig.couplingFree.transpose() * (w - w0)).norm(),
+                  1e-10 * (rig.couplingFree.transpose() * w0).norm() + 1e-300);
+        const double defect = balance.check(plate.stiffness * w, w, 0.1).first;
+        EXPECT_LE(defect, 1e-9) << "force " << force;
+        EXPECT_LE(lambda.maxCoeff(), 0.0);  // the upper obstacle only pushes down
+        int onObstacle = 0;
+        for (auto d : plate.contactDofs) {
+            EXPECT_LE(w[d], 0.1 + 1e-12);
+            onObstacle += std::abs(w[d] - 0.1) <= 1e-12;
+        }
+        EXPECT_EQ(onObstacle > 0, force > 1e4) << "force " << force;
+        EXPECT_GT(discreteEnergy(plate, 1e-5, 0.5, w0, w0), discreteEnergy(plate, 1e-5, 0.5, w, w));
+    }
 }
