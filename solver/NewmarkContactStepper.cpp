@@ -147,10 +147,6 @@ void NewmarkContactStepper::step(double zNext, double pNext) {
     if (qp_) {
         const double lo = obstacles_.lower - zNext, hi = obstacles_.upper - zNext;
         bool violated = false;
-        // 1e-12 m covers the roundoff of the gathered values the bound is compared with.
-        const bool mayTouch =
-            checkMargin_ <= 0.0 ||
-            rowNormBound_ * (wNext_ - wCheck_).norm() + std::abs(zNext - zCheck_) + 1e-12 >= checkMargin_;
         if (generalLaw_) {
             // The constraint on (u⁺ + e u⁻)/(1 + e) (§12): per-vertex bounds on y⁺ = C w⁺,
             // (1+e)·obstacle − e u⁻ − z⁺. Every vertex is looked at, every step.
@@ -163,7 +159,8 @@ void NewmarkContactStepper::step(double zNext, double pNext) {
                 upperBound_[i] = e > 0.0 ? (1.0 + e) * obstacles_.upper - e * uPrev - zNext : hi;
                 violated |= (yFree_[i] < lowerBound_[i]) | (yFree_[i] > upperBound_[i]);
             }
-        } else if (mayTouch) {
+        } else if (checkMargin_ <= 0.0 ||  // 1e-12 m: roundoff of the values the bound is compared with
+                   rowNormBound_ * (wNext_ - wCheck_).norm() + std::abs(zNext - zCheck_) + 1e-12 >= checkMargin_) {
             plate_->gatherContact(wNext_, yFree_);
             double margin = std::numeric_limits<double>::infinity();
             for (int i = 0; i < yFree_.size(); ++i) {
@@ -192,29 +189,28 @@ void NewmarkContactStepper::step(double zNext, double pNext) {
                     << " iterations, relative KKT residual " << kkt << ")";
                 throw StepError(msg.str());
             }
-            if (!generalLaw_) plate_->gatherContact(s.wPrev, yPrev_);
-            double muSum = 0.0;
-            for (int i : qp_->active()) {
-                wNext_.noalias() += mu_[i] * columns_->column(i);
-                muSum += mu_[i];
-                // Loss ½ λᵀ(u⁻ − u⁺) on the active vertices (docs/theory.md), absolute heights. Each
-                // term is ≥ 0 in exact arithmetic (u⁺ on the obstacle, u⁻ not past it). A vertex
-                // that stays on the obstacle has u⁻ there only up to the roundoff of
-                // w + Σ μ_j A⁻¹Cᵀe_j (~1e-17 m), which can make its term ~1e-13 J negative: that
-                // is no physical work at all, so it is dropped — energy_dissipated never
-                // decreases, energy_input stays exactly 0 without inputs, and the ledger keeps
-                // closing to roundoff (the dropped amounts are of that size).
-                if (!generalLaw_) dissipated += std::max(0.0, mu_[i] * ((yPrev_[i] + s.zPrev) - (y_[i] + zNext)));
-            }
-            if (!generalLaw_) {
-                dissipated /= 2.0 * dt2;
-                contactWorkOnBase = -muSum * (zNext - s.zPrev) / (2.0 * dt2);
-            }
+            for (int i : qp_->active()) wNext_.noalias() += mu_[i] * columns_->column(i);
             contactCount = static_cast<int>(qp_->active().size());
         } else {
             std::fill(trialState_.begin(), trialState_.end(), 0);
         }
-        if (generalLaw_) {
+        if (!generalLaw_ && violated) {
+            // Loss ½ λᵀ(u⁻ − u⁺) on the active vertices (docs/theory.md), absolute heights. Each
+            // term is ≥ 0 in exact arithmetic (u⁺ on the obstacle, u⁻ not past it). A vertex
+            // that stays on the obstacle has u⁻ there only up to the roundoff of
+            // w + Σ μ_j A⁻¹Cᵀe_j (~1e-17 m), which can make its term ~1e-13 J negative: that
+            // is no physical work at all, so it is dropped — energy_dissipated never
+            // decreases, energy_input stays exactly 0 without inputs, and the ledger keeps
+            // closing to roundoff (the dropped amounts are of that size).
+            plate_->gatherContact(s.wPrev, yPrev_);
+            double muSum = 0.0;
+            for (int i : qp_->active()) {
+                muSum += mu_[i];
+                dissipated += std::max(0.0, mu_[i] * ((yPrev_[i] + s.zPrev) - (y_[i] + zNext)));
+            }
+            dissipated /= 2.0 * dt2;
+            contactWorkOnBase = -muSum * (zNext - s.zPrev) / (2.0 * dt2);
+        } else if (generalLaw_) {
             // The contact work of the step, ½ τᵀ(u⁺ − u⁻)/Δt² with τ = μ (+ ν with a singular mass)
             // the whole impulse: at a vertex on the law's constraint u⁺ − u⁻ = (1+e)(obstacle − u⁻)
             // (§12). Not clamped: with e > 0 or a singular mass it can return energy (§12, §11).
