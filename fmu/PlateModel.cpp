@@ -1,6 +1,7 @@
 // The PlateImpact model binding: plate::PlateSimulation behind fmu::Model. The FMI layer
 // (Instance.cpp) calls it; it knows the plate's variables (PlateVariables.cpp), builds the
 // simulation from them, and feeds it the inputs each communication step. No numerics here.
+#include <array>
 #include <cmath>
 #include <cstdio>
 #include <memory>
@@ -13,9 +14,6 @@
 namespace plateimpact {
 
 namespace {
-
-// Tolerance of "h is a whole multiple of dt" (importers' step sizes wobble in the last digits).
-constexpr double kStepMultipleTolerance = 1e-9;
 
 const fmu::ModelInfo kInfo{
     "PlateImpact",
@@ -79,7 +77,7 @@ public:
     void set(const fmu::Variable& v, double x) override { setValue(values_, v, x); }
 
     void setInputDerivative(const fmu::Variable& v, int order, double x) override {
-        InputPort& port = v.vr == kVrBaseDisplacement ? values_.baseDisplacement : values_.load;
+        InputPort& port = *values_.inputPort(v.vr);
         (order == 1 ? port.signal.d1 : port.signal.d2) = x;
         port.derivativesGiven = true;
     }
@@ -90,6 +88,8 @@ public:
             values_.parameters, values_.baseDisplacement.signal.value, values_.load.signal.value);
         builtWith_ = configuration();
         simulationBase0_ = values_.baseDisplacement.signal.value;
+        clampPosition_ = simulationBase0_;
+        clampVelocity_ = 0.0;
         refreshOutputs();
         const plate::PlateParameters& p = values_.parameters;
         trace(format("simulation built (nx = %g, ny = %g, dt = %g s)", p.nx, p.ny, p.dt));
@@ -103,48 +103,39 @@ public:
 
     void doStep(double t, double h) override {
         if (!simulation_) throw fmu::ModelError("internal error: no simulation in state stepComplete");
-        const double dt = simulation_->parameters().dt;
-        const double ratio = h / dt;
-        const long long steps = ratio < 9.0e15 ? std::llround(ratio) : 0;
-        if (steps < 1 || std::fabs(double(steps) * dt - h) > kStepMultipleTolerance * h) {
-            char text[400];
-            std::snprintf(text, sizeof text,
-                          "communicationStepSize h = %.17g is not a whole multiple of dt = %.17g (h/dt = %.17g); the "
-                          "rule is h = n*dt with an integer n >= 1, relative tolerance %g",
-                          h, dt, ratio, kStepMultipleTolerance);
-            throw fmu::ModelError(text);
+        plate::StepPlan plan;
+        try {
+            plan = simulation_->plan(h);  // any h the grid resolves (docs/theory.md §15)
+        } catch (const plate::StepError& e) {
+            throw fmu::ModelError(e.what());
         }
         // The communicated values at this point extend the histories; a master that set no
         // derivatives gets the inputs reconstructed from them (docs/theory.md §8). The
-        // history's times are the model's own (whole numbers of dt): a master's roundoff in t
-        // does not reach the divided differences.
+        // history's times are the model's own: a master's roundoff in t does not reach the
+        // divided differences.
         const double now = simulation_->time();
-        values_.baseDisplacement.history.record(now, values_.baseDisplacement.signal.value);
-        values_.load.history.record(now, values_.load.signal.value);
-        const double span = double(steps) * dt;  // the step as taken (h up to roundoff)
+        for (InputPort* port : ports()) port->history.record(now, port->signal.value);
         try {
-            // A reconstructed clamp stays between the obstacles the master's values respect.
-            const plate::PlateParameters& p = simulation_->parameters();
-            const double lower = p.obstacleLowerEnabled ? p.obstacleLower : -plate::kMaxDisplacement;
-            const double upper = p.obstacleUpperEnabled ? p.obstacleUpper : plate::kMaxDisplacement;
-            simulation_->advance(steps, values_.baseDisplacement.stepSignal(span, lower, upper),
-                                 values_.load.stepSignal(span, -plate::kMaxLoad, plate::kMaxLoad));
+            const plate::InputSignal base = clampSignal(plan.span);
+            simulation_->communicate(plan, base, values_.load.stepSignal(plan.span, -plate::kMaxLoad, plate::kMaxLoad));
+            advanceClamp(base, plan.span);
         } catch (const plate::StepError& e) {
             refreshOutputs();  // the simulation stays at its last good step (for debugging)
             throw fmu::ModelError(
                 format("step from t = %.17g failed at t = %.17g: ", t, t + simulation_->time() - now) + e.what());
         }
         refreshOutputs();
-        trace(format("t = %.17g, h = %.17g, %g steps", t, h, double(steps)));
+        trace(format("t = %.17g, h = %.17g, %g steps", t, h, double(plan.steps)));
     }
 
     // The model's part of an FMU state: per input the derivatives, whether they were given and
     // the history; then whether a simulation exists, the base it was built with and its state.
     void saveState(std::vector<double>& out) const override {
-        for (const InputPort* port : {&values_.baseDisplacement, &values_.load}) {
+        for (const InputPort* port : const_cast<PlateModel*>(this)->ports()) {
             out.insert(out.end(), {port->signal.d1, port->signal.d2, port->derivativesGiven ? 1.0 : 0.0});
             port->history.serialize(out);
         }
+        out.insert(out.end(), {clampPosition_, clampVelocity_});
         out.push_back(simulation_ ? 1.0 : 0.0);
         out.push_back(simulationBase0_);
         if (simulation_) {
@@ -161,7 +152,7 @@ public:
             in += n;
             return at;
         };
-        for (InputPort* port : {&values_.baseDisplacement, &values_.load}) {
+        for (InputPort* port : ports()) {
             const double* x = take(3 + plate::InputHistory::kSerializedSize, "an input's derivatives and history");
             if (!std::isfinite(x[0]) || !std::isfinite(x[1]) || (x[2] != 0.0 && x[2] != 1.0))
                 throw fmu::ModelError("an input's derivatives are not finite");
@@ -174,6 +165,10 @@ public:
                 throw fmu::ModelError(e.what());
             }
         }
+        const double* clamp = take(2, "the clamp's motion");
+        if (!std::isfinite(clamp[0]) || !std::isfinite(clamp[1])) throw fmu::ModelError("the clamp's motion is not finite");
+        clampPosition_ = clamp[0];
+        clampVelocity_ = clamp[1];
         const double* flags = take(2, "the simulation flag");
         if ((flags[0] != 0.0 && flags[0] != 1.0) || !std::isfinite(flags[1]))
             throw fmu::ModelError("simulation flag or initial base displacement out of range");
@@ -207,12 +202,49 @@ private:
             if (v.causality == fmu::Causality::Parameter) out.push_back(getValue(values_, v));
         return out;
     }
-    void refreshOutputs() { values_.outputs = simulation_ ? simulation_->outputs() : plate::PlateOutputs{}; }
+    void refreshOutputs() {
+        values_.outputs = simulation_ ? simulation_->outputs() : plate::PlateOutputs{};
+        values_.simulation = simulation_.get();
+        values_.portValid = false;
+    }
+
+    std::array<InputPort*, 4> ports() {
+        return {&values_.baseDisplacement, &values_.baseVelocity, &values_.baseAcceleration, &values_.load};
+    }
+
+    // The clamp's path over a step of length span from the communication time (docs/theory.md
+    // §16): the displacement input as it comes, or the exact integral of the velocity (once) or
+    // the acceleration (twice) input from the clamp's position and velocity there. A
+    // reconstructed clamp stays between the obstacles the master's values respect.
+    plate::InputSignal clampSignal(double span) {
+        const plate::PlateParameters& p = simulation_->parameters();
+        const double lower = p.obstacleLowerEnabled ? p.obstacleLower : -plate::kMaxDisplacement;
+        const double upper = p.obstacleUpperEnabled ? p.obstacleUpper : plate::kMaxDisplacement;
+        switch (values_.baseDrive) {
+            case BaseDrive::Velocity:
+                return values_.baseVelocity.stepSignal(span, -kMaxBaseVelocity, kMaxBaseVelocity)
+                    .integral(clampPosition_);
+            case BaseDrive::Acceleration:
+                return values_.baseAcceleration.stepSignal(span, -kMaxBaseAcceleration, kMaxBaseAcceleration)
+                    .integral(clampVelocity_)
+                    .integral(clampPosition_);
+            case BaseDrive::Displacement:
+            default:
+                return values_.baseDisplacement.stepSignal(span, lower, upper);
+        }
+    }
+    void advanceClamp(const plate::InputSignal& base, double span) {
+        if (values_.baseDrive == BaseDrive::Displacement) return;
+        clampPosition_ = base.at(span);
+        clampVelocity_ = base.d1 + span * (base.d2 + span * (0.5 * base.d3 + span * base.d4 / 6.0));
+    }
 
     PlateValues values_;
     std::unique_ptr<plate::PlateSimulation> simulation_;
     std::vector<double> builtWith_;  // configuration() when simulation_ was built
     double simulationBase0_ = 0.0;  // base displacement the simulation was built with
+    // The clamp at the communication time when a velocity or an acceleration drives it.
+    double clampPosition_ = 0.0, clampVelocity_ = 0.0;
 };
 
 }  // namespace

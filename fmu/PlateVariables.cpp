@@ -2,6 +2,8 @@
 
 #include <array>
 #include <climits>
+#include <cmath>
+#include <cstdio>
 
 namespace plateimpact {
 
@@ -36,6 +38,13 @@ const fmu::EnumerationType kMassModel{
       "impacts as dt -> 0"},
      {"singular_p1dg", 3, "Singular mass projected on element-wise linear functions (Argyris only)"}}};
 
+const fmu::EnumerationType kBaseDrive{
+    "BaseDrive",
+    "Which input moves the clamped edge (docs/theory.md §16)",
+    {{"displacement", 1, "base_displacement (the clamp position)"},
+     {"velocity", 2, "base_velocity, integrated exactly over each communication step from the position at its start"},
+     {"acceleration", 3, "base_acceleration, integrated twice exactly over each communication step"}}};
+
 // A row: the variable as modelDescription.xml declares it, and how its value is read and set.
 struct Row {
     fmu::Variable variable;
@@ -56,12 +65,27 @@ fmu::Variable output(fmi2ValueReference vr, const char* name, VariableType type,
     return {vr, name, type, Causality::Output, description, unit, nullptr, false, false};
 }
 
-double saturate(long long n) { return double(n > INT_MAX ? INT_MAX : n < INT_MIN ? INT_MIN : n); }
+double saturate(double n) { return n > INT_MAX ? double(INT_MAX) : n; }  // counts are >= 0
 
 #define PARAMETER_FIELD(field)                                       \
     [](const PlateValues& v) { return double(v.parameters.field); }, \
         [](PlateValues& v, double x) { v.parameters.field = decltype(v.parameters.field)(x); }
 #define OUTPUT_FIELD(field) [](const PlateValues& v) { return double(v.outputs.field); }, nullptr
+#define PORT_FIELD(field) [](const PlateValues& v) { return v.port().field; }, nullptr
+
+// An input of the clamp's motion with a range (ModelError names it, the value and the range).
+template <fmi2ValueReference vr>
+void setMotion(PlateValues& v, double x) {
+    const double bound = vr == kVrBaseVelocity ? kMaxBaseVelocity : kMaxBaseAcceleration;
+    if (!(std::fabs(x) <= bound)) {
+        char text[200];
+        std::snprintf(text, sizeof text, "%s = %.17g out of range (allowed: |%s| <= %g)",
+                      vr == kVrBaseVelocity ? "base_velocity" : "base_acceleration", x,
+                      vr == kVrBaseVelocity ? "base_velocity" : "base_acceleration", bound);
+        throw fmu::ModelError(text);
+    }
+    v.inputPort(vr)->setValue(x);
+}
 
 const std::vector<Row>& rows() {
     static const std::vector<Row> table = {
@@ -114,7 +138,11 @@ const std::vector<Row>& rows() {
                    "set by the master always win)",
                    &kInputMode),
          [](const PlateValues& v) { return double(static_cast<int>(v.baseDisplacement.mode)); },
-         [](PlateValues& v, double x) { v.baseDisplacement.mode = static_cast<InputMode>(int(x)); }},
+         [](PlateValues& v, double x) {
+             // One mode for every input of the clamp's motion.
+             for (InputPort* port : {&v.baseDisplacement, &v.baseVelocity, &v.baseAcceleration})
+                 port->mode = static_cast<InputMode>(int(x));
+         }},
         {parameter(kVrLoadInputMode, "load_input_mode", VariableType::Enumeration, nullptr,
                    "How load moves inside a communication step when the master gives no input derivatives: hold "
                    "(a load may step; extrapolating a step overshoots), linear or quadratic",
@@ -146,6 +174,19 @@ const std::vector<Row>& rows() {
         {input(kVrLoad, "load", "Pa", false, "Uniform pressure on the plate, positive upward, acting from t = 0 on"),
          [](const PlateValues& v) { return v.load.signal.value; },
          [](PlateValues& v, double x) { v.load.setValue(x); }},
+        {parameter(kVrBaseDrive, "base_drive", VariableType::Enumeration, nullptr,
+                   "Which input moves the clamped edge: displacement (base_displacement), velocity (base_velocity, "
+                   "integrated from the initial base_displacement) or acceleration (base_acceleration, integrated "
+                   "twice, the clamp at rest at t = 0)",
+                   &kBaseDrive),
+         [](const PlateValues& v) { return double(static_cast<int>(v.baseDrive)); },
+         [](PlateValues& v, double x) { v.baseDrive = static_cast<BaseDrive>(int(x)); }},
+        {input(kVrBaseVelocity, "base_velocity", "m/s", false,
+               "Vertical velocity of the clamped edge (used when base_drive = velocity; |v| <= 1e3 m/s)"),
+         [](const PlateValues& v) { return v.baseVelocity.signal.value; }, setMotion<kVrBaseVelocity>},
+        {input(kVrBaseAcceleration, "base_acceleration", "m/s2", false,
+               "Vertical acceleration of the clamped edge (used when base_drive = acceleration; |a| <= 1e7 m/s2)"),
+         [](const PlateValues& v) { return v.baseAcceleration.signal.value; }, setMotion<kVrBaseAcceleration>},
         {output(kVrCorner1, "corner_1", VariableType::Real, "m",
                 "Absolute displacement w at the free corner (length, 0)"),
          OUTPUT_FIELD(corner1)},
@@ -179,12 +220,68 @@ const std::vector<Row>& rows() {
         {output(kVrQpIterationsMax, "qp_iterations_max", VariableType::Integer, nullptr,
                 "Largest number of active-set iterations of one per-step QP so far"),
          OUTPUT_FIELD(qpIterationsMax)},
+        {output(kVrClampForce, "clamp_force", VariableType::Real, "N",
+                "Vertical force the plate exerts on the clamp (positive upward): what a shaker carrying the clamp "
+                "feels; the scheme's value at the last internal step's centre t - dt (docs/theory.md §14)"),
+         PORT_FIELD(clampForce)},
+        {output(kVrClampMoment, "clamp_moment", VariableType::Real, "N.m",
+                "Moment about the clamp line x = 0 of the forces the plate exerts on the clamp (positive when "
+                "they lift the plate side), at t - dt"),
+         PORT_FIELD(clampMoment)},
+        {output(kVrClampDisplacement, "clamp_displacement", VariableType::Real, "m",
+                "Position z of the clamped edge as the scheme took it (the integrated input for base_drive = "
+                "velocity or acceleration)"),
+         PORT_FIELD(clampDisplacement)},
+        {output(kVrClampVelocity, "clamp_velocity", VariableType::Real, "m/s",
+                "Velocity of the clamped edge (second-order backward difference of the scheme's positions)"),
+         PORT_FIELD(clampVelocity)},
+        {output(kVrClampAcceleration, "clamp_acceleration", VariableType::Real, "m/s2",
+                "Acceleration of the clamped edge at t - dt (the scheme's central difference): the control "
+                "accelerometer"),
+         PORT_FIELD(clampAcceleration)},
+        {output(kVrContactForceLower, "contact_force_lower", VariableType::Real, "N",
+                "Force of the lower obstacle on the plate over the last internal step (>= 0, upward)"),
+         PORT_FIELD(contactForce[0])},
+        {output(kVrContactForceUpper, "contact_force_upper", VariableType::Real, "N",
+                "Force of the upper obstacle on the plate over the last internal step (<= 0, downward)"),
+         PORT_FIELD(contactForce[1])},
+        {output(kVrContactImpulseLower, "contact_impulse_lower", VariableType::Real, "N.s",
+                "Impulse of the lower obstacle on the plate since t = 0 (cumulative)"),
+         PORT_FIELD(contactImpulse[0])},
+        {output(kVrContactImpulseUpper, "contact_impulse_upper", VariableType::Real, "N.s",
+                "Impulse of the upper obstacle on the plate since t = 0 (cumulative, <= 0)"),
+         PORT_FIELD(contactImpulse[1])},
+        {output(kVrImpactsLower, "impacts_lower", VariableType::Integer, nullptr,
+                "Contact onsets on the lower obstacle since t = 0 (steps whose contact force starts from zero)"),
+         PORT_FIELD(impacts[0])},
+        {output(kVrImpactsUpper, "impacts_upper", VariableType::Integer, nullptr,
+                "Contact onsets on the upper obstacle since t = 0"),
+         PORT_FIELD(impacts[1])},
+        {output(kVrCorner1Velocity, "corner_1_velocity", VariableType::Real, "m/s",
+                "Absolute velocity at corner_1 (second-order backward difference)"),
+         PORT_FIELD(velocity[0])},
+        {output(kVrCorner2Velocity, "corner_2_velocity", VariableType::Real, "m/s",
+                "Absolute velocity at corner_2"),
+         PORT_FIELD(velocity[1])},
+        {output(kVrFreeEdgeMidVelocity, "free_edge_mid_velocity", VariableType::Real, "m/s",
+                "Absolute velocity at free_edge_mid"),
+         PORT_FIELD(velocity[2])},
+        {output(kVrCorner1Acceleration, "corner_1_acceleration", VariableType::Real, "m/s2",
+                "Absolute acceleration at corner_1 at t - dt (the scheme's central difference)"),
+         PORT_FIELD(acceleration[0])},
+        {output(kVrCorner2Acceleration, "corner_2_acceleration", VariableType::Real, "m/s2",
+                "Absolute acceleration at corner_2 at t - dt"),
+         PORT_FIELD(acceleration[1])},
+        {output(kVrFreeEdgeMidAcceleration, "free_edge_mid_acceleration", VariableType::Real, "m/s2",
+                "Absolute acceleration at free_edge_mid at t - dt"),
+         PORT_FIELD(acceleration[2])},
     };
     return table;
 }
 
 #undef PARAMETER_FIELD
 #undef OUTPUT_FIELD
+#undef PORT_FIELD
 
 const Row& rowOf(const fmu::Variable& v) {
     // `v` is an element of plateVariables(), which lists the rows' variables in the same order.
@@ -200,6 +297,16 @@ const std::vector<fmu::Variable>& plateVariables() {
         return out;
     }();
     return variables;
+}
+
+InputPort* PlateValues::inputPort(fmi2ValueReference vr) {
+    switch (vr) {
+        case kVrBaseDisplacement: return &baseDisplacement;
+        case kVrBaseVelocity: return &baseVelocity;
+        case kVrBaseAcceleration: return &baseAcceleration;
+        case kVrLoad: return &load;
+        default: return nullptr;
+    }
 }
 
 double getValue(const PlateValues& values, const fmu::Variable& v) { return rowOf(v).get(values); }

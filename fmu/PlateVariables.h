@@ -33,14 +33,31 @@ struct InputPort {
     }
 };
 
+// Which input moves the clamp (docs/theory.md §16): the others are ignored.
+enum class BaseDrive { Displacement = 1, Velocity = 2, Acceleration = 3 };
+
 // Everything an importer can set or read, as plain values.
 struct PlateValues {
     plate::PlateParameters parameters;  // defaults = the start values of modelDescription.xml
-    // Default modes, chosen by measurement (docs/input-accuracy.md): a clamp displacement is
-    // smooth (quadratic extrapolation); a load may step, and extrapolating a step overshoots.
+    // Default modes, chosen by measurement (docs/input-accuracy.md): a clamp motion is smooth
+    // (quadratic extrapolation); a load may step, and extrapolating a step overshoots.
     InputPort baseDisplacement{plate::InputMode::Quadratic};
+    InputPort baseVelocity{plate::InputMode::Quadratic};
+    InputPort baseAcceleration{plate::InputMode::Quadratic};
     InputPort load{plate::InputMode::Hold};
-    plate::PlateOutputs outputs;  // copy of PlateSimulation::outputs() after each change
+    BaseDrive baseDrive = BaseDrive::Displacement;
+    // The outputs after each change; the port's fields only once one of them is read (they cost
+    // probe and rotation products nobody else needs): port() fills them in.
+    plate::PlateOutputs outputs;
+    const plate::PlateSimulation* simulation = nullptr;
+    mutable plate::PlateOutputs portOutputs;
+    mutable bool portValid = false;
+    const plate::PlateOutputs& port() const {
+        if (!portValid && simulation) portOutputs = simulation->outputs(true);
+        portValid = simulation != nullptr;
+        return simulation ? portOutputs : outputs;
+    }
+    InputPort* inputPort(fmi2ValueReference vr);  // nullptr: not an input
 };
 
 // The value references: part of the interface, never renumbered (a gap leaves room to group).
@@ -81,7 +98,32 @@ enum PlateVr : fmi2ValueReference {
     kVrRestitution = 51,
     kVrDampingMass = 52,
     kVrDampingStiffness = 53,
+    kVrBaseDrive = 54,
+    kVrBaseVelocity = 22,
+    kVrBaseAcceleration = 23,
+    kVrClampForce = 70,
+    kVrClampMoment = 71,
+    kVrClampDisplacement = 72,
+    kVrClampVelocity = 73,
+    kVrClampAcceleration = 74,
+    kVrContactForceLower = 75,
+    kVrContactForceUpper = 76,
+    kVrContactImpulseLower = 77,
+    kVrContactImpulseUpper = 78,
+    kVrImpactsLower = 79,
+    kVrImpactsUpper = 80,
+    kVrCorner1Velocity = 81,
+    kVrCorner2Velocity = 82,
+    kVrFreeEdgeMidVelocity = 83,
+    kVrCorner1Acceleration = 84,
+    kVrCorner2Acceleration = 85,
+    kVrFreeEdgeMidAcceleration = 86,
 };
+
+// Bounds of the clamp's velocity and acceleration inputs: far beyond any shaker (1 km/s,
+// 10^6 g), inside what keeps the integrated clamp position's arithmetic finite.
+constexpr double kMaxBaseVelocity = 1e3;  // m/s
+constexpr double kMaxBaseAcceleration = 1e7;  // m/s^2
 
 const std::vector<fmu::Variable>& plateVariables();
 double getValue(const PlateValues& values, const fmu::Variable& v);

@@ -16,7 +16,9 @@ constexpr char kMagic[8] = {'P', 'L', 'A', 'T', 'E', 'I', 'M', 'P'};
 // Version 3: values walked from the table of variables, outputs no longer stored (they are
 // recomputed from the model's state). Version 4: the impact-law parameters and the scheme's
 // damping energy and contact impulses (docs/theory.md §11–13). Older states are refused by name.
-constexpr std::uint32_t kFormatVersion = 4;
+// Version 5: the port (a third time level, contact sums, the clamp's motion inputs, the
+// communication time between grid points; docs/theory.md §14–16).
+constexpr std::uint32_t kFormatVersion = 5;
 constexpr std::size_t kGuidField = 48;
 constexpr std::size_t kChecksumOffset = 8 + 4 + 4 + kGuidField + 8;
 constexpr std::size_t kHeaderBytes = kChecksumOffset + 8;

@@ -4,6 +4,7 @@
 //
 //   write_model_description <output.xml>
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <cstdio>
 #include <cstdlib>
@@ -52,19 +53,35 @@ std::string real(double x) {
     return text;
 }
 
-// SI units as FMI 2.0 BaseUnit exponents.
-const std::map<std::string, std::string>& baseUnits() {
-    static const std::map<std::string, std::string> units = {
-        {"m", "m=\"1\""},
-        {"Pa", "kg=\"1\" m=\"-1\" s=\"-2\""},
-        {"kg/m3", "kg=\"1\" m=\"-3\""},
-        {"s", "s=\"1\""},
-        {"J", "kg=\"1\" m=\"2\" s=\"-2\""},
-        {"1", ""},
-        {"Hz", "s=\"-1\""},
-        {"1/s", "s=\"-1\""},
-    };
-    return units;
+// A unit as the row spells it — SI symbols joined by "." (product) and "/" (quotient), each
+// with an optional integer power: "kg/m3", "m/s2", "N.m", "N.s", "1/s" — as FMI 2.0 BaseUnit
+// exponents. A new unit needs no entry anywhere: only a new symbol would.
+std::string baseUnit(const std::string& unit) {
+    // Exponents of kg, m, s per symbol.
+    static const std::map<std::string, std::array<int, 3>> symbols = {
+        {"1", {0, 0, 0}},  {"m", {0, 1, 0}},   {"kg", {1, 0, 0}}, {"s", {0, 0, 1}},
+        {"N", {1, 1, -2}}, {"Pa", {1, -1, -2}}, {"J", {1, 2, -2}}, {"Hz", {0, 0, -1}}, {"W", {1, 2, -3}}};
+    std::array<int, 3> total{0, 0, 0};
+    int sign = 1;
+    std::size_t at = 0;
+    while (at < unit.size()) {
+        std::size_t end = unit.find_first_of("./", at);
+        if (end == std::string::npos) end = unit.size();
+        const std::string token = unit.substr(at, end - at);
+        const std::size_t digits = token.find_first_of("-0123456789", 1);
+        const std::string symbol = token.substr(0, digits);
+        const int power = digits == std::string::npos ? 1 : std::stoi(token.substr(digits));
+        const auto found = symbols.find(symbol);
+        if (found == symbols.end()) throw std::runtime_error("no SI symbol " + symbol + " in unit " + unit);
+        for (int k = 0; k < 3; ++k) total[k] += sign * power * found->second[k];
+        if (end < unit.size() && unit[end] == '/') sign = -1;
+        at = end + 1;
+    }
+    std::string out;
+    const char* names[3] = {"kg", "m", "s"};
+    for (int k = 0; k < 3; ++k)
+        if (total[k] != 0) out += std::string(out.empty() ? "" : " ") + names[k] + "=\"" + std::to_string(total[k]) + "\"";
+    return out;
 }
 
 std::string startText(const Variable& v, double x) {
@@ -105,10 +122,9 @@ void writeTypes(std::ostream& xml, const std::vector<Variable>& variables) {
     if (!units.empty()) {
         xml << "  <UnitDefinitions>\n";
         for (const std::string& unit : units) {
-            const auto base = baseUnits().find(unit);
-            if (base == baseUnits().end()) throw std::runtime_error("no BaseUnit known for unit " + unit);
-            xml << "    <Unit name=\"" << escape(unit) << "\"><BaseUnit" << (base->second.empty() ? "" : " ")
-                << base->second << "/></Unit>\n";
+            const std::string base = baseUnit(unit);
+            xml << "    <Unit name=\"" << escape(unit) << "\"><BaseUnit" << (base.empty() ? "" : " ") << base
+                << "/></Unit>\n";
         }
         xml << "  </UnitDefinitions>\n\n";
     }

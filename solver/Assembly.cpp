@@ -8,14 +8,14 @@ PlateMatrices assemble(const FiniteElementSpace& space, double surfaceDensity, d
                        double poissonRatio) {
     const Eigen::Index n = space.dofCount();
     std::vector<Eigen::Triplet<double>> massTriplets, stiffnessTriplets;
-    Eigen::VectorXd load = Eigen::VectorXd::Zero(n);
+    Eigen::VectorXd load = Eigen::VectorXd::Zero(n), momentLoad = Eigen::VectorXd::Zero(n);
     LocalBasis basis;
     const double nu = poissonRatio;
     for (int e = 0; e < space.elementCount(); ++e) {
         const auto& dofs = space.elementDofs(e);
         const int nl = static_cast<int>(dofs.size());
         Eigen::MatrixXd me = Eigen::MatrixXd::Zero(nl, nl), ke = Eigen::MatrixXd::Zero(nl, nl);
-        Eigen::VectorXd fe = Eigen::VectorXd::Zero(nl);
+        Eigen::VectorXd fe = Eigen::VectorXd::Zero(nl), fxe = Eigen::VectorXd::Zero(nl);
         for (const auto& q : space.quadrature(e)) {
             space.evaluate(e, q.piece, q.point, basis);
             const double w = q.weight;
@@ -27,9 +27,11 @@ PlateMatrices assemble(const FiniteElementSpace& space, double surfaceDensity, d
                                            basis.dyy * basis.dyy.transpose()) +
                              nu * laplacian * laplacian.transpose());
             fe += w * basis.value;
+            fxe += (w * q.point.x()) * basis.value;
         }
         for (int a = 0; a < nl; ++a) {
             load[dofs[a]] += fe[a];
+            momentLoad[dofs[a]] += fxe[a];
             for (int b = 0; b < nl; ++b) {
                 massTriplets.emplace_back(dofs[a], dofs[b], me(a, b));
                 stiffnessTriplets.emplace_back(dofs[a], dofs[b], ke(a, b));
@@ -42,6 +44,8 @@ PlateMatrices assemble(const FiniteElementSpace& space, double surfaceDensity, d
     m.mass.setFromTriplets(massTriplets.begin(), massTriplets.end());
     m.stiffness.setFromTriplets(stiffnessTriplets.begin(), stiffnessTriplets.end());
     m.pressureLoad = load;
+    m.momentLoad = momentLoad;
+    m.massMoment = surfaceDensity * momentLoad;  // M X = ∫ ρt x ψ_i, x being in the space
     m.constant = Eigen::VectorXd::Zero(n);
     for (int v = 0; v < space.mesh().vertexCount(); ++v) m.constant[space.vertexValueDof(v)] = 1.0;
     return m;
@@ -82,16 +86,22 @@ ClampedPlate clamp(const FiniteElementSpace& space, const PlateMatrices& matrice
     p.totalMass = matrices.constant.dot(massTimesOne);
     p.pressureLoad.resize(p.freeDofs.size());
     p.baseInertia.resize(p.freeDofs.size());
+    p.rotationInertia.resize(p.freeDofs.size());
     for (std::size_t k = 0; k < p.freeDofs.size(); ++k) {
         p.pressureLoad[k] = matrices.pressureLoad[p.freeDofs[k]];
         p.baseInertia[k] = massTimesOne[p.freeDofs[k]];
+        p.rotationInertia[k] = matrices.massMoment[p.freeDofs[k]];
     }
+    p.totalMassMoment = matrices.constant.dot(matrices.massMoment);
+    p.loadResultant = matrices.constant.dot(matrices.pressureLoad);
+    p.loadMoment = matrices.constant.dot(matrices.momentLoad);
     const Mesh& mesh = space.mesh();
     for (int v = 0; v < mesh.vertexCount(); ++v) {
         const auto f = freeIndex[space.vertexValueDof(v)];
         if (f >= 0) {
             p.contactVertices.push_back(v);
             p.contactDofs.push_back(f);
+            p.contactAbscissae.push_back(mesh.point(v).x());
         } else {
             p.clampedVertices.push_back(v);
         }

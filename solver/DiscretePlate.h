@@ -38,6 +38,11 @@ public:
     virtual const Eigen::VectorXd& pressureLoad() const = 0;  // F (unit pressure)
     virtual const Eigen::VectorXd& baseInertia() const = 0;  // (M·1)_free
     virtual double totalMass() const = 0;  // 1ᵀM1
+    // The port (docs/theory.md §14): (M·X)_free for the rotation X about the clamp line in these
+    // coordinates, the clamped plate's rigid-motion sums, and each contact vertex's lever arm x.
+    virtual const Eigen::VectorXd& rotationInertia() const = 0;
+    virtual const ClampedPlate& clamped() const = 0;
+    const std::vector<double>& contactAbscissae() const { return clamped().contactAbscissae; }
 
     // Point evaluation of w (relative to the base) in these coordinates.
     virtual PointProbe probe(double x, double y) const = 0;

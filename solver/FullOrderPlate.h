@@ -26,6 +26,8 @@ public:
     const Eigen::VectorXd& pressureLoad() const override { return plate_->pressureLoad; }
     const Eigen::VectorXd& baseInertia() const override { return plate_->baseInertia; }
     double totalMass() const override { return plate_->totalMass; }
+    const Eigen::VectorXd& rotationInertia() const override { return plate_->rotationInertia; }
+    const ClampedPlate& clamped() const override { return *plate_; }
     PointProbe probe(double x, double y) const override { return plate_->probe(*space_, x, y); }
 
     const SparseCholesky& stepFactor() const { return stepFactor_; }

@@ -8,10 +8,18 @@
 namespace plate {
 
 // An input over one communication step: value and time derivatives at its start; inside the
-// step it follows value + d1 s + d2 s^2 / 2 (FMI input-derivative interpolation).
+// step it follows value + d1 s + d2 s^2 / 2 (FMI input-derivative interpolation), plus
+// d3 s^3 / 6 + d4 s^4 / 24 for a clamp position integrated from a velocity or an acceleration
+// input (docs/theory.md §16).
 struct InputSignal {
-    double value = 0.0, d1 = 0.0, d2 = 0.0;
-    double at(double s) const { return value + s * (d1 + 0.5 * s * d2); }
+    double value = 0.0, d1 = 0.0, d2 = 0.0, d3 = 0.0, d4 = 0.0;
+    double at(double s) const {
+        const double quadratic = value + s * (d1 + 0.5 * s * d2);
+        if (d3 == 0.0 && d4 == 0.0) return quadratic;
+        return quadratic + s * s * s * (d3 / 6.0 + s * d4 / 24.0);
+    }
+    // The integral from 0 to s, starting at `start`: the signal of the integrated quantity.
+    InputSignal integral(double start) const { return {start, value, d1, d2, d3}; }
 };
 
 // How an input held by the master over a communication step is continued inside it.

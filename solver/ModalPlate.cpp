@@ -26,6 +26,7 @@ ModalPlate::ModalPlate(std::shared_ptr<const FiniteElementSpace> space, std::sha
     if (contactModesT_.cols() > 0) contactRowNormMax_ = contactModesT_.colwise().norm().maxCoeff();
     pressureLoad_ = phi_.transpose() * plate_->pressureLoad;
     baseInertia_ = phi_.transpose() * plate_->baseInertia;
+    rotationInertia_ = phi_.transpose() * plate_->rotationInertia;
 }
 
 void ModalPlate::applyStiffness(const Eigen::VectorXd& w, Eigen::VectorXd& out) const { out = omega2_.cwiseProduct(w); }

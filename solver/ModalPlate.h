@@ -36,6 +36,8 @@ public:
     const Eigen::VectorXd& pressureLoad() const override { return pressureLoad_; }
     const Eigen::VectorXd& baseInertia() const override { return baseInertia_; }
     double totalMass() const override { return plate_->totalMass; }
+    const Eigen::VectorXd& rotationInertia() const override { return rotationInertia_; }
+    const ClampedPlate& clamped() const override { return *plate_; }
     PointProbe probe(double x, double y) const override;
 
     bool complete() const { return complete_; }
@@ -53,7 +55,7 @@ private:
     Eigen::VectorXd omega2_;  // Ω²
     Eigen::VectorXd inverseStep_;  // 1 / (1 + βΔt²ω²), damped: 1 / (1 + aΔt/2 + (βΔt² + bΔt/2)ω²)
     Eigen::MatrixXd contactModesT_;  // (CΦ)ᵀ: column j = mode shapes at contact vertex j
-    Eigen::VectorXd pressureLoad_, baseInertia_;
+    Eigen::VectorXd pressureLoad_, baseInertia_, rotationInertia_;
     double contactRowNormMax_ = 0.0;  // max_i ‖(CΦ)_i‖₂
 };
 

@@ -53,12 +53,13 @@ void NewmarkContactStepper::initialize(const Eigen::VectorXd& w0, double z0, dou
     massVelocityValid_ = false;
     s.w = w0;
     s.wPrev = w0;
+    s.wPrev2 = w0;
     plate_->applyStiffness(w0, s.kw);
     s.kwPrev = s.kw;
-    s.z = s.zPrev = z0;
-    s.p = s.pPrev = p0;
+    s.z = s.zPrev = s.zPrev2 = z0;
+    s.p = s.pPrev = s.pPrev2 = p0;
     s.pressureWork = s.pressureWorkPrev = plate_->pressureLoad().dot(w0);
-    s.baseCoupling = s.baseCouplingPrev = plate_->baseInertia().dot(w0);
+    s.baseCoupling = s.baseCouplingPrev = s.baseCouplingPrev2 = plate_->baseInertia().dot(w0);
     s.contactState.assign(obstacles_.any() ? plate_->contactCount() : 0, 0);
     if (options_.singularMass) {
         s.contactImpulse = Eigen::VectorXd::Zero(plate_->contactCount());
@@ -85,7 +86,7 @@ void NewmarkContactStepper::setInitialContactForce(const Eigen::VectorXd& force)
 void NewmarkContactStepper::setLoadAtStart(double p0) {
     // With a singular mass the load before t = 0 stays the one the initial state's massless part
     // is in equilibrium with (docs/theory.md §11).
-    if (state_.step == 0 && !options_.singularMass) state_.p = state_.pPrev = p0;
+    if (state_.step == 0 && !options_.singularMass) state_.p = state_.pPrev = state_.pPrev2 = p0;
 }
 
 void NewmarkContactStepper::step(double zNext, double pNext) {
@@ -141,6 +142,10 @@ void NewmarkContactStepper::step(double zNext, double pNext) {
     wNext_.noalias() = 2.0 * s.w - s.wPrev + d_;
 
     double dissipated = 0.0, contactWorkOnBase = 0.0;
+    // The port (§14): the step's contact impulses τ per obstacle (lower τ > 0, upper τ < 0) and
+    // their moment about the clamp line, summed over the vertices the contact work visits.
+    double contactSum[2] = {0.0, 0.0}, contactMoment = 0.0;
+    const std::vector<double>& lever = plate_->contactAbscissae();
     int contactCount = 0;
     int iterations = 0;
     double kkt = 0.0;
@@ -206,6 +211,8 @@ void NewmarkContactStepper::step(double zNext, double pNext) {
             double muSum = 0.0;
             for (int i : qp_->active()) {
                 muSum += mu_[i];
+                contactSum[mu_[i] < 0.0] += mu_[i];
+                contactMoment += mu_[i] * lever[i];
                 dissipated += std::max(0.0, mu_[i] * ((yPrev_[i] + s.zPrev) - (y_[i] + zNext)));
             }
             dissipated /= 2.0 * dt2;
@@ -223,6 +230,8 @@ void NewmarkContactStepper::step(double zNext, double pNext) {
                     tau += impulseHistory_[i];
                 }
                 if (tau == 0.0) continue;
+                contactSum[tau < 0.0] += tau;
+                contactMoment += tau * lever[i];
                 dissipated += tau * ((yPrev_[i] + s.zPrev) - (yNext[i] + zNext));
                 tauSum += tau;
             }
@@ -266,18 +275,29 @@ void NewmarkContactStepper::step(double zNext, double pNext) {
                         0.5 * (baseJump / dt2) * (tNext - s.baseCouplingPrev) + contactWorkOnBase + crossNext - cross;
 
     // Commit.
+    s.wPrev2.swap(s.wPrev);  // three levels rotate by swaps: no copy
     s.wPrev.swap(s.w);
     s.w.swap(wNext_);
     s.kwPrev.swap(s.kw);
     s.kw.swap(kwNext_);
+    s.zPrev2 = s.zPrev;
     s.zPrev = s.z;
     s.z = zNext;
+    s.pPrev2 = s.pPrev;
     s.pPrev = s.p;
     s.p = pNext;
     s.pressureWorkPrev = s.pressureWork;
     s.pressureWork = sNext;
+    s.baseCouplingPrev2 = s.baseCouplingPrev;
     s.baseCouplingPrev = s.baseCoupling;
     s.baseCoupling = tNext;
+    for (int k = 0; k < 2; ++k) {
+        const double force = contactSum[k] / dt2;
+        s.impactCount[k] += force != 0.0 && s.stepContactForce[k] == 0.0;  // a contact onset
+        s.stepContactForce[k] = force;
+        s.contactImpulseSum[k] += force * dt_;
+    }
+    s.stepContactMoment = contactMoment / dt2;
     ++s.step;
     s.energyInput += work;
     s.energyDissipated += dissipated;

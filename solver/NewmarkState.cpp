@@ -8,24 +8,30 @@
 namespace plate {
 
 namespace {
-constexpr double kFormatVersion = 2.0;
-constexpr std::size_t kScalars = 17;
+// Version 3: the third time level and the port's contact sums (docs/theory.md §14).
+constexpr double kFormatVersion = 3.0;
+constexpr std::size_t kScalars = 27;
+constexpr std::size_t kVectors = 5;
 }  // namespace
 
 std::vector<double> serialize(const NewmarkState& s) {
     const auto n = static_cast<std::size_t>(s.w.size());
     std::vector<double> out;
     const auto k = static_cast<std::size_t>(s.contactImpulse.size());
-    out.reserve(4 + 4 * n + kScalars + s.contactState.size() + 2 * k);
+    out.reserve(4 + kVectors * n + kScalars + s.contactState.size() + 2 * k);
     out.push_back(kFormatVersion);
     out.push_back(static_cast<double>(n));
     out.push_back(static_cast<double>(s.contactState.size()));
     out.push_back(static_cast<double>(k));
-    for (const Eigen::VectorXd* v : {&s.w, &s.wPrev, &s.kw, &s.kwPrev}) out.insert(out.end(), v->data(), v->data() + n);
+    for (const Eigen::VectorXd* v : {&s.w, &s.wPrev, &s.kw, &s.kwPrev, &s.wPrev2})
+        out.insert(out.end(), v->data(), v->data() + n);
     for (double x : {s.z, s.zPrev, s.p, s.pPrev, s.pressureWork, s.pressureWorkPrev, s.baseCoupling, s.baseCouplingPrev,
                      static_cast<double>(s.step), s.energyInput, s.energyDissipated, s.maxKktResidual,
                      static_cast<double>(s.qpIterationsTotal), static_cast<double>(s.qpIterationsMax),
-                     static_cast<double>(s.qpIterationsLast), static_cast<double>(s.contactVertices), s.energyDamped})
+                     static_cast<double>(s.qpIterationsLast), static_cast<double>(s.contactVertices), s.energyDamped,
+                     s.zPrev2, s.pPrev2, s.baseCouplingPrev2, s.stepContactForce[0], s.stepContactForce[1],
+                     s.stepContactMoment, s.contactImpulseSum[0], s.contactImpulseSum[1],
+                     static_cast<double>(s.impactCount[0]), static_cast<double>(s.impactCount[1])})
         out.push_back(x);
     for (signed char c : s.contactState) out.push_back(c);
     for (const Eigen::VectorXd* v : {&s.contactImpulse, &s.contactImpulsePrev})
@@ -35,12 +41,12 @@ std::vector<double> serialize(const NewmarkState& s) {
 
 NewmarkState deserialize(const std::vector<double>& in, Eigen::Index n, std::size_t m, std::size_t impulses) {
     const auto nn = static_cast<std::size_t>(n);
-    if (in.size() != 4 + 4 * nn + kScalars + m + 2 * impulses || in[0] != kFormatVersion ||
+    if (in.size() != 4 + kVectors * nn + kScalars + m + 2 * impulses || in[0] != kFormatVersion ||
         in[1] != static_cast<double>(n) || in[2] != static_cast<double>(m) || in[3] != static_cast<double>(impulses))
         throw std::invalid_argument("state does not belong to this plate (size or format differs)");
     NewmarkState s;
     std::size_t k = 4;
-    for (Eigen::VectorXd* v : {&s.w, &s.wPrev, &s.kw, &s.kwPrev}) {
+    for (Eigen::VectorXd* v : {&s.w, &s.wPrev, &s.kw, &s.kwPrev, &s.wPrev2}) {
         *v = Eigen::Map<const Eigen::VectorXd>(in.data() + k, n);
         k += nn;
     }
@@ -74,6 +80,13 @@ NewmarkState deserialize(const std::vector<double>& in, Eigen::Index n, std::siz
     s.qpIterationsLast = static_cast<int>(count("QP iterations", 2147483647.0));
     s.contactVertices = static_cast<int>(count("contact vertices", static_cast<double>(m)));
     s.energyDamped = finite("energy damped");
+    s.zPrev2 = finite("z_prev2");
+    s.pPrev2 = finite("p_prev2");
+    s.baseCouplingPrev2 = finite("base coupling");
+    for (double& f : s.stepContactForce) f = finite("contact force");
+    s.stepContactMoment = finite("contact moment");
+    for (double& f : s.contactImpulseSum) f = finite("contact impulse");
+    for (long long& c : s.impactCount) c = static_cast<long long>(count("impacts", 9.0e15));
     s.contactState.resize(m);
     for (std::size_t i = 0; i < m; ++i) {
         const double c = in[k++];
@@ -86,7 +99,7 @@ NewmarkState deserialize(const std::vector<double>& in, Eigen::Index n, std::siz
         k += impulses;
         if (!v->allFinite()) throw std::invalid_argument("corrupt state: non-finite contact impulse");
     }
-    for (const Eigen::VectorXd* v : {&s.w, &s.wPrev, &s.kw, &s.kwPrev})
+    for (const Eigen::VectorXd* v : {&s.w, &s.wPrev, &s.kw, &s.kwPrev, &s.wPrev2})
         if (!v->allFinite()) throw std::invalid_argument("corrupt state: non-finite displacement");
     return s;
 }

@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <chrono>
+#include <cfloat>
 #include <cmath>
 #include <sstream>
 
@@ -18,6 +19,13 @@
 namespace plate {
 
 namespace {
+
+// A communication step that is a whole multiple of Δt up to this relative tolerance runs on the
+// grid (importers' step sizes wobble in the last digits).
+constexpr double kStepMultipleTolerance = 1e-9;
+// A communication time within this fraction of Δt of a grid point is that grid point (§15); it
+// is also the shortest step: anything shorter cannot be told from no step at all.
+constexpr double kGridSnap = 1e-9;
 
 Obstacles obstaclesOf(const PlateParameters& p) {
     Obstacles o;
@@ -50,7 +58,11 @@ struct PlateSimulation::Impl {
     mutable double kappa = -1.0;
     mutable long long energyStep = -1;
     mutable double energyCache = 0.0;
-    double unprojectedEnergy = 0.0;
+    // Between grid points (docs/theory.md §15): the communication time, and the outputs at the
+    // grid point before it (the one after it is the scheme's state).
+    double commTime = 0.0;
+    bool onGrid = true;
+    PlateOutputs before;
 };
 
 PlateSimulation::PlateSimulation(const PlateParameters& p, double baseDisplacement0, double loadAtStart)
@@ -76,6 +88,7 @@ PlateSimulation::PlateSimulation(const PlateParameters& p, double baseDisplaceme
         SingularMass singular = assembleSingularMass(
             *s.space, p.surfaceDensity(), p.mass == MassModel::SingularP0 ? MassProjection::P0 : MassProjection::P1dg);
         matrices.mass = std::move(singular.mass);
+        matrices.massMoment = std::move(singular.massMoment);
         coupling = std::move(singular.coupling);
     }
     s.clamped = std::make_shared<const ClampedPlate>(clamp(*s.space, matrices));
@@ -126,14 +139,12 @@ PlateSimulation::PlateSimulation(const PlateParameters& p, double baseDisplaceme
     }
     if (!p.singularMass()) {
         s.stepper->initialize(w0, baseDisplacement0, 0.0);
-        s.unprojectedEnergy = s.stepper->energy();
     } else {
         // §11: only the part of w0 the singular mass sees is initial data; the massless part
         // is in equilibrium with the load at t = 0 (unless the static state already is).
         Eigen::VectorXd force;
         w0 = staticEquilibrium(*s.discrete, obstacles, baseDisplacement0, p.initialLoad, &force);
         s.stepper->initialize(w0, baseDisplacement0, loadAtStart);
-        s.unprojectedEnergy = s.stepper->energy();
         if (loadAtStart != p.initialLoad) {
             w0 = masslessEquilibrium(*s.clamped, couplingFree, obstacles, baseDisplacement0, loadAtStart, w0, force);
             s.stepper->initialize(w0, baseDisplacement0, loadAtStart);
@@ -148,21 +159,84 @@ PlateSimulation::PlateSimulation(const PlateParameters& p, double baseDisplaceme
 PlateSimulation::~PlateSimulation() = default;
 
 const PlateParameters& PlateSimulation::parameters() const { return impl_->parameters; }
-double PlateSimulation::time() const { return impl_->stepper->state().step * impl_->parameters.dt; }
+double PlateSimulation::time() const { return impl_->commTime; }
 long long PlateSimulation::stepCount() const { return impl_->stepper->state().step; }
 double PlateSimulation::baseDisplacement() const { return impl_->stepper->state().z; }
 
 void PlateSimulation::advance(long long steps, const InputSignal& base, const InputSignal& load) {
-    const double dt = impl_->parameters.dt;
-    if (!std::isfinite(load.value)) throw StepError("non-finite load input at the step start");
-    impl_->stepper->setLoadAtStart(load.value);
-    for (long long k = 1; k <= steps; ++k) {
-        const double s = k * dt;
-        impl_->stepper->step(base.at(s), load.at(s));
-    }
+    if (!impl_->onGrid) throw StepError("advance() needs a communication time on the grid; use communicate()");
+    StepPlan plan;
+    plan.steps = steps;
+    plan.end = double(impl_->stepper->state().step + steps) * impl_->parameters.dt;
+    communicate(plan, base, load);
 }
 
-PlateOutputs PlateSimulation::outputs() const {
+StepPlan PlateSimulation::plan(double h) const {
+    const Impl& s = *impl_;
+    const double dt = s.parameters.dt;
+    const long long n = s.stepper->state().step;
+    StepPlan p;
+    // On the grid, a whole multiple of Δt (importers' steps wobble in the last digits): the grid
+    // steps, the inputs' time s = k Δt exactly as the scheme has always taken them.
+    const double ratio = h / dt;
+    const long long whole = ratio < 9.0e15 ? std::llround(ratio) : 0;
+    if (s.onGrid && whole >= 1 && std::fabs(double(whole) * dt - h) <= kStepMultipleTolerance * h) {
+        p.steps = whole;
+        p.end = double(n + whole) * dt;
+        p.span = double(whole) * dt;
+        return p;
+    }
+    // Any other step: the grid leads the communication time by less than Δt (§15).
+    const double snap = std::max(kGridSnap * dt, 4.0 * DBL_EPSILON * (s.commTime + h));
+    if (!(h >= snap) || !std::isfinite(h)) {
+        std::ostringstream msg;
+        msg.precision(17);
+        msg << "communicationStepSize h = " << h << " is shorter than the smallest step the grid of dt = " << dt
+            << " resolves (allowed: h >= " << snap << " s, " << kGridSnap << " dt)";
+        throw StepError(msg.str());
+    }
+    const double end = s.commTime + h;
+    const double grid = end / dt;
+    long long target = std::llround(grid);
+    p.endsOnGrid = std::fabs(double(target) * dt - end) <= snap;
+    if (!p.endsOnGrid) target = static_cast<long long>(std::ceil(grid));
+    p.steps = std::max(0LL, target - n);
+    p.offset = double(n) * dt - s.commTime;
+    p.end = p.endsOnGrid ? double(target) * dt : end;
+    p.span = p.end - s.commTime;
+    return p;
+}
+
+void PlateSimulation::communicate(const StepPlan& plan, const InputSignal& base, const InputSignal& load) {
+    Impl& s = *impl_;
+    const double dt = s.parameters.dt;
+    if (!std::isfinite(load.value)) throw StepError("non-finite load input at the step start");
+    s.stepper->setLoadAtStart(load.value);
+    for (long long k = 1; k <= plan.steps; ++k) {
+        // The last step of one that ends between grid points: keep the grid point before it.
+        if (k == plan.steps && !plan.endsOnGrid) s.before = gridOutputs(true);
+        const double t = plan.offset + k * dt;
+        s.stepper->step(base.at(t), load.at(t));
+    }
+    s.commTime = plan.end;
+    s.onGrid = plan.endsOnGrid;
+}
+
+PlateOutputs PlateSimulation::outputs(bool port) const {
+    PlateOutputs o = gridOutputs(port);
+    if (impl_->onGrid) return o;
+    // t_c in (t_{n−1}, t_n): linear interpolation, each ledger term alike so the ledger closes.
+    const double dt = impl_->parameters.dt;
+    const double theta = (impl_->commTime - double(impl_->stepper->state().step - 1) * dt) / dt;
+    PlateOutputs before = impl_->before;
+    const auto from = before.fields();
+    const auto to = o.fields();
+    for (int i = 0; i < PlateOutputs::kFieldCount; ++i)
+        *to[i] = i < PlateOutputs::kRealCount ? *from[i] + theta * (*to[i] - *from[i]) : *from[i];
+    return o;
+}
+
+PlateOutputs PlateSimulation::gridOutputs(bool port) const {
     const Impl& s = *impl_;
     const NewmarkState& st = s.stepper->state();
     PlateOutputs o;
@@ -179,15 +253,49 @@ PlateOutputs PlateSimulation::outputs() const {
     o.energyDamped = st.energyDamped;
     o.contactVertices = st.contactVertices;
     o.maxKktResidual = st.maxKktResidual;
-    o.qpIterations = st.qpIterationsLast;
-    o.qpIterationsTotal = st.qpIterationsTotal;
+    o.qpIterationsTotal = double(st.qpIterationsTotal);
     o.qpIterationsMax = st.qpIterationsMax;
+    o.impacts[0] = double(st.impactCount[0]);
+    o.impacts[1] = double(st.impactCount[1]);
+    if (port) portOutputs(o);
     return o;
 }
 
-double PlateSimulation::displacement(double x, double y) const {
-    const NewmarkState& st = impl_->stepper->state();
-    return st.z + impl_->discrete->probe(x, y)(st.w);
+void PlateSimulation::portOutputs(PlateOutputs& o) const {
+    // docs/theory.md §14: the step from t_n to t_{n+1} summed against the rigid motions 1 and X
+    // (K·1 = K·X = 0) gives the clamp's force and moment on the plate at t_n; the plate exerts
+    // their opposites on the clamp. Levels: w = w_{n+1}, wPrev = w_n, wPrev2 = w_{n−1}.
+    const Impl& s = *impl_;
+    const NewmarkState& st = s.stepper->state();
+    const ClampedPlate& plate = s.discrete->clamped();
+    const double dt = s.parameters.dt, beta = s.parameters.beta, dt2 = dt * dt;
+    const Eigen::VectorXd& rotation = s.discrete->rotationInertia();
+    const double zAcc = (st.z - 2.0 * st.zPrev + st.zPrev2) / dt2;
+    const double translationAcc = (st.baseCoupling - 2.0 * st.baseCouplingPrev + st.baseCouplingPrev2) / dt2;
+    const double rotationAcc = (rotation.dot(st.w) - 2.0 * rotation.dot(st.wPrev) + rotation.dot(st.wPrev2)) / dt2;
+    const double pBeta = beta * st.p + (1.0 - 2.0 * beta) * st.pPrev + beta * st.pPrev2;  // f^{nβ}
+    const double contact = st.stepContactForce[0] + st.stepContactForce[1];
+    o.clampForce = -(plate.totalMass * zAcc + translationAcc - pBeta * plate.loadResultant - contact);
+    o.clampMoment = -(plate.totalMassMoment * zAcc + rotationAcc - pBeta * plate.loadMoment - st.stepContactMoment);
+    // Velocities at t_{n+1} (second order, backward: the outputs' time), accelerations at t_n
+    // (the scheme's own central difference, the level of the forces).
+    const auto velocity = [dt](double now, double prev, double prev2) {
+        return (3.0 * now - 4.0 * prev + prev2) / (2.0 * dt);
+    };
+    o.clampDisplacement = st.z;
+    o.clampVelocity = velocity(st.z, st.zPrev, st.zPrev2);
+    o.clampAcceleration = zAcc;
+    const PointProbe* probes[3] = {&s.corner1, &s.corner2, &s.freeEdgeMid};
+    for (int k = 0; k < 3; ++k) {
+        const double now = st.z + (*probes[k])(st.w), prev = st.zPrev + (*probes[k])(st.wPrev),
+                     prev2 = st.zPrev2 + (*probes[k])(st.wPrev2);
+        o.velocity[k] = velocity(now, prev, prev2);
+        o.acceleration[k] = (now - 2.0 * prev + prev2) / dt2;
+    }
+    for (int k = 0; k < 2; ++k) {
+        o.contactForce[k] = st.stepContactForce[k];
+        o.contactImpulse[k] = st.contactImpulseSum[k];
+    }
 }
 
 std::vector<double> PlateSimulation::vertexDisplacements() const {
@@ -255,14 +363,41 @@ double PlateSimulation::measureFloorSolveSeconds(int repeats) const {
     return batches[batches.size() / 2];
 }
 
-double PlateSimulation::unprojectedInitialEnergy() const { return impl_->unprojectedEnergy; }
-
-std::vector<double> PlateSimulation::saveState() const { return serialize(impl_->stepper->state()); }
+// The scheme's state, then the communication time, whether it is on the grid and the outputs
+// at the grid point before it (§15).
+std::vector<double> PlateSimulation::saveState() const {
+    std::vector<double> out = serialize(impl_->stepper->state());
+    out.push_back(impl_->commTime);
+    out.push_back(impl_->onGrid ? 1.0 : 0.0);
+    PlateOutputs before = impl_->before;
+    for (double* x : before.fields()) out.push_back(*x);
+    return out;
+}
 
 void PlateSimulation::restoreState(const std::vector<double>& in) {
+    constexpr std::size_t kTail = 2 + PlateOutputs::kFieldCount;
+    if (in.size() < kTail) throw std::invalid_argument("state does not belong to this plate (too short)");
+    const std::size_t head = in.size() - kTail;
     const NewmarkState& current = impl_->stepper->state();
-    impl_->stepper->setState(
-        deserialize(in, current.w.size(), current.contactState.size(), current.contactImpulse.size()));
+    NewmarkState state = deserialize(std::vector<double>(in.begin(), in.begin() + std::ptrdiff_t(head)),
+                                     current.w.size(), current.contactState.size(), current.contactImpulse.size());
+    const double* tail = in.data() + head;
+    const double dt = impl_->parameters.dt, gridTime = double(state.step) * dt;
+    const bool onGrid = tail[1] == 1.0;
+    // On the grid the time is the grid point's; between, within one step before it.
+    if ((tail[1] != 0.0 && !onGrid) || !std::isfinite(tail[0]) ||
+        (onGrid ? tail[0] != gridTime : !(tail[0] < gridTime && tail[0] > gridTime - dt)))
+        throw std::invalid_argument("corrupt state: communication time does not fit the grid");
+    PlateOutputs before;
+    const auto fields = before.fields();
+    for (int i = 0; i < PlateOutputs::kFieldCount; ++i) {
+        if (!std::isfinite(tail[2 + i])) throw std::invalid_argument("corrupt state: non-finite output");
+        *fields[i] = tail[2 + i];
+    }
+    impl_->stepper->setState(state);
+    impl_->commTime = tail[0];
+    impl_->onGrid = onGrid;
+    impl_->before = before;
     impl_->energyStep = -1;
 }
 

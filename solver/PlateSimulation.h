@@ -2,6 +2,7 @@
 // The plate as a co-simulation component: parameters in, the Newmark–contact scheme (3.3)
 // advanced at a fixed Δt, probe values and energies out. No FMI knowledge here.
 #include <Eigen/Core>
+#include <array>
 #include <memory>
 #include <string>
 #include <vector>
@@ -11,17 +12,45 @@
 
 namespace plate {
 
+// What the plate reports at a communication point. Counts are whole numbers stored as doubles
+// (exact below 2^53), so that the struct is one list of doubles (forEach) for blending and states.
 struct PlateOutputs {
     double corner1 = 0, corner2 = 0, freeEdgeMid = 0;  // w at (L,0), (L,W), (L,W/2), m
     double energy = 0;  // discrete energy E^{n-1/2} (docs/theory.md), J
     double energyDissipated = 0;  // cumulative contact loss, J
     double energyInput = 0;  // cumulative work of base motion and load, J
     double energyDamped = 0;  // cumulative work of the Rayleigh damping, J
-    int contactVertices = 0;  // vertices on an obstacle after the last step
     double maxKktResidual = 0;  // largest relative KKT residual of all QPs so far
-    int qpIterations = 0;  // active-set iterations of the last step
-    long long qpIterationsTotal = 0;
-    int qpIterationsMax = 0;
+    double contactVertices = 0;  // count: vertices on an obstacle after the last step
+    double qpIterationsTotal = 0, qpIterationsMax = 0;  // counts
+    // The port (docs/theory.md §14), computed only when asked for (outputs(true)).
+    double clampForce = 0, clampMoment = 0;  // what the plate exerts on the clamp, N, N·m
+    double clampDisplacement = 0, clampVelocity = 0, clampAcceleration = 0;  // z, ż, z̈
+    double contactForce[2] = {0, 0}, contactImpulse[2] = {0, 0};  // lower, upper: N, N·s
+    double impacts[2] = {0, 0};  // counts: contact onsets per obstacle
+    double velocity[3] = {0, 0, 0}, acceleration[3] = {0, 0, 0};  // corner1, corner2, freeEdgeMid
+
+    // Every field in a fixed order: the first kRealCount are quantities, the rest counts.
+    static constexpr int kFieldCount = 28, kRealCount = 23;
+    std::array<double*, kFieldCount> fields() {
+        return {&corner1, &corner2, &freeEdgeMid, &energy, &energyDissipated, &energyInput, &energyDamped,
+                &maxKktResidual, &clampForce, &clampMoment, &clampDisplacement, &clampVelocity,
+                &clampAcceleration, &contactForce[0], &contactForce[1], &contactImpulse[0],
+                &contactImpulse[1], &velocity[0], &velocity[1], &velocity[2], &acceleration[0],
+                &acceleration[1], &acceleration[2], &contactVertices, &qpIterationsTotal,
+                &qpIterationsMax, &impacts[0], &impacts[1]};
+    }
+};
+
+// How one communication step of length h maps onto the scheme's fixed grid t_k = k Δt
+// (docs/theory.md §15): the internal steps to take, where the inputs' time s starts at the
+// first of them (s = offset + k Δt), and whether the step ends on a grid point.
+struct StepPlan {
+    long long steps = 0;
+    double offset = 0.0;  // t_n − t_c: how far the grid leads the communication time
+    double span = 0.0;  // the step as taken: t_c(after) − t_c (h, up to the grid's snap)
+    double end = 0.0;  // communication time after the step
+    bool endsOnGrid = true;
 };
 
 class PlateSimulation {
@@ -37,18 +66,25 @@ public:
     PlateSimulation& operator=(const PlateSimulation&) = delete;
 
     const PlateParameters& parameters() const;
-    double time() const;  // t_n = n Δt
+    double time() const;  // the communication time t_c (= t_n = n Δt on the grid)
     long long stepCount() const;
     double baseDisplacement() const;  // z(t_n), the clamp position of the last step
 
     // Advances `steps` internal steps; inside, base and load follow the given signals with
     // s = t - time() at the call. Throws StepError (state left at the last good step).
+    // Only from a communication time on the grid.
     void advance(long long steps, const InputSignal& base, const InputSignal& load);
 
-    PlateOutputs outputs() const;
+    // Any communication step h > 0 (docs/theory.md §15): the plan (throws StepError for a step
+    // shorter than the smallest the grid can resolve), and the step itself with the inputs over
+    // [t_c, t_c + h] as signals from t_c.
+    StepPlan plan(double h) const;
+    void communicate(const StepPlan& plan, const InputSignal& base, const InputSignal& load);
 
-    // Displacement field at any point of the plate at t_n (absolute, includes the base).
-    double displacement(double x, double y) const;
+    // At the communication time: on the grid the scheme's values; between grid points the linear
+    // interpolation of the two neighbours (counts: the earlier one). `port` adds the port's fields.
+    PlateOutputs outputs(bool port = false) const;
+
     // Vertex values of the absolute displacement at t_n (for plots and checks).
     std::vector<double> vertexDisplacements() const;
 
@@ -64,15 +100,13 @@ public:
     // Time of one solve with the factor of A, measured now (median of repeats), s.
     double measureFloorSolveSeconds(int repeats = 2000) const;
 
-    // Energy of the initial state before the singular mass's massless part was brought to
-    // equilibrium (equal to outputs().energy at t = 0 otherwise), J.
-    double unprojectedInitialEnergy() const;
-
     // Full mutable state: serialize for FMU states (bit-identical continuation).
     std::vector<double> saveState() const;
     void restoreState(const std::vector<double>& state);  // throws std::invalid_argument
 
 private:
+    PlateOutputs gridOutputs(bool port) const;
+    void portOutputs(PlateOutputs& o) const;
     struct Impl;
     std::unique_ptr<Impl> impl_;
 };

@@ -14,6 +14,8 @@ SingularMass assembleSingularMass(const FiniteElementSpace& space, double surfac
     const Eigen::Index n = space.dofCount();
     std::vector<Eigen::Triplet<double>> massTriplets, couplingTriplets;
     LocalBasis basis;
+    SingularMass s;
+    s.massMoment = Eigen::VectorXd::Zero(n);
     for (int e = 0; e < space.elementCount(); ++e) {
         const auto& dofs = space.elementDofs(e);
         const int nl = static_cast<int>(dofs.size());
@@ -30,22 +32,25 @@ SingularMass assembleSingularMass(const FiniteElementSpace& space, double surfac
         const double size = std::sqrt(area);
         Eigen::MatrixXd be = Eigen::MatrixXd::Zero(nl, perElement);  // ∫ ψ_a q_k
         Eigen::MatrixXd ce = Eigen::MatrixXd::Zero(perElement, perElement);  // ∫ q_k q_l
-        Eigen::VectorXd qv(perElement);
+        Eigen::VectorXd qv(perElement), xq = Eigen::VectorXd::Zero(perElement);  // ∫ x q_k
         for (const auto& q : nodes) {
             space.evaluate(e, q.piece, q.point, basis);
             qv[0] = 1.0;
             if (perElement == 3) qv.tail<2>() = (q.point - centroid) / size;
             be.noalias() += q.weight * basis.value * qv.transpose();
             ce.noalias() += q.weight * qv * qv.transpose();
+            xq += (q.weight * q.point.x()) * qv;
         }
         // The rules integrate ψ q (degree ≤ p + 1) and q q exactly (they are exact to degree 2p).
-        const Eigen::MatrixXd me = surfaceDensity * be * Eigen::LLT<Eigen::MatrixXd>(ce).solve(be.transpose());
+        const Eigen::LLT<Eigen::MatrixXd> projection(ce);
+        const Eigen::MatrixXd me = surfaceDensity * be * projection.solve(be.transpose());
+        const Eigen::VectorXd mx = surfaceDensity * be * projection.solve(xq);
         for (int a = 0; a < nl; ++a) {
             for (int k = 0; k < perElement; ++k) couplingTriplets.emplace_back(dofs[a], perElement * e + k, be(a, k));
             for (int b = 0; b < nl; ++b) massTriplets.emplace_back(dofs[a], dofs[b], me(a, b));
+            s.massMoment[dofs[a]] += mx[a];
         }
     }
-    SingularMass s;
     s.mass.resize(n, n);
     s.mass.setFromTriplets(massTriplets.begin(), massTriplets.end());
     s.coupling.resize(n, static_cast<Eigen::Index>(perElement) * space.elementCount());

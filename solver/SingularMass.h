@@ -20,6 +20,7 @@ enum class MassProjection { P0, P1dg };
 struct SingularMass {
     Eigen::SparseMatrix<double> mass;  // M_s over all dofs of the space
     Eigen::SparseMatrix<double> coupling;  // B: dofs x projection functions (geometric, ρt left out)
+    Eigen::VectorXd massMoment;  // M_s X = ρt B C⁻¹ (∫ x q_k): the rotation's momentum (§14)
 };
 
 // Element by element: the local block ρt B_e C_e⁻¹ B_eᵀ (Q is discontinuous, so C is block

@@ -40,6 +40,7 @@ public:
         factor_.compute(Eigen::SparseMatrix<double>(mass_ + (beta * dt * dt) * stiffness_));
         if (factor_.info() != Eigen::Success) throw std::runtime_error("bar step matrix not SPD");
         zero_ = Eigen::VectorXd::Zero(n_);
+        clamped_.contactAbscissae = {0.0};
     }
     Eigen::Index size() const override { return n_; }
     void applyStiffness(const Eigen::VectorXd& w, Eigen::VectorXd& out) const override { out = stiffness_ * w; }
@@ -64,6 +65,8 @@ public:
     const Eigen::VectorXd& pressureLoad() const override { return zero_; }
     const Eigen::VectorXd& baseInertia() const override { return zero_; }
     double totalMass() const override { return 1.0; }
+    const Eigen::VectorXd& rotationInertia() const override { return zero_; }
+    const ClampedPlate& clamped() const override { return clamped_; }
     PointProbe probe(double, double) const override { return {}; }
 
 private:
@@ -71,6 +74,7 @@ private:
     Eigen::SparseMatrix<double> stiffness_, mass_;
     Eigen::SimplicialLDLT<Eigen::SparseMatrix<double>> factor_;
     Eigen::VectorXd zero_;
+    ClampedPlate clamped_;
 };
 
 struct BarImpact {
