@@ -166,7 +166,8 @@ public:
             }
         }
         const double* clamp = take(2, "the clamp's motion");
-        if (!std::isfinite(clamp[0]) || !std::isfinite(clamp[1])) throw fmu::ModelError("the clamp's motion is not finite");
+        if (!std::isfinite(clamp[0]) || !std::isfinite(clamp[1]))
+            throw fmu::ModelError("the clamp's motion is not finite");
         clampPosition_ = clamp[0];
         clampVelocity_ = clamp[1];
         const double* flags = take(2, "the simulation flag");
@@ -229,8 +230,7 @@ private:
                     .integral(clampVelocity_)
                     .integral(clampPosition_);
             case BaseDrive::Displacement:
-            default:
-                return values_.baseDisplacement.stepSignal(span, lower, upper);
+            default: return values_.baseDisplacement.stepSignal(span, lower, upper);
         }
     }
     void advanceClamp(const plate::InputSignal& base, double span) {

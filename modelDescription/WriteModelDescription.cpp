@@ -59,8 +59,8 @@ std::string real(double x) {
 std::string baseUnit(const std::string& unit) {
     // Exponents of kg, m, s per symbol.
     static const std::map<std::string, std::array<int, 3>> symbols = {
-        {"1", {0, 0, 0}},  {"m", {0, 1, 0}},   {"kg", {1, 0, 0}}, {"s", {0, 0, 1}},
-        {"N", {1, 1, -2}}, {"Pa", {1, -1, -2}}, {"J", {1, 2, -2}}, {"Hz", {0, 0, -1}}, {"W", {1, 2, -3}}};
+        {"1", {0, 0, 0}},    {"m", {0, 1, 0}},  {"kg", {1, 0, 0}},  {"s", {0, 0, 1}}, {"N", {1, 1, -2}},
+        {"Pa", {1, -1, -2}}, {"J", {1, 2, -2}}, {"Hz", {0, 0, -1}}, {"W", {1, 2, -3}}};
     std::array<int, 3> total{0, 0, 0};
     int sign = 1;
     std::size_t at = 0;
@@ -80,7 +80,8 @@ std::string baseUnit(const std::string& unit) {
     std::string out;
     const char* names[3] = {"kg", "m", "s"};
     for (int k = 0; k < 3; ++k)
-        if (total[k] != 0) out += std::string(out.empty() ? "" : " ") + names[k] + "=\"" + std::to_string(total[k]) + "\"";
+        if (total[k] != 0)
+            out += std::string(out.empty() ? "" : " ") + names[k] + "=\"" + std::to_string(total[k]) + "\"";
     return out;
 }
 

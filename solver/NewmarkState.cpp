@@ -25,13 +25,33 @@ std::vector<double> serialize(const NewmarkState& s) {
     out.push_back(static_cast<double>(k));
     for (const Eigen::VectorXd* v : {&s.w, &s.wPrev, &s.kw, &s.kwPrev, &s.wPrev2})
         out.insert(out.end(), v->data(), v->data() + n);
-    for (double x : {s.z, s.zPrev, s.p, s.pPrev, s.pressureWork, s.pressureWorkPrev, s.baseCoupling, s.baseCouplingPrev,
-                     static_cast<double>(s.step), s.energyInput, s.energyDissipated, s.maxKktResidual,
-                     static_cast<double>(s.qpIterationsTotal), static_cast<double>(s.qpIterationsMax),
-                     static_cast<double>(s.qpIterationsLast), static_cast<double>(s.contactVertices), s.energyDamped,
-                     s.zPrev2, s.pPrev2, s.baseCouplingPrev2, s.stepContactForce[0], s.stepContactForce[1],
-                     s.stepContactMoment, s.contactImpulseSum[0], s.contactImpulseSum[1],
-                     static_cast<double>(s.impactCount[0]), static_cast<double>(s.impactCount[1])})
+    for (double x : {s.z,
+                     s.zPrev,
+                     s.p,
+                     s.pPrev,
+                     s.pressureWork,
+                     s.pressureWorkPrev,
+                     s.baseCoupling,
+                     s.baseCouplingPrev,
+                     static_cast<double>(s.step),
+                     s.energyInput,
+                     s.energyDissipated,
+                     s.maxKktResidual,
+                     static_cast<double>(s.qpIterationsTotal),
+                     static_cast<double>(s.qpIterationsMax),
+                     static_cast<double>(s.qpIterationsLast),
+                     static_cast<double>(s.contactVertices),
+                     s.energyDamped,
+                     s.zPrev2,
+                     s.pPrev2,
+                     s.baseCouplingPrev2,
+                     s.stepContactForce[0],
+                     s.stepContactForce[1],
+                     s.stepContactMoment,
+                     s.contactImpulseSum[0],
+                     s.contactImpulseSum[1],
+                     static_cast<double>(s.impactCount[0]),
+                     static_cast<double>(s.impactCount[1])})
         out.push_back(x);
     for (signed char c : s.contactState) out.push_back(c);
     for (const Eigen::VectorXd* v : {&s.contactImpulse, &s.contactImpulsePrev})

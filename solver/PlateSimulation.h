@@ -33,12 +33,12 @@ struct PlateOutputs {
     // Every field in a fixed order: the first kRealCount are quantities, the rest counts.
     static constexpr int kFieldCount = 28, kRealCount = 23;
     std::array<double*, kFieldCount> fields() {
-        return {&corner1, &corner2, &freeEdgeMid, &energy, &energyDissipated, &energyInput, &energyDamped,
-                &maxKktResidual, &clampForce, &clampMoment, &clampDisplacement, &clampVelocity,
-                &clampAcceleration, &contactForce[0], &contactForce[1], &contactImpulse[0],
-                &contactImpulse[1], &velocity[0], &velocity[1], &velocity[2], &acceleration[0],
-                &acceleration[1], &acceleration[2], &contactVertices, &qpIterationsTotal,
-                &qpIterationsMax, &impacts[0], &impacts[1]};
+        return {&corner1,           &corner2,           &freeEdgeMid,       &energy,          &energyDissipated,
+                &energyInput,       &energyDamped,      &maxKktResidual,    &clampForce,      &clampMoment,
+                &clampDisplacement, &clampVelocity,     &clampAcceleration, &contactForce[0], &contactForce[1],
+                &contactImpulse[0], &contactImpulse[1], &velocity[0],       &velocity[1],     &velocity[2],
+                &acceleration[0],   &acceleration[1],   &acceleration[2],   &contactVertices, &qpIterationsTotal,
+                &qpIterationsMax,   &impacts[0],        &impacts[1]};
     }
 };
 
