@@ -260,6 +260,10 @@ fmi2Status Instance::setValues(VariableType type, const fmi2ValueReference vr[],
         if (!std::isfinite(value[i]))
             return fail("%s (vr %u) = %g rejected: NaN and Inf are not allowed", variable->name, variable->vr,
                         value[i]);
+        if (variable->causality == Causality::Input && variable->hasRange() &&
+            !(value[i] >= variable->min && value[i] <= variable->max))
+            return fail("%s = %.17g out of range (allowed: %.17g <= %s <= %.17g)", variable->name, value[i],
+                        variable->min, variable->name, variable->max);
         if (variable->type == VariableType::Enumeration && !variable->enumeration->contains(int(value[i])))
             return fail("%s = %d is not an item of the enumeration %s (%s)", variable->name, int(value[i]),
                         variable->enumeration->name, variable->enumeration->itemList().c_str());

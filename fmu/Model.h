@@ -5,6 +5,7 @@
 // writes modelDescription.xml (modelDescription/WriteModelDescription.cpp), serializes FMU
 // states and decides whether two configurations are equal. A binding knows nothing of the FMI
 // state machine; the generic layer knows nothing of plates.
+#include <cmath>
 #include <functional>
 #include <memory>
 #include <stdexcept>
@@ -49,6 +50,11 @@ struct Variable {
     bool shapesInitialState = false;
     // Real inputs: take fmi2SetRealInputDerivatives; Real outputs: give fmi2GetRealOutputDerivatives.
     bool hasDerivatives = false;
+    // The allowed range (Real, Integer), NaN where there is none: modelDescription.xml's min and
+    // max, the documentation's table; the generic layer refuses an input outside it when set
+    // (a parameter's range, open ends included, is the binding's check at initialization).
+    double min = NAN, max = NAN;
+    bool hasRange() const { return !std::isnan(min) || !std::isnan(max); }
 };
 
 // Capabilities and fixed parts of modelDescription.xml.

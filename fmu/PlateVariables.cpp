@@ -56,9 +56,21 @@ fmu::Variable parameter(fmi2ValueReference vr, const char* name, VariableType ty
                         const char* description, const fmu::EnumerationType* enumeration = nullptr) {
     return {vr, name, type, Causality::Parameter, description, unit, enumeration, true, false};
 }
-fmu::Variable input(fmi2ValueReference vr, const char* name, const char* unit, bool shapesInitialState,
+// A parameter with its range (solver/PlateParameters.h, the one place it is written).
+fmu::Variable parameter(fmi2ValueReference vr, const char* name, VariableType type, const char* unit,
+                        const char* description, const plate::Range& range) {
+    fmu::Variable v = parameter(vr, name, type, unit, description);
+    v.min = range.min;
+    v.max = range.max;
+    return v;
+}
+fmu::Variable input(fmi2ValueReference vr, const char* name, const char* unit, bool shapesInitialState, double bound,
                     const char* description) {
-    return {vr, name, VariableType::Real, Causality::Input, description, unit, nullptr, shapesInitialState, true};
+    fmu::Variable v{vr,  name, VariableType::Real, Causality::Input, description, unit, nullptr, shapesInitialState,
+                    true};
+    v.min = -bound;
+    v.max = bound;
+    return v;
 }
 fmu::Variable output(fmi2ValueReference vr, const char* name, VariableType type, const char* unit,
                      const char* description) {
@@ -73,45 +85,41 @@ double saturate(double n) { return n > INT_MAX ? double(INT_MAX) : n; }  // coun
 #define OUTPUT_FIELD(field) [](const PlateValues& v) { return double(v.outputs.field); }, nullptr
 #define PORT_FIELD(field) [](const PlateValues& v) { return v.port().field; }, nullptr
 
-// An input of the clamp's motion with a range (ModelError names it, the value and the range).
-template <fmi2ValueReference vr>
-void setMotion(PlateValues& v, double x) {
-    const double bound = vr == kVrBaseVelocity ? kMaxBaseVelocity : kMaxBaseAcceleration;
-    if (!(std::fabs(x) <= bound)) {
-        char text[200];
-        std::snprintf(text, sizeof text, "%s = %.17g out of range (allowed: |%s| <= %g)",
-                      vr == kVrBaseVelocity ? "base_velocity" : "base_acceleration", x,
-                      vr == kVrBaseVelocity ? "base_velocity" : "base_acceleration", bound);
-        throw fmu::ModelError(text);
-    }
-    v.inputPort(vr)->setValue(x);
-}
-
 const std::vector<Row>& rows() {
     static const std::vector<Row> table = {
-        {parameter(kVrLength, "length", VariableType::Real, "m", "Plate length along x (clamped edge at x = 0)"),
+        {parameter(kVrLength, "length", VariableType::Real, "m", "Plate length along x (clamped edge at x = 0)",
+                   plate::ranges::kLength),
          PARAMETER_FIELD(length)},
-        {parameter(kVrWidth, "width", VariableType::Real, "m", "Plate width along y"), PARAMETER_FIELD(width)},
-        {parameter(kVrThickness, "thickness", VariableType::Real, "m", "Plate thickness"), PARAMETER_FIELD(thickness)},
-        {parameter(kVrYoungsModulus, "youngs_modulus", VariableType::Real, "Pa", "Young's modulus E"),
+        {parameter(kVrWidth, "width", VariableType::Real, "m", "Plate width along y", plate::ranges::kWidth),
+         PARAMETER_FIELD(width)},
+        {parameter(kVrThickness, "thickness", VariableType::Real, "m", "Plate thickness", plate::ranges::kThickness),
+         PARAMETER_FIELD(thickness)},
+        {parameter(kVrYoungsModulus, "youngs_modulus", VariableType::Real, "Pa", "Young's modulus E",
+                   plate::ranges::kYoungsModulus),
          PARAMETER_FIELD(youngsModulus)},
-        {parameter(kVrPoissonRatio, "poisson_ratio", VariableType::Real, "1", "Poisson's ratio, in (0, 0.5)"),
+        {parameter(kVrPoissonRatio, "poisson_ratio", VariableType::Real, "1", "Poisson's ratio, in (0, 0.5)",
+                   plate::ranges::kPoissonRatio),
          PARAMETER_FIELD(poissonRatio)},
-        {parameter(kVrDensity, "density", VariableType::Real, "kg/m3", "Mass density of the plate material"),
+        {parameter(kVrDensity, "density", VariableType::Real, "kg/m3", "Mass density of the plate material",
+                   plate::ranges::kDensity),
          PARAMETER_FIELD(density)},
-        {parameter(kVrNx, "nx", VariableType::Integer, nullptr, "Number of mesh cells along x (at least 1)"),
+        {parameter(kVrNx, "nx", VariableType::Integer, nullptr, "Number of mesh cells along x (at least 1)",
+                   plate::ranges::kCells),
          PARAMETER_FIELD(nx)},
-        {parameter(kVrNy, "ny", VariableType::Integer, nullptr, "Number of mesh cells along y (at least 1)"),
+        {parameter(kVrNy, "ny", VariableType::Integer, nullptr, "Number of mesh cells along y (at least 1)",
+                   plate::ranges::kCells),
          PARAMETER_FIELD(ny)},
         {parameter(kVrElement, "element", VariableType::Enumeration, nullptr, "Finite element: argyris (1) or fvs (2)",
                    &kElementType),
          [](const PlateValues& v) { return v.parameters.element == ElementType::Fvs ? 2.0 : 1.0; },
          [](PlateValues& v, double x) { v.parameters.element = x == 2.0 ? ElementType::Fvs : ElementType::Argyris; }},
         {parameter(kVrObstacleLower, "obstacle_lower", VariableType::Real, "m",
-                   "Height of the lower obstacle (negative; used when obstacle_lower_enabled)"),
+                   "Height of the lower obstacle (negative; used when obstacle_lower_enabled)",
+                   plate::ranges::kObstacleLower),
          PARAMETER_FIELD(obstacleLower)},
         {parameter(kVrObstacleUpper, "obstacle_upper", VariableType::Real, "m",
-                   "Height of the upper obstacle (positive; used when obstacle_upper_enabled)"),
+                   "Height of the upper obstacle (positive; used when obstacle_upper_enabled)",
+                   plate::ranges::kObstacleUpper),
          PARAMETER_FIELD(obstacleUpper)},
         {parameter(kVrObstacleLowerEnabled, "obstacle_lower_enabled", VariableType::Boolean, nullptr,
                    "Whether the lower obstacle is present"),
@@ -119,18 +127,24 @@ const std::vector<Row>& rows() {
         {parameter(kVrObstacleUpperEnabled, "obstacle_upper_enabled", VariableType::Boolean, nullptr,
                    "Whether the upper obstacle is present"),
          PARAMETER_FIELD(obstacleUpperEnabled)},
-        {parameter(kVrDt, "dt", VariableType::Real, "s",
-                   "Internal time step; every communication step must be a whole multiple of dt"),
+        {parameter(
+             kVrDt, "dt", VariableType::Real, "s",
+             "Internal time step of the scheme's fixed grid; a communication step of any length is taken on it, the "
+             "outputs interpolated between grid points",
+             plate::ranges::kDt),
          PARAMETER_FIELD(dt)},
         {parameter(kVrBeta, "beta", VariableType::Real, "1",
-                   "Newmark parameter beta in [0, 0.5] (gamma = 1/2); unconditionally stable for beta >= 1/4"),
+                   "Newmark parameter beta in [0, 0.5] (gamma = 1/2); unconditionally stable for beta >= 1/4",
+                   plate::ranges::kBeta),
          PARAMETER_FIELD(beta)},
         {parameter(kVrInitialLoad, "initial_load", VariableType::Real, "Pa",
                    "Uniform pressure (positive upward) whose static equilibrium is the initial shape; the plate "
-                   "starts at rest"),
+                   "starts at rest",
+                   plate::ranges::kInitialLoad),
          PARAMETER_FIELD(initialLoad)},
         {parameter(kVrModes, "modes", VariableType::Integer, nullptr,
-                   "0: full finite element space (exact scheme); m > 0: reduced model on m modes"),
+                   "0: full finite element space (exact scheme); m > 0: reduced model on m modes",
+                   plate::ranges::kModes),
          PARAMETER_FIELD(modes)},
         {parameter(kVrBaseInputMode, "base_input_mode", VariableType::Enumeration, nullptr,
                    "How base_displacement moves inside a communication step when the master gives no input "
@@ -157,21 +171,25 @@ const std::vector<Row>& rows() {
          [](PlateValues& v, double x) { v.parameters.mass = static_cast<MassModel>(int(x)); }},
         {parameter(kVrRestitution, "restitution", VariableType::Real, "1",
                    "Restitution coefficient e in [0, 1] of the impact law on (u+ + e u-)/(1 + e); 0 is the paper's "
-                   "scheme"),
+                   "scheme",
+                   plate::ranges::kRestitution),
          PARAMETER_FIELD(restitution)},
         {parameter(kVrDampingMass, "damping_mass", VariableType::Real, "1/s",
                    "Rayleigh damping, mass-proportional coefficient a (C = a M + b K; damping ratio a/(2 omega) + "
-                   "b omega/2), >= 0"),
+                   "b omega/2), >= 0",
+                   plate::ranges::kDampingMass),
          PARAMETER_FIELD(dampingMass)},
         {parameter(kVrDampingStiffness, "damping_stiffness", VariableType::Real, "s",
-                   "Rayleigh damping, stiffness-proportional coefficient b (C = a M + b K), >= 0"),
+                   "Rayleigh damping, stiffness-proportional coefficient b (C = a M + b K), >= 0",
+                   plate::ranges::kDampingStiffness),
          PARAMETER_FIELD(dampingStiffness)},
-        {input(kVrBaseDisplacement, "base_displacement", "m", true,
+        {input(kVrBaseDisplacement, "base_displacement", "m", true, plate::kMaxDisplacement,
                "Vertical displacement z of the clamped edge (base motion); its value at initialization places "
                "the clamp at t = 0"),
          [](const PlateValues& v) { return v.baseDisplacement.signal.value; },
          [](PlateValues& v, double x) { v.baseDisplacement.setValue(x); }},
-        {input(kVrLoad, "load", "Pa", false, "Uniform pressure on the plate, positive upward, acting from t = 0 on"),
+        {input(kVrLoad, "load", "Pa", false, plate::kMaxLoad,
+               "Uniform pressure on the plate, positive upward, acting from t = 0 on"),
          [](const PlateValues& v) { return v.load.signal.value; },
          [](PlateValues& v, double x) { v.load.setValue(x); }},
         {parameter(kVrBaseDrive, "base_drive", VariableType::Enumeration, nullptr,
@@ -181,12 +199,14 @@ const std::vector<Row>& rows() {
                    &kBaseDrive),
          [](const PlateValues& v) { return double(static_cast<int>(v.baseDrive)); },
          [](PlateValues& v, double x) { v.baseDrive = static_cast<BaseDrive>(int(x)); }},
-        {input(kVrBaseVelocity, "base_velocity", "m/s", false,
-               "Vertical velocity of the clamped edge (used when base_drive = velocity; |v| <= 1e3 m/s)"),
-         [](const PlateValues& v) { return v.baseVelocity.signal.value; }, setMotion<kVrBaseVelocity>},
-        {input(kVrBaseAcceleration, "base_acceleration", "m/s2", false,
-               "Vertical acceleration of the clamped edge (used when base_drive = acceleration; |a| <= 1e7 m/s2)"),
-         [](const PlateValues& v) { return v.baseAcceleration.signal.value; }, setMotion<kVrBaseAcceleration>},
+        {input(kVrBaseVelocity, "base_velocity", "m/s", false, kMaxBaseVelocity,
+               "Vertical velocity of the clamped edge (used when base_drive = velocity)"),
+         [](const PlateValues& v) { return v.baseVelocity.signal.value; },
+         [](PlateValues& v, double x) { v.baseVelocity.setValue(x); }},
+        {input(kVrBaseAcceleration, "base_acceleration", "m/s2", false, kMaxBaseAcceleration,
+               "Vertical acceleration of the clamped edge (used when base_drive = acceleration)"),
+         [](const PlateValues& v) { return v.baseAcceleration.signal.value; },
+         [](PlateValues& v, double x) { v.baseAcceleration.setValue(x); }},
         {output(kVrCorner1, "corner_1", VariableType::Real, "m",
                 "Absolute displacement w at the free corner (length, 0)"),
          OUTPUT_FIELD(corner1)},

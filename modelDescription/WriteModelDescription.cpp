@@ -170,6 +170,8 @@ void writeVariables(std::ostream& xml, const fmu::Model& model) {
         xml << " description=\"" << escape(v.description) << "\">\n      <" << fmu::typeName(v.type);
         if (v.enumeration) xml << " declaredType=\"" << v.enumeration->name << "\"";
         if (v.unit) xml << " unit=\"" << escape(v.unit) << "\"";
+        if (!std::isnan(v.min)) xml << " min=\"" << startText(v, v.min) << "\"";
+        if (!std::isnan(v.max)) xml << " max=\"" << startText(v, v.max) << "\"";
         if (v.causality != Causality::Output) xml << " start=\"" << startText(v, model.get(v)) << "\"";
         xml << "/></ScalarVariable>\n";
     }
@@ -194,7 +196,7 @@ void writeDocumentation(std::ostream& html, const fmu::Model& model) {
          << info.modelName << "</h1>\n<p>" << escape(info.description) << "</p>\n";
     if (info.documentationHtml) html << info.documentationHtml;
     html << "<h2>Variables</h2>\n<table>\n<tr><th>name</th><th>value reference</th><th>causality</th><th>type</th>"
-            "<th>start</th><th>unit</th><th>description</th></tr>\n";
+            "<th>start</th><th>min</th><th>max</th><th>unit</th><th>description</th></tr>\n";
     for (const Variable& v : model.variables()) {
         const char* causality = v.causality == Causality::Parameter ? "parameter"
                                 : v.causality == Causality::Input   ? "input"
@@ -208,7 +210,9 @@ void writeDocumentation(std::ostream& html, const fmu::Model& model) {
             html << ")";
         }
         html << "</td><td>" << (v.causality == Causality::Output ? "" : escape(startText(v, model.get(v))))
-             << "</td><td>" << (v.unit ? escape(v.unit) : "") << "</td><td>" << escape(v.description) << "</td></tr>\n";
+             << "</td><td>" << (std::isnan(v.min) ? "" : startText(v, v.min)) << "</td><td>"
+             << (std::isnan(v.max) ? "" : startText(v, v.max)) << "</td><td>" << (v.unit ? escape(v.unit) : "")
+             << "</td><td>" << escape(v.description) << "</td></tr>\n";
     }
     html << "</table>\n</body>\n</html>\n";
 }

@@ -59,6 +59,29 @@ struct PlateParameters {
 constexpr double kMaxDisplacement = 1e4;  // m, |base_displacement|, |obstacle heights|
 constexpr double kMaxLoad = 1e12;  // Pa, |load|, |initial_load|
 
+// The allowed range of one parameter: the one place it is written. validate() checks it, the
+// FMU's table of variables declares it (modelDescription.xml min/max, documentation, README).
+// An open end is excluded (min < value); the model description can only state the closure.
+struct Range {
+    double min, max;
+    bool minOpen = false, maxOpen = false;
+    bool contains(double x) const { return (minOpen ? x > min : x >= min) && (maxOpen ? x < max : x <= max); }
+};
+
+// The ranges keep every product the scheme forms (K ~ E t³/h⁴, Δt²K, energies) far inside the
+// doubles' range, so that accepted parameters never give Inf or NaN, and are wide enough for any
+// plate a structural code would model (fuzz/parameters.cpp found the need: dt = 1e-323 was
+// accepted and the energy came out NaN). Damping: ratios up to ~1e6 at 1 Hz and at 1e6 Hz.
+namespace ranges {
+constexpr Range kLength{1e-4, 1e4}, kWidth{1e-4, 1e4}, kThickness{1e-6, 1e2};
+constexpr Range kYoungsModulus{1.0, 1e14}, kPoissonRatio{0.0, 0.5, true, true}, kDensity{1e-2, 1e6};
+constexpr Range kCells{1, 400};  // nx, ny
+constexpr Range kObstacleLower{-kMaxDisplacement, 0.0, false, true}, kObstacleUpper{0.0, kMaxDisplacement, true};
+constexpr Range kDt{1e-12, 1.0}, kBeta{0.0, 0.5}, kInitialLoad{-kMaxLoad, kMaxLoad};
+constexpr Range kModes{0, 2147483647.0}, kRestitution{0.0, 1.0};
+constexpr Range kDampingMass{0.0, 1e6}, kDampingStiffness{0.0, 1.0};
+}  // namespace ranges
+
 // Checks everything that can be checked without assembling (throws ParameterError).
 // The β < 1/4 stability bound needs κ_h and is checked by PlateSimulation.
 void validate(const PlateParameters& p);
