@@ -356,7 +356,7 @@ fmi2Status Instance::serializeFMUstate(fmi2FMUstate state, fmi2Byte serialized[]
     const std::size_t expected = serializedSize(*snapshot);
     if (size != expected)
         return fail("size = %zu, but the state needs %zu bytes (fmi2SerializedFMUstateSize)", size, expected);
-    serialize(*snapshot, modelGuid(), serialized, size);
+    serialize(*snapshot, *model_, modelGuid(), serialized, size);
     return fmi2OK;
 }
 

@@ -8,6 +8,7 @@
 #include <memory>
 #include <string>
 
+#include "FmiState.h"
 #include "Model.h"
 #include "fmi2Functions.h"
 
@@ -19,25 +20,6 @@
 #endif
 
 namespace fmu {
-
-// States of the FMI 2.0 co-simulation state machine (FMI 2.0.4, section 4.2.4), as bits so
-// that the allowed states of a function are one mask. EventMode and ContinuousTimeMode
-// belong to Model Exchange and are never entered.
-enum State : unsigned {
-    StartAndEnd = 1u << 0,
-    Instantiated = 1u << 1,
-    InitializationMode = 1u << 2,
-    EventMode = 1u << 3,
-    ContinuousTimeMode = 1u << 4,
-    StepComplete = 1u << 5,
-    StepInProgress = 1u << 6,
-    StepFailed = 1u << 7,
-    StepCanceled = 1u << 8,
-    Terminated = 1u << 9,
-    Error = 1u << 10,
-    Fatal = 1u << 11,
-};
-const char* stateName(State state);
 
 // Log categories every FMU of this layer declares.
 enum LogCategory { LogStatusError = 0, LogStatusWarning = 1, LogAll = 2, LogCategoryCount = 3 };

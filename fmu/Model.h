@@ -69,6 +69,8 @@ struct ModelInfo {
     // HTML for documentation/index.html beside the table of variables (what the model is, its
     // default scene, its limits); nullptr: the table only.
     const char* documentationHtml = nullptr;
+    // The first 8 bytes of a serialized FMU state (no terminating NUL needed): names the model.
+    const char* stateMagic = "FMUSTATE";
 };
 
 // A value or call the model rejects; the message names what, the value and what is allowed.

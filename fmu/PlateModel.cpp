@@ -8,7 +8,7 @@
 #include <string>
 
 #include "Model.h"
-#include "PlateImpactGuid.h"  // generated at build time: PLATEIMPACT_GUID
+#include "PlateImpactGuid.h"  // generated at build time: FMU_GUID
 #include "PlateVariables.h"
 
 namespace plateimpact {
@@ -58,6 +58,7 @@ FMI 2.0 allows; FMU states of another build or damaged (XXH64 checksum).</p>
 AMD and COLAMD, BSD-3-Clause), linked statically; texts in licenses/. The win64 binary links the GCC
 runtime libraries (GPL-3.0 with the GCC Runtime Library Exception) and mingw-w64's winpthreads (MIT).</p>
 )",
+    /*stateMagic=*/"PLATEIMP",
 };
 
 std::string format(const char* fmt, double a, double b, double c = 0.0) {
@@ -251,5 +252,5 @@ private:
 
 namespace fmu {
 std::unique_ptr<Model> createModel() { return std::make_unique<plateimpact::PlateModel>(); }
-const char* modelGuid() { return PLATEIMPACT_GUID; }
+const char* modelGuid() { return FMU_GUID; }
 }  // namespace fmu

@@ -12,7 +12,6 @@ namespace fmu {
 
 namespace {
 
-constexpr char kMagic[8] = {'P', 'L', 'A', 'T', 'E', 'I', 'M', 'P'};
 // Version 3: values walked from the table of variables, outputs no longer stored (they are
 // recomputed from the model's state). Version 4: the impact-law parameters and the scheme's
 // damping energy and contact impulses (docs/theory.md §11–13). Older states are refused by name.
@@ -81,7 +80,7 @@ std::size_t serializedSize(const Snapshot& s) {
     return kHeaderBytes + sizeof(double) * (2 + s.values.size() + s.modelState.size());
 }
 
-void serialize(const Snapshot& s, const char* guid, fmi2Byte* out, std::size_t size) {
+void serialize(const Snapshot& s, const Model& model, const char* guid, fmi2Byte* out, std::size_t size) {
     const std::vector<double> data = payload(s);
     const std::uint32_t version = kFormatVersion;
     const std::uint32_t guidLength = static_cast<std::uint32_t>(std::strlen(guid));
@@ -89,7 +88,7 @@ void serialize(const Snapshot& s, const char* guid, fmi2Byte* out, std::size_t s
     if (guidLength > kGuidField || size != kHeaderBytes + sizeof(double) * data.size())
         throw std::logic_error("serialize: size does not match serializedSize");
     std::memset(out, 0, kHeaderBytes);
-    std::memcpy(out, kMagic, 8);
+    std::memcpy(out, model.info().stateMagic, 8);
     std::memcpy(out + 8, &version, 4);
     std::memcpy(out + 12, &guidLength, 4);
     std::memcpy(out + 16, guid, guidLength);
@@ -103,7 +102,9 @@ Snapshot deserialize(const fmi2Byte* bytes, std::size_t size, const char* guid, 
     if (size < kHeaderBytes)
         throw CorruptState(std::to_string(size) + " bytes, shorter than the " + std::to_string(kHeaderBytes) +
                            "-byte header");
-    if (std::memcmp(bytes, kMagic, 8) != 0) throw CorruptState("wrong magic (not a PlateImpact FMU state)");
+    const ModelInfo& info = model.info();
+    if (std::memcmp(bytes, info.stateMagic, 8) != 0)
+        throw CorruptState(std::string("wrong magic (not a ") + info.modelName + " FMU state)");
     std::uint32_t version = 0, guidLength = 0;
     std::uint64_t count = 0;
     std::memcpy(&version, bytes + 8, 4);
@@ -111,7 +112,8 @@ Snapshot deserialize(const fmi2Byte* bytes, std::size_t size, const char* guid, 
     std::memcpy(&count, bytes + 16 + kGuidField, 8);
     if (version != kFormatVersion)
         throw CorruptState("format version " + std::to_string(version) + ", expected " +
-                           std::to_string(kFormatVersion) + " (states saved by an older PlateImpact cannot be read)");
+                           std::to_string(kFormatVersion) + " (states saved by an older " + info.modelName +
+                           " cannot be read)");
     if (guidLength != std::strlen(guid) || std::memcmp(bytes + 16, guid, guidLength) != 0)
         throw CorruptState(std::string("the serialized state was written by a different build (GUID mismatch; "
                                        "this FMU has GUID ") +

@@ -6,13 +6,13 @@
 #include <stdexcept>
 #include <vector>
 
-#include "Instance.h"
+#include "FmiState.h"
 #include "Model.h"
 
 namespace fmu {
 
 struct Snapshot {
-    static constexpr std::uint64_t kTag = 0x506c617465536e70ULL;  // "PlateSnp": guards the cast
+    static constexpr std::uint64_t kTag = 0x46'4d'55'53'6e'61'70'00ULL;  // "FMUSnap": guards the cast
     std::uint64_t tag = kTag;
     State state = Instantiated;
     double startTime = 0.0;
@@ -32,7 +32,7 @@ public:
 };
 
 // Serialized form (native byte order, this FMU's own platform only):
-//   bytes  0..7   magic "PLATEIMP"
+//   bytes  0..7   magic: the model's ModelInfo::stateMagic (8 characters)
 //   bytes  8..11  uint32 format version
 //   bytes 12..15  uint32 length of the GUID
 //   bytes 16..63  GUID of the FMU build that wrote it (NUL padded)
@@ -42,7 +42,7 @@ public:
 //   bytes 80..    n doubles: the state-machine state, the start time, the values of the
 //                 settable variables in table order, then the model's state.
 std::size_t serializedSize(const Snapshot& snapshot);
-void serialize(const Snapshot& snapshot, const char* guid, fmi2Byte* out, std::size_t size);
+void serialize(const Snapshot& snapshot, const Model& model, const char* guid, fmi2Byte* out, std::size_t size);
 // Throws CorruptState naming what is wrong (magic, version, GUID, size, checksum, a value out
 // of range), in that order.
 Snapshot deserialize(const fmi2Byte* bytes, std::size_t size, const char* guid, const Model& model);

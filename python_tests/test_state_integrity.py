@@ -100,9 +100,11 @@ def test_a_state_the_model_refuses_leaves_the_instance_as_it_was(fmu_path, field
     with PlateRun(fmu_path, **TINY) as run:
         blob = saved_state(run)
         values = struct.unpack(f"{(len(blob) - HEADER) // 8}d", blob[HEADER:])
-        simulation = 2 + sum(1 for v in run.md.modelVariables if v.causality != "output") + 2 * 12 + 2
+        # The model's part: 4 inputs x (3 + 9 history), the clamp's position and velocity, then
+        # the simulation flag and base; the scheme's state starts with 5 vectors of n.
+        simulation = 2 + sum(1 for v in run.md.modelVariables if v.causality != "output") + 4 * 12 + 2 + 2
         n = int(values[simulation + 1])
-        index = simulation + 3 + 4 * n + offset
+        index = simulation + 3 + 5 * n + offset
         patched = list(values)
         patched[index] = float("nan")
         bad = with_checksum(blob[:HEADER] + struct.pack(f"{len(patched)}d", *patched))

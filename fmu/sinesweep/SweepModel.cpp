@@ -1,4 +1,4 @@
-// The SineSweep model binding: plate::SineSweep (solver/SineSweep.h) behind fmu::Model, the
+// The SineSweep model binding: plate::SineSweep (SineSweep.h beside it) behind fmu::Model, the
 // controller of the two-FMU system model (examples/system_model.py). No inputs; its output
 // base_displacement comes with exact first and second derivatives through
 // fmi2GetRealOutputDerivatives, for masters that pass them on.
@@ -8,7 +8,7 @@
 
 #include "Model.h"
 #include "SineSweep.h"
-#include "SineSweepGuid.h"  // generated at build time: PLATEIMPACT_GUID
+#include "SineSweepGuid.h"  // generated at build time: FMU_GUID
 
 namespace sweep {
 
@@ -27,6 +27,8 @@ const fmu::ModelInfo kInfo{
     /*canGetAndSetFMUstate=*/true,
     /*defaultStopTime=*/1.0,
     /*defaultStepSize=*/1e-4,
+    /*documentationHtml=*/nullptr,
+    /*stateMagic=*/"SWEEPSIG",
 };
 
 const fmu::EnumerationType kSweepLaw{
@@ -148,5 +150,5 @@ private:
 
 namespace fmu {
 std::unique_ptr<Model> createModel() { return std::make_unique<sweep::SweepModel>(); }
-const char* modelGuid() { return PLATEIMPACT_GUID; }
+const char* modelGuid() { return FMU_GUID; }
 }  // namespace fmu
