@@ -12,6 +12,11 @@ class DiscretePlate {
 public:
     virtual ~DiscretePlate() = default;
 
+    // The time step and β the step matrix A = M + βΔt²K was factored with: the one place the
+    // scheme's Δt and β live (the stepper and the impact laws read them here).
+    double dt() const { return dt_; }
+    double beta() const { return beta_; }
+
     virtual Eigen::Index size() const = 0;
     virtual void applyStiffness(const Eigen::VectorXd& w, Eigen::VectorXd& out) const = 0;
     virtual void applyMass(const Eigen::VectorXd& w, Eigen::VectorXd& out) const = 0;
@@ -46,6 +51,12 @@ public:
 
     // Point evaluation of w (relative to the base) in these coordinates.
     virtual PointProbe probe(double x, double y) const = 0;
+
+protected:
+    DiscretePlate(double dt, double beta) : dt_(dt), beta_(beta) {}
+
+private:
+    double dt_, beta_;
 };
 
 }  // namespace plate

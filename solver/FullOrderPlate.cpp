@@ -19,7 +19,8 @@ Eigen::SparseMatrix<double> stepMatrix(const ClampedPlate& p, double dt, double 
 FullOrderPlate::FullOrderPlate(std::shared_ptr<const FiniteElementSpace> space,
                                std::shared_ptr<const ClampedPlate> plate, double dt, double beta, double dampingMass,
                                double dampingStiffness)
-    : space_(std::move(space)),
+    : DiscretePlate(dt, beta),
+      space_(std::move(space)),
       plate_(std::move(plate)),
       stepFactor_(stepMatrix(*plate_, dt, beta, dampingMass, dampingStiffness)),
       stiffnessUpper_(plate_->stiffness.triangularView<Eigen::Upper>()),

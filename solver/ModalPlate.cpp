@@ -9,7 +9,7 @@ namespace plate {
 
 ModalPlate::ModalPlate(std::shared_ptr<const FiniteElementSpace> space, std::shared_ptr<const ClampedPlate> plate,
                        double dt, double beta, int modes, double dampingMass, double dampingStiffness)
-    : space_(std::move(space)), plate_(std::move(plate)) {
+    : DiscretePlate(dt, beta), space_(std::move(space)), plate_(std::move(plate)) {
     lowestModes(*plate_, modes, phi_, omega2_);
     complete_ = phi_.cols() == plate_->mass.rows();
     // Rayleigh damping is diagonal in modal coordinates (§13): ζ_k = a/(2ω_k) + bω_k/2.

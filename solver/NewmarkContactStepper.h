@@ -19,6 +19,7 @@
 
 #include "BoxQP.h"
 #include "DiscretePlate.h"
+#include "ImpactLaw.h"
 #include "NewmarkState.h"
 #include "Obstacles.h"
 
@@ -34,8 +35,8 @@ struct SchemeOptions {
 
 class NewmarkContactStepper {
 public:
-    NewmarkContactStepper(std::shared_ptr<const DiscretePlate> plate, double dt, double beta, Obstacles obstacles,
-                          SchemeOptions options = {});
+    // Δt and β are the plate's (DiscretePlate::dt, beta: its step matrix was factored with them).
+    NewmarkContactStepper(std::shared_ptr<const DiscretePlate> plate, Obstacles obstacles, SchemeOptions options = {});
 
     // The plate at rest for t ≤ 0 in the shape w0 with the clamp at z0, pressure p0.
     void initialize(const Eigen::VectorXd& w0, double z0, double p0);
@@ -58,42 +59,42 @@ public:
     const NewmarkState& state() const { return state_; }
     void setState(const NewmarkState& s) {
         state_ = s;
-        checkMargin_ = -1.0;  // the free-flight bound restarts from a full look
+        if (law_) law_->reset();  // e.g. the free-flight bound restarts from a full look
         massVelocityValid_ = false;
     }
     const DiscretePlate& plate() const { return *plate_; }
-    double dt() const { return dt_; }
-    double beta() const { return beta_; }
+    double dt() const { return plate_->dt(); }
+    double beta() const { return plate_->beta(); }
     const SchemeOptions& options() const { return options_; }
     const Obstacles& obstacles() const { return obstacles_; }
-    int computedContactColumns() const { return columns_ ? columns_->computedColumns() : 0; }
 
 private:
+    void checkInputs(double zNext, double pNext) const;
+    void assembleRightHandSide(double baseJump, double pBeta);  // rhs_ of (3.6) for d
+    // The contact phase (§3.4 + the law): the QP where an obstacle is violated, wNext_ corrected.
+    ContactWork resolveContact(double zNext, int& iterations, double& kkt, int& contactCount);
+    double dampingWork();  // the step's Rayleigh dissipation (§13); also M(w⁺ − w) for the next step
+    double inputWork(double zNext, double baseJump, double pBeta, double sNext, double tNext,
+                     const ContactWork& contact) const;
+    void commit(double zNext, double pNext, double sNext, double tNext, const ContactWork& contact, double damped,
+                double work, int iterations, double kkt, int contactCount);
+
     std::shared_ptr<const DiscretePlate> plate_;
-    double dt_, beta_;
     Obstacles obstacles_;
     SchemeOptions options_;
-    bool generalLaw_ = false;  // restitution or singular mass: the contact work of §12, unclamped
     NewmarkState state_;
-    // Contact machinery exists only when an obstacle does (no obstacle → no QP).
+    // Contact machinery exists only when an obstacle does (no obstacle → no QP, no law).
     std::unique_ptr<ContactColumns> columns_;
     std::unique_ptr<BoxQP> qp_;
+    std::unique_ptr<ImpactLaw> law_;
+    ContactBuffers contact_;
     // Step buffers, allocated once.
-    Eigen::VectorXd rhs_, d_, wNext_, kwNext_, yFree_, y_, mu_, lowerBound_, upperBound_, yPrev_;
-    Eigen::VectorXd dampingBuffer_, impulseHistory_, impulseNext_;
+    Eigen::VectorXd rhs_, d_, wNext_, kwNext_, dampingBuffer_;
     // Mass-proportional damping: M(w − w⁻), a function of the state, computed once per step (at
     // the end of the previous one) and recomputed after setState/initialize.
     Eigen::VectorXd massVelocity_, massVelocityNext_;
     bool massVelocityValid_ = false;
     std::vector<signed char> trialState_;
-    // Free flight without looking at every vertex (complete modal basis: the look is a dense
-    // product): at the last full look the vertices were at least checkMargin_ from the
-    // obstacles with the plate at wCheck_ and the base at zCheck_; while
-    // ‖C_i‖ ‖w⁺ − wCheck_‖ + |z⁺ − zCheck_| stays below that margin no vertex can touch, so the
-    // look (which would find nothing) is skipped. Results are identical either way.
-    double rowNormBound_ = 0.0;
-    Eigen::VectorXd wCheck_;
-    double zCheck_ = 0.0, checkMargin_ = -1.0;
     mutable Eigen::VectorXd scratch_, dwScratch_;
 };
 

@@ -125,7 +125,7 @@ PlateSimulation::PlateSimulation(const PlateParameters& p, double baseDisplaceme
     options.dampingMass = p.dampingMass;
     options.dampingStiffness = p.dampingStiffness;
     options.singularMass = p.singularMass() && p.singularEquilibrium;
-    s.stepper = std::make_unique<NewmarkContactStepper>(s.discrete, p.dt, p.beta, obstacles, options);
+    s.stepper = std::make_unique<NewmarkContactStepper>(s.discrete, obstacles, options);
     Eigen::VectorXd w0;
     const auto* modalPlate = dynamic_cast<const ModalPlate*>(s.discrete.get());
     if (modalPlate && modalPlate->complete()) {

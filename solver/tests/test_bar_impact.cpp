@@ -20,7 +20,7 @@ namespace {
 
 class Bar : public DiscretePlate {
 public:
-    Bar(int elements, bool singular, double dt, double beta) : n_(elements + 1) {
+    Bar(int elements, bool singular, double dt, double beta) : DiscretePlate(dt, beta), n_(elements + 1) {
         const double h = 1.0 / elements;
         std::vector<Eigen::Triplet<double>> k, m;
         for (int e = 0; e < elements; ++e) {
@@ -90,7 +90,7 @@ BarImpact simulate(int elements, double dt, bool singular) {
     wall.lower = -gap;
     SchemeOptions options;
     options.singularMass = singular;
-    NewmarkContactStepper stepper(bar, dt, beta, wall, options);
+    NewmarkContactStepper stepper(bar, wall, options);
     const Eigen::VectorXd zero = Eigen::VectorXd::Zero(elements + 1);
     stepper.initialize(zero, 0.0, 0.0);
     NewmarkState s = stepper.state();

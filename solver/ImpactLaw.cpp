@@ -1,0 +1,168 @@
+#include "ImpactLaw.h"
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+
+namespace plate {
+
+namespace {
+
+// The paper's law (§3.4): the constraint on u⁺ itself, contact work only where the QP ran.
+// Free flight without looking at every vertex (complete modal basis: the look is a dense
+// product): at the last full look the vertices were at least margin_ from the obstacles with the
+// plate at wCheck_ and the base at zCheck_; while ‖C_i‖ ‖w⁺ − wCheck_‖ + |z⁺ − zCheck_| stays
+// below that margin no vertex can touch, so the look (which would find nothing) is skipped.
+// Results are identical either way.
+class InelasticImpact final : public ImpactLaw {
+public:
+    InelasticImpact(const DiscretePlate& plate, const Obstacles& obstacles)
+        : plate_(plate), obstacles_(obstacles), rowNormBound_(plate.contactRowNormBound()) {
+        if (rowNormBound_ > 0.0) wCheck_.resize(plate.size());
+    }
+
+    bool bounds(const NewmarkState&, const Eigen::VectorXd& wFree, double zNext, ContactBuffers& b) override {
+        const double lo = obstacles_.lower - zNext, hi = obstacles_.upper - zNext;
+        bool violated = false;
+        // 1e-12 m: roundoff of the values the bound is compared with.
+        if (margin_ <= 0.0 || rowNormBound_ * (wFree - wCheck_).norm() + std::abs(zNext - zCheck_) + 1e-12 >= margin_) {
+            plate_.gatherContact(wFree, b.yFree);
+            double margin = std::numeric_limits<double>::infinity();
+            for (int i = 0; i < b.yFree.size(); ++i) {
+                violated |= (b.yFree[i] < lo) | (b.yFree[i] > hi);
+                margin = std::min(margin, std::min(b.yFree[i] - lo, hi - b.yFree[i]));
+            }
+            margin_ = -1.0;
+            if (!violated && rowNormBound_ > 0.0) {
+                wCheck_ = wFree;  // same size: no allocation
+                zCheck_ = zNext;
+                margin_ = margin;
+            }
+        }
+        if (violated) {
+            b.lower.setConstant(lo);
+            b.upper.setConstant(hi);
+        }
+        return violated;
+    }
+
+    // Loss ½ λᵀ(u⁻ − u⁺) on the active vertices (§10), absolute heights. Each term is ≥ 0 in
+    // exact arithmetic (u⁺ on the obstacle, u⁻ not past it). A vertex that stays on the obstacle
+    // has u⁻ there only up to the roundoff of w + Σ μ_j A⁻¹Cᵀe_j (~1e-17 m), which can make its
+    // term ~1e-13 J negative: that is no physical work at all, so it is dropped —
+    // energy_dissipated never decreases, energy_input stays exactly 0 without inputs, and the
+    // ledger keeps closing to roundoff (the dropped amounts are of that size).
+    ContactWork work(const NewmarkState& s, bool violated, double zNext, ContactBuffers& b) override {
+        ContactWork w;
+        if (!violated) return w;
+        const std::vector<double>& lever = plate_.contactAbscissae();
+        plate_.gatherContact(s.wPrev, b.yPrev);
+        double muSum = 0.0;
+        for (int i : *b.active) {
+            muSum += b.mu[i];
+            w.sum[b.mu[i] < 0.0] += b.mu[i];
+            w.moment += b.mu[i] * lever[i];
+            w.dissipated += std::max(0.0, b.mu[i] * ((b.yPrev[i] + s.zPrev) - (b.y[i] + zNext)));
+        }
+        const double dt2 = plate_.dt() * plate_.dt();
+        w.dissipated /= 2.0 * dt2;
+        w.onBase = -muSum * (zNext - s.zPrev) / (2.0 * dt2);
+        return w;
+    }
+
+    void reset() override { margin_ = -1.0; }
+
+private:
+    const DiscretePlate& plate_;
+    Obstacles obstacles_;
+    double rowNormBound_;
+    Eigen::VectorXd wCheck_;
+    double zCheck_ = 0.0, margin_ = -1.0;
+};
+
+// The constraint on (u⁺ + e u⁻)/(1 + e) (§12) and, with a singular mass, the contact impulses
+// of the two previous steps carried into the right-hand side (§11). Every vertex is looked at,
+// every step; the contact work is not clamped (it can return energy).
+class GeneralImpact final : public ImpactLaw {
+public:
+    GeneralImpact(const DiscretePlate& plate, const Obstacles& obstacles, double restitution, bool carry)
+        : plate_(plate), obstacles_(obstacles), e_(restitution), carry_(carry) {
+        if (carry_) {
+            carried_.resize(plate.contactCount());
+            next_.resize(plate.contactCount());
+        }
+    }
+
+    // Cᵀν with ν = ((1−2β)/β) μ_n + μ_{n−1}: the β-average of the contact forces of the massless
+    // equilibria at t_{n−1}, t_n, t_{n+1} (§11); μ_{n+1} comes from this step's QP.
+    void addCarried(const NewmarkState& s, Eigen::VectorXd& rhs) override {
+        if (!carry_) return;
+        const double beta = plate_.beta();
+        carried_.noalias() = ((1.0 - 2.0 * beta) / beta) * s.contactImpulse + s.contactImpulsePrev;
+        plate_.scatterContact(carried_, rhs);
+    }
+
+    // Per-vertex bounds on y⁺ = C w⁺: (1+e)·obstacle − e u⁻ − z⁺.
+    bool bounds(const NewmarkState& s, const Eigen::VectorXd& wFree, double zNext, ContactBuffers& b) override {
+        const double lo = obstacles_.lower - zNext, hi = obstacles_.upper - zNext;
+        plate_.gatherContact(s.wPrev, b.yPrev);
+        plate_.gatherContact(wFree, b.yFree);
+        bool violated = false;
+        for (int i = 0; i < b.yFree.size(); ++i) {
+            const double uPrev = b.yPrev[i] + s.zPrev;
+            b.lower[i] = e_ > 0.0 ? (1.0 + e_) * obstacles_.lower - e_ * uPrev - zNext : lo;
+            b.upper[i] = e_ > 0.0 ? (1.0 + e_) * obstacles_.upper - e_ * uPrev - zNext : hi;
+            violated |= (b.yFree[i] < b.lower[i]) | (b.yFree[i] > b.upper[i]);
+        }
+        return violated;
+    }
+
+    // ½ τᵀ(u⁺ − u⁻)/Δt² with τ = μ (+ ν carried) the whole impulse: at a vertex on the law's
+    // constraint u⁺ − u⁻ = (1+e)(obstacle − u⁻) (§12).
+    ContactWork work(const NewmarkState& s, bool violated, double zNext, ContactBuffers& b) override {
+        ContactWork w;
+        const std::vector<double>& lever = plate_.contactAbscissae();
+        const Eigen::VectorXd& yNext = violated ? b.y : b.yFree;
+        double tauSum = 0.0;
+        for (int i = 0; i < yNext.size(); ++i) {
+            double tau = violated ? b.mu[i] : 0.0;
+            if (carry_) {
+                next_[i] = tau;
+                tau += carried_[i];
+            }
+            if (tau == 0.0) continue;
+            w.sum[tau < 0.0] += tau;
+            w.moment += tau * lever[i];
+            w.dissipated += tau * ((b.yPrev[i] + s.zPrev) - (yNext[i] + zNext));
+            tauSum += tau;
+        }
+        const double dt2 = plate_.dt() * plate_.dt();
+        w.dissipated /= 2.0 * dt2;
+        w.onBase = -tauSum * (zNext - s.zPrev) / (2.0 * dt2);
+        return w;
+    }
+
+    void commit(NewmarkState& s) override {
+        if (!carry_) return;
+        s.contactImpulsePrev.swap(s.contactImpulse);
+        s.contactImpulse.swap(next_);
+    }
+
+private:
+    const DiscretePlate& plate_;
+    Obstacles obstacles_;
+    double e_;
+    bool carry_;
+    Eigen::VectorXd carried_, next_;
+};
+
+}  // namespace
+
+std::unique_ptr<ImpactLaw> makeImpactLaw(const DiscretePlate& plate, const Obstacles& obstacles, double restitution,
+                                         bool carryImpulses) {
+    if (restitution > 0.0 || carryImpulses)
+        return std::make_unique<GeneralImpact>(plate, obstacles, restitution, carryImpulses);
+    return std::make_unique<InelasticImpact>(plate, obstacles);
+}
+
+}  // namespace plate
