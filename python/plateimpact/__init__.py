@@ -5,7 +5,10 @@
 - `plateimpact.scenes`: the scenes of the accuracy reports and the exact-base reference run.
 - `plateimpact.sweep`: the sine-sweep controller and its master loop.
 - `plateimpact.response_map`: frequency × gap response maps, serial or on Dask.
-- `plateimpact.stability`: the stability matrix (cases, runner, checks).
+- `plateimpact.cosim`: the two-FMU system model run by libcosim and by SSP masters.
+- `plateimpact.interface`: the README's table of variables, written from the model description.
+
+The studies and report writers of docs/ are not part of it: they are in the repository's tools/.
 """
 
 from .driver import PlateImpactFMU, signal, sine, unzipped

@@ -1,6 +1,6 @@
 """The stability stress matrix of PlateImpact: ONE table of cases, the runner and the checks.
 
-Shared by python_tests/test_stability.py (short horizons) and examples/stability_report.py
+Shared by python_tests/test_stability.py (short horizons) and tools/stability_report.py
 (the same cases, optionally longer with --full, written to docs/stability.md). Nothing here
 knows pytest.
 
@@ -40,7 +40,7 @@ from typing import Optional
 from fmpy.fmi1 import FMICallException  # fmpy raises this one for FMI 2.0 calls too
 
 # The one FMU driver, shared with the examples.
-from .driver import PlateImpactFMU
+from plateimpact.driver import PlateImpactFMU
 
 # ---------------------------------------------------------------------------------------------
 # Limits of the checks (the issue's numbers)
