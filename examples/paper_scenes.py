@@ -39,6 +39,7 @@ import numpy as np
 from fmpy import extract
 
 from plateimpact import PlateImpactFMU, sine
+from plateimpact.scenes import AMPLITUDE
 
 MESHES = {"argyris": (14, 5), "fvs": (20, 7)}
 MESHES_FREE = {"argyris": (16, 5), "fvs": (20, 7)}  # figs 13, 16, 18: "160 Argyris triangles"
@@ -278,7 +279,7 @@ def plot_frequencies(path, runs, freqs, gap):
     for ax in axes[-1]:
         ax.set_xlabel("time [s]")
     axes[0, 0].legend(loc="lower right", fontsize=7)
-    fig.suptitle("Figs 9–11: base 0.09 sin(2πf t), obstacles ±0.1 m, Δt = 1e-3 s", fontsize=10)
+    fig.suptitle(f"Figs 9–11: base {AMPLITUDE:g} sin(2πf t), obstacles ±0.1 m, Δt = 1e-3 s", fontsize=10)
     fig.tight_layout()
     fig.savefig(path, dpi=100)
     plt.close(fig)
@@ -389,7 +390,7 @@ def _experiments(args, out, q, meshes, meshes_free, unzip_dir, results, pairs):
     forced = {}
     forced_dts = (1e-3, 1e-4, 1e-5, 5e-6, 2.5e-6)
     for dt in forced_dts:
-        run_pair("forced", dt, dt, T_forced, max(dt, 1e-4), forced, amplitude=0.09)
+        run_pair("forced", dt, dt, T_forced, max(dt, 1e-4), forced, amplitude=AMPLITUDE)
     plot_corners_grid(
         out / "paper_fig05-07_forced.png",
         forced,
@@ -399,7 +400,7 @@ def _experiments(args, out, q, meshes, meshes_free, unzip_dir, results, pairs):
             f"max|c1−c2| = {np.max(np.abs(r['corner_1'] - r['corner_2'])):.1e} m"
         ),
         (-0.1, 0.1),
-        "Figs 5–7: base 0.09 sin(2π·10 t), obstacles ±0.1 m, 140 elements each",
+        f"Figs 5–7: base {AMPLITUDE:g} sin(2π·10 t), obstacles ±0.1 m, 140 elements each",
     )
 
     print("Fig 8: obstacles ±0.01 m, base amplitude 0.009 m")
@@ -421,7 +422,7 @@ def _experiments(args, out, q, meshes, meshes_free, unzip_dir, results, pairs):
     print("Figs 9-11: 10 to 35 Hz, Δt = 1e-3")
     freq = {}
     for f in freqs:
-        run_pair(f"freq{f}", f, 1e-3, T_freq, 1e-3, freq, amplitude=0.09, frequency=f)
+        run_pair(f"freq{f}", f, 1e-3, T_freq, 1e-3, freq, amplitude=AMPLITUDE, frequency=f)
     plot_frequencies(out / "paper_fig09-11_frequencies.png", freq, freqs, 0.1)
 
     print("Figs 12-18: free vibration from the 8600 Pa static shape, lower obstacle only")

@@ -11,12 +11,12 @@ Every output after every step must agree to 1e-12 (relative to max(1, |value|));
 are bit for bit identical, which the test reports.
 """
 
-import math
-
 import numpy as np
 import pytest
 from fmpy import read_model_description
 from plate_fmu import PlateRun
+
+from plateimpact.scenes import default_base
 
 cosim = pytest.importorskip("libcosimpy.CosimExecution", reason="libcosimpy is not installed (requirements.txt)")
 from libcosimpy.CosimExecution import CosimExecution  # noqa: E402
@@ -45,7 +45,7 @@ VR_DT = 13
 
 def base(k):
     """The held base displacement over communication step k."""
-    return 0.09 * math.sin(2 * math.pi * 10.0 * k * H)
+    return default_base(k * H)[0]
 
 
 def run_libcosim(fmu_path):

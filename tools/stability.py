@@ -41,6 +41,7 @@ from fmpy.fmi1 import FMICallException  # fmpy raises this one for FMI 2.0 calls
 
 # The one FMU driver, shared with the examples.
 from plateimpact.driver import PlateImpactFMU
+from plateimpact.scenes import sine
 
 # ---------------------------------------------------------------------------------------------
 # Limits of the checks (the numbers)
@@ -61,9 +62,7 @@ class Sine:
     frequency: float
 
     def __call__(self, t):
-        w = 2.0 * math.pi * self.frequency
-        a = self.amplitude
-        return (a * math.sin(w * t), a * w * math.cos(w * t), -a * w * w * math.sin(w * t))
+        return sine(self.amplitude, self.frequency, t)
 
     def describe(self):
         return f"{self.amplitude:g} sin(2π·{self.frequency:g} t) m"

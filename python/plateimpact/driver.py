@@ -17,7 +17,6 @@ The FMU's log messages (status, category, message) are kept in `plate.log`; pass
 from __future__ import annotations
 
 import atexit
-import math
 import shutil
 from pathlib import Path
 
@@ -184,9 +183,3 @@ class PlateImpactFMU:
 
     def __exit__(self, *exc):
         self.close()
-
-
-def sine(amplitude, frequency, t):
-    """Value and first two derivatives of amplitude·sin(2πf t)."""
-    w = 2.0 * math.pi * frequency
-    return (amplitude * math.sin(w * t), amplitude * w * math.cos(w * t), -amplitude * w * w * math.sin(w * t))

@@ -42,7 +42,8 @@ def simulate_point(
     file first). Deterministic: the same arguments give bitwise the same floats."""
     # imported here, on the worker: the task then carries no reference to the driver class
     # (which holds ctypes callbacks and could not be pickled by value)
-    from plateimpact.driver import PlateImpactFMU, sine
+    from plateimpact.driver import PlateImpactFMU
+    from plateimpact.scenes import sine
 
     if amplitude >= gap:
         raise ValueError(
