@@ -31,12 +31,10 @@ from __future__ import annotations
 import argparse
 import csv
 import math
-import shutil
 import time
 from pathlib import Path
 
 import numpy as np
-from fmpy import extract
 
 from plateimpact import PlateImpactFMU, sine
 from plateimpact.scenes import AMPLITUDE
@@ -113,7 +111,6 @@ def simulate(
     upper=0.1,
     initial_load=0.0,
     mesh=(14, 5),
-    unzip_dir=None,
 ):
     """One run; returns (dict of numpy arrays over the communication points, wall seconds)."""
     nx, ny = mesh
@@ -126,7 +123,7 @@ def simulate(
     n = round(stop / comm)
     rows = np.empty((n + 1, len(SERIES)))
     t0 = time.perf_counter()
-    with PlateImpactFMU(fmu, unzip_dir=unzip_dir, **params) as plate:
+    with PlateImpactFMU(fmu, **params) as plate:
         for k in range(n + 1):
             if k:
                 plate.step(comm, base=sine(amplitude, frequency, (k - 1) * comm) if amplitude else None)
@@ -342,11 +339,7 @@ def main(argv=None):
         meshes = meshes_free = {"argyris": (7, 2), "fvs": (10, 3)}
     results, pairs = [], []
     wall0 = time.perf_counter()
-    unzip_dir = extract(args.fmu)  # once for all runs (each run is its own instance)
-    try:
-        _experiments(args, out, q, meshes, meshes_free, unzip_dir, results, pairs)
-    finally:
-        shutil.rmtree(unzip_dir, ignore_errors=True)
+    _experiments(args, out, q, meshes, meshes_free, results, pairs)  # the FMU extracted once for all runs
     with (out / "paper_scenes.csv").open("w", newline="") as f:
         w = csv.DictWriter(f, fieldnames=RUN_COLUMNS)
         w.writeheader()
@@ -361,15 +354,13 @@ def main(argv=None):
     )
 
 
-def _experiments(args, out, q, meshes, meshes_free, unzip_dir, results, pairs):
+def _experiments(args, out, q, meshes, meshes_free, results, pairs):
     T_forced, T_gap, T_freq, T_free = (0.03, 0.005, 0.03, 0.03) if q else (1.0, 0.3, 1.0, 2.0)
     free_dts = (1e-3, 1e-4, 1e-5, 5e-6, 2.5e-6)
     freqs = (10, 15, 20, 25, 30, 35)
 
     def run(scene, key, el, dt, stop, comm, store, free=False, **kw):
-        r, wall = simulate(
-            args.fmu, el, dt, stop, comm, unzip_dir=unzip_dir, mesh=(meshes_free if free else meshes)[el], **kw
-        )
+        r, wall = simulate(args.fmu, el, dt, stop, comm, mesh=(meshes_free if free else meshes)[el], **kw)
         m = metrics(scene, el, dt, comm, stop, r, wall)
         results.append(m)
         store[(key, el)] = r

@@ -48,4 +48,4 @@ def test_bound_read_from_the_log_brackets_the_accepted_dt(fmu_path):
     try:
         inst.initialize({**params, "dt": 0.99 * bound}, 0.0, 0.0)
     finally:
-        inst.free()
+        inst.close()

@@ -325,9 +325,6 @@ class _Instance(PlateImpactFMU):
         self.time = t
         return super().step(h, base=base, load=load)
 
-    def free(self):
-        self.close()
-
 
 # The FMU's refusal names the bound: "... dt < 2/sqrt((1-4 beta) kappa_h) = <bound> s ...".
 BOUND_PATTERN = re.compile(r"dt < 2/sqrt\(\(1-4 beta\) kappa_h\) = ([0-9.eE+-]+) s")
@@ -344,7 +341,7 @@ def refusal(fmu_path, params):
             return e, inst.errors()
         raise AssertionError(f"the FMU accepted {params}")
     finally:
-        inst.free()
+        inst.close()
 
 
 def stability_bound(fmu_path, params):
@@ -512,7 +509,7 @@ def run_case(case, fmu_path, full=False):
         r.qp_iterations_total = out["qp_iterations_total"]
         r.qp_iterations_max = out["qp_iterations_max"]
     finally:
-        inst.free()
+        inst.close()
         r.wall = time.perf_counter() - wall0
     return r
 

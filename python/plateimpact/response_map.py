@@ -61,7 +61,7 @@ def simulate_point(
         contact = 0
         e_settle = 0.0
         with PlateImpactFMU(
-            fmu, unzip_dir=None, element=element, nx=nx, ny=ny, dt=dt, obstacle_lower=-gap, obstacle_upper=gap
+            fmu, element=element, nx=nx, ny=ny, dt=dt, obstacle_lower=-gap, obstacle_upper=gap
         ) as plate:
             for k in range(n):
                 plate.step(comm_step, base=sine(amplitude, frequency, k * comm_step))
