@@ -27,20 +27,18 @@ from libcosimpy.CosimSlave import CosimLocalSlave  # noqa: E402
 
 
 def interface(fmu_path):
-    """Output value references by name (Real and Integer) and the base input's, from the FMU."""
+    """Output value references by name (Real and Integer), and every variable's, from the FMU."""
     variables = read_model_description(str(fmu_path)).modelVariables
     outputs = {
         t: {v.name: v.valueReference for v in variables if v.causality == "output" and v.type == t}
         for t in ("Real", "Integer")
     }
-    base_vr = next(v.valueReference for v in variables if v.name == "base_displacement")
-    return outputs["Real"], outputs["Integer"], base_vr
+    return outputs["Real"], outputs["Integer"], {v.name: v.valueReference for v in variables}
 
 
 STEP_NS = 100_000  # 1e-4 s
 H = STEP_NS * 1e-9
 STEPS = 600  # 0.06 s: the plate first hits an obstacle after about 0.05 s
-VR_DT = 13
 
 
 def base(k):
@@ -49,7 +47,7 @@ def base(k):
 
 
 def run_libcosim(fmu_path):
-    REAL_OUTPUTS, INTEGER_OUTPUTS, VR_BASE = interface(fmu_path)
+    REAL_OUTPUTS, INTEGER_OUTPUTS, VR = interface(fmu_path)
     log_output_level(CosimLogLevel.ERROR)  # its warning that Enumeration variables (element) are ignored
     execution = CosimExecution.from_step_size(STEP_NS)
     slave = CosimLocalSlave(fmu_path=str(fmu_path), instance_name="plate")
@@ -60,11 +58,11 @@ def run_libcosim(fmu_path):
     assert execution.add_manipulator(manipulator) and execution.add_observer(observer)
     names = {v.name.decode() for v in execution.slave_variables(index)}
     assert set(REAL_OUTPUTS) | set(INTEGER_OUTPUTS) <= names
-    assert execution.real_initial_value(index, VR_DT, 1e-5)  # the default, set explicitly
+    assert execution.real_initial_value(index, VR["dt"], 1e-5)  # the default, set explicitly
     reals, ints = list(REAL_OUTPUTS.values()), list(INTEGER_OUTPUTS.values())
     trace = []
     for k in range(STEPS):
-        assert manipulator.slave_real_values(index, [VR_BASE], [base(k)])
+        assert manipulator.slave_real_values(index, [VR["base_displacement"]], [base(k)])
         assert execution.step(), f"libcosim step {k} failed: {execution.status()}"
         trace.append(list(observer.last_real_values(index, reals)) + list(observer.last_integer_values(index, ints)))
     assert execution.status().current_time == STEPS * STEP_NS
