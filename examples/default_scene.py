@@ -12,7 +12,8 @@ import subprocess
 import time
 from pathlib import Path
 
-from plateimpact import PlateImpactFMU, sine
+from plateimpact import PlateImpactFMU, default_base
+from plateimpact.scenes import AMPLITUDE, FREQUENCY
 
 
 def main(argv=None):
@@ -35,10 +36,8 @@ def main(argv=None):
         rows.append({"time": 0.0, "base": 0.0, **plate.outputs()})
         for k in range(n):
             t = k * args.step
-            plate.step(args.step, base=sine(0.09, 10.0, t))
-            rows.append(
-                {"time": (k + 1) * args.step, "base": sine(0.09, 10.0, (k + 1) * args.step)[0], **plate.outputs()}
-            )
+            plate.step(args.step, base=default_base(t))
+            rows.append({"time": (k + 1) * args.step, "base": default_base((k + 1) * args.step)[0], **plate.outputs()})
     wall = time.perf_counter() - t0
     steps = round(args.stop_time / args.dt)
     print(
@@ -67,7 +66,7 @@ def main(argv=None):
         ax1.axhline(g, color="k", lw=0.8)
     ax1.set_ylabel("displacement [m]")
     ax1.legend(loc="upper right", fontsize=8)
-    ax1.set_title("PlateImpact default scene: base 0.09 sin(2π·10 t), obstacles ±0.1 m")
+    ax1.set_title(f"PlateImpact default scene: base {AMPLITUDE:g} sin(2π·{FREQUENCY:g} t), obstacles ±0.1 m")
     ax2.plot(t, [r["energy"] for r in rows], label="energy")
     ax2.plot(t, [r["energy_input"] for r in rows], label="energy_input")
     ax2.plot(t, [r["energy_dissipated"] for r in rows], label="energy_dissipated")

@@ -31,14 +31,13 @@ from __future__ import annotations
 import argparse
 import csv
 import math
-import shutil
 import time
 from pathlib import Path
 
 import numpy as np
-from fmpy import extract
 
 from plateimpact import PlateImpactFMU, sine
+from plateimpact.scenes import AMPLITUDE
 
 MESHES = {"argyris": (14, 5), "fvs": (20, 7)}
 MESHES_FREE = {"argyris": (16, 5), "fvs": (20, 7)}  # figs 13, 16, 18: "160 Argyris triangles"
@@ -112,7 +111,6 @@ def simulate(
     upper=0.1,
     initial_load=0.0,
     mesh=(14, 5),
-    unzip_dir=None,
 ):
     """One run; returns (dict of numpy arrays over the communication points, wall seconds)."""
     nx, ny = mesh
@@ -125,7 +123,7 @@ def simulate(
     n = round(stop / comm)
     rows = np.empty((n + 1, len(SERIES)))
     t0 = time.perf_counter()
-    with PlateImpactFMU(fmu, unzip_dir=unzip_dir, **params) as plate:
+    with PlateImpactFMU(fmu, **params) as plate:
         for k in range(n + 1):
             if k:
                 plate.step(comm, base=sine(amplitude, frequency, (k - 1) * comm) if amplitude else None)
@@ -278,7 +276,7 @@ def plot_frequencies(path, runs, freqs, gap):
     for ax in axes[-1]:
         ax.set_xlabel("time [s]")
     axes[0, 0].legend(loc="lower right", fontsize=7)
-    fig.suptitle("Figs 9–11: base 0.09 sin(2πf t), obstacles ±0.1 m, Δt = 1e-3 s", fontsize=10)
+    fig.suptitle(f"Figs 9–11: base {AMPLITUDE:g} sin(2πf t), obstacles ±0.1 m, Δt = 1e-3 s", fontsize=10)
     fig.tight_layout()
     fig.savefig(path, dpi=100)
     plt.close(fig)
@@ -341,11 +339,7 @@ def main(argv=None):
         meshes = meshes_free = {"argyris": (7, 2), "fvs": (10, 3)}
     results, pairs = [], []
     wall0 = time.perf_counter()
-    unzip_dir = extract(args.fmu)  # once for all runs (each run is its own instance)
-    try:
-        _experiments(args, out, q, meshes, meshes_free, unzip_dir, results, pairs)
-    finally:
-        shutil.rmtree(unzip_dir, ignore_errors=True)
+    _experiments(args, out, q, meshes, meshes_free, results, pairs)  # the FMU extracted once for all runs
     with (out / "paper_scenes.csv").open("w", newline="") as f:
         w = csv.DictWriter(f, fieldnames=RUN_COLUMNS)
         w.writeheader()
@@ -360,15 +354,13 @@ def main(argv=None):
     )
 
 
-def _experiments(args, out, q, meshes, meshes_free, unzip_dir, results, pairs):
+def _experiments(args, out, q, meshes, meshes_free, results, pairs):
     T_forced, T_gap, T_freq, T_free = (0.03, 0.005, 0.03, 0.03) if q else (1.0, 0.3, 1.0, 2.0)
     free_dts = (1e-3, 1e-4, 1e-5, 5e-6, 2.5e-6)
     freqs = (10, 15, 20, 25, 30, 35)
 
     def run(scene, key, el, dt, stop, comm, store, free=False, **kw):
-        r, wall = simulate(
-            args.fmu, el, dt, stop, comm, unzip_dir=unzip_dir, mesh=(meshes_free if free else meshes)[el], **kw
-        )
+        r, wall = simulate(args.fmu, el, dt, stop, comm, mesh=(meshes_free if free else meshes)[el], **kw)
         m = metrics(scene, el, dt, comm, stop, r, wall)
         results.append(m)
         store[(key, el)] = r
@@ -389,7 +381,7 @@ def _experiments(args, out, q, meshes, meshes_free, unzip_dir, results, pairs):
     forced = {}
     forced_dts = (1e-3, 1e-4, 1e-5, 5e-6, 2.5e-6)
     for dt in forced_dts:
-        run_pair("forced", dt, dt, T_forced, max(dt, 1e-4), forced, amplitude=0.09)
+        run_pair("forced", dt, dt, T_forced, max(dt, 1e-4), forced, amplitude=AMPLITUDE)
     plot_corners_grid(
         out / "paper_fig05-07_forced.png",
         forced,
@@ -399,7 +391,7 @@ def _experiments(args, out, q, meshes, meshes_free, unzip_dir, results, pairs):
             f"max|c1−c2| = {np.max(np.abs(r['corner_1'] - r['corner_2'])):.1e} m"
         ),
         (-0.1, 0.1),
-        "Figs 5–7: base 0.09 sin(2π·10 t), obstacles ±0.1 m, 140 elements each",
+        f"Figs 5–7: base {AMPLITUDE:g} sin(2π·10 t), obstacles ±0.1 m, 140 elements each",
     )
 
     print("Fig 8: obstacles ±0.01 m, base amplitude 0.009 m")
@@ -421,7 +413,7 @@ def _experiments(args, out, q, meshes, meshes_free, unzip_dir, results, pairs):
     print("Figs 9-11: 10 to 35 Hz, Δt = 1e-3")
     freq = {}
     for f in freqs:
-        run_pair(f"freq{f}", f, 1e-3, T_freq, 1e-3, freq, amplitude=0.09, frequency=f)
+        run_pair(f"freq{f}", f, 1e-3, T_freq, 1e-3, freq, amplitude=AMPLITUDE, frequency=f)
     plot_frequencies(out / "paper_fig09-11_frequencies.png", freq, freqs, 0.1)
 
     print("Figs 12-18: free vibration from the 8600 Pa static shape, lower obstacle only")

@@ -26,6 +26,7 @@ import csv
 import time
 from pathlib import Path
 
+from plateimpact.scenes import AMPLITUDE
 from plateimpact.sweep import CSV_COLUMNS, SineSweep, rayleigh_for_band, run_sweep
 
 
@@ -108,7 +109,7 @@ def main(argv=None):
     args = ap.parse_args(argv)
     if args.quick:
         args.duration, args.nx, args.ny, args.dt, args.step = 0.05, 6, 2, 1e-4, 1e-3
-        args.f_start, args.f_end, args.amplitude = 20.0, 60.0, 0.09
+        args.f_start, args.f_end, args.amplitude = 20.0, 60.0, AMPLITUDE
     stop = args.stop_time if args.stop_time is not None else args.duration
 
     sweep = SineSweep(args.amplitude, args.f_start, args.f_end, args.duration, args.law)

@@ -10,26 +10,21 @@ FVS discretization error, which shrinks with h: 2.1 % (14×5), 1.3 % (20×7), 0.
 that the gap shrinks under refinement, which is what makes the agreement a convergence fact.
 """
 
-import math
-
 import numpy as np
 import pytest
 from plate_fmu import PlateRun
 
+from plateimpact.scenes import default_base
+
 H = 1e-4  # communication step
 T_END = 0.06  # past the first impact (~0.0496 s)
-
-
-def sine(t, a=0.09, f=10.0):
-    w = 2 * math.pi * f
-    return (a * math.sin(w * t), a * w * math.cos(w * t), -a * w * w * math.sin(w * t))
 
 
 def run(fmu_path, element, nx, ny):
     rows = []
     with PlateRun(fmu_path, element=element, nx=nx, ny=ny, dt=1e-5) as plate:
         for k in range(round(T_END / H)):
-            out = plate.step(H, base=sine(k * H))
+            out = plate.step(H, base=default_base(k * H))
             rows.append(((k + 1) * H, out["corner_1"], out["corner_2"], out["contact_vertices"]))
     return np.array(rows)
 

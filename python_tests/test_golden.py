@@ -14,7 +14,7 @@ import os
 import sys
 from pathlib import Path
 
-from plateimpact import PlateImpactFMU, sine
+from plateimpact import PlateImpactFMU, default_base
 
 GOLDEN = Path(__file__).resolve().parent / "golden" / "default_scene_0.1s.csv"
 STEP, STEPS = 1e-4, 1000  # 0.1 s: the plate hits both obstacles from t = 0.05 s on
@@ -25,7 +25,7 @@ def simulate(fmu_path) -> list[dict[str, float]]:
     with PlateImpactFMU(fmu_path) as plate:
         rows.append({"time": 0.0, **plate.outputs()})
         for k in range(STEPS):
-            plate.step(STEP, base=sine(0.09, 10.0, k * STEP))
+            plate.step(STEP, base=default_base(k * STEP))
             rows.append({"time": (k + 1) * STEP, **plate.outputs()})
     return rows
 

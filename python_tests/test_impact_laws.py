@@ -4,7 +4,8 @@ damping book their energy in the ledger."""
 
 import math
 
-from plateimpact import impact_study as study
+import impact_study as study
+
 from plateimpact.driver import PlateImpactFMU
 
 

@@ -11,12 +11,12 @@ Every output after every step must agree to 1e-12 (relative to max(1, |value|));
 are bit for bit identical, which the test reports.
 """
 
-import math
-
 import numpy as np
 import pytest
 from fmpy import read_model_description
 from plate_fmu import PlateRun
+
+from plateimpact.scenes import default_base
 
 cosim = pytest.importorskip("libcosimpy.CosimExecution", reason="libcosimpy is not installed (requirements.txt)")
 from libcosimpy.CosimExecution import CosimExecution  # noqa: E402
@@ -27,29 +27,27 @@ from libcosimpy.CosimSlave import CosimLocalSlave  # noqa: E402
 
 
 def interface(fmu_path):
-    """Output value references by name (Real and Integer) and the base input's, from the FMU."""
+    """Output value references by name (Real and Integer), and every variable's, from the FMU."""
     variables = read_model_description(str(fmu_path)).modelVariables
     outputs = {
         t: {v.name: v.valueReference for v in variables if v.causality == "output" and v.type == t}
         for t in ("Real", "Integer")
     }
-    base_vr = next(v.valueReference for v in variables if v.name == "base_displacement")
-    return outputs["Real"], outputs["Integer"], base_vr
+    return outputs["Real"], outputs["Integer"], {v.name: v.valueReference for v in variables}
 
 
 STEP_NS = 100_000  # 1e-4 s
 H = STEP_NS * 1e-9
 STEPS = 600  # 0.06 s: the plate first hits an obstacle after about 0.05 s
-VR_DT = 13
 
 
 def base(k):
     """The held base displacement over communication step k."""
-    return 0.09 * math.sin(2 * math.pi * 10.0 * k * H)
+    return default_base(k * H)[0]
 
 
 def run_libcosim(fmu_path):
-    REAL_OUTPUTS, INTEGER_OUTPUTS, VR_BASE = interface(fmu_path)
+    REAL_OUTPUTS, INTEGER_OUTPUTS, VR = interface(fmu_path)
     log_output_level(CosimLogLevel.ERROR)  # its warning that Enumeration variables (element) are ignored
     execution = CosimExecution.from_step_size(STEP_NS)
     slave = CosimLocalSlave(fmu_path=str(fmu_path), instance_name="plate")
@@ -60,11 +58,11 @@ def run_libcosim(fmu_path):
     assert execution.add_manipulator(manipulator) and execution.add_observer(observer)
     names = {v.name.decode() for v in execution.slave_variables(index)}
     assert set(REAL_OUTPUTS) | set(INTEGER_OUTPUTS) <= names
-    assert execution.real_initial_value(index, VR_DT, 1e-5)  # the default, set explicitly
+    assert execution.real_initial_value(index, VR["dt"], 1e-5)  # the default, set explicitly
     reals, ints = list(REAL_OUTPUTS.values()), list(INTEGER_OUTPUTS.values())
     trace = []
     for k in range(STEPS):
-        assert manipulator.slave_real_values(index, [VR_BASE], [base(k)])
+        assert manipulator.slave_real_values(index, [VR["base_displacement"]], [base(k)])
         assert execution.step(), f"libcosim step {k} failed: {execution.status()}"
         trace.append(list(observer.last_real_values(index, reals)) + list(observer.last_integer_values(index, ints)))
     assert execution.status().current_time == STEPS * STEP_NS

@@ -13,6 +13,8 @@ import numpy as np
 import pytest
 from plate_fmu import PlateRun
 
+from plateimpact.scenes import AMPLITUDE, FREQUENCY, default_base
+
 L, W, THICKNESS, YOUNG, NU = 1.2, 0.4, 0.01, 2.1e11, 0.3
 
 
@@ -134,14 +136,7 @@ def test_static_fvs_converges_to_the_argyris_limit(fmu_path):
 # 2. Order of the time scheme
 
 
-A_BASE, F_BASE = 0.09, 10.0
-OMEGA_BASE = 2 * math.pi * F_BASE
-
-
-def sine_base(t):
-    """z = 0.09 sin(2π·10 t) and its first two derivatives (paper §5.1)."""
-    s, c = math.sin(OMEGA_BASE * t), math.cos(OMEGA_BASE * t)
-    return (A_BASE * s, A_BASE * OMEGA_BASE * c, -A_BASE * OMEGA_BASE**2 * s)
+OMEGA_BASE = 2 * math.pi * FREQUENCY
 
 
 def smooth_base(t):
@@ -149,7 +144,11 @@ def smooth_base(t):
     t = 0, so starting from rest does not excite the mesh's highest modes."""
     s, c = math.sin(OMEGA_BASE * t), math.cos(OMEGA_BASE * t)
     w = OMEGA_BASE
-    return (A_BASE * (1 - c) ** 2 / 4, A_BASE / 2 * (1 - c) * w * s, A_BASE / 2 * w * w * (s * s + (1 - c) * c))
+    return (
+        AMPLITUDE * (1 - c) ** 2 / 4,
+        AMPLITUDE / 2 * (1 - c) * w * s,
+        AMPLITUDE / 2 * w * w * (s * s + (1 - c) * c),
+    )
 
 
 def corner_at(fmu_path, element, nx, ny, dt, t_end, base):
@@ -189,7 +188,7 @@ def test_time_scheme_is_second_order_for_the_sine_start_once_the_mesh_is_resolve
     time step to resolve all its modes: Argyris 1x1 (ω_max = 3.9e4 s⁻¹), Δt = 1e-6, 5e-7,
     2.5e-7 (ω_max Δt ≤ 0.04), corner_1 at t = 3 ms. Measured order 1.98 (2e-6 … 1.25e-7 at
     t = 5 ms: 1.93, 1.98, 2.00). Band [1.8, 2.2]."""
-    values = [corner_at(fmu_path, "argyris", 1, 1, dt, 0.003, sine_base) for dt in (1e-6, 5e-7, 2.5e-7)]
+    values = [corner_at(fmu_path, "argyris", 1, 1, dt, 0.003, default_base) for dt in (1e-6, 5e-7, 2.5e-7)]
     order = observed_order(*values)
     assert 1.8 <= order <= 2.2, (order, values)
 
@@ -317,7 +316,7 @@ def forced_run(fmu_path, element, nx, ny, modes=0, t_end=0.3, h=1e-3):
             t = k * h
             s, c = math.sin(w_load * t), math.cos(w_load * t)
             load = (p_amp * s, p_amp * w_load * c, -p_amp * w_load**2 * s)
-            out.append(run.step(h, base=sine_base(t), load=load))
+            out.append(run.step(h, base=default_base(t), load=load))
     return out
 
 

@@ -10,7 +10,8 @@ import numpy as np
 import pytest
 from fmpy import simulate_fmu
 
-from plateimpact import PlateImpactFMU, sine
+from plateimpact import PlateImpactFMU, default_base
+from plateimpact.scenes import AMPLITUDE, FREQUENCY
 
 DT = 1e-5
 
@@ -47,7 +48,7 @@ def run_every_step(fmu_path, steps, **parameters):
     with PlateImpactFMU(fmu_path, **parameters) as plate:
         rows.append(plate.outputs())
         for k in range(steps):
-            rows.append(plate.step(DT, base=sine(0.09, 10.0, k * DT)))
+            rows.append(plate.step(DT, base=default_base(k * DT)))
     return rows
 
 
@@ -101,7 +102,7 @@ def test_probe_velocity_and_acceleration_are_the_differences_of_the_displacement
     )
     # The clamp's acceleration is the base's at t − dt (the scheme's level), to O(dt²).
     t = 0.02 - DT
-    assert abs(rows[2000]["clamp_acceleration"] + 0.09 * (20 * math.pi) ** 2 * math.sin(20 * math.pi * t)) < 1e-3
+    assert abs(rows[2000]["clamp_acceleration"] - default_base(t)[2]) < 1e-3
 
 
 @pytest.mark.parametrize("drive", ["velocity", "acceleration"])
@@ -153,8 +154,8 @@ def test_a_step_of_half_dt_interpolates_the_grid(fmu_path):
 
 def smooth_base(t):
     """0.09 (1 − cos 2π·10 t)/2: starts at rest, so held values lose nothing at the start."""
-    w = 20 * math.pi
-    return (0.045 * (1 - math.cos(w * t)), 0.045 * w * math.sin(w * t), 0.045 * w * w * math.cos(w * t))
+    w, a = 2 * math.pi * FREQUENCY, AMPLITUDE / 2
+    return (a * (1 - math.cos(w * t)), a * w * math.sin(w * t), a * w * w * math.cos(w * t))
 
 
 def test_2048_hz_signal_through_simulate_fmu(fmu_path):
@@ -195,14 +196,14 @@ def test_states_between_grid_points_round_trip_bit_identically(fmu_path):
     h = 1 / 2048
     with PlateImpactFMU(fmu_path) as plate:
         for k in range(100):
-            plate.step(h, base=sine(0.09, 10.0, k * h))
+            plate.step(h, base=default_base(k * h))
         state = plate.fmu.getFMUstate()
         serialized = plate.fmu.serializeFMUstate(state)
         t0 = plate.time
-        first = [plate.step(h, base=sine(0.09, 10.0, t0 + k * h)) for k in range(60)]
+        first = [plate.step(h, base=default_base(t0 + k * h)) for k in range(60)]
         plate.fmu.setFMUstate(plate.fmu.deSerializeFMUstate(serialized))
         plate.time = t0
-        again = [plate.step(h, base=sine(0.09, 10.0, t0 + k * h)) for k in range(60)]
+        again = [plate.step(h, base=default_base(t0 + k * h)) for k in range(60)]
     assert first == again
     assert any(r["contact_vertices"] > 0 for r in first)
 

@@ -1,4 +1,4 @@
-"""The speed-against-error report (examples/speed_vs_error.py) in its --quick form: it writes the
+"""The speed-against-error report (tools/speed_vs_error.py) in its --quick form: it writes the
 markdown table and the figures, every error it reports is finite, and the convergence verdicts
 it prints follow its own rule from the differences it prints. No timing is asserted."""
 
@@ -36,7 +36,7 @@ def report(tmp_path_factory, fmu_path):
     proc = subprocess.run(
         [
             sys.executable,
-            str(REPO / "examples" / "speed_vs_error.py"),
+            str(REPO / "tools" / "speed_vs_error.py"),
             "--quick",
             "--out",
             str(out),
@@ -63,7 +63,7 @@ def test_writes_table_and_figures(report):
         "## Plain Python/SciPy baseline",
     ):
         assert heading in md
-    assert "examples/speed_vs_error.py --quick" in md  # the regenerate command
+    assert "tools/speed_vs_error.py --quick" in md  # the regenerate command
     assert "| goal | measured | verdict |" in md
     assert "figures/speed_vs_error.png" in md and "figures/scaling.png" in md
     for png in ("speed_vs_error.png", "scaling.png"):

@@ -1,19 +1,18 @@
-"""The stability stress matrix (plateimpact.stability), short horizons.
+"""The stability stress matrix (tools/stability.py), short horizons.
 
 One test per case of the shared table. A case that runs must show: no NaN/Inf; no probe vertex
 past an obstacle by more than 1e-12 m; the energy ledger energy = E0 + energy_input -
 energy_dissipated closed to 1e-9 of the largest energy seen at every communication point;
 energy_dissipated never decreasing; every contact QP converged (KKT residual <= 1e-10, which
 also bounds the infeasibility of every vertex, not only the probes: see
-plateimpact.stability.failures); a non-negative discrete energy; and contact actually happening.
+stability.failures); a non-negative discrete energy; and contact actually happening.
 beta = 0 at 1.1x the stability bound must be refused at initialization with fmi2Error, the log
-naming dt and the bound. examples/stability_report.py runs the same table into
+naming dt and the bound. tools/stability_report.py runs the same table into
 docs/stability.md.
 """
 
 import pytest
-
-from plateimpact.stability import CASES, FMICallException, failures, run_case
+from stability import CASES, FMICallException, failures, run_case
 
 
 @pytest.mark.parametrize("case", CASES, ids=[c.name for c in CASES])
@@ -38,7 +37,7 @@ def test_stability_case(case, fmu_path):
 def test_bound_read_from_the_log_brackets_the_accepted_dt(fmu_path):
     """The bound the matrix parses from the FMU's log is the one the FMU enforces: 0.99x is
     accepted, 1.01x refused (coarse grid of the beta = 0 cases)."""
-    from plateimpact.stability import COARSE, _Instance, refusal, stability_bound
+    from stability import COARSE, _Instance, refusal, stability_bound
 
     params = {"beta": 0.0, **COARSE}
     bound = stability_bound(fmu_path, params)
@@ -49,4 +48,4 @@ def test_bound_read_from_the_log_brackets_the_accepted_dt(fmu_path):
     try:
         inst.initialize({**params, "dt": 0.99 * bound}, 0.0, 0.0)
     finally:
-        inst.free()
+        inst.close()

@@ -20,7 +20,7 @@ from fmpy.fmi2 import FMU2Slave
 from fmpy.validation import validate_fmu
 
 from plateimpact import cosim
-from plateimpact.scenes import DT, errors, run_derivatives
+from plateimpact.scenes import AMPLITUDE, DT, errors, run_derivatives
 
 REPO = Path(__file__).resolve().parent.parent
 
@@ -55,7 +55,7 @@ def test_sweep_fmu_validates(sweep_fmu):
 @pytest.mark.parametrize("law", [1, 2], ids=["linear", "logarithmic"])
 def test_sweep_output_derivatives_are_the_derivatives_of_the_output(sweep_fmu, law):
     fmu, vr = sweep_instance(
-        sweep_fmu, amplitude=0.09, start_frequency=5.0, end_frequency=40.0, duration=0.2, law=law, ramp_time=0.05
+        sweep_fmu, amplitude=AMPLITUDE, start_frequency=5.0, end_frequency=40.0, duration=0.2, law=law, ramp_time=0.05
     )
     delta, t, values, derivs = 1e-5, 0.0, [], []
     while t < 0.3:  # through the ramp, the sweep and past its end

@@ -1,13 +1,18 @@
 """Drive and check PlateImpact.fmu from Python.
 
 - `plateimpact.driver`: `PlateImpactFMU`, the FMU driver (parameters by name, inputs with or
-  without derivatives, outputs as a dict), and `sine`.
-- `plateimpact.scenes`: the scenes of the accuracy reports and the exact-base reference run.
+  without derivatives, outputs as a dict).
+- `plateimpact.scenes`: the default scene's base (`default_base`, `sine`), the scenes of the accuracy
+  reports and the exact-base reference run.
 - `plateimpact.sweep`: the sine-sweep controller and its master loop.
 - `plateimpact.response_map`: frequency × gap response maps, serial or on Dask.
-- `plateimpact.stability`: the stability matrix (cases, runner, checks).
+- `plateimpact.cosim`: the two-FMU system model run by libcosim and by SSP masters.
+- `plateimpact.interface`: the README's table of variables, written from the model description.
+
+The studies and report writers of docs/ are not part of it: they are in the repository's tools/.
 """
 
-from .driver import PlateImpactFMU, signal, sine, unzipped
+from .driver import PlateImpactFMU, signal, unzipped
+from .scenes import default_base, sine
 
-__all__ = ["PlateImpactFMU", "signal", "sine", "unzipped"]
+__all__ = ["PlateImpactFMU", "default_base", "signal", "sine", "unzipped"]

@@ -12,10 +12,16 @@ from pathlib import Path
 
 import numpy as np
 
-from .scenes import DT
+from .scenes import AMPLITUDE, DT, FREQUENCY, RAMP
 
 # The sweep's parameters for the smooth-start scene (a constant 10 Hz with a 0.05 s ramp-in).
-SWEEP = {"amplitude": 0.09, "start_frequency": 10.0, "end_frequency": 10.0, "duration": 1.0, "ramp_time": 0.05}
+SWEEP = {
+    "amplitude": AMPLITUDE,
+    "start_frequency": FREQUENCY,
+    "end_frequency": FREQUENCY,
+    "duration": 1.0,
+    "ramp_time": RAMP,
+}
 
 
 def variables(fmu):

@@ -17,7 +17,6 @@ The FMU's log messages (status, category, message) are kept in `plate.log`; pass
 from __future__ import annotations
 
 import atexit
-import math
 import shutil
 from pathlib import Path
 
@@ -34,16 +33,21 @@ _extracted = {}  # (resolved path, mtime) -> (unzip directory, model description
 
 
 def unzipped(fmu_path):
-    """Extract an FMU once per process (and file version); removed at exit."""
+    """(unzip directory, model description) of an FMU file, extracted once per process (and file
+    version) and removed at exit, or of a directory holding an extracted FMU."""
     path = Path(fmu_path).resolve()
-    if not path.is_file():
+    if not path.exists():
         raise FileNotFoundError(f"FMU not found: {path} (build it, or set PLATEIMPACT_FMU)")
     key = (str(path), path.stat().st_mtime_ns)
     if key not in _extracted:
-        unzip_dir = extract(str(path))
-        atexit.register(shutil.rmtree, unzip_dir, ignore_errors=True)
-        _extracted[key] = (unzip_dir, read_model_description(str(path)))
+        _extracted[key] = (str(path) if path.is_dir() else _extract(path), read_model_description(str(path)))
     return _extracted[key]
+
+
+def _extract(path):
+    unzip_dir = extract(str(path))
+    atexit.register(shutil.rmtree, unzip_dir, ignore_errors=True)
+    return unzip_dir
 
 
 def signal(x):
@@ -56,7 +60,10 @@ def signal(x):
 
 class PlateImpactFMU:
     """One PlateImpact instance: instantiate(), initialize(parameters), then step() and
-    outputs(). The constructor does both first steps unless `initialize=False`."""
+    outputs(). The constructor does both first steps unless `initialize=False` (or
+    `instantiate=False`: then not even the first). `fmu_path` is the .fmu file or a directory
+    holding it extracted; `guid` replaces the model description's (an importer's mistake, for
+    the tests of the FMU's checks)."""
 
     def __init__(
         self,
@@ -64,16 +71,14 @@ class PlateImpactFMU:
         start_time=0.0,
         instance_name="plate",
         logger=None,
-        unzip_dir=None,
         base0=0.0,
         load0=0.0,
         initialize=True,
+        instantiate=True,
+        guid=None,
         **parameters,
     ):
-        if unzip_dir is None:
-            self.unzip_dir, self.md = unzipped(fmu_path)
-        else:
-            self.unzip_dir, self.md = unzip_dir, read_model_description(str(fmu_path))
+        self.unzip_dir, self.md = unzipped(fmu_path)
         self.vars = {v.name: v for v in self.md.modelVariables}
         self.log = []
         self._user_logger = logger
@@ -84,22 +89,27 @@ class PlateImpactFMU:
         self._callbacks.allocateMemory = fmi2CallbackAllocateMemoryTYPE(calloc)
         self._callbacks.freeMemory = fmi2CallbackFreeMemoryTYPE(free)
         self.fmu = FMU2Slave(
-            guid=self.md.guid,
+            guid=guid or self.md.guid,
             unzipDirectory=self.unzip_dir,
             modelIdentifier=self.md.coSimulation.modelIdentifier,
             instanceName=instance_name,
         )
-        self.fmu.instantiate(callbacks=self._callbacks, loggingOn=logger is not None)
         self.time = start_time
-        self._initialized = False
+        self.instantiated = self._initialized = False
         # every output the model description declares, in its order
         self._out_refs = [(v.name, v) for v in self.md.modelVariables if v.causality == "output"]
-        if initialize:
+        if instantiate:
+            self.instantiate(logging_on=logger is not None)
+        if instantiate and initialize:
             try:
                 self.initialize(parameters, base0, load0)
             except BaseException:
                 self.close()
                 raise
+
+    def instantiate(self, logging_on=False):
+        self.fmu.instantiate(callbacks=self._callbacks, loggingOn=logging_on)
+        self.instantiated = True
 
     def _on_log(self, env, instance, status, category, message):
         entry = (status, category.decode(errors="replace"), message.decode(errors="replace"))
@@ -168,25 +178,24 @@ class PlateImpactFMU:
         self.time += h  # the FMU accepts the rounding of this sum (relative time tolerance)
         return self.outputs()
 
+    def free(self):
+        """fmi2FreeInstance alone (no fmi2Terminate first), once."""
+        if self.instantiated:
+            self.fmu.freeInstance()
+            self.instantiated = False
+
     def close(self):
-        if self.fmu is None:
-            return
+        """fmi2Terminate after an initialization, then fmi2FreeInstance; once."""
         if self._initialized:
+            self._initialized = False
             try:
                 self.fmu.terminate()
             except Exception:
                 pass  # after a failed step: fmi2FreeInstance is still allowed
-        self.fmu.freeInstance()
-        self.fmu = None
+        self.free()
 
     def __enter__(self):
         return self
 
     def __exit__(self, *exc):
         self.close()
-
-
-def sine(amplitude, frequency, t):
-    """Value and first two derivatives of amplitude·sin(2πf t)."""
-    w = 2.0 * math.pi * frequency
-    return (amplitude * math.sin(w * t), amplitude * w * math.cos(w * t), -amplitude * w * w * math.sin(w * t))

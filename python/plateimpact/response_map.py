@@ -42,7 +42,8 @@ def simulate_point(
     file first). Deterministic: the same arguments give bitwise the same floats."""
     # imported here, on the worker: the task then carries no reference to the driver class
     # (which holds ctypes callbacks and could not be pickled by value)
-    from plateimpact.driver import PlateImpactFMU, sine
+    from plateimpact.driver import PlateImpactFMU
+    from plateimpact.scenes import sine
 
     if amplitude >= gap:
         raise ValueError(
@@ -60,7 +61,7 @@ def simulate_point(
         contact = 0
         e_settle = 0.0
         with PlateImpactFMU(
-            fmu, unzip_dir=None, element=element, nx=nx, ny=ny, dt=dt, obstacle_lower=-gap, obstacle_upper=gap
+            fmu, element=element, nx=nx, ny=ny, dt=dt, obstacle_lower=-gap, obstacle_upper=gap
         ) as plate:
             for k in range(n):
                 plate.step(comm_step, base=sine(amplitude, frequency, k * comm_step))

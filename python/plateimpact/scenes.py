@@ -1,6 +1,7 @@
-"""The scenes of the accuracy reports (docs/input-accuracy.md, docs/system-model.md) on the
-default plate (14x5 Argyris, dt = 1e-5 s, obstacles at +-0.1 m), and the reference they are
-measured against: the run whose base is exact at every internal step.
+"""The scenes, written once: the default scene's base (the paper's §5.1 forced oscillation,
+0.09 sin(2 pi 10 t) m on the default plate: 14x5 Argyris, obstacles at +-0.1 m), the scenes of
+the accuracy reports (docs/input-accuracy.md, docs/system-model.md) at dt = 1e-5 s, and the
+reference they are measured against: the run whose base is exact at every internal step.
 
   smooth  base 0.09 sin(2 pi 10 t) s(t), s = sin^2(pi t / 0.1) for t < 0.05 s, 1 after
           (z, z', z'' all start at 0: a causal master loses nothing at the start)
@@ -16,17 +17,28 @@ import numpy as np
 from .driver import PlateImpactFMU
 
 DT = 1e-5
-AMPLITUDE, FREQUENCY = 0.09, 10.0
+AMPLITUDE, FREQUENCY = 0.09, 10.0  # the default scene's base, m and Hz
+RAMP = 0.05  # s, the smooth scene's ramp-in
 FIRST_IMPACT = {"smooth": 0.06, "paper": 0.045}  # horizons before the first impact, s
+
+
+def sine(amplitude, frequency, t):
+    """Value and first two derivatives of amplitude·sin(2πf t)."""
+    w = 2.0 * math.pi * frequency
+    return (amplitude * math.sin(w * t), amplitude * w * math.cos(w * t), -amplitude * w * w * math.sin(w * t))
+
+
+def default_base(t):
+    """The default scene's base at t: 0.09 sin(2π·10 t) m and its first two derivatives."""
+    return sine(AMPLITUDE, FREQUENCY, t)
 
 
 def base(scene, t):
     """Value, first and second derivative of the scene's base displacement at t."""
-    w = 2.0 * math.pi * FREQUENCY
-    z, zd, zdd = AMPLITUDE * math.sin(w * t), AMPLITUDE * w * math.cos(w * t), -AMPLITUDE * w * w * math.sin(w * t)
-    if scene == "paper" or t >= 0.05:
+    z, zd, zdd = default_base(t)
+    if scene == "paper" or t >= RAMP:
         return z, zd, zdd
-    a = math.pi / 0.1
+    a = math.pi / (2 * RAMP)
     s, sd, sdd = math.sin(a * t) ** 2, a * math.sin(2 * a * t), 2 * a * a * math.cos(2 * a * t)
     return z * s, zd * s + z * sd, zdd * s + 2 * zd * sd + z * sdd
 

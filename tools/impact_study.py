@@ -26,7 +26,7 @@ from dataclasses import dataclass, field
 
 import numpy as np
 
-from .driver import PlateImpactFMU
+from plateimpact.driver import PlateImpactFMU
 
 SCENE = {"initial_load": 8600.0, "obstacle_upper_enabled": False}
 LAWS = {

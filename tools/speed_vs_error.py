@@ -7,8 +7,8 @@ Everything is measured in this run with `plate_bench` (the solver without FMI, o
 per run, the floor = one solve with the sparse factor of A = M + βΔt²K measured in the same
 run) and, for the default scene's wall time, with the FMU through fmpy.
 
-    .venv/bin/python examples/speed_vs_error.py            # full: docs/performance.md (~10 min)
-    .venv/bin/python examples/speed_vs_error.py --quick --out /tmp/perf   # smoke run, seconds
+    .venv/bin/python tools/speed_vs_error.py            # full: docs/performance.md (~10 min)
+    .venv/bin/python tools/speed_vs_error.py --quick --out /tmp/perf   # smoke run, seconds
 
 Errors are used only for quantities shown to converge (successive differences of a refinement
 sequence shrinking, rule in `converges()`); a quantity that does not is reported and flagged,
@@ -28,9 +28,9 @@ from dataclasses import replace
 from pathlib import Path
 
 import numpy as np
-
-from plateimpact.speed_report import plot_scaling, plot_speed_vs_error, write_report
-from plateimpact.speed_study import (
+from checkout import add_checkout_arguments, fmu_path
+from speed_report import plot_scaling, plot_speed_vs_error, write_report
+from speed_study import (
     SINE,
     Bench,
     Cfg,
@@ -45,19 +45,19 @@ from plateimpact.speed_study import (
     study_short,
 )
 
-REPO = Path(__file__).resolve().parent.parent
-BUILD = Path(os.environ.get("PLATEIMPACT_BUILD_DIR", REPO / "build"))
-
 
 def main(argv=None):
     ap = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
     ap.add_argument("--quick", action="store_true", help="smoke run on tiny grids (seconds)")
-    ap.add_argument("--out", default=str(REPO / "docs"), help="output directory (performance.md, figures/)")
-    ap.add_argument("--bench", default=str(BUILD / "solver" / "bench" / "plate_bench"))
-    ap.add_argument("--fmu", default=str(BUILD / "PlateImpact.fmu"))
+    add_checkout_arguments(ap)
+    ap.add_argument("--out", help="output directory (performance.md, figures/; default: <repo>/docs)")
+    ap.add_argument("--bench", help="plate_bench (default: $PLATEIMPACT_BUILD_DIR or <repo>/build, solver/bench/)")
     args = ap.parse_args(argv)
+    build = Path(os.environ.get("PLATEIMPACT_BUILD_DIR", args.repo / "build"))
+    args.bench = args.bench or str(build / "solver" / "bench" / "plate_bench")
+    args.fmu = fmu_path(args)
 
-    out = Path(args.out)
+    out = Path(args.out) if args.out else args.repo / "docs"
     (out / "figures").mkdir(parents=True, exist_ok=True)
     plan = make_plan(args.quick)
     started = time.perf_counter()

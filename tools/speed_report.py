@@ -1,5 +1,5 @@
 """Writing the speed-against-error report (docs/performance.md, its figures and headline) from
-what plateimpact.speed_study measured."""
+what speed_study measured."""
 
 from __future__ import annotations
 
@@ -9,14 +9,9 @@ import os
 import platform
 import subprocess
 from dataclasses import replace
-from pathlib import Path
 
 import numpy as np
-
-from .speed_study import CONTRACTION, FREE, OBSTACLE, SINE, Cfg, converges, fmt, fmt_dt, refinement_factors  # noqa: F401
-
-REPO = Path(__file__).resolve().parents[2]  # the checkout (the package is installed editable)
-
+from speed_study import CONTRACTION, FREE, OBSTACLE, SINE, Cfg, converges, fmt, fmt_dt, refinement_factors  # noqa: F401
 
 # ------------------------------------------------------------------------------------------
 # Figures
@@ -262,13 +257,13 @@ def loglog_slope(xs, ys):
 # ------------------------------------------------------------------------------------------
 # The report
 # ------------------------------------------------------------------------------------------
-def git_describe():
+def git_describe(repo):
     try:
         rev = subprocess.run(
-            ["git", "-C", str(REPO), "rev-parse", "--short", "HEAD"], capture_output=True, text=True
+            ["git", "-C", str(repo), "rev-parse", "--short", "HEAD"], capture_output=True, text=True
         ).stdout.strip()
         dirty = subprocess.run(
-            ["git", "-C", str(REPO), "status", "--porcelain", "--untracked-files=no", "solver", "fmu"],
+            ["git", "-C", str(repo), "status", "--porcelain", "--untracked-files=no", "solver", "fmu"],
             capture_output=True,
             text=True,
         ).stdout.strip()
@@ -283,7 +278,7 @@ def write_report(ctx, path):
     w = L.append
     quick = plan["quick"]
     cmd = (
-        "`.venv/bin/python examples/speed_vs_error.py"
+        "`.venv/bin/python tools/speed_vs_error.py"
         + (" --quick" if quick else "")
         + "`"
         + " (after `bash run.sh` has built `build/solver/bench/plate_bench` and `build/PlateImpact.fmu`)"
@@ -295,7 +290,7 @@ def write_report(ctx, path):
         w("")
     w(
         f"Regenerate: {cmd}. This run: {ctx['elapsed'] / 60:.1f} min wall, {ctx['runs']} `plate_bench` runs, "
-        f"commit {git_describe()}, {datetime.date.today().isoformat()}."
+        f"commit {git_describe(ctx['args'].repo)}, {datetime.date.today().isoformat()}."
     )
     w("")
     lb, la = ctx["load"]

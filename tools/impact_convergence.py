@@ -1,8 +1,8 @@
 """Convergence after impact, per impact law: the §5.2 scene through the FMU under time-step and
-mesh refinement (plateimpact.impact_study), written as docs/impact-laws.md.
+mesh refinement (tools/impact_study.py), written as docs/impact-laws.md.
 
-    python examples/impact_convergence.py --markdown docs/impact-laws.md      # ~5 min on 2 cores
-    python examples/impact_convergence.py --quick                              # 3 time steps, 2 laws
+    python tools/impact_convergence.py --markdown docs/impact-laws.md      # ~5 min on 2 cores
+    python tools/impact_convergence.py --quick                              # 3 time steps, 2 laws
 
 Prints, per law: the energy lost by 0.5 s, the first three impact times and corner_1 over the
 first 0.3 s under dt = 4e-5 ... 2.5e-6 s (14 x 5 cells), their successive differences and
@@ -15,15 +15,14 @@ from __future__ import annotations
 
 import argparse
 import math
-import os
 import sys
 import time
 from pathlib import Path
 
-from plateimpact import impact_study as study
-from plateimpact.driver import PlateImpactFMU
+import impact_study as study
+from checkout import add_checkout_arguments, fmu_path
 
-FMU = os.environ.get("PLATEIMPACT_FMU", str(Path(__file__).resolve().parent.parent / "build" / "PlateImpact.fmu"))
+from plateimpact.driver import PlateImpactFMU
 
 
 def fmt(x, digits=3):
@@ -43,10 +42,11 @@ def step_cost(fmu, params, steps=20_000, h=1e-3):
 
 def main(argv=None):
     ap = argparse.ArgumentParser(description=__doc__.splitlines()[0])
-    ap.add_argument("--fmu", default=FMU)
+    add_checkout_arguments(ap)
     ap.add_argument("--markdown", help="write the report here (docs/impact-laws.md)")
     ap.add_argument("--quick", action="store_true", help="3 time steps, 2 laws, no mesh or modes rows")
     args = ap.parse_args(argv)
+    args.fmu = fmu_path(args)
 
     laws = list(study.LAWS)
     dts = study.DTS

@@ -1,6 +1,6 @@
 """The stability stress matrix of PlateImpact: ONE table of cases, the runner and the checks.
 
-Shared by python_tests/test_stability.py (short horizons) and examples/stability_report.py
+Shared by python_tests/test_stability.py (short horizons) and tools/stability_report.py
 (the same cases, optionally longer with --full, written to docs/stability.md). Nothing here
 knows pytest.
 
@@ -40,7 +40,8 @@ from typing import Optional
 from fmpy.fmi1 import FMICallException  # fmpy raises this one for FMI 2.0 calls too
 
 # The one FMU driver, shared with the examples.
-from .driver import PlateImpactFMU
+from plateimpact.driver import PlateImpactFMU
+from plateimpact.scenes import sine
 
 # ---------------------------------------------------------------------------------------------
 # Limits of the checks (the issue's numbers)
@@ -61,9 +62,7 @@ class Sine:
     frequency: float
 
     def __call__(self, t):
-        w = 2.0 * math.pi * self.frequency
-        a = self.amplitude
-        return (a * math.sin(w * t), a * w * math.cos(w * t), -a * w * w * math.sin(w * t))
+        return sine(self.amplitude, self.frequency, t)
 
     def describe(self):
         return f"{self.amplitude:g} sin(2π·{self.frequency:g} t) m"
@@ -326,9 +325,6 @@ class _Instance(PlateImpactFMU):
         self.time = t
         return super().step(h, base=base, load=load)
 
-    def free(self):
-        self.close()
-
 
 # The FMU's refusal names the bound: "... dt < 2/sqrt((1-4 beta) kappa_h) = <bound> s ...".
 BOUND_PATTERN = re.compile(r"dt < 2/sqrt\(\(1-4 beta\) kappa_h\) = ([0-9.eE+-]+) s")
@@ -345,7 +341,7 @@ def refusal(fmu_path, params):
             return e, inst.errors()
         raise AssertionError(f"the FMU accepted {params}")
     finally:
-        inst.free()
+        inst.close()
 
 
 def stability_bound(fmu_path, params):
@@ -513,7 +509,7 @@ def run_case(case, fmu_path, full=False):
         r.qp_iterations_total = out["qp_iterations_total"]
         r.qp_iterations_max = out["qp_iterations_max"]
     finally:
-        inst.free()
+        inst.close()
         r.wall = time.perf_counter() - wall0
     return r
 

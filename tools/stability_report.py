@@ -1,11 +1,12 @@
 """Run the stability stress matrix and write docs/stability.md.
 
-    python examples/stability_report.py            # the test's short horizons (~30 s)
-    python examples/stability_report.py --full     # longer horizons (~1.5 min)
+    python tools/stability_report.py            # the test's short horizons (~30 s)
+    python tools/stability_report.py --full     # longer horizons (~1.5 min)
 
-The cases, the runner and the checks are those of python/plateimpact/stability.py (the same
+The cases, the runner and the checks are those of tools/stability.py (the same
 table python_tests/test_stability.py runs), so the report and the test cannot drift apart.
-The FMU is build/PlateImpact.fmu, or $PLATEIMPACT_FMU, or --fmu.
+The FMU is --fmu, or $PLATEIMPACT_FMU, or <--repo>/build/PlateImpact.fmu; the report goes to
+<--repo>/docs/stability.md unless --out says otherwise.
 """
 
 from __future__ import annotations
@@ -18,9 +19,8 @@ import sys
 import time
 from pathlib import Path
 
-import plateimpact.stability as sc
-
-REPO = Path(__file__).resolve().parent.parent
+import stability as sc
+from checkout import add_checkout_arguments, fmu_path
 
 
 def fmt(x, digits=2):
@@ -236,8 +236,8 @@ def document(results, full, fmu):
         bounds = "larger"
     return f"""# Stability stress matrix
 
-Written by `python examples/stability_report.py{" --full" if full else ""}` with {mode}; do not
-edit by hand. The cases, the runner and the checks live in `python/plateimpact/stability.py`;
+Written by `python tools/stability_report.py{" --full" if full else ""}` with {mode}; do not
+edit by hand. The cases, the runner and the checks live in `tools/stability.py`;
 `python_tests/test_stability.py` runs the same table with the short horizons on every test run.
 
 **Base case** (`{base.name}`): the default plate (1.2 × 0.4 × 0.01 m steel, 14 × 5 cells,
@@ -273,16 +273,17 @@ largest |energy| seen so far. *energy lost*: `energy_dissipated` at the end. *QP
 def main(argv=None):
     ap = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
     ap.add_argument("--full", action="store_true", help="longer horizons (the cases' full_steps)")
-    ap.add_argument("--fmu", default=os.environ.get("PLATEIMPACT_FMU", str(REPO / "build" / "PlateImpact.fmu")))
-    ap.add_argument("--out", default=str(REPO / "docs" / "stability.md"))
+    add_checkout_arguments(ap)
+    ap.add_argument("--out", help="the report (default: <repo>/docs/stability.md)")
     ap.add_argument("--cases", nargs="*", help="only these cases (default: all)")
     args = ap.parse_args(argv)
+    fmu = fmu_path(args)
 
     cases = [c for c in sc.CASES if not args.cases or c.name in args.cases]
     results = []
     t0 = time.perf_counter()
     for c in cases:
-        r = sc.run_case(c, args.fmu, full=args.full)
+        r = sc.run_case(c, fmu, full=args.full)
         results.append(r)
         problems = sc.failures(r)
         print(
@@ -293,9 +294,9 @@ def main(argv=None):
             flush=True,
         )
     print(f"total {time.perf_counter() - t0:.0f} s")
-    out = Path(args.out)
+    out = Path(args.out) if args.out else args.repo / "docs" / "stability.md"
     out.parent.mkdir(parents=True, exist_ok=True)
-    out.write_text(document(results, args.full, args.fmu))
+    out.write_text(document(results, args.full, fmu))
     print(f"wrote {out}")
     return 1 if any(sc.failures(r) for r in results) else 0
 

@@ -1,5 +1,5 @@
-"""Measuring speed against error (examples/speed_vs_error.py is the command line, and
-plateimpact.speed_report writes the report): runs of plate_bench (the solver without FMI, one
+"""Measuring speed against error (tools/speed_vs_error.py is the command line, and
+speed_report writes the report): runs of plate_bench (the solver without FMI, one
 JSON line per run, the floor = one solve with the sparse factor of A = M + βΔt²K measured in the
 same run), the FMU's wall time through fmpy, the plain Python/SciPy baseline, the refinement
 studies and the rule that decides whether a sequence converges (`converges()`)."""
@@ -15,9 +15,11 @@ from pathlib import Path
 
 import numpy as np
 
+from plateimpact.scenes import AMPLITUDE, FREQUENCY, sine
+
 # The two scenes (README, docs/theory.md): the §5.1 forced oscillation (default scene) and the §5.2
 # free vibration (static equilibrium under 8600 Pa, released at rest, lower obstacle only).
-SINE = {"amplitude": 0.09, "frequency": 10.0, "gap": 0.1}
+SINE = {"amplitude": AMPLITUDE, "frequency": FREQUENCY, "gap": 0.1}
 
 
 FREE = {"initial_load": 8600, "lower_only": 1, "amplitude": 0.0, "gap": 0.1}
@@ -236,7 +238,9 @@ def first_frequency(bench, cfg, workdir):
     return float(np.sqrt(vals.min()) / (2 * np.pi)), int(e["M"].shape[0])
 
 
-def python_baseline(export_dir, dt, steps, comm, split, beta=0.5, amplitude=0.09, frequency=10.0, gap=OBSTACLE):
+def python_baseline(
+    export_dir, dt, steps, comm, split, beta=0.5, amplitude=AMPLITUDE, frequency=FREQUENCY, gap=OBSTACLE
+):
     """The same three-level scheme as NewmarkContactStepper (docs/theory.md §3–4) in plain
     Python/SciPy: A = M + βΔt²K factored once (scipy.sparse.linalg.factorized), the free
     solution every step, and on steps where it violates a bound the full step QP
@@ -271,7 +275,6 @@ def python_baseline(export_dir, dt, steps, comm, split, beta=0.5, amplitude=0.09
     w_prev = w.copy()
     kw = K @ w
     z = z_prev = 0.0
-    omega = 2 * np.pi * frequency
     per = max(1, round(comm / dt))
     rows = [(0.0, *(P @ w + z))]
     qp_steps, qp_s, statuses = 0, 0.0, {}
@@ -284,9 +287,7 @@ def python_baseline(export_dir, dt, steps, comm, split, beta=0.5, amplitude=0.09
         if done == split:
             t_split = clock() - t0
         t = done * dt
-        v = amplitude * math.sin(omega * t)
-        d1 = amplitude * omega * math.cos(omega * t)
-        d2 = -amplitude * omega * omega * math.sin(omega * t)
+        v, d1, d2 = sine(amplitude, frequency, t)
         for k in range(1, min(per, steps - done) + 1):
             s = k * dt
             z_next = v + s * (d1 + 0.5 * s * d2)
