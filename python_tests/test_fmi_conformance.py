@@ -288,7 +288,7 @@ def test_model_description_declares_the_interface(unzipped):
             start = v.start == "true" if kind == "Boolean" else float(v.start)
             assert start == START[name], name
     assert {u.name for u in md.unitDefinitions} >= {"m", "Pa", "kg/m3", "s", "J"}
-    assert [c.name for c in md.logCategories] == ["logStatusError", "logStatusWarning", "logAll"]
+    assert [c.name for c in md.logCategories] == ["logStatusError", "logStatusWarning", "logInfo", "logAll"]
     cs = md.coSimulation
     assert cs.modelIdentifier == "PlateImpact"
     assert cs.canHandleVariableCommunicationStepSize and cs.canInterpolateInputs
