@@ -16,8 +16,9 @@ constexpr double kEntry = 12.0;  // a stored sparse entry: double value + int in
 constexpr double kTriplet = 16.0;  // Eigen::Triplet<double>: two ints and a double, bytes
 constexpr double kDouble = 8.0;
 // Dense generalized eigensolver (Spectrum.cpp denseModes): K and M dense, the LLT of M, the
-// reduced matrix, the eigenvectors and their back-transformed copy, and Φ: n² doubles each.
-constexpr double kDenseEigenMatrices = 7.0;
+// reduced matrix, the eigenvectors and their back-transformed copy, and Φ, n² doubles each,
+// some of them short-lived (fitted: 5.5).
+constexpr double kDenseEigenMatrices = 5.5;
 constexpr double kBaseMB = 2.0;  // the instance's own small structures, probes, QP workspace
 // The space's per-element local bases (ArgyrisTriangle.h: a 21 x 21 matrix; FvsQuadrilateral.h:
 // four 10 x 16 pieces), with the element's dof list, bytes.
