@@ -25,7 +25,6 @@
 #include <chrono>
 #include <cmath>
 #include <ctime>
-#include <sys/resource.h>
 #include <cstdio>
 #include <cstdlib>
 #include <fstream>
@@ -41,10 +40,14 @@
 
 namespace {
 
+// Peak resident set of this process image (VmHWM; getrusage's ru_maxrss would include the
+// parent's peak before exec, e.g. the Python of scripts/resource_scaling.py).
 double peakRssMB() {
-    rusage usage{};
-    getrusage(RUSAGE_SELF, &usage);
-    return static_cast<double>(usage.ru_maxrss) / 1024.0;  // ru_maxrss is in kB on Linux
+    std::ifstream status("/proc/self/status");
+    std::string line;
+    while (std::getline(status, line))
+        if (line.rfind("VmHWM:", 0) == 0) return std::atof(line.c_str() + 6) / 1024.0;  // kB
+    return 0.0;
 }
 
 // The resource estimate (ResourceEstimate.h) of a built simulation beside what was measured.
