@@ -67,6 +67,7 @@ const char* logCategoryName(LogCategory category) {
         case LogStatusError: return "logStatusError";
         case LogStatusWarning: return "logStatusWarning";
         case LogAll: return "logAll";
+        case LogInfo: return "logInfo";
         case LogCategoryCount: break;
     }
     return "logAll";
@@ -126,6 +127,7 @@ Instance::Instance(std::string instanceName, const fmi2CallbackFunctions& callba
     logCategories_[LogStatusError] = true;
     logCategories_[LogStatusWarning] = loggingOn;
     logCategories_[LogAll] = loggingOn;
+    logCategories_[LogInfo] = loggingOn;
     attachTrace();
     log(fmi2OK, LogAll, "fmi2Instantiate: instance \"%s\" of %s (GUID %s)", instanceName_.c_str(),
         model_->info().modelName, modelGuid());
@@ -135,6 +137,7 @@ Instance::~Instance() = default;
 
 void Instance::attachTrace() {
     model_->trace = [this](const std::string& message) { log(fmi2OK, LogAll, "%s: %s", function_, message.c_str()); };
+    model_->inform = [this](const std::string& message) { log(fmi2OK, LogInfo, "%s: %s", function_, message.c_str()); };
 }
 
 void Instance::logFreeInstance() { log(fmi2OK, LogAll, "fmi2FreeInstance"); }
@@ -154,12 +157,14 @@ fmi2Status Instance::setDebugLogging(fmi2Boolean loggingOn, size_t nCategories, 
                 next[LogStatusError] = on;
             } else if (std::strcmp(name, "logStatusWarning") == 0) {
                 next[LogStatusWarning] = on;
+            } else if (std::strcmp(name, "logInfo") == 0) {
+                next[LogInfo] = on;
             } else if (std::strcmp(name, "logAll") == 0) {
                 std::fill(next, next + LogCategoryCount, on);  // "all" switches every category
             } else {
                 return fail(
                     "unknown log category \"%s\"; the categories of this FMU are logStatusError, "
-                    "logStatusWarning and logAll",
+                    "logStatusWarning, logInfo and logAll",
                     name);
             }
         }

@@ -22,7 +22,7 @@
 namespace fmu {
 
 // Log categories every FMU of this layer declares.
-enum LogCategory { LogStatusError = 0, LogStatusWarning = 1, LogAll = 2, LogCategoryCount = 3 };
+enum LogCategory { LogStatusError = 0, LogStatusWarning = 1, LogAll = 2, LogInfo = 3, LogCategoryCount = 4 };
 const char* logCategoryName(LogCategory category);
 
 // Logging without an instance (fmi2Instantiate failures).

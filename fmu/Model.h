@@ -112,6 +112,9 @@ public:
 
     // Where the model's trace messages go (the instance's logAll category).
     std::function<void(const std::string&)> trace = [](const std::string&) {};
+    // Where the model's information for the user goes (the instance's logInfo category): what
+    // an initialization will cost and how far it is.
+    std::function<void(const std::string&)> inform = [](const std::string&) {};
 };
 
 // Defined once by each model binding.

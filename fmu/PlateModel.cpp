@@ -5,6 +5,7 @@
 #include <cmath>
 #include <cstdio>
 #include <memory>
+#include <new>
 #include <string>
 
 #include "Model.h"
@@ -82,9 +83,22 @@ public:
     }
 
     void build() override {
-        // A plate::ParameterError names the parameter, its value and the allowed range.
-        simulation_ = std::make_unique<plate::PlateSimulation>(
-            values_.parameters, values_.baseDisplacement.signal.value, values_.load.signal.value);
+        // A plate::ParameterError names the parameter, its value and the allowed range; a
+        // plate::ResourceError the estimate and memory_limit. The estimate and the progress of
+        // long initializations go to the user (category logInfo).
+        std::string estimate = "no estimate was made";
+        const plate::ProgressLog log = [this, &estimate](const std::string& line) {
+            if (estimate == "no estimate was made") estimate = line;
+            inform(line);
+        };
+        try {
+            simulation_ = std::make_unique<plate::PlateSimulation>(
+                values_.parameters, values_.baseDisplacement.signal.value, values_.load.signal.value, log);
+        } catch (const std::bad_alloc&) {
+            // The estimate is an estimate: what fails anyway is reported, never an abort.
+            throw fmu::ModelError("out of memory while building the simulation (std::bad_alloc) after " + estimate +
+                                  "; lower memory_limit below what this machine can give, or use a coarser mesh");
+        }
         builtWith_ = configuration();
         simulationBase0_ = values_.baseDisplacement.signal.value;
         clampPosition_ = simulationBase0_;

@@ -183,6 +183,12 @@ const std::vector<Row>& rows() {
                    "Rayleigh damping, stiffness-proportional coefficient b (C = a M + b K), >= 0",
                    plate::ranges::kDampingStiffness),
          PARAMETER_FIELD(dampingStiffness)},
+        {parameter(kVrMemoryLimit, "memory_limit", VariableType::Real, "MB",
+                   "Memory budget of the instance: one whose estimated peak exceeds it is refused at "
+                   "fmi2ExitInitializationMode before allocating (the estimate is logged, category logInfo); 0 = no "
+                   "limit",
+                   plate::ranges::kMemoryLimit),
+         PARAMETER_FIELD(memoryLimit)},
         {input(kVrBaseDisplacement, "base_displacement", "m", true, plate::kMaxDisplacement,
                "Vertical displacement z of the clamped edge (base motion); its value at initialization places "
                "the clamp at t = 0"),

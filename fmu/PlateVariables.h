@@ -118,6 +118,7 @@ enum PlateVr : fmi2ValueReference {
     kVrCorner1Acceleration = 84,
     kVrCorner2Acceleration = 85,
     kVrFreeEdgeMidAcceleration = 86,
+    kVrMemoryLimit = 60,
 };
 
 // Bounds of the clamp's velocity and acceleration inputs: far beyond any shaker (1 km/s,

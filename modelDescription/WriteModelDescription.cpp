@@ -57,6 +57,7 @@ std::string real(double x) {
 // with an optional integer power: "kg/m3", "m/s2", "N.m", "N.s", "1/s" — as FMI 2.0 BaseUnit
 // exponents. A new unit needs no entry anywhere: only a new symbol would.
 std::string baseUnit(const std::string& unit) {
+    if (unit == "MB") return "factor=\"1048576\"";  // memory (memory_limit): dimensionless, 2^20 bytes
     // Exponents of kg, m, s per symbol.
     static const std::map<std::string, std::array<int, 3>> symbols = {
         {"1", {0, 0, 0}},    {"m", {0, 1, 0}},  {"kg", {1, 0, 0}},  {"s", {0, 0, 1}}, {"N", {1, 1, -2}},
@@ -145,6 +146,8 @@ void writeTypes(std::ostream& xml, const std::vector<Variable>& variables) {
         << "    <Category name=\"logStatusError\" description=\"Messages explaining an fmi2Error or fmi2Discard "
            "return (on unless switched off)\"/>\n"
         << "    <Category name=\"logStatusWarning\" description=\"Warnings (on when loggingOn)\"/>\n"
+        << "    <Category name=\"logInfo\" description=\"What an initialization will cost (memory, time, "
+           "before it is spent) and its progress (on when loggingOn)\"/>\n"
         << "    <Category name=\"logAll\" description=\"Trace of the FMU's work: instantiation, builds, steps; "
            "setting this category switches all categories\"/>\n"
         << "  </LogCategories>\n\n";

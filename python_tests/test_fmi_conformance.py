@@ -171,7 +171,7 @@ def test_every_real_has_a_declared_unit(unzipped):
 
 def test_model_description_declares_the_co_simulation(unzipped):
     md = read_model_description(str(unzipped))
-    assert [c.name for c in md.logCategories] == ["logStatusError", "logStatusWarning", "logAll"]
+    assert [c.name for c in md.logCategories] == ["logStatusError", "logStatusWarning", "logInfo", "logAll"]
     cs = md.coSimulation
     assert cs.modelIdentifier == "PlateImpact"
     assert cs.canHandleVariableCommunicationStepSize and cs.canInterpolateInputs

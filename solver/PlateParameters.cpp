@@ -61,6 +61,7 @@ void validate(const PlateParameters& p) {
     requireRange("restitution", p.restitution, kRestitution);
     requireRange("damping_mass", p.dampingMass, kDampingMass);
     requireRange("damping_stiffness", p.dampingStiffness, kDampingStiffness);
+    requireRange("memory_limit", p.memoryLimit, kMemoryLimit);  // MB; 0 = no limit
 }
 
 }  // namespace plate

@@ -39,6 +39,9 @@ struct PlateParameters {
     // clamp (docs/theory.md §13).
     double dampingMass = 0.0;  // 1/s
     double dampingStiffness = 0.0;  // s
+    // Budget of one instance's memory (ResourceEstimate.h): an instance whose estimated peak
+    // exceeds it is refused before anything large is allocated. 0 = no limit.
+    double memoryLimit = 2048.0;  // MB
     // How exact mode runs (not an FMU parameter: the result is the same scheme either way;
     // benchmarks and tests pin it to compare the two).
     enum class Engine { Auto, SparseFactor, CompleteModal } engine = Engine::Auto;
@@ -80,6 +83,7 @@ constexpr Range kObstacleLower{-kMaxDisplacement, 0.0, false, true}, kObstacleUp
 constexpr Range kDt{1e-12, 1.0}, kBeta{0.0, 0.5}, kInitialLoad{-kMaxLoad, kMaxLoad};
 constexpr Range kModes{0, 2147483647.0}, kRestitution{0.0, 1.0};
 constexpr Range kDampingMass{0.0, 1e6}, kDampingStiffness{0.0, 1.0};
+constexpr Range kMemoryLimit{0.0, 1e9};  // MB; 0 = no limit
 }  // namespace ranges
 
 // Checks everything that can be checked without assembling (throws ParameterError).

@@ -40,9 +40,8 @@ Obstacles obstaclesOf(const PlateParameters& p) {
 // passes over about nnz(K) entries at ~5 times the cost per entry. The threshold and the
 // measurements behind it: docs/theory.md §7.
 bool completeModalPays(const ClampedPlate& plate) {
-    const auto n = plate.mass.rows();
-    const auto m = static_cast<Eigen::Index>(plate.contactDofs.size());
-    return n <= 1000 && m * n <= 8 * plate.stiffness.nonZeros();
+    return plate::completeModalPays(plate.mass.rows(), static_cast<long long>(plate.contactDofs.size()),
+                             plate.stiffness.nonZeros());
 }
 
 }  // namespace
@@ -63,9 +62,11 @@ struct PlateSimulation::Impl {
     double commTime = 0.0;
     bool onGrid = true;
     PlateOutputs before;
+    ResourceEstimate resources;  // made before the assembly
 };
 
-PlateSimulation::PlateSimulation(const PlateParameters& p, double baseDisplacement0, double loadAtStart)
+PlateSimulation::PlateSimulation(const PlateParameters& p, double baseDisplacement0, double loadAtStart,
+                                 const ProgressLog& log)
     : impl_(std::make_unique<Impl>()) {
     validate(p);
     const Obstacles obstacles = obstaclesOf(p);
@@ -80,8 +81,12 @@ PlateSimulation::PlateSimulation(const PlateParameters& p, double baseDisplaceme
     }
     Impl& s = *impl_;
     s.parameters = p;
+    requireMeshWithinBudget(p);  // far beyond memory_limit: refused before the space is built
     const Mesh mesh(p.length, p.width, p.nx, p.ny);
     s.space = makeSpace(p.element, mesh);
+    s.resources = planResources(p, *s.space, log);  // refuses beyond memory_limit
+    InitProgress progress(log, s.resources.initSeconds);
+    progress.phase("assembly of M and K", s.resources.assemblySeconds);
     PlateMatrices matrices = assemble(*s.space, p.surfaceDensity(), p.bendingStiffness(), p.poissonRatio);
     Eigen::SparseMatrix<double> coupling;  // B of the singular mass, all dofs
     if (p.singularMass()) {
@@ -92,6 +97,7 @@ PlateSimulation::PlateSimulation(const PlateParameters& p, double baseDisplaceme
         coupling = std::move(singular.coupling);
     }
     s.clamped = std::make_shared<const ClampedPlate>(clamp(*s.space, matrices));
+    matrices = PlateMatrices{};  // the unclamped matrices are not needed past the clamp
     Eigen::SparseMatrix<double> couplingFree;
     if (p.singularMass()) {
         couplingFree = freeRows(coupling, *s.clamped);
@@ -99,6 +105,7 @@ PlateSimulation::PlateSimulation(const PlateParameters& p, double baseDisplaceme
                                p.mass == MassModel::SingularP0 ? "singular_p0" : "singular_p1dg");
     }
     if (p.beta < 0.25) {
+        progress.phase("kappa_h by power iteration with the factor of M", s.resources.spectrumSeconds);
         // Stability of γ = ½, β < ¼ (docs/theory.md): Δt < 2 / √((1 − 4β) κ_h).
         const double bound = 2.0 / std::sqrt((1.0 - 4.0 * p.beta) * kappa());
         if (!(p.dt < bound)) {
@@ -114,6 +121,8 @@ PlateSimulation::PlateSimulation(const PlateParameters& p, double baseDisplaceme
     // A singular mass has no M-orthonormal modal basis: it runs on the sparse factor.
     const bool modal = !p.singularMass() && (p.modes > 0 || p.engine == Engine::CompleteModal ||
                                              (p.engine == Engine::Auto && completeModalPays(*s.clamped)));
+    progress.phase(modal ? "modal basis (generalized eigenproblem)" : "factorization of A = M + beta dt^2 K",
+                   modal ? s.resources.spectrumSeconds : 0.5 * s.resources.factorSeconds);
     if (modal)
         s.discrete = std::make_shared<const ModalPlate>(s.space, s.clamped, p.dt, p.beta, p.modes, p.dampingMass,
                                                         p.dampingStiffness);
@@ -127,6 +136,7 @@ PlateSimulation::PlateSimulation(const PlateParameters& p, double baseDisplaceme
     options.singularMass = p.singularMass() && p.singularEquilibrium;
     s.stepper = std::make_unique<NewmarkContactStepper>(s.discrete, obstacles, options);
     Eigen::VectorXd w0;
+    progress.phase("static initial state (factor of K)", s.resources.staticSeconds + 0.5 * s.resources.factorSeconds);
     const auto* modalPlate = dynamic_cast<const ModalPlate*>(s.discrete.get());
     if (modalPlate && modalPlate->complete()) {
         // Exact mode in modal coordinates: solve the static problem with the sparse factor of
@@ -154,6 +164,7 @@ PlateSimulation::PlateSimulation(const PlateParameters& p, double baseDisplaceme
     s.corner1 = s.discrete->probe(p.length, 0.0);
     s.corner2 = s.discrete->probe(p.length, p.width);
     s.freeEdgeMid = s.discrete->probe(p.length, 0.5 * p.width);
+    progress.done(s.resources.peakMB);
 }
 
 PlateSimulation::~PlateSimulation() = default;
@@ -308,6 +319,8 @@ std::vector<double> PlateSimulation::vertexDisplacements() const {
         u[s.clamped->contactVertices[i]] += y[static_cast<Eigen::Index>(i)];
     return u;
 }
+
+const ResourceEstimate& PlateSimulation::resources() const { return impl_->resources; }
 
 std::string PlateSimulation::engine() const {
     const auto* modal = dynamic_cast<const ModalPlate*>(impl_->discrete.get());

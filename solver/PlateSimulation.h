@@ -9,6 +9,7 @@
 
 #include "InputSignal.h"
 #include "PlateParameters.h"
+#include "ResourceEstimate.h"
 
 namespace plate {
 
@@ -59,8 +60,12 @@ public:
     // (equilibrium under initialLoad between the obstacles, clamp at baseDisplacement0). With a
     // singular mass the massless part is then brought to equilibrium under loadAtStart, the
     // load input at t = 0 (docs/theory.md §11).
-    // Throws ParameterError with a message naming the parameter, value and allowed range.
-    PlateSimulation(const PlateParameters& parameters, double baseDisplacement0, double loadAtStart = 0.0);
+    // Throws ParameterError with a message naming the parameter, value and allowed range, and
+    // ResourceError (before anything large is allocated) when the estimated memory exceeds
+    // parameters.memoryLimit. `log` receives the resource estimate and, for initializations
+    // estimated at seconds or more, one line per phase.
+    PlateSimulation(const PlateParameters& parameters, double baseDisplacement0, double loadAtStart = 0.0,
+                    const ProgressLog& log = {});
     ~PlateSimulation();
     PlateSimulation(const PlateSimulation&) = delete;
     PlateSimulation& operator=(const PlateSimulation&) = delete;
@@ -87,6 +92,9 @@ public:
 
     // Vertex values of the absolute displacement at t_n (for plots and checks).
     std::vector<double> vertexDisplacements() const;
+
+    // What this instance was estimated to cost before it was built (ResourceEstimate.h).
+    const ResourceEstimate& resources() const;
 
     // "sparse" (factor of A), "modal-complete" (exact, all modes) or "modal-<m>" (reduced).
     std::string engine() const;

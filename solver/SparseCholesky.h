@@ -7,8 +7,17 @@
 #include <Eigen/Core>
 #include <Eigen/Sparse>
 #include <memory>
+#include <vector>
 
 namespace plate {
+
+// What the symbolic analysis of a pattern knows before any numeric work, with the same
+// fill-reducing ordering the factorization uses: the nonzeros of L and the flops of the
+// numeric factorization (docs/performance.md, resources).
+struct SymbolicFactor {
+    long long nonZeros = 0;
+    double flops = 0.0;
+};
 
 class SparseCholesky {
 public:
@@ -23,6 +32,12 @@ public:
     long long factorNonZeros() const;
     bool supernodal() const;
     static const char* backend();  // "CHOLMOD" or "Eigen"
+
+    // The symbolic analysis alone of a symmetric pattern given by its lower triangle in
+    // compressed columns (columnStart has n + 1 entries; rows sorted within each column, the
+    // diagonal stored). Memory O(nnz), no numeric work. Throws std::bad_alloc when out of memory.
+    static SymbolicFactor analyze(Eigen::Index n, const std::vector<int>& columnStart,
+                                  const std::vector<int>& rowIndex);
 
     // x = S^{-1} b. Reuses the backend's workspace: no allocation after the first call.
     // Not for concurrent use of one factor (each plate instance owns its factors).

@@ -3,6 +3,7 @@
 #include <cholmod.h>
 
 #include <cstring>
+#include <new>
 #include <stdexcept>
 
 namespace plate {
@@ -52,8 +53,10 @@ SparseCholesky::SparseCholesky(const Eigen::SparseMatrix<double>& spd)
     view.packed = 1;
     auto& c = ws_->common;
     ws_->factor = cholmod_analyze(&view, &c);
+    if (c.status == CHOLMOD_OUT_OF_MEMORY) throw std::bad_alloc();
     if (!ws_->factor) throw std::runtime_error("CHOLMOD analysis failed");
     cholmod_factorize(&view, ws_->factor, &c);
+    if (c.status == CHOLMOD_OUT_OF_MEMORY) throw std::bad_alloc();  // not "not positive definite"
     if (c.status != CHOLMOD_OK || ws_->factor->minor < ws_->factor->n)
         throw std::runtime_error("matrix is not positive definite (CHOLMOD)");
 }
@@ -75,6 +78,27 @@ long long SparseCholesky::factorNonZeros() const {
 bool SparseCholesky::supernodal() const { return ws_->factor->is_super != 0; }
 
 const char* SparseCholesky::backend() { return "CHOLMOD"; }
+
+SymbolicFactor SparseCholesky::analyze(Eigen::Index n, const std::vector<int>& columnStart,
+                                       const std::vector<int>& rowIndex) {
+    Workspace ws;  // the same options as a factorization: the same ordering, the same L
+    cholmod_sparse view{};
+    view.nrow = view.ncol = static_cast<size_t>(n);
+    view.nzmax = rowIndex.size();
+    view.p = const_cast<int*>(columnStart.data());
+    view.i = const_cast<int*>(rowIndex.data());
+    view.stype = -1;
+    view.itype = CHOLMOD_INT;
+    view.xtype = CHOLMOD_PATTERN;
+    view.dtype = CHOLMOD_DOUBLE;
+    view.sorted = 1;
+    view.packed = 1;
+    ws.factor = cholmod_analyze(&view, &ws.common);
+    if (ws.common.status == CHOLMOD_OUT_OF_MEMORY) throw std::bad_alloc();
+    if (!ws.factor) throw std::runtime_error("CHOLMOD analysis failed");
+    // cholmod_analyze leaves nnz(L) and the flop count of the selected ordering in Common.
+    return {static_cast<long long>(ws.common.lnz), ws.common.fl};
+}
 
 void SparseCholesky::solve(const Eigen::VectorXd& b, Eigen::VectorXd& x) const {
     cholmod_dense rhs{};

@@ -10,6 +10,11 @@
 //                                 comm=SECONDS (communication step, default 1e-4)
 //                                 spectrum=1 (also print the first frequency and κ_h)
 //                                 floor_repeats=N (solves per floor measurement, default 2000)
+//                                 init_only=1 (build, print the resource estimate against the
+//                                 measured peak RSS and initialization time, exit)
+//                                 estimate_only=1 (the resource estimate alone: mesh and
+//                                 symbolic analysis, nothing assembled; refusal as the FMU's)
+//                                 memory_limit=MB (default 0 here: no limit)
 //                                 export=DIR (write M, K, F, M·1 and the contact dofs of the
 //                                 clamped plate as Matrix Market / text files, then exit)
 // Besides the wall time of the stepping loop (step_s) it prints its process CPU time per step
@@ -34,6 +39,29 @@
 #include "PlateSimulation.h"
 
 namespace {
+
+// Peak resident set of this process image (VmHWM; getrusage's ru_maxrss would include the
+// parent's peak before exec, e.g. the Python of scripts/resource_scaling.py).
+double peakRssMB() {
+    std::ifstream status("/proc/self/status");
+    std::string line;
+    while (std::getline(status, line))
+        if (line.rfind("VmHWM:", 0) == 0) return std::atof(line.c_str() + 6) / 1024.0;  // kB
+    return 0.0;
+}
+
+// The resource estimate (ResourceEstimate.h) of a built simulation beside what was measured.
+std::string resourceJson(const plate::PlateSimulation& sim, double initSeconds, double rssBeforeMB) {
+    const plate::ResourceEstimate& e = sim.resources();
+    char text[600];
+    std::snprintf(text, sizeof text,
+                  "\"nnz_k\": %lld, \"nnz_l\": %lld, \"factor_gflop\": %.4g, \"contact_vertices\": %lld, "
+                  "\"est_peak_mb\": %.4g, \"rss_peak_mb\": %.4g, \"rss_before_mb\": %.4g, \"est_init_s\": %.4g, "
+                  "\"init_s\": %.4g, \"est_step_s\": %.4g",
+                  e.size.nonZeros, e.size.factorNonZeros, e.size.factorFlops * 1e-9, e.size.contactVertices, e.peakMB,
+                  peakRssMB(), rssBeforeMB, e.initSeconds, initSeconds, e.stepSeconds);
+    return text;
+}
 
 double processCpuSeconds() {
     timespec ts{};
@@ -94,6 +122,29 @@ int exportMatrices(const plate::PlateParameters& p, const std::string& dir) {
     return 0;
 }
 
+// The estimate PlateSimulation makes before it assembles anything, as JSON (refused: on stderr).
+int printEstimate(const plate::PlateParameters& p) {
+    try {
+        plate::validate(p);
+        const auto t0 = std::chrono::steady_clock::now();
+        plate::requireMeshWithinBudget(p);
+        const auto space = plate::makeSpace(p.element, plate::Mesh(p.length, p.width, p.nx, p.ny));
+        const plate::ResourceEstimate e = plate::planResources(p, *space, {});
+        const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+        const char* engine = e.engine == plate::EngineKind::Sparse ? "sparse" : e.engine == plate::EngineKind::CompleteModal ? "modal-complete" : "modal-reduced";
+        std::printf(
+            "{\"element\": \"%s\", \"nx\": %d, \"ny\": %d, \"engine\": \"%s\", \"dofs\": %lld, \"nnz_k\": %lld, "
+            "\"nnz_l\": %lld, \"factor_gflop\": %.4g, \"est_peak_mb\": %.4g, \"est_init_s\": %.4g, \"est_step_s\": "
+            "%.4g, \"estimate_s\": %.4g}\n",
+            p.element == plate::ElementType::Fvs ? "fvs" : "argyris", p.nx, p.ny, engine, e.size.dofs, e.size.nonZeros,
+            e.size.factorNonZeros, e.size.factorFlops * 1e-9, e.peakMB, e.initSeconds, e.stepSeconds, seconds);
+    } catch (const std::exception& e) {
+        std::fprintf(stderr, "plate_bench: %s\n", e.what());
+        return 1;
+    }
+    return 0;
+}
+
 }  // namespace
 
 int main(int argc, char** argv) {
@@ -130,13 +181,26 @@ int main(int argc, char** argv) {
                    : e == "modal" ? plate::PlateParameters::Engine::CompleteModal
                                   : plate::PlateParameters::Engine::Auto;
     }
+    p.memoryLimit = num("memory_limit", 0.0);
     if (args.count("export")) return exportMatrices(p, args["export"]);
+    if (num("estimate_only", 0) != 0) return printEstimate(p);
     const long long steps = static_cast<long long>(num("steps", 100000));
     const double amplitude = num("amplitude", 0.09), frequency = num("frequency", 10.0);
     try {
+        const double rssBefore = peakRssMB();
         const auto t0 = std::chrono::steady_clock::now();
-        plate::PlateSimulation sim(p, 0.0);
+        const plate::ProgressLog log = [&args](const std::string& line) {
+            if (args.count("verbose")) std::fprintf(stderr, "[peak RSS %.1f MB] %s\n", peakRssMB(), line.c_str());
+        };
+        plate::PlateSimulation sim(p, 0.0, 0.0, log);
         const auto t1 = std::chrono::steady_clock::now();
+        const std::string resources = resourceJson(sim, std::chrono::duration<double>(t1 - t0).count(), rssBefore);
+        if (num("init_only", 0) != 0) {
+            std::printf("{\"element\": \"%s\", \"nx\": %d, \"ny\": %d, \"engine\": \"%s\", \"dofs\": %ld, %s}\n",
+                        p.element == plate::ElementType::Fvs ? "fvs" : "argyris", p.nx, p.ny, sim.engine().c_str(),
+                        static_cast<long>(sim.dofCount()), resources.c_str());
+            return 0;
+        }
         const int floorRepeats = std::max(20, static_cast<int>(num("floor_repeats", 2000)));
         const double floorBefore = sim.measureFloorSolveSeconds(floorRepeats);
         // Communication step 1e-4 s (or dt if larger), input derivatives as the FMU gets them.
@@ -187,12 +251,12 @@ int main(int argc, char** argv) {
             "%.6g, "
             "\"step_cpu_s\": %.6g, \"floor_cpu_s\": %.6g, "
             "\"floor_solve_s\": %.6g, \"step_over_floor\": %.4g, \"qp_iterations_total\": %lld, "
-            "\"energy_dissipated\": %.10g, \"checksum\": %.10g%s}\n",
+            "\"energy_dissipated\": %.10g, \"checksum\": %.10g, %s%s}\n",
             p.element == plate::ElementType::Fvs ? "fvs" : "argyris", p.nx, p.ny, p.dt, p.beta, p.modes,
             sim.engine().c_str(), static_cast<long>(sim.dofCount()), steps,
             std::chrono::duration<double>(t1 - t0).count(), std::chrono::duration<double>(t3 - t2).count(), perStep,
             (cpu3 - cpu2) / steps, floorCpu, floor, perStep / floor, o.qpIterationsTotal, o.energyDissipated, energySum,
-            spectrum.c_str());
+            resources.c_str(), spectrum.c_str());
     } catch (const std::exception& e) {
         std::fprintf(stderr, "plate_bench: %s\n", e.what());
         return 1;
