@@ -2,7 +2,7 @@
 with fixed communication steps and with ECCO (issue 20, item 4).
 
     bash run.sh                                    # builds build/{SineSweep,Shaker,PlateImpact}.fmu
-    .venv/bin/python examples/shaker.py            # measures, writes out/shaker.png (~2-3 min)
+    .venv/bin/python examples/shaker.py            # measures, prints the report, writes out/shaker.png
     .venv/bin/python examples/shaker.py --quick    # the suite's short version (~20 s)
     .venv/bin/python examples/shaker.py --markdown docs/system-model.md --figure docs/figures/shaker.png
 
@@ -57,9 +57,10 @@ ECCO = {
 }
 
 
-def fmus(build):
-    build = Path(build)
-    return {"sweep": build / "SineSweep.fmu", "shaker": build / "Shaker.fmu", "plate": build / "PlateImpact.fmu"}
+def fmus(plate_fmu):
+    """The three FMUs: PlateImpact.fmu at `plate_fmu`, SineSweep.fmu and Shaker.fmu beside it."""
+    build = Path(plate_fmu).parent
+    return {"sweep": build / "SineSweep.fmu", "shaker": build / "Shaker.fmu", "plate": Path(plate_fmu)}
 
 
 def system_values(sweep=SWEEP, shaker=SHAKER, plate=PLATE):
@@ -269,13 +270,15 @@ def write_section(path, text):
 
 def main(argv=None):
     ap = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
-    ap.add_argument("--build", default="build")
+    ap.add_argument("--fmu", default="build/PlateImpact.fmu", help="SineSweep.fmu and Shaker.fmu beside it")
+    ap.add_argument("--out", default="out")
     ap.add_argument("--quick", action="store_true", help="short sweep and closure runs (the suite)")
     ap.add_argument("--step", type=float, default=1e-3, help="communication step of the sweep runs, s")
-    ap.add_argument("--figure", default="out/shaker.png")
+    ap.add_argument("--figure", help="default: <out>/shaker.png")
     ap.add_argument("--markdown", help="write the two-way section into this file (docs/system-model.md)")
     args = ap.parse_args(argv)
-    paths = fmus(args.build)
+    paths = fmus(args.fmu)
+    figure_path = Path(args.figure or Path(args.out) / "shaker.png")
     sweep = QUICK_SWEEP if args.quick else SWEEP
     sr = sweep_measurement(paths, sweep, args.step)
     print(
@@ -290,8 +293,8 @@ def main(argv=None):
         file=sys.stderr,
     )
     rows = closure_table(paths, sweep, CLOSURE_STEPS[:2] if args.quick else CLOSURE_STEPS)
-    figure(sr, args.figure)
-    text = markdown(sweep, sr, heavy, rows, args.step, "figures/" + Path(args.figure).name)
+    figure(sr, figure_path)
+    text = markdown(sweep, sr, heavy, rows, args.step, "figures/" + figure_path.name)
     print(text)
     if args.markdown:
         write_section(args.markdown, text)

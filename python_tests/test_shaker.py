@@ -147,8 +147,13 @@ def test_fmu_state_round_trips_bit_for_bit(shaker_fmu):
 
 @pytest.mark.parametrize(
     "name, value, words",
-    [("mass", 0.0, "mass = 0"), ("mass", 2e12, "mass"), ("stiffness", -1.0, "stiffness"),
-     ("damping", -0.5, "damping"), ("dt", 0.0, "dt = 0")],
+    [
+        ("mass", 0.0, "mass = 0"),
+        ("mass", 2e12, "mass"),
+        ("stiffness", -1.0, "stiffness"),
+        ("damping", -0.5, "damping"),
+        ("dt", 0.0, "dt = 0"),
+    ],
 )
 def test_bad_parameters_are_refused_with_the_range(shaker_fmu, name, value, words):
     messages = []
