@@ -164,10 +164,14 @@ def closure_row(paths, sweep, master, h=None, stop=CLOSURE_TIME):
 
 
 def closure_table(paths, sweep, steps, stop, ecco=True):
-    rows = [closure_row(paths, sweep, f"fixed step {h:g} s", h, stop) for h in steps]
-    if ecco:
-        rows.append(closure_row(paths, sweep, "ECCO", None, stop))
-    for r in rows:
+    rows = []
+    for master, h in [(f"fixed step {h:g} s", h) for h in steps] + ([("ECCO", None)] if ecco else []):
+        try:
+            rows.append(closure_row(paths, sweep, master, h, stop))
+        except RuntimeError as e:  # a coupled run that goes unstable is reported, not hidden
+            print(f"{master}: FAILED: {str(e)[:200]}", file=sys.stderr)
+            rows.append({"master": master, "failed": str(e)[:90], "stop": stop})
+    for r in (r for r in rows if "failed" not in r):
         print(
             f"{r['master']}: coupling error {r['coupling_error']:.3e} J of drive work {r['drive_work']:.4g} J "
             f"({r['steps']} steps, {r['impacts']} impacts, {r['wall']:.1f} s)",
@@ -258,6 +262,9 @@ def markdown(sweep, sr, heavy, rows, h, figure_path):
         "|---|---|---|---|---|---|---|---|---|",
     ]
     for r in rows:
+        if "failed" in r:
+            lines.append(f"| {r['master']} | unstable: {r['failed']} | | | | | | | |")
+            continue
         lines.append(
             f"| {r['master']} | {r['steps']} ({r['h_min']:.2g}–{r['h_max']:.2g} s) | {r['impacts']} | "
             f"{r['drive_work']:.5g} | {r['coupling_error']:.3e} | {r['max_coupling_error']:.3e} | "
