@@ -111,7 +111,10 @@ def main(argv=None):
     text = table(rows, args.stop_time)
     print(text)
     if args.markdown:
-        Path(args.markdown).write_text(HEADER + text + "\n")
+        # Keep the two-way section that examples/shaker.py writes after this one.
+        path = Path(args.markdown)
+        tail = path.read_text().partition("## Two-way:") if path.exists() else ("", "", "")
+        path.write_text(HEADER + text + "\n" + ("\n" + tail[1] + tail[2] if tail[1] else ""))
     if traces:
         out = Path(args.out)
         out.mkdir(parents=True, exist_ok=True)

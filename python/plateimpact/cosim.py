@@ -113,3 +113,170 @@ def run_fmpy_ssp(ssp, h, stop):
         str(ssp), stop_time=n * h - 0.5 * h, step_size=h, parameter_set=SimpleNamespace(parameters=parameters)
     )
     return np.asarray(result["plate.corner_1"][:n])
+
+
+# ---------------------------------------------------------------------------------------------
+# The two-way system model (issue 20, item 4; examples/shaker.py): SineSweep.fmu's signal is the
+# drive force of Shaker.fmu, whose armature carries PlateImpact's clamp (armature_velocity ->
+# base_velocity, base_drive = velocity) and feels the plate (clamp_force -> plate_force).
+
+# What each slave's step is recorded with (Real; the plate's impact counters are Integers).
+SHAKER_RECORD = (
+    "armature_displacement",
+    "armature_velocity",
+    "armature_acceleration",
+    "energy",
+    "drive_work",
+    "plate_work",
+    "damper_loss",
+    "drive_force",
+    "plate_force",
+)
+PLATE_RECORD = (
+    "clamp_force",
+    "clamp_displacement",
+    "clamp_acceleration",
+    "corner_1",
+    "energy",
+    "energy_input",
+    "energy_dissipated",
+    "energy_damped",
+    "contact_force_lower",
+    "contact_force_upper",
+)
+PLATE_COUNTERS = ("impacts_lower", "impacts_upper")
+BASE_DRIVE_VELOCITY = 2  # PlateImpact's base_drive enumeration: velocity
+
+
+def _set_initial_values(execution, slave, vrs, values):
+    for name, value in values.items():
+        if isinstance(value, int) and not isinstance(value, bool):
+            ok = execution.integer_initial_value(slave, vrs[name], value)
+        else:
+            ok = execution.real_initial_value(slave, vrs[name], float(value))
+        if not ok:
+            raise RuntimeError(f"libcosim refused the initial value {name} = {value}")
+
+
+def _connect(execution, source, source_vr, target, target_vr, what):
+    if execution.connect_real_variables(source, source_vr, target, target_vr) != 0:  # the C status: 0 on success
+        raise RuntimeError(f"libcosim could not connect {what}")
+
+
+def enumerations_as_integers(fmu, target):
+    """A copy of `fmu` at `target` whose modelDescription declares every Enumeration variable an
+    Integer (same value reference, same binary, same GUID). libcosim (0.0.6 and its current
+    source) skips Enumeration variables when it reads a model description, so PlateImpact's
+    base_drive cannot be set through it; the FMU's fmi2SetInteger serves Enumerations (FMI 2.0),
+    so the copy runs the same model with base_drive settable."""
+    import re
+
+    with zipfile.ZipFile(fmu) as source, zipfile.ZipFile(target, "w", zipfile.ZIP_DEFLATED) as copy:
+        for item in source.infolist():
+            data = source.read(item)
+            if item.filename == "modelDescription.xml":
+                text = re.sub(r'<Enumeration declaredType="[^"]*"', "<Integer", data.decode())
+                data = text.encode()
+            copy.writestr(item, data)
+    return target
+
+
+def shaker_execution(fmus, values, h=None, ecco=None, coupled=True):
+    """A libcosim execution of sweep -> shaker <-> plate. `fmus` and `values` map "sweep",
+    "shaker", "plate" to the FMU path and its initial values; fixed step `h` (s) or ECCO with
+    the EccoParams fields in `ecco` (power bond armature_velocity / plate_force <-> clamp_force /
+    base_velocity). coupled=False leaves plate_force at 0: the one-way run. Returns ((execution,
+    algorithm or None), observer, slaves, value references)."""
+    from libcosimpy.CosimAlgorithm import CosimAlgorithm, EccoParams
+    from libcosimpy.CosimExecution import CosimExecution
+    from libcosimpy.CosimLogging import CosimLogLevel, log_output_level
+    from libcosimpy.CosimObserver import CosimObserver
+    from libcosimpy.CosimSlave import CosimLocalSlave
+
+    log_output_level(CosimLogLevel.ERROR)
+    algorithm = None
+    if ecco is None:
+        execution = CosimExecution.from_step_size(round(h * 1e9))  # libcosim's time: integer ns
+    else:
+        algorithm = CosimAlgorithm.create_ecco_algorithm(EccoParams(**ecco))
+        execution = CosimExecution.from_algorithm(algorithm)
+    slaves = {
+        name: execution.add_local_slave(CosimLocalSlave(fmu_path=str(Path(path).resolve()), instance_name=name))
+        for name, path in fmus.items()
+    }
+    vrs = {name: variables(path) for name, path in fmus.items()}
+    # The observer exposes every variable for reading: ECCO reads the bond's inputs too.
+    observer = CosimObserver.create_last_value()
+    execution.add_observer(observer)
+    for name in fmus:
+        _set_initial_values(execution, slaves[name], vrs[name], values.get(name, {}))
+    sweep, shaker, plate = slaves["sweep"], slaves["shaker"], slaves["plate"]
+    s, p = vrs["shaker"], vrs["plate"]
+    _connect(execution, sweep, vrs["sweep"]["base_displacement"], shaker, s["drive_force"], "sweep -> drive_force")
+    _connect(execution, shaker, s["armature_velocity"], plate, p["base_velocity"], "armature -> base_velocity")
+    if coupled:
+        _connect(execution, plate, p["clamp_force"], shaker, s["plate_force"], "clamp_force -> plate_force")
+    if algorithm is not None:
+        bond = algorithm.add_power_bond(
+            shaker, s["armature_velocity"], s["plate_force"], plate, p["clamp_force"], p["base_velocity"]
+        )
+        if bond != 0:
+            raise RuntimeError("libcosim could not add the power bond")
+    # The execution holds a pointer to the algorithm: the caller keeps both alive together.
+    return (execution, algorithm), observer, slaves, vrs
+
+
+def run_shaker_system(fmus, values, stop, h=None, ecco=None, coupled=True):
+    """Runs sweep -> shaker <-> plate to `stop` (s); returns a dict of arrays over the
+    communication points: "time", "shaker.<name>" for SHAKER_RECORD, "plate.<name>" for
+    PLATE_RECORD and PLATE_COUNTERS. The plate runs from a copy with its Enumerations declared
+    Integers (enumerations_as_integers: libcosim cannot set base_drive otherwise)."""
+    with tempfile.TemporaryDirectory() as tmp:
+        plate = enumerations_as_integers(fmus["plate"], Path(tmp) / "PlateImpact.fmu")
+        return _step_shaker_system(dict(fmus, plate=plate), values, stop, h, ecco, coupled)
+
+
+def _step_shaker_system(fmus, values, stop, h, ecco, coupled):
+    (execution, _algorithm), observer, slaves, vrs = shaker_execution(fmus, values, h, ecco, coupled)
+    shaker_vrs = [vrs["shaker"][n] for n in SHAKER_RECORD]
+    plate_vrs = [vrs["plate"][n] for n in PLATE_RECORD]
+    counter_vrs = [vrs["plate"][n] for n in PLATE_COUNTERS]
+    rows = []
+    stop_ns = round(stop * 1e9)
+    while True:
+        now = execution.status().current_time
+        if now >= stop_ns - (round(h * 1e9) // 2 if h else 0):
+            break
+        if not execution.step():
+            raise RuntimeError(f"libcosim step at t = {now * 1e-9} s failed: {execution.status()}")
+        rows.append(
+            [execution.status().current_time * 1e-9]
+            + list(observer.last_real_values(slaves["shaker"], shaker_vrs))
+            + list(observer.last_real_values(slaves["plate"], plate_vrs))
+            + list(observer.last_integer_values(slaves["plate"], counter_vrs))
+        )
+    data = np.array(rows)
+    names = ["time"] + [f"shaker.{n}" for n in SHAKER_RECORD] + [f"plate.{n}" for n in PLATE_RECORD + PLATE_COUNTERS]
+    return {name: data[:, i] for i, name in enumerate(names)}
+
+
+def energy_closure(run):
+    """The coupled system's energy balance over a run: drive work = shaker and plate energies +
+    losses + the coupling error, the energy the port created (each side's port work has its own
+    discretization): coupling_error = -(shaker.plate_work + plate.energy_input). Also each
+    FMU's own ledger residual (roundoff)."""
+    drive = run["shaker.drive_work"]
+    shaker_stored = run["shaker.energy"]
+    plate_stored = run["plate.energy"]  # the plate starts at rest, unloaded: energy 0 at t = 0
+    losses = run["shaker.damper_loss"] + run["plate.energy_dissipated"] + run["plate.energy_damped"]
+    coupling = -(run["shaker.plate_work"] + run["plate.energy_input"])
+    return {
+        "drive_work": drive,
+        "stored": shaker_stored + plate_stored,
+        "losses": losses,
+        "coupling_error": coupling,
+        "closure": drive - (shaker_stored + plate_stored + losses),
+        "shaker_ledger": shaker_stored - (drive + run["shaker.plate_work"] - run["shaker.damper_loss"]),
+        "plate_ledger": plate_stored
+        - (run["plate.energy_input"] - run["plate.energy_dissipated"] - run["plate.energy_damped"]),
+    }
