@@ -203,7 +203,7 @@ StepPlan PlateSimulation::plan(double h) const {
         std::ostringstream msg;
         msg.precision(17);
         msg << "communicationStepSize h = " << h << " is shorter than the smallest step the grid of dt = " << dt
-            << " resolves (allowed: h >= " << snap << " s, " << kGridSnap << " dt)";
+            << " resolves (allowed: h >= " << snap << " s = 1e-9 dt)";
         throw StepError(msg.str());
     }
     const double end = s.commTime + h;

@@ -28,12 +28,20 @@ def start_text(v):
     return str(v.start)
 
 
+def range_text(v):
+    """The allowed range the model description declares (min/max), as the README shows it."""
+    low, high = getattr(v, "min", None), getattr(v, "max", None)
+    if low is None and high is None:
+        return ""
+    return f"{low if low is not None else ''} … {high if high is not None else ''}"
+
+
 def variables_table(fmu) -> str:
-    """The Markdown table of every variable: name, causality, type, start, unit, description."""
+    """The Markdown table of every variable: name, causality, type, start, range, unit, description."""
     md = read_model_description(str(fmu))
     rows = [
-        "| name | causality | type | default | unit | meaning |",
-        "|---|---|---|---|---|---|",
+        "| name | causality | type | default | range | unit | meaning |",
+        "|---|---|---|---|---|---|---|",
     ]
     for v in md.modelVariables:
         kind = v.type
@@ -41,7 +49,9 @@ def variables_table(fmu) -> str:
             items = ", ".join(f"`{i.name}`" for i in v.declaredType.items)
             kind = f"Enumeration ({items})"
         description = (v.description or "").replace("|", "\\|")
-        rows.append(f"| `{v.name}` | {v.causality} | {kind} | {start_text(v)} | {v.unit or ''} | {description} |")
+        rows.append(
+            f"| `{v.name}` | {v.causality} | {kind} | {start_text(v)} | {range_text(v)} | {v.unit or ''} | {description} |"
+        )
     return "\n".join(rows)
 
 
