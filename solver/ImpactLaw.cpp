@@ -8,7 +8,7 @@ namespace plate {
 
 namespace {
 
-// The paper's law (§3.4): the constraint on u⁺ itself, contact work only where the QP ran.
+// The paper's law (§4–5): the constraint on u⁺ itself, contact work only where the QP ran.
 // Free flight without looking at every vertex (complete modal basis: the look is a dense
 // product): at the last full look the vertices were at least margin_ from the obstacles with the
 // plate at wCheck_ and the base at zCheck_; while ‖C_i‖ ‖w⁺ − wCheck_‖ + |z⁺ − zCheck_| stays
@@ -46,7 +46,7 @@ public:
         return violated;
     }
 
-    // Loss ½ λᵀ(u⁻ − u⁺) on the active vertices (§10), absolute heights. Each term is ≥ 0 in
+    // Loss ½ λᵀ(u⁻ − u⁺) on the active vertices (§6), absolute heights. Each term is ≥ 0 in
     // exact arithmetic (u⁺ on the obstacle, u⁻ not past it). A vertex that stays on the obstacle
     // has u⁻ there only up to the roundoff of w + Σ μ_j A⁻¹Cᵀe_j (~1e-17 m), which can make its
     // term ~1e-13 J negative: that is no physical work at all, so it is dropped —

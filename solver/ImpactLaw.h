@@ -1,6 +1,6 @@
 #pragma once
 // What an impact law contributes to one step of the Newmark–contact scheme (docs/theory.md
-// §3.4, §11, §12): the forces it carries into the right-hand side, the bounds of the step's
+// §4–5, §11, §12): the forces it carries into the right-hand side, the bounds of the step's
 // contact QP on the vertex values y⁺ = C w⁺, and the contact work and sums of the step. The
 // stepper (NewmarkContactStepper) is the paper's step plus one of these; a new law is a new
 // class here, not a flag inside the step.
@@ -20,7 +20,7 @@ struct ContactBuffers {
     const std::vector<int>* active = nullptr;  // the QP's active set (when it ran)
 };
 
-// What the contact phase of one step yields for the ledger and the port (§10, §14).
+// What the contact phase of one step yields for the ledger and the port (§6, §14).
 struct ContactWork {
     double dissipated = 0.0;  // ½ τᵀ(u⁻ − u⁺)/Δt²
     double onBase = 0.0;  // −Σ τ (z⁺ − z⁻)/(2Δt²): the contact force's work on the moving frame
@@ -44,7 +44,7 @@ public:
     virtual void reset() {}
 };
 
-// The laws of docs/theory.md: the paper's (e = 0, consistent mass: §3.4, with the free-flight
+// The laws of docs/theory.md: the paper's (e = 0, consistent mass: §4–5, with the free-flight
 // bound that skips looking at the vertices), and the general one — the constraint on
 // (u⁺ + e u⁻)/(1 + e) (§12) with, for a singular mass, the contact impulses carried (§11).
 std::unique_ptr<ImpactLaw> makeImpactLaw(const DiscretePlate& plate, const Obstacles& obstacles, double restitution,
