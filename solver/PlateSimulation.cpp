@@ -41,7 +41,7 @@ Obstacles obstaclesOf(const PlateParameters& p) {
 // measurements behind it: docs/theory.md §7.
 bool completeModalPays(const ClampedPlate& plate) {
     return plate::completeModalPays(plate.mass.rows(), static_cast<long long>(plate.contactDofs.size()),
-                             plate.stiffness.nonZeros());
+                                    plate.stiffness.nonZeros());
 }
 
 }  // namespace

@@ -169,9 +169,10 @@ bool completeModalPays(long long n, long long m, long long stiffnessNonZeros) {
 
 EngineKind engineFor(const PlateParameters& p, const ProblemSize& size) {
     using Engine = PlateParameters::Engine;
-    const bool modal = !p.singularMass() && (p.modes > 0 || p.engine == Engine::CompleteModal ||
-                                             (p.engine == Engine::Auto &&
-                                              completeModalPays(size.dofs, size.contactVertices, size.nonZeros)));
+    const bool modal =
+        !p.singularMass() &&
+        (p.modes > 0 || p.engine == Engine::CompleteModal ||
+         (p.engine == Engine::Auto && completeModalPays(size.dofs, size.contactVertices, size.nonZeros)));
     if (!modal) return EngineKind::Sparse;
     return p.modes > 0 && p.modes < size.dofs ? EngineKind::ReducedModal : EngineKind::CompleteModal;
 }
@@ -186,9 +187,9 @@ void modalCost(const PlateParameters& p, const ProblemSize& s, EngineKind engine
     if (subspace) {
         const double q = std::min(n, std::max(2 * m, m + 16));  // Spectrum.cpp's block size
         bytes = factorBytes(s) + kDouble * (5 * n * q + 4 * q * q);
-        seconds = s.factorFlops * kPerFactorFlop +
-                  kSubspaceIterations * q * (4.0 * double(s.factorNonZeros) + 4.0 * double(s.nonZeros)) *
-                      kPerFactorFlop;
+        seconds = s.factorFlops * kPerFactorFlop + kSubspaceIterations * q *
+                                                       (4.0 * double(s.factorNonZeros) + 4.0 * double(s.nonZeros)) *
+                                                       kPerFactorFlop;
     } else {
         bytes = kDenseEigenMatrices * kDouble * n * n;
         seconds = kPerDenseEigenCube * n * n * n;
@@ -207,8 +208,10 @@ ResourceEstimate estimateResources(const PlateParameters& p, const ProblemSize& 
     const double zFull = double(s.fullNonZeros), z = double(s.nonZeros), l = double(s.factorNonZeros);
     // Assembly.cpp: the triplets of M and K, setFromTriplets' temporary, both assembled matrices.
     const double assembly = 2 * kTriplet * t + kEntry * t + 2 * kEntry * zFull + 6 * kDouble * nFull;
-    if (p.singularMass()) e.assemblyMB = (assembly + kTriplet * t + kEntry * zFull) / kMB;  // B, C of SingularMass
-    else e.assemblyMB = assembly / kMB;
+    if (p.singularMass())
+        e.assemblyMB = (assembly + kTriplet * t + kEntry * zFull) / kMB;  // B, C of SingularMass
+    else
+        e.assemblyMB = assembly / kMB;
     // clamp(): the full matrices, the restriction's triplets, its temporary and result.
     const double clampPeak = 2 * kEntry * zFull + kTriplet * z + 3 * kEntry * z;
     const double clamped = 2 * kEntry * z + 8 * kDouble * n;  // free M and K and vectors
@@ -258,9 +261,9 @@ ResourceEstimate estimateResources(const PlateParameters& p, const ProblemSize& 
 
 std::string ResourceEstimate::describe() const {
     const ProblemSize& s = size;
-    const char* name = engine == EngineKind::Sparse ? "sparse" : engine == EngineKind::CompleteModal
-                                                                     ? "modal-complete"
-                                                                     : "modal-reduced";
+    const char* name = engine == EngineKind::Sparse          ? "sparse"
+                       : engine == EngineKind::CompleteModal ? "modal-complete"
+                                                             : "modal-reduced";
     char text[600];
     if (!complete) {
         std::snprintf(text, sizeof text,
@@ -285,7 +288,8 @@ void requireWithinBudget(const PlateParameters& p, const ResourceEstimate& e) {
     msg << "refused before allocating: this instance needs " << (e.complete ? "an estimated " : "at least ")
         << std::ceil(e.peakMB) << " MB";
     if (!e.complete) msg << " (the element bases and the assembly of M and K alone)";
-    if (e.size.predicted) msg << " (predicted from the mesh size; factor nnz(L) ~ " << double(e.size.factorNonZeros) << ")";
+    if (e.size.predicted)
+        msg << " (predicted from the mesh size; factor nnz(L) ~ " << double(e.size.factorNonZeros) << ")";
     msg << " and memory_limit = " << p.memoryLimit << " MB (nx = " << p.nx << ", ny = " << p.ny
         << "); raise memory_limit to at least " << std::ceil(e.peakMB)
         << " MB if the machine has that memory (0 = no limit), or use a coarser mesh";
@@ -306,8 +310,8 @@ void InitProgress::phase(const std::string& what, double estimatedSeconds) {
     ++count_;
     if (!log_ || estimated_ < threshold_) return;
     char text[400];
-    std::snprintf(text, sizeof text, "initialization step %d: %s (estimated %.2g s); %.3g s of ~%.3g s elapsed",
-                  count_, what.c_str(), estimatedSeconds, elapsed(), estimated_);
+    std::snprintf(text, sizeof text, "initialization step %d: %s (estimated %.2g s); %.3g s of ~%.3g s elapsed", count_,
+                  what.c_str(), estimatedSeconds, elapsed(), estimated_);
     log_(text);
 }
 

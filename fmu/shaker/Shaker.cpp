@@ -29,8 +29,7 @@ void validate(const ShakerParameters& p) {
 Shaker::Shaker(const ShakerParameters& p) : p_(p) { validate(p_); }
 
 void Shaker::settle(double driveForce, double plateForce) {
-    s_.acceleration =
-        (driveForce + plateForce - p_.stiffness * s_.displacement - p_.damping * s_.velocity) / p_.mass;
+    s_.acceleration = (driveForce + plateForce - p_.stiffness * s_.displacement - p_.damping * s_.velocity) / p_.mass;
 }
 
 void Shaker::step(double h, double driveForce, double plateForce) {

@@ -147,8 +147,14 @@ void ShakerModel::set(const fmu::Variable& v, double x) {
         case kStiffness: p_.stiffness = x; break;
         case kDamping: p_.damping = x; break;
         case kDt: p_.dt = x; break;
-        case kDriveForce: checkForce(v, x); driveForce_ = x; return;
-        case kPlateForce: checkForce(v, x); plateForce_ = x; return;
+        case kDriveForce:
+            checkForce(v, x);
+            driveForce_ = x;
+            return;
+        case kPlateForce:
+            checkForce(v, x);
+            plateForce_ = x;
+            return;
         default: throw fmu::ModelError(std::string(v.name) + " cannot be set");
     }
     shaker_.reset();  // a parameter changed: build again

@@ -131,7 +131,9 @@ int printEstimate(const plate::PlateParameters& p) {
         const auto space = plate::makeSpace(p.element, plate::Mesh(p.length, p.width, p.nx, p.ny));
         const plate::ResourceEstimate e = plate::planResources(p, *space, {});
         const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
-        const char* engine = e.engine == plate::EngineKind::Sparse ? "sparse" : e.engine == plate::EngineKind::CompleteModal ? "modal-complete" : "modal-reduced";
+        const char* engine = e.engine == plate::EngineKind::Sparse          ? "sparse"
+                             : e.engine == plate::EngineKind::CompleteModal ? "modal-complete"
+                                                                            : "modal-reduced";
         std::printf(
             "{\"element\": \"%s\", \"nx\": %d, \"ny\": %d, \"engine\": \"%s\", \"dofs\": %lld, \"nnz_k\": %lld, "
             "\"nnz_l\": %lld, \"factor_gflop\": %.4g, \"est_peak_mb\": %.4g, \"est_init_s\": %.4g, \"est_step_s\": "
@@ -213,7 +215,7 @@ int main(int argc, char** argv) {
         auto record = [&](double base) {
             if (!series) return;
             const auto o = sim.outputs();
-            std::fprintf(series, "%.10g,%.17g,%.17g,%.17g,%.17g,%.17g,%.17g,%.17g,%d\n", sim.time(), base, o.corner1,
+            std::fprintf(series, "%.10g,%.17g,%.17g,%.17g,%.17g,%.17g,%.17g,%.17g,%.0f\n", sim.time(), base, o.corner1,
                          o.corner2, o.freeEdgeMid, o.energy, o.energyInput, o.energyDissipated, o.contactVertices);
         };
         record(0.0);
@@ -250,7 +252,7 @@ int main(int argc, char** argv) {
             "\"engine\": \"%s\", \"dofs\": %ld, \"steps\": %lld, \"setup_s\": %.6g, \"wall_s\": %.6g, \"step_s\": "
             "%.6g, "
             "\"step_cpu_s\": %.6g, \"floor_cpu_s\": %.6g, "
-            "\"floor_solve_s\": %.6g, \"step_over_floor\": %.4g, \"qp_iterations_total\": %lld, "
+            "\"floor_solve_s\": %.6g, \"step_over_floor\": %.4g, \"qp_iterations_total\": %.0f, "
             "\"energy_dissipated\": %.10g, \"checksum\": %.10g, %s%s}\n",
             p.element == plate::ElementType::Fvs ? "fvs" : "argyris", p.nx, p.ny, p.dt, p.beta, p.modes,
             sim.engine().c_str(), static_cast<long>(sim.dofCount()), steps,
