@@ -1,9 +1,7 @@
 #pragma once
 // A sparse SPD matrix factored once and solved many times without allocation (the per-step
-// solve with A = M + βΔt²K of (3.6) is the floor of one time step). Two implementations, one
-// chosen by the build (PLATEIMPACT_FACTOR): CHOLMOD's simplicial LLᵀ (SparseCholeskyCholmod.cpp,
-// linux64) and Eigen's SimplicialLLT with AMD ordering (SparseCholeskyEigen.cpp: no library
-// outside the binary, the win64 build).
+// solve with A = M + βΔt²K of (3.6) is the floor of one time step): CHOLMOD's simplicial LLᵀ
+// (SparseCholeskyCholmod.cpp), built from the pinned SuiteSparse source on every platform.
 #include <Eigen/Core>
 #include <Eigen/Sparse>
 #include <memory>
