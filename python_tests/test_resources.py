@@ -2,7 +2,7 @@
 what exceeds memory_limit before allocating it.
 
 Each measurement of memory runs in a child process (a fresh interpreter with fmpy loaded), so
-that the peak resident set size (ru_maxrss) belongs to that one instance: the child reads its
+that the peak resident set size (VmHWM) belongs to that one instance: the child reads its
 resident set just before fmi2ExitInitializationMode and its peak after it; the difference is
 what the initialization allocated."""
 
@@ -51,7 +51,7 @@ CHILD = textwrap.dedent(
     except FMICallException:
         ok = False
     wall = time.monotonic() - t0
-    peak = resource.getrusage(resource.RUSAGE_SELF).ru_maxrss
+    peak = status("VmHWM")  # this image's peak: ru_maxrss would carry the parent's across exec
     plate.fmu.freeInstance()  # after fmi2Error too
     plate.fmu = None
     print(json.dumps({"ok": ok, "wall": wall, "extra_mb": (peak - rss_before) / 1024.0,

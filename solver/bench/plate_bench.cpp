@@ -5,6 +5,7 @@
 //                                 frequency gap (both obstacles at ±gap; gap=0 disables them)
 //                                 modes initial_load lower_only=0|1
 //                                 engine=auto|sparse|modal (how exact mode runs)
+//                                 port=1 (read the port's outputs too, every communication step)
 //                                 series=FILE (CSV of the outputs every communication step;
 //                                 its writing is outside the timed loop's cost only roughly)
 //                                 comm=SECONDS (communication step, default 1e-4)
@@ -207,6 +208,7 @@ int main(int argc, char** argv) {
         const double floorBefore = sim.measureFloorSolveSeconds(floorRepeats);
         // Communication step 1e-4 s (or dt if larger), input derivatives as the FMU gets them.
         const long long perComm = std::max(1LL, std::llround(num("comm", 1e-4) / p.dt));
+        const bool readPort = num("port", 0.0) != 0.0;
         std::FILE* series = args.count("series") ? std::fopen(args["series"].c_str(), "w") : nullptr;
         if (series)
             std::fprintf(series,
@@ -228,7 +230,8 @@ int main(int argc, char** argv) {
             const plate::InputSignal base{amplitude * std::sin(omega * t), amplitude * omega * std::cos(omega * t),
                                           -amplitude * omega * omega * std::sin(omega * t)};
             sim.advance(std::min(perComm, steps - done), base, plate::InputSignal{});
-            energySum += sim.outputs().energy;  // outputs are read every communication step
+            // Outputs are read every communication step; port=1 reads the port's too (§14).
+            energySum += sim.outputs(readPort).energy;
             record(amplitude * std::sin(omega * sim.time()));
         }
         if (series) std::fclose(series);
