@@ -27,7 +27,8 @@ inline const char* fmi3TypeName(VariableType type) {
 // layer's StepComplete; Event Mode, Configuration Mode and the rest keep their names.
 constexpr State StepMode = StepComplete;
 namespace fmi3 {
-constexpr unsigned kGetStates = InitializationMode | ConfigurationMode | EventMode | StepMode | Terminated | Error;
+constexpr unsigned kGetStates =
+    Instantiated | InitializationMode | ConfigurationMode | EventMode | StepMode | Terminated | Error;
 constexpr unsigned kSetStates = Instantiated | ConfigurationMode | InitializationMode | EventMode | StepMode;
 constexpr unsigned kFMUStateStates = Instantiated | InitializationMode | EventMode | StepMode | Terminated | Error;
 constexpr unsigned kTerminateStates = EventMode | StepMode;

@@ -138,12 +138,23 @@ fmi2Status getScalar(Instance& i, Kind kind, fmi3ValueReference vr, double* x) {
     return i.getValues(type, &vr, 1, x);
 }
 
+// Outputs exist from initialization mode on (parameters and inputs can be read before).
+bool beforeInitialization(const Instance& i, fmi3ValueReference vr) {
+    if (!(i.state() & (fmu::Instantiated | fmu::ConfigurationMode))) return false;
+    const fmu::Variable* v = i.model().find(vr);
+    return findArray(i.model(), vr) || vr == fmu::kFmi3TimeValueReference ||
+           (v && v->causality == fmu::Causality::Output);
+}
+
 template <class T>
 fmi2Status getValues(Instance& i, Kind kind, const fmi3ValueReference vrs[], size_t nvr, T values[], size_t nValues) {
     if (nvr == 0) return fmi2OK;
     if (!vrs || !values) return i.fail("arguments valueReferences[] and values[] must not be NULL");
     std::size_t next = 0;
     for (size_t k = 0; k < nvr; ++k) {
+        if (beforeInitialization(i, vrs[k]))
+            return i.fail("value reference %u is %s, an output: available from initialization mode on", vrs[k],
+                          describe(i.model(), vrs[k]).c_str());
         const ArrayOutput* array = findArray(i.model(), vrs[k]);
         if (array && kind != Kind::Float64)
             return i.fail("value reference %u is %s", vrs[k], describe(i.model(), vrs[k]).c_str());
