@@ -71,10 +71,9 @@ void writeUnits(std::ostream& xml, const fmu::Model& model) {
     if (units.empty()) return;
     xml << "  <UnitDefinitions>\n";
     for (const std::string& unit : units) {
-        const auto base = description::baseUnits().find(unit);
-        if (base == description::baseUnits().end()) throw std::runtime_error("no BaseUnit known for unit " + unit);
-        xml << "    <Unit name=\"" << escape(unit) << "\"><BaseUnit" << (base->second.empty() ? "" : " ")
-            << base->second << "/></Unit>\n";
+        const std::string base = description::baseUnit(unit);
+        xml << "    <Unit name=\"" << escape(unit) << "\"><BaseUnit" << (base.empty() ? "" : " ") << base
+            << "/></Unit>\n";
     }
     xml << "  </UnitDefinitions>\n\n";
 }

@@ -1,11 +1,14 @@
 #pragma once
 // Text helpers of the model description writers (WriteModelDescription3.cpp): XML escaping,
-// the shortest decimal of a double, SI units as BaseUnit exponents.
+// the shortest decimal of a double, SI units as BaseUnit exponents (the same
+// rules as WriteModelDescription.cpp, for FMI 3.0).
+#include <array>
 #include <cmath>
 #include <cstdio>
 #include <cstdlib>
 #include <cstring>
 #include <map>
+#include <stdexcept>
 #include <string>
 
 namespace description {
@@ -36,21 +39,36 @@ inline std::string real(double x) {
     return text;
 }
 
-// SI units as BaseUnit exponents (the same in FMI 2.0 and 3.0).
-inline const std::map<std::string, std::string>& baseUnits() {
-    static const std::map<std::string, std::string> units = {
-        {"m", "m=\"1\""},
-        {"Pa", "kg=\"1\" m=\"-1\" s=\"-2\""},
-        {"kg/m3", "kg=\"1\" m=\"-3\""},
-        {"s", "s=\"1\""},
-        {"J", "kg=\"1\" m=\"2\" s=\"-2\""},
-        {"1", ""},
-        {"Hz", "s=\"-1\""},
-        {"1/s", "s=\"-1\""},
-        {"N", "kg=\"1\" m=\"1\" s=\"-2\""},
-        {"m/s", "m=\"1\" s=\"-1\""},
-    };
-    return units;
+// A unit as the row spells it — SI symbols joined by "." (product) and "/" (quotient), each
+// with an optional integer power: "kg/m3", "m/s2", "N.m", "N.s", "1/s" — as FMI 2.0 BaseUnit
+// exponents. A new unit needs no entry anywhere: only a new symbol would.
+inline std::string baseUnit(const std::string& unit) {
+    // Exponents of kg, m, s per symbol.
+    static const std::map<std::string, std::array<int, 3>> symbols = {
+        {"1", {0, 0, 0}},    {"m", {0, 1, 0}},  {"kg", {1, 0, 0}},  {"s", {0, 0, 1}}, {"N", {1, 1, -2}},
+        {"Pa", {1, -1, -2}}, {"J", {1, 2, -2}}, {"Hz", {0, 0, -1}}, {"W", {1, 2, -3}}};
+    std::array<int, 3> total{0, 0, 0};
+    int sign = 1;
+    std::size_t at = 0;
+    while (at < unit.size()) {
+        std::size_t end = unit.find_first_of("./", at);
+        if (end == std::string::npos) end = unit.size();
+        const std::string token = unit.substr(at, end - at);
+        const std::size_t digits = token.find_first_of("-0123456789", 1);
+        const std::string symbol = token.substr(0, digits);
+        const int power = digits == std::string::npos ? 1 : std::stoi(token.substr(digits));
+        const auto found = symbols.find(symbol);
+        if (found == symbols.end()) throw std::runtime_error("no SI symbol " + symbol + " in unit " + unit);
+        for (int k = 0; k < 3; ++k) total[k] += sign * power * found->second[k];
+        if (end < unit.size() && unit[end] == '/') sign = -1;
+        at = end + 1;
+    }
+    std::string out;
+    const char* names[3] = {"kg", "m", "s"};
+    for (int k = 0; k < 3; ++k)
+        if (total[k] != 0)
+            out += std::string(out.empty() ? "" : " ") + names[k] + "=\"" + std::to_string(total[k]) + "\"";
+    return out;
 }
 
 }  // namespace description

@@ -109,13 +109,14 @@ def test_same_variables_and_defaults(fmu2, fmu3):
 def test_default_scene_bit_identical_to_fmi2(fmu2, fmu3):
     """0.1 s of the default scene (impacts from t = 0.05 s on), base values every 1e-4 s, no
     derivatives (FMI 3.0 has no input derivatives: both reconstruct the same way)."""
-    kwargs = dict(stop_time=0.1, output_interval=1e-4, input=sine_input(0.1, 1e-4), output=OUTPUTS)
+    outputs = [v.name for v in fmpy.read_model_description(str(fmu2)).modelVariables if v.causality == "output"]
+    kwargs = dict(stop_time=0.1, output_interval=1e-4, input=sine_input(0.1, 1e-4), output=outputs)
     r2 = fmpy.simulate_fmu(str(fmu2), **kwargs)
     r3 = fmpy.simulate_fmu(str(fmu3), **kwargs)
-    assert len(r2) == len(r3) == 1001
+    assert len(r2) == len(r3) == 1001 and len(outputs) >= len(OUTPUTS)
     assert r3["contact_vertices"].max() > 0  # the scene has impacts
     assert np.array_equal(r2["time"], r3["time"])
-    for name in OUTPUTS:
+    for name in outputs:  # every output of the FMI 2.0 FMU
         assert np.array_equal(r2[name], r3[name]), name  # bit for bit, NaN-free
 
 
