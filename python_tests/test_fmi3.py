@@ -255,3 +255,21 @@ def test_sinesweep_fmi3_matches_fmi2(fmu2):
     for name in ("base_displacement", "frequency"):
         assert np.array_equal(r2[name], r3[name])
     assert np.array_equal(r2["time"], r3["time"]) and np.ptp(r3["base_displacement"]) > 0
+
+
+def test_animate_example_quick(fmu3, tmp_path):
+    """examples/animate.py: a GIF and a still at the first contact onset (an early return)."""
+    import runpy
+    import sys
+    from unittest import mock
+
+    argv = ["animate.py", "--fmu", str(fmu3), "--gif", str(tmp_path / "a.gif"), "--png", str(tmp_path / "a.png")]
+    argv += ["--start", "0.045", "--stop", "0.06", "--interval", "5e-3"]
+    script = Path(__file__).resolve().parent.parent / "examples" / "animate.py"
+    with mock.patch.object(sys, "argv", argv):
+        runpy.run_path(str(script), run_name="__main__")
+    from PIL import Image
+
+    gif = Image.open(tmp_path / "a.gif")
+    assert gif.n_frames > 4  # the regular frames and the contact events between them
+    assert (tmp_path / "a.png").stat().st_size > 10_000
