@@ -7,7 +7,10 @@
 # harnesses of fuzz/ for 60 s each (scripts/fuzz.sh), any finding fails it. Before the Python
 # suite, the win64 stage builds the dual-platform FMU (scripts/build-win64.sh, mingw-w64) so
 # that python_tests/test_win64.py runs it under Wine. Arguments go to both pytest runs;
-# PLATEIMPACT_WIN64_STAGE=0 / PLATEIMPACT_SANITIZER_STAGE=0 / PLATEIMPACT_FUZZ_STAGE=0 skip a stage.
+# Then the aarch64 stage: the FMI 3.0 FMU with aarch64-linux (scripts/build-aarch64.sh), run under
+# qemu-aarch64 by python_tests/test_aarch64.py.
+# PLATEIMPACT_WIN64_STAGE=0 / PLATEIMPACT_AARCH64_STAGE=0 / PLATEIMPACT_SANITIZER_STAGE=0 /
+# PLATEIMPACT_FUZZ_STAGE=0 skip a stage.
 set -euo pipefail
 repo="$(cd "$(dirname "${BASH_SOURCE[0]}")" && pwd)"
 bash "$repo/scripts/setup.sh"
@@ -18,6 +21,10 @@ cd "$repo"
 if [ "${PLATEIMPACT_WIN64_STAGE:-1}" != 0 ]; then
   echo "test.sh: win64 stage: build/dist/PlateImpact.fmu (linux64 + win64), tested under Wine by test_win64.py"
   bash "$repo/scripts/build-win64.sh"
+fi
+if [ "${PLATEIMPACT_AARCH64_STAGE:-1}" != 0 ]; then
+  echo "test.sh: aarch64 stage: build/dist/fmi3/PlateImpact.fmu (x86_64-linux + aarch64-linux), run under qemu-aarch64 by test_aarch64.py"
+  bash "$repo/scripts/build-aarch64.sh"
 fi
 "$repo/.venv/bin/python" -m pytest -q python_tests "$@"
 

@@ -19,6 +19,7 @@ enum State : unsigned {
     Terminated = 1u << 9,
     Error = 1u << 10,
     Fatal = 1u << 11,
+    ConfigurationMode = 1u << 12,  // FMI 3.0 only (fmi3EnterConfigurationMode)
 };
 const char* stateName(State state);
 

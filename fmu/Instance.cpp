@@ -58,6 +58,7 @@ const char* stateName(State state) {
         case Terminated: return "terminated";
         case Error: return "error";
         case Fatal: return "fatal";
+        case ConfigurationMode: return "configurationMode";
     }
     return "unknown";
 }
@@ -232,7 +233,8 @@ bool Instance::settable(const Variable& variable) {
         fail("%s (vr %u) is an output and cannot be set", variable.name, variable.vr);
         return false;
     }
-    if (variable.causality == Causality::Parameter && !(state_ & (Instantiated | InitializationMode))) {
+    if (variable.causality == Causality::Parameter &&
+        !(state_ & (Instantiated | ConfigurationMode | InitializationMode))) {
         log(fmi2Error, LogStatusError,
             "illegal call sequence: %s of fixed parameter %s (vr %u) in state %s; fixed parameters can only be set "
             "before fmi2ExitInitializationMode",
@@ -274,7 +276,8 @@ fmi2Status Instance::setValues(VariableType type, const fmi2ValueReference vr[],
                         variable->enumeration->name, variable->enumeration->itemList().c_str());
         model_->set(*variable, value[i]);
         // Before initialization ends, what was built (an output was read) came from the old value.
-        if (variable->shapesInitialState && (state_ & (Instantiated | InitializationMode)) && model_->built())
+        if (variable->shapesInitialState && (state_ & (Instantiated | ConfigurationMode | InitializationMode)) &&
+            model_->built())
             model_->drop();
     }
     return fmi2OK;
@@ -427,7 +430,10 @@ fmi2Status Instance::getRealOutputDerivatives(const fmi2ValueReference vr[], siz
     return fmi2OK;
 }
 
-fmi2Status Instance::doStep(fmi2Real t, fmi2Real h) {
+fmi2Status Instance::doStep(fmi2Real t, fmi2Real h) { return doStep(t, h, false, nullptr); }
+
+fmi2Status Instance::doStep(fmi2Real t, fmi2Real h, bool stopAtEvent, bool* endedAtEvent) {
+    if (endedAtEvent) *endedAtEvent = false;
     const double now = currentTime();
     if (!std::isfinite(t) || std::fabs(t - now) > kTimeTolerance * std::max(1.0, std::fabs(t)))
         return fail(
@@ -435,7 +441,21 @@ fmi2Status Instance::doStep(fmi2Real t, fmi2Real h) {
             "the previous one ended (relative tolerance %g)",
             t, now, kTimeTolerance);
     if (!std::isfinite(h) || !(h > 0)) return fail("communicationStepSize h = %.17g rejected: it must be > 0", h);
-    model_->doStep(t, h);
+    if (stopAtEvent) {
+        const bool atEvent = model_->doStepUntilEvent(t, h);
+        if (endedAtEvent) *endedAtEvent = atEvent;
+    } else {
+        model_->doStep(t, h);
+    }
+    return fmi2OK;
+}
+
+fmi2Status Instance::getArray(const ArrayOutput& array, double value[], size_t n) {
+    if (n > 0 && !value) return fail("argument values[] must not be NULL");
+    // As getValues: an output read in initialization mode builds what the parameters describe.
+    if (state_ == InitializationMode && !model_->built()) model_->build();
+    if (!model_->built()) return fail("%s is not available before initialization", array.name);
+    model_->getArray(array, value, n);
     return fmi2OK;
 }
 

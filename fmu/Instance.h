@@ -69,6 +69,15 @@ public:
     fmi2Status getRealOutputDerivatives(const fmi2ValueReference vr[], size_t nvr, const fmi2Integer order[],
                                         fmi2Real value[]);
     fmi2Status doStep(fmi2Real currentCommunicationPoint, fmi2Real communicationStepSize);
+    // FMI 3.0 (fmi3Functions.cpp): with stopAtEvent the step may end early at an event of the
+    // model (Model::doStepUntilEvent); *endedAtEvent tells whether it ended at one.
+    fmi2Status doStep(fmi2Real currentCommunicationPoint, fmi2Real communicationStepSize, bool stopAtEvent,
+                      bool* endedAtEvent);
+    // FMI 3.0 arrays: the values of an array output of the model (n of them).
+    fmi2Status getArray(const ArrayOutput& array, double value[], size_t n);
+    // FMI 3.0 transitions without work of their own (configuration, event and step mode).
+    void enterState(State next) { state_ = next; }
+    const Model& model() const { return *model_; }
     fmi2Status statusNotAvailable(fmi2StatusKind kind);
     double currentTime() const;
 

@@ -43,4 +43,18 @@ double Model::getOutputDerivative(const Variable& v, int) const {
     throw ModelError(std::string(v.name) + " has no output derivatives");
 }
 
+const std::vector<StructuralParameter>& Model::structuralParameters() const {
+    static const std::vector<StructuralParameter> none;
+    return none;
+}
+
+const std::vector<ArrayOutput>& Model::arrayOutputs() const {
+    static const std::vector<ArrayOutput> none;
+    return none;
+}
+
+void Model::getArray(const ArrayOutput& a, double*, std::size_t) const {
+    throw ModelError(std::string(a.name) + " is not an array output of this model");
+}
+
 }  // namespace fmu

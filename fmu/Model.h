@@ -73,6 +73,26 @@ struct ModelInfo {
     const char* stateMagic = "FMUSTATE";
 };
 
+// FMI 3.0 only (FMI 2.0 has no arrays): a structural parameter giving one extent of an array
+// output. It is a view of an Integer parameter of the table, not a value of its own:
+// extent = parameter + offset; setting it sets the parameter (FMU states carry the parameter).
+struct StructuralParameter {
+    fmi2ValueReference vr;
+    const char* name;
+    const char* description;
+    fmi2ValueReference parameter;  // the table's Integer parameter it is a view of
+    int offset;
+};
+
+// FMI 3.0 only: an array output (row-major, the first extent varies slowest).
+struct ArrayOutput {
+    fmi2ValueReference vr;
+    const char* name;
+    const char* description;
+    const char* unit;  // nullptr: none
+    std::vector<fmi2ValueReference> extents;  // value references of StructuralParameters
+};
+
 // A value or call the model rejects; the message names what, the value and what is allowed.
 // The generic layer logs it after the name of the fmi2 function.
 class ModelError : public std::runtime_error {
@@ -104,6 +124,22 @@ public:
     virtual double time() const = 0;
     // One communication step [t, t + h] (t checked by the caller); throws ModelError.
     virtual void doStep(double t, double h) = 0;
+
+    // FMI 3.0 early return (fmu/fmi3Functions.cpp): like doStep, but the step may end early,
+    // right after the first internal step at which an event of the model happens (time()
+    // tells where). Returns whether the step ended at an event. Default: no events.
+    virtual bool doStepUntilEvent(double t, double h) {
+        doStep(t, h);
+        return false;
+    }
+    virtual bool hasEvents() const { return false; }  // mightReturnEarlyFromDoStep
+    // The internal step of the default configuration (fixedInternalStepSize); 0: none.
+    virtual double fixedInternalStepSize() const { return 0.0; }
+    // FMI 3.0 arrays: none by default. getArray writes the product of the extents' values
+    // (read from the table) into `out`; called only when built().
+    virtual const std::vector<StructuralParameter>& structuralParameters() const;
+    virtual const std::vector<ArrayOutput>& arrayOutputs() const;
+    virtual void getArray(const ArrayOutput& a, double* out, std::size_t n) const;
 
     // Everything beyond the variables' values that an FMU state must carry (append / read
     // back in the same order; `in` advances). restoreState throws ModelError on bad data.

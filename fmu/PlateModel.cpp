@@ -9,6 +9,7 @@
 #include <string>
 
 #include "Model.h"
+#include "PlateArrays.h"
 #include "PlateImpactGuid.h"  // generated at build time: FMU_GUID
 #include "PlateVariables.h"
 
@@ -76,6 +77,33 @@ public:
     double get(const fmu::Variable& v) const override { return getValue(values_, v); }
     void set(const fmu::Variable& v, double x) override { setValue(values_, v, x); }
 
+    // FMI 3.0: the vertex displacements as an array, early return at contact onset and release.
+    const std::vector<fmu::StructuralParameter>& structuralParameters() const override {
+        return plateStructuralParameters();
+    }
+    const std::vector<fmu::ArrayOutput>& arrayOutputs() const override { return plateArrayOutputs(); }
+    void getArray(const fmu::ArrayOutput& a, double* out, std::size_t n) const override {
+        if (!simulation_) throw fmu::ModelError("internal error: no simulation to read an array from");
+        getPlateArray(*simulation_, a, out, n);
+    }
+    bool hasEvents() const override { return true; }
+    double fixedInternalStepSize() const override { return plate::PlateParameters{}.dt; }
+    bool doStepUntilEvent(double t, double h) override {
+        stopAtContactChange_ = true;
+        endedAtEvent_ = false;
+        try {
+            doStep(t, h);
+        } catch (...) {
+            stopAtContactChange_ = false;
+            throw;
+        }
+        stopAtContactChange_ = false;
+        if (endedAtEvent_)
+            trace(std::string(values_.outputs.contactVertices > 0 ? "contact onset" : "contact release") +
+                  format(" at t = %.17g", simulation_->time(), 0.0));
+        return endedAtEvent_;
+    }
+
     void setInputDerivative(const fmu::Variable& v, int order, double x) override {
         InputPort& port = *values_.inputPort(v.vr);
         (order == 1 ? port.signal.d1 : port.signal.d2) = x;
@@ -130,8 +158,8 @@ public:
         for (InputPort* port : ports()) port->history.record(now, port->signal.value);
         try {
             const plate::InputSignal base = clampSignal(plan.span);
-            simulation_->communicate(plan, base, values_.load.stepSignal(plan.span, -plate::kMaxLoad, plate::kMaxLoad));
-            advanceClamp(base, plan.span);
+            const plate::InputSignal load = values_.load.stepSignal(plan.span, -plate::kMaxLoad, plate::kMaxLoad);
+            advanceClamp(base, communicate(plan, base, load));
         } catch (const plate::StepError& e) {
             refreshOutputs();  // the simulation stays at its last good step (for debugging)
             throw fmu::ModelError(
@@ -246,6 +274,32 @@ private:
             default: return values_.baseDisplacement.stepSignal(span, lower, upper);
         }
     }
+    // simulation_->communicate, or with stopAtContactChange_ (FMI 3.0 early return) up to the
+    // first contact onset or release on the grid. Returns the span of the step as taken; after
+    // an early end, every input ends the step where its signal stands then.
+    double communicate(const plate::StepPlan& plan, const plate::InputSignal& base, const plate::InputSignal& load) {
+        if (!stopAtContactChange_) {
+            simulation_->communicate(plan, base, load);
+            return plan.span;
+        }
+        const double start = simulation_->time();
+        endedAtEvent_ = simulation_->communicateUntilContactChange(plan, base, load);
+        if (!endedAtEvent_) return plan.span;
+        const double span = simulation_->time() - start;
+        if (simulation_->time() == plan.end) return plan.span;  // at the end anyway
+        values_.load.history.reached(load.at(span));
+        switch (values_.baseDrive) {  // the drive's own signal inside the clamp's (clampSignal)
+            case BaseDrive::Velocity:
+                values_.baseVelocity.history.reached(plate::InputSignal{base.d1, base.d2, base.d3, base.d4}.at(span));
+                break;
+            case BaseDrive::Acceleration:
+                values_.baseAcceleration.history.reached(plate::InputSignal{base.d2, base.d3, base.d4}.at(span));
+                break;
+            case BaseDrive::Displacement:
+            default: values_.baseDisplacement.history.reached(base.at(span));
+        }
+        return span;
+    }
     void advanceClamp(const plate::InputSignal& base, double span) {
         if (values_.baseDrive == BaseDrive::Displacement) return;
         clampPosition_ = base.at(span);
@@ -258,6 +312,8 @@ private:
     double simulationBase0_ = 0.0;  // base displacement the simulation was built with
     // The clamp at the communication time when a velocity or an acceleration drives it.
     double clampPosition_ = 0.0, clampVelocity_ = 0.0;
+    bool stopAtContactChange_ = false;  // inside doStepUntilEvent
+    bool endedAtEvent_ = false;  // the last step of doStepUntilEvent ended at a contact change
 };
 
 }  // namespace

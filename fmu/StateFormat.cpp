@@ -32,8 +32,9 @@ std::uint64_t checksum(const fmi2Byte* bytes, std::size_t size) {
 }
 
 bool isStateOfSnapshot(double code) {
-    for (unsigned s : {unsigned(Instantiated), unsigned(InitializationMode), unsigned(StepComplete),
-                       unsigned(StepFailed), unsigned(StepCanceled), unsigned(Terminated), unsigned(Error)}) {
+    for (unsigned s :
+         {unsigned(Instantiated), unsigned(InitializationMode), unsigned(StepComplete), unsigned(StepFailed),
+          unsigned(StepCanceled), unsigned(Terminated), unsigned(Error), unsigned(EventMode)}) {
         if (code == double(s)) return true;
     }
     return false;

@@ -55,7 +55,12 @@ __attribute__((always_inline)) inline void multiplyTransposedBody(const Eigen::M
     }
 }
 
-#if defined(__ELF__)
+#if !defined(__x86_64__)
+// Other architectures (aarch64-linux, the FMI 3.0 FMU): the baseline body.
+inline void multiplyTransposed(const Eigen::MatrixXd& rows, const Eigen::VectorXd& x, Eigen::VectorXd& y) {
+    multiplyTransposedBody(rows, x, y);
+}
+#elif defined(__ELF__)
 __attribute__((target_clones("arch=x86-64-v3", "default"))) inline void multiplyTransposed(const Eigen::MatrixXd& rows,
                                                                                            const Eigen::VectorXd& x,
                                                                                            Eigen::VectorXd& y) {

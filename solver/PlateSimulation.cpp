@@ -233,6 +233,35 @@ void PlateSimulation::communicate(const StepPlan& plan, const InputSignal& base,
     s.onGrid = plan.endsOnGrid;
 }
 
+bool PlateSimulation::communicateUntilContactChange(const StepPlan& plan, const InputSignal& base,
+                                                    const InputSignal& load) {
+    Impl& s = *impl_;
+    const double dt = s.parameters.dt;
+    if (!std::isfinite(load.value)) throw StepError("non-finite load input at the step start");
+    const auto inContact = [&s] { return s.stepper->state().contactVertices > 0; };
+    const auto stopOnGrid = [&s, dt] {
+        s.commTime = double(s.stepper->state().step) * dt;
+        s.onGrid = true;
+        return true;
+    };
+    // The last step ended between grid points and the grid point ahead changed the contact set:
+    // the event is that grid point, if this step reaches it.
+    if (!s.onGrid && (s.before.contactVertices > 0) != inContact() && double(s.stepper->state().step) * dt <= plan.end)
+        return stopOnGrid();
+    s.stepper->setLoadAtStart(load.value);
+    const bool contactBefore = inContact();
+    for (long long k = 1; k <= plan.steps; ++k) {
+        // As communicate(), step for step.
+        if (k == plan.steps && !plan.endsOnGrid) s.before = gridOutputs(true);
+        const double t = plan.offset + k * dt;
+        s.stepper->step(base.at(t), load.at(t));
+        if (inContact() != contactBefore && (k < plan.steps || plan.endsOnGrid)) return stopOnGrid();
+    }
+    s.commTime = plan.end;
+    s.onGrid = plan.endsOnGrid;
+    return false;
+}
+
 PlateOutputs PlateSimulation::outputs(bool port) const {
     PlateOutputs o = gridOutputs(port);
     if (impl_->onGrid) return o;

@@ -85,6 +85,10 @@ public:
     // [t_c, t_c + h] as signals from t_c.
     StepPlan plan(double h) const;
     void communicate(const StepPlan& plan, const InputSignal& base, const InputSignal& load);
+    // As communicate (the same steps, bit for bit), but the step ends early, on the grid point at
+    // which the contact set becomes non-empty (an impact) or empty (a release), if the step
+    // reaches it (FMI 3.0 early return); returns whether the step ended at such a grid point.
+    bool communicateUntilContactChange(const StepPlan& plan, const InputSignal& base, const InputSignal& load);
 
     // At the communication time: on the grid the scheme's values; between grid points the linear
     // interpolation of the two neighbours (counts: the earlier one). `port` adds the port's fields.

@@ -17,7 +17,11 @@ foreach(var LIBRARY MODEL_DESCRIPTION STAGING_DIR FMU_FILE)
   endif()
 endforeach()
 
-set(bin_dir "${STAGING_DIR}/binaries/linux64")
+# PLATFORM: the binaries/ folder (linux64 for FMI 2.0, x86_64-linux for FMI 3.0).
+if(NOT DEFINED PLATFORM)
+  set(PLATFORM linux64)
+endif()
+set(bin_dir "${STAGING_DIR}/binaries/${PLATFORM}")
 file(REMOVE_RECURSE "${STAGING_DIR}")
 file(MAKE_DIRECTORY "${bin_dir}")
 configure_file("${MODEL_DESCRIPTION}" "${STAGING_DIR}/modelDescription.xml" COPYONLY)

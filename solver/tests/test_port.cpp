@@ -30,8 +30,8 @@ TEST(Port, ClampForceAndMomentAreTheClampedRowsResidual) {
     PlateParameters p;
     p.nx = 7;
     p.ny = 3;
-    const auto space = std::shared_ptr<const FiniteElementSpace>(makeSpace(ElementType::Argyris,
-                                                                           Mesh(p.length, p.width, p.nx, p.ny)));
+    const auto space =
+        std::shared_ptr<const FiniteElementSpace>(makeSpace(ElementType::Argyris, Mesh(p.length, p.width, p.nx, p.ny)));
     const PlateMatrices full = assemble(*space, p.surfaceDensity(), p.bendingStiffness(), p.poissonRatio);
     const auto clamped = std::make_shared<const ClampedPlate>(clamp(*space, full));
     // X, the dof vector of the function x: its Galerkin projection is exact (x is in the space).

@@ -1,0 +1,40 @@
+#include "PlateArrays.h"
+
+#include <string>
+
+#include "PlateVariables.h"
+
+namespace plateimpact {
+
+const std::vector<fmu::StructuralParameter>& plateStructuralParameters() {
+    static const std::vector<fmu::StructuralParameter> table = {
+        {kVrVerticesX, "vertices_x",
+         "Mesh vertices along x, nx + 1: the first extent of vertex_displacement (setting it sets nx)", kVrNx, 1},
+        {kVrVerticesY, "vertices_y",
+         "Mesh vertices along y, ny + 1: the second extent of vertex_displacement (setting it sets ny)", kVrNy, 1},
+    };
+    return table;
+}
+
+const std::vector<fmu::ArrayOutput>& plateArrayOutputs() {
+    static const std::vector<fmu::ArrayOutput> table = {
+        {kVrVertexDisplacement,
+         "vertex_displacement",
+         "Absolute displacement w at every mesh vertex, [vertices_x][vertices_y]: vertex (i, j) at (i length/nx, "
+         "j width/ny); a vertex on an obstacle sits at its height",
+         "m",
+         {kVrVerticesX, kVrVerticesY}},
+    };
+    return table;
+}
+
+void getPlateArray(const plate::PlateSimulation& simulation, const fmu::ArrayOutput& a, double* out, std::size_t n) {
+    if (a.vr != kVrVertexDisplacement) throw fmu::ModelError(std::string(a.name) + " is not an array of the plate");
+    const std::vector<double> u = simulation.vertexDisplacements();
+    if (u.size() != n)
+        throw fmu::ModelError(std::string(a.name) + ": nValues gives " + std::to_string(n) + " values, the mesh has " +
+                              std::to_string(u.size()) + " vertices");
+    for (std::size_t k = 0; k < n; ++k) out[k] = u[k];
+}
+
+}  // namespace plateimpact
