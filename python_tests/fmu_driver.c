@@ -3,7 +3,7 @@
  *
  *     fmu_driver [--keep-loaded] UNZIPPED_FMU_DIR [STEPS]
  *     fmu_driver --scene OUT.csv UNZIPPED_FMU_DIR      (the default scene for 0.1 s, see below)
- *     fmu_driver --bad-step UNZIPPED_FMU_DIR           (h not a multiple of dt -> fmi2Error)
+ *     fmu_driver --bad-step UNZIPPED_FMU_DIR           (h below the grid's resolution -> fmi2Error)
  *
  * The same source builds for linux64 and, cross-compiled with mingw-w64, for win64 (run under
  * Wine by python_tests/test_win64.py): it loads UNZIPPED_FMU_DIR/binaries/linux64/PlateImpact.so
@@ -337,16 +337,16 @@ static void run_scene(const char* out, const char* guid, const char* resources, 
     printf("fmu_driver: wrote %s\n", out);
 }
 
-/* A communication step that is not a whole multiple of dt: fmi2Error, and the logged message
- * says so (printed for the caller to check); the instance is then reset and freed. */
+/* A communication step shorter than the grid resolves (1e-9 dt): fmi2Error, and the logged
+ * message says so (printed for the caller to check); the instance is then reset and freed. */
 static void run_bad_step(const char* guid, const char* resources, const fmi2CallbackFunctions* cb) {
     fmi2Component c = F.instantiate("bad", fmi2CoSimulation, guid, resources, cb, fmi2False, fmi2True);
     CHECK(c != NULL);
     OK(F.setupExperiment(c, fmi2False, 0.0, 0.0, fmi2False, 0.0));
     OK(F.enterInit(c));
     OK(F.exitInit(c));
-    CHECK(F.doStep(c, 0.0, 1.5e-5, fmi2True) == fmi2Error);
-    printf("fmu_driver: fmi2DoStep(h = 1.5e-5) -> fmi2Error: %s\n", last_error);
+    CHECK(F.doStep(c, 0.0, 5e-15, fmi2True) == fmi2Error);
+    printf("fmu_driver: fmi2DoStep(h = 5e-15) -> fmi2Error: %s\n", last_error);
     OK(F.reset(c));
     F.freeInstance(c);
 }
