@@ -45,10 +45,6 @@ struct PlateParameters {
     // How exact mode runs (not an FMU parameter: the result is the same scheme either way;
     // benchmarks and tests pin it to compare the two).
     enum class Engine { Auto, SparseFactor, CompleteModal } engine = Engine::Auto;
-    // Singular mass: carry the contact impulses that keep the massless part in equilibrium
-    // (docs/theory.md §11). Not an FMU parameter: tests and benchmarks switch it off to measure
-    // the plain Newmark step with the singular mass.
-    bool singularEquilibrium = true;
 
     double bendingStiffness() const {
         return youngsModulus * thickness * thickness * thickness / (12.0 * (1.0 - poissonRatio * poissonRatio));
