@@ -134,7 +134,7 @@ PlateSimulation::PlateSimulation(const PlateParameters& p, double baseDisplaceme
     options.dampingMass = p.dampingMass;
     options.dampingStiffness = p.dampingStiffness;
     options.singularMass = p.singularMass();  // carry the impulses (§11; the tests of the plain
-                                              // step build their NewmarkContactStepper directly)
+        // step build their NewmarkContactStepper directly)
     s.stepper = std::make_unique<NewmarkContactStepper>(s.discrete, obstacles, options);
     Eigen::VectorXd w0;
     progress.phase("static initial state (factor of K)", s.resources.staticSeconds + 0.5 * s.resources.factorSeconds);

@@ -15,8 +15,9 @@ import subprocess
 
 
 def step_cpu_us(bench, steps, extra=()):
-    out = subprocess.run([bench, f"steps={steps}", "floor_repeats=200", *extra], check=True, capture_output=True,
-                         text=True).stdout
+    out = subprocess.run(
+        [bench, f"steps={steps}", "floor_repeats=200", *extra], check=True, capture_output=True, text=True
+    ).stdout
     return 1e6 * json.loads(out)["step_cpu_s"]
 
 
