@@ -119,6 +119,8 @@ void writeVariable(std::ostream& xml, const fmu::Model& model, const Variable& v
     }
     if (v.enumeration) xml << " declaredType=\"" << v.enumeration->name << "\"";
     if (v.unit) xml << " unit=\"" << escape(v.unit) << "\"";
+    if (!std::isnan(v.min)) xml << " min=\"" << startText(v, v.min) << "\"";
+    if (!std::isnan(v.max)) xml << " max=\"" << startText(v, v.max) << "\"";
     if (v.causality != Causality::Output) xml << " start=\"" << startText(v, model.get(v)) << "\"";
     xml << " description=\"" << escape(v.description) << "\"/>\n";
 }

@@ -70,15 +70,7 @@ PlateSimulation::PlateSimulation(const PlateParameters& p, double baseDisplaceme
     : impl_(std::make_unique<Impl>()) {
     validate(p);
     const Obstacles obstacles = obstaclesOf(p);
-    if (!std::isfinite(baseDisplacement0) || baseDisplacement0 < obstacles.lower ||
-        baseDisplacement0 > obstacles.upper) {
-        std::ostringstream msg;
-        msg.precision(15);  // round-trips what users type (0.7, not 0.69999999999999996)
-        msg << "invalid initial state: base_displacement = " << baseDisplacement0
-            << " puts the clamped edge outside the obstacles (allowed: obstacle_lower = " << obstacles.lower
-            << " <= base_displacement <= obstacle_upper = " << obstacles.upper << ")";
-        throw ParameterError(msg.str());
-    }
+    requireBaseBetween(obstacles, baseDisplacement0);
     Impl& s = *impl_;
     s.parameters = p;
     requireMeshWithinBudget(p);  // far beyond memory_limit: refused before the space is built
@@ -106,16 +98,7 @@ PlateSimulation::PlateSimulation(const PlateParameters& p, double baseDisplaceme
     }
     if (p.beta < 0.25) {
         progress.phase("kappa_h by power iteration with the factor of M", s.resources.spectrumSeconds);
-        // Stability of γ = ½, β < ¼ (docs/theory.md): Δt < 2 / √((1 − 4β) κ_h).
-        const double bound = 2.0 / std::sqrt((1.0 - 4.0 * p.beta) * kappa());
-        if (!(p.dt < bound)) {
-            std::ostringstream msg;
-            msg.precision(6);
-            msg << "invalid parameter dt = " << p.dt << " for beta = " << p.beta
-                << " (allowed: dt < 2/sqrt((1-4 beta) kappa_h) = " << bound << " s, kappa_h = " << kappa()
-                << " s^-2; or beta >= 0.25)";
-            throw ParameterError(msg.str());
-        }
+        requireStableStep();
     }
     using Engine = PlateParameters::Engine;
     // A singular mass has no M-orthonormal modal basis: it runs on the sparse factor.
@@ -136,8 +119,48 @@ PlateSimulation::PlateSimulation(const PlateParameters& p, double baseDisplaceme
     options.singularMass = p.singularMass();  // carry the impulses (§11; the tests of the plain
         // step build their NewmarkContactStepper directly)
     s.stepper = std::make_unique<NewmarkContactStepper>(s.discrete, obstacles, options);
-    Eigen::VectorXd w0;
     progress.phase("static initial state (factor of K)", s.resources.staticSeconds + 0.5 * s.resources.factorSeconds);
+    initializeState(obstacles, baseDisplacement0, loadAtStart, couplingFree);
+    s.corner1 = s.discrete->probe(p.length, 0.0);
+    s.corner2 = s.discrete->probe(p.length, p.width);
+    s.freeEdgeMid = s.discrete->probe(p.length, 0.5 * p.width);
+    progress.done(s.resources.peakMB);
+}
+
+void PlateSimulation::requireBaseBetween(const Obstacles& obstacles, double baseDisplacement0) {
+    if (!std::isfinite(baseDisplacement0) || baseDisplacement0 < obstacles.lower ||
+        baseDisplacement0 > obstacles.upper) {
+        std::ostringstream msg;
+        msg.precision(15);  // round-trips what users type (0.7, not 0.69999999999999996)
+        msg << "invalid initial state: base_displacement = " << baseDisplacement0
+            << " puts the clamped edge outside the obstacles (allowed: obstacle_lower = " << obstacles.lower
+            << " <= base_displacement <= obstacle_upper = " << obstacles.upper << ")";
+        throw ParameterError(msg.str());
+    }
+}
+
+// Stability of γ = ½, β < ¼ (docs/theory.md §4): Δt < 2 / √((1 − 4β) κ_h).
+void PlateSimulation::requireStableStep() const {
+    const PlateParameters& p = impl_->parameters;
+    const double bound = 2.0 / std::sqrt((1.0 - 4.0 * p.beta) * kappa());
+    if (!(p.dt < bound)) {
+        std::ostringstream msg;
+        msg.precision(6);
+        msg << "invalid parameter dt = " << p.dt << " for beta = " << p.beta
+            << " (allowed: dt < 2/sqrt((1-4 beta) kappa_h) = " << bound << " s, kappa_h = " << kappa()
+            << " s^-2; or beta >= 0.25)";
+        throw ParameterError(msg.str());
+    }
+}
+
+// The initial state (docs/theory.md §3, §11): the static equilibrium under initial_load between
+// the obstacles, at rest; with a singular mass its massless part in equilibrium with the load at
+// t = 0 and the contact forces that hold it.
+void PlateSimulation::initializeState(const Obstacles& obstacles, double baseDisplacement0, double loadAtStart,
+                                      const Eigen::SparseMatrix<double>& couplingFree) {
+    Impl& s = *impl_;
+    const PlateParameters& p = s.parameters;
+    Eigen::VectorXd w0;
     const auto* modalPlate = dynamic_cast<const ModalPlate*>(s.discrete.get());
     if (modalPlate && modalPlate->complete()) {
         // Exact mode in modal coordinates: solve the static problem with the sparse factor of
@@ -162,10 +185,6 @@ PlateSimulation::PlateSimulation(const PlateParameters& p, double baseDisplaceme
         }
         s.stepper->setInitialContactForce(force);
     }
-    s.corner1 = s.discrete->probe(p.length, 0.0);
-    s.corner2 = s.discrete->probe(p.length, p.width);
-    s.freeEdgeMid = s.discrete->probe(p.length, 0.5 * p.width);
-    progress.done(s.resources.peakMB);
 }
 
 PlateSimulation::~PlateSimulation() = default;

@@ -2,12 +2,14 @@
 // The plate as a co-simulation component: parameters in, the Newmark–contact scheme (3.3)
 // advanced at a fixed Δt, probe values and energies out. No FMI knowledge here.
 #include <Eigen/Core>
+#include <Eigen/Sparse>
 #include <array>
 #include <memory>
 #include <string>
 #include <vector>
 
 #include "InputSignal.h"
+#include "Obstacles.h"
 #include "PlateParameters.h"
 #include "ResourceEstimate.h"
 
@@ -117,6 +119,10 @@ public:
     void restoreState(const std::vector<double>& state);  // throws std::invalid_argument
 
 private:
+    static void requireBaseBetween(const Obstacles& obstacles, double baseDisplacement0);
+    void requireStableStep() const;
+    void initializeState(const Obstacles& obstacles, double baseDisplacement0, double loadAtStart,
+                         const Eigen::SparseMatrix<double>& couplingFree);
     PlateOutputs gridOutputs(bool port) const;
     void portOutputs(PlateOutputs& o) const;
     struct Impl;
