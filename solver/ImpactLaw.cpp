@@ -93,7 +93,7 @@ public:
         }
     }
 
-    // Cᵀν with ν = ((1−2β)/β) μ_n + μ_{n−1}: the β-average of the contact forces of the massless
+    // Cᵀν with ν = ((1−2β)/β) μ_n + μ_{n−1} (T.4): the β-average of the contact forces of the massless
     // equilibria at t_{n−1}, t_n, t_{n+1} (§11); μ_{n+1} comes from this step's QP.
     void addCarried(const NewmarkState& s, Eigen::VectorXd& rhs) override {
         if (!carry_) return;

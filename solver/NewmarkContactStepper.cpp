@@ -82,8 +82,8 @@ void NewmarkContactStepper::setLoadAtStart(double p0) {
     if (state_.step == 0 && !options_.singularMass) state_.p = state_.pPrev = state_.pPrev2 = p0;
 }
 
-// The step of (3.6) (docs/theory.md §3–4): the free solution, the law's contact phase, then the
-// ledger (§10) of what the step did.
+// The step of (3.6) = docs/theory.md (T.1) in w = u − z·1 (§3–4): the free solution, the law's
+// contact phase, then the ledger (§6) of what the step did.
 void NewmarkContactStepper::step(double zNext, double pNext) {
     const NewmarkState& s = state_;
     checkInputs(zNext, pNext);
@@ -143,7 +143,7 @@ void NewmarkContactStepper::assembleRightHandSide(double baseJump, double pBeta)
     rhs_.noalias() = (dt2 * pBeta) * plate_->pressureLoad() - dt2 * s.kw;
     rhs_.noalias() -= baseJump * plate_->baseInertia();
     if (dampingBuffer_.size() > 0) {
-        // Centered damping C(w⁺ − w⁻)/(2Δt) with w⁺ − w⁻ = d + 2(w − w⁻): A carries C d Δt/2, the
+        // (T.5): centered damping C(w⁺ − w⁻)/(2Δt) with w⁺ − w⁻ = d + 2(w − w⁻): A carries C d Δt/2, the
         // rest is −Δt C(w − w⁻) (§13); K w and K w⁻ are kept, so the stiffness part is free.
         if (options_.dampingStiffness > 0.0) rhs_.noalias() -= (dt * options_.dampingStiffness) * (s.kw - s.kwPrev);
         if (options_.dampingMass > 0.0) {
@@ -242,7 +242,7 @@ void NewmarkContactStepper::commit(double zNext, double pNext, double sNext, dou
     }
     s.stepContactMoment = contact.moment / dt2;
     ++s.step;
-    s.energyInput += work;
+    s.energyInput += work;  // the ledger (T.6): energy = E0 + input − dissipated − damped
     s.energyDissipated += contact.dissipated;
     s.energyDamped += damped;
     if (options_.dampingMass > 0.0) massVelocity_.swap(massVelocityNext_);
@@ -256,7 +256,7 @@ void NewmarkContactStepper::commit(double zNext, double pNext, double sNext, dou
 }
 
 double NewmarkContactStepper::energy() const {
-    // E = ½ vᵀ(M + (β−¼)Δt²K) v + ½ ūᵀKū with v the absolute velocity (w − w⁻)/Δt + ż·1 and
+    // (T.2): E = ½ vᵀ(M + (β−¼)Δt²K) v + ½ ūᵀKū with v the absolute velocity (w − w⁻)/Δt + ż·1 and
     // ū = (w + w⁻)/2; K·1 = 0, so only the mass sees the base (docs/theory.md).
     const NewmarkState& s = state_;
     dwScratch_ = s.w - s.wPrev;  // read once per communication step: reuse the buffers

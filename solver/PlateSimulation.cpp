@@ -322,7 +322,7 @@ PlateOutputs PlateSimulation::gridOutputs(bool port) const {
 }
 
 void PlateSimulation::portOutputs(PlateOutputs& o) const {
-    // docs/theory.md §14: the step from t_n to t_{n+1} summed against the rigid motions 1 and X
+    // docs/theory.md §14, (T.14a, b): the step from t_n to t_{n+1} summed against the rigid motions 1 and X
     // (K·1 = K·X = 0) gives the clamp's force and moment on the plate at t_n; the plate exerts
     // their opposites on the clamp. Levels: w = w_{n+1}, wPrev = w_n, wPrev2 = w_{n−1}.
     const Impl& s = *impl_;

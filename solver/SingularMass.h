@@ -1,5 +1,5 @@
 #pragma once
-// The singular (redistributed) mass of docs/theory.md §11: M_s = ρt B C⁻¹ Bᵀ, with B the coupling
+// The singular (redistributed) mass of docs/theory.md §11, (T.3): M_s = ρt B C⁻¹ Bᵀ, with B the coupling
 // ∫ ψ_i q_k of the plate space with a projection space Q of discontinuous polynomials (P0: one
 // constant per element, P1dg: one linear per element) and C the mass ∫ q_k q_l of Q. M_s is the
 // mass of the L² projection of the velocity on Q: the kinetic energy of ψ is that of its element
