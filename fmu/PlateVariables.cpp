@@ -14,6 +14,7 @@ using fmu::VariableType;
 using plate::ElementType;
 using plate::InputMode;
 using plate::MassModel;
+using plate::TimeScheme;
 
 const fmu::EnumerationType kElementType{
     "ElementType",
@@ -37,6 +38,15 @@ const fmu::EnumerationType kMassModel{
       "Singular mass projected on element-wise constants: no inertia at the contact vertices, energy-consistent "
       "impacts as dt -> 0"},
      {"singular_p1dg", 3, "Singular mass projected on element-wise linear functions (Argyris only)"}}};
+
+const fmu::EnumerationType kTimeScheme{
+    "TimeScheme",
+    "Time scheme (docs/theory.md §17)",
+    {{"newmark", 1, "The paper's three-level Newmark scheme with the impact law set by mass and restitution"},
+     {"conserving", 2,
+      "Condensed singular plate (needs mass = singular_p0 or singular_p1dg): massive modes stepped by the midpoint "
+      "rule, the massless boundary static, impacts through a discrete gradient; conserves energy through impacts "
+      "at any dt"}}};
 
 const fmu::EnumerationType kBaseDrive{
     "BaseDrive",
@@ -169,6 +179,14 @@ const std::vector<Row>& rows() {
                    &kMassModel),
          [](const PlateValues& v) { return double(static_cast<int>(v.parameters.mass)); },
          [](PlateValues& v, double x) { v.parameters.mass = static_cast<MassModel>(int(x)); }},
+        {parameter(kVrTimeScheme, "time_scheme", VariableType::Enumeration, nullptr,
+                   "Time scheme: newmark (the paper's scheme, default) or conserving (needs a singular mass: the "
+                   "energy balance closes exactly through impacts at any dt, every reported displacement stays "
+                   "within the obstacles; modes = m keeps the m lowest massive modes, damping acts on them; beta "
+                   "and restitution do not apply)",
+                   &kTimeScheme),
+         [](const PlateValues& v) { return double(static_cast<int>(v.parameters.timeScheme)); },
+         [](PlateValues& v, double x) { v.parameters.timeScheme = static_cast<TimeScheme>(int(x)); }},
         {parameter(kVrRestitution, "restitution", VariableType::Real, "1",
                    "Restitution coefficient e in [0, 1] of the impact law on (u+ + e u-)/(1 + e); 0 is the paper's "
                    "scheme",

@@ -119,6 +119,7 @@ enum PlateVr : fmi2ValueReference {
     kVrCorner2Acceleration = 85,
     kVrFreeEdgeMidAcceleration = 86,
     kVrMemoryLimit = 60,
+    kVrTimeScheme = 65,
 };
 
 // Bounds of the clamp's velocity and acceleration inputs: far beyond any shaker (1 km/s,

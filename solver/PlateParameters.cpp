@@ -53,12 +53,24 @@ void validate(const PlateParameters& p) {
     requireRange("modes", p.modes, kModes, "(0 = full space)");
     if (p.mass != MassModel::Consistent && p.mass != MassModel::SingularP0 && p.mass != MassModel::SingularP1dg)
         reject("mass", static_cast<int>(p.mass), "1 (consistent), 2 (singular_p0) or 3 (singular_p1dg)");
-    if (p.singularMass() && p.modes != 0)
-        reject("modes", p.modes, "modes = 0 with a singular mass (the modal reduction needs the consistent mass)");
-    if (p.singularMass() && p.beta < 0.25)
+    if (p.timeScheme != TimeScheme::Newmark && p.timeScheme != TimeScheme::Conserving)
+        reject("time_scheme", static_cast<int>(p.timeScheme), "1 (newmark) or 2 (conserving)");
+    const bool conserving = p.timeScheme == TimeScheme::Conserving;
+    if (conserving && !p.singularMass())
+        reject("mass", "consistent",
+               "mass = singular_p0 (2) or singular_p1dg (3) with time_scheme = conserving: the scheme steps the "
+               "massive modes of a singular mass and keeps its massless part static");
+    if (p.singularMass() && p.modes != 0 && !conserving)
+        reject("modes", p.modes,
+               "modes = 0 with a singular mass and time_scheme = newmark (the reduced singular model is "
+               "time_scheme = conserving)");
+    if (p.singularMass() && p.beta < 0.25 && !conserving)
         reject("beta", p.beta,
                "0.25 <= beta <= 0.5 with a singular mass (massless dofs have no explicit stability bound)");
     requireRange("restitution", p.restitution, kRestitution);
+    if (conserving && p.restitution != 0.0)
+        reject("restitution", p.restitution,
+               "restitution = 0 with time_scheme = conserving (its impacts conserve energy by construction)");
     requireRange("damping_mass", p.dampingMass, kDampingMass);
     requireRange("damping_stiffness", p.dampingStiffness, kDampingStiffness);
     requireRange("memory_limit", p.memoryLimit, kMemoryLimit);  // MB; 0 = no limit

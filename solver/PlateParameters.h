@@ -13,6 +13,12 @@ namespace plate {
 // piecewise linears (P1dg), with no inertia left on the contact vertex values.
 enum class MassModel { Consistent = 1, SingularP0 = 2, SingularP1dg = 3 };
 
+// The time scheme (docs/theory.md §17): the paper's three-level Newmark scheme (3.3)/(3.6) with
+// its impact laws, or the conserving engine — the singular plate as massive modes and a static
+// massless boundary, stepped by the midpoint rule with a discrete gradient of the boundary
+// potential: the energy balance closes exactly through impacts, at any Δt.
+enum class TimeScheme { Newmark = 1, Conserving = 2 };
+
 struct PlateParameters {
     double length = 1.2;  // m
     double width = 0.4;  // m
@@ -32,6 +38,7 @@ struct PlateParameters {
     double initialLoad = 0.0;  // Pa
     int modes = 0;  // 0 = full space (exact)
     MassModel mass = MassModel::Consistent;
+    TimeScheme timeScheme = TimeScheme::Newmark;
     // Impact law (docs/theory.md §12): the contact constraint holds on (u⁺ + e u⁻)/(1 + e);
     // e = 0 is the paper's scheme.
     double restitution = 0.0;

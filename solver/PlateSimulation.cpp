@@ -9,9 +9,11 @@
 #include "Assembly.h"
 #include "BoxQP.h"
 #include "SparseCholesky.h"
+#include "ConservingEngine.h"
 #include "FullOrderPlate.h"
 #include "ModalPlate.h"
 #include "NewmarkContactStepper.h"
+#include "NewmarkEngine.h"
 #include "SingularMass.h"
 #include "Spectrum.h"
 #include "StaticEquilibrium.h"
@@ -52,11 +54,8 @@ struct PlateSimulation::Impl {
     std::shared_ptr<const ClampedPlate> clamped;
     std::shared_ptr<const DiscretePlate> discrete;
     mutable std::unique_ptr<SparseCholesky> floorFactor;  // sparse A, for the floor measurement
-    std::unique_ptr<NewmarkContactStepper> stepper;
-    PointProbe corner1, corner2, freeEdgeMid;
-    mutable double kappa = -1.0;
-    mutable long long energyStep = -1;
-    mutable double energyCache = 0.0;
+    std::unique_ptr<PlateEngine> engine;
+    NewmarkContactStepper* stepper = nullptr;  // the Newmark engine's, while it is built
     // Between grid points (docs/theory.md §15): the communication time, and the outputs at the
     // grid point before it (the one after it is the scheme's state).
     double commTime = 0.0;
@@ -80,13 +79,14 @@ PlateSimulation::PlateSimulation(const PlateParameters& p, double baseDisplaceme
     InitProgress progress(log, s.resources.initSeconds);
     progress.phase("assembly of M and K", s.resources.assemblySeconds);
     PlateMatrices matrices = assemble(*s.space, p.surfaceDensity(), p.bendingStiffness(), p.poissonRatio);
-    Eigen::SparseMatrix<double> coupling;  // B of the singular mass, all dofs
+    Eigen::SparseMatrix<double> coupling, root;  // B and R of the singular mass, all dofs
     if (p.singularMass()) {
         SingularMass singular = assembleSingularMass(
             *s.space, p.surfaceDensity(), p.mass == MassModel::SingularP0 ? MassProjection::P0 : MassProjection::P1dg);
         matrices.mass = std::move(singular.mass);
         matrices.massMoment = std::move(singular.massMoment);
         coupling = std::move(singular.coupling);
+        root = std::move(singular.root);
     }
     s.clamped = std::make_shared<const ClampedPlate>(clamp(*s.space, matrices));
     matrices = PlateMatrices{};  // the unclamped matrices are not needed past the clamp
@@ -95,6 +95,13 @@ PlateSimulation::PlateSimulation(const PlateParameters& p, double baseDisplaceme
         couplingFree = freeRows(coupling, *s.clamped);
         requireMasslessContact(couplingFree, *s.clamped,
                                p.mass == MassModel::SingularP0 ? "singular_p0" : "singular_p1dg");
+    }
+    if (p.timeScheme == TimeScheme::Conserving) {
+        progress.phase("condensed singular plate (massive modes, massless Delassus operator)",
+                       s.resources.spectrumSeconds + s.resources.factorSeconds);
+        buildConserving(obstacles, baseDisplacement0, loadAtStart, freeRows(root, *s.clamped));
+        progress.done(s.resources.peakMB);
+        return;
     }
     if (p.beta < 0.25) {
         progress.phase("kappa_h by power iteration with the factor of M", s.resources.spectrumSeconds);
@@ -118,13 +125,41 @@ PlateSimulation::PlateSimulation(const PlateParameters& p, double baseDisplaceme
     options.dampingStiffness = p.dampingStiffness;
     options.singularMass = p.singularMass();  // carry the impulses (§11; the tests of the plain
         // step build their NewmarkContactStepper directly)
-    s.stepper = std::make_unique<NewmarkContactStepper>(s.discrete, obstacles, options);
+    auto stepper = std::make_unique<NewmarkContactStepper>(s.discrete, obstacles, options);
+    s.stepper = stepper.get();
+    s.engine = std::make_unique<NewmarkEngine>(s.discrete, std::move(stepper), p.length, p.width,
+                                               s.space->mesh().vertexCount());
     progress.phase("static initial state (factor of K)", s.resources.staticSeconds + 0.5 * s.resources.factorSeconds);
     initializeState(obstacles, baseDisplacement0, loadAtStart, couplingFree);
-    s.corner1 = s.discrete->probe(p.length, 0.0);
-    s.corner2 = s.discrete->probe(p.length, p.width);
-    s.freeEdgeMid = s.discrete->probe(p.length, 0.5 * p.width);
+    s.stepper = nullptr;
     progress.done(s.resources.peakMB);
+}
+
+// time_scheme = conserving (docs/theory.md §17): the output points become constraint rows — a
+// corner, or a free_edge_mid on a vertex, is its contact vertex's row; a free_edge_mid between
+// vertices (ny odd) a row of its own.
+void PlateSimulation::buildConserving(const Obstacles& obstacles, double baseDisplacement0, double loadAtStart,
+                                      const Eigen::SparseMatrix<double>& rootFree) {
+    Impl& s = *impl_;
+    const PlateParameters& p = s.parameters;
+    const Mesh& mesh = s.space->mesh();
+    std::vector<int> vertexRows(static_cast<std::size_t>(mesh.vertexCount()), -1);
+    for (std::size_t i = 0; i < s.clamped->contactVertices.size(); ++i)
+        vertexRows[static_cast<std::size_t>(s.clamped->contactVertices[i])] = static_cast<int>(i);
+    std::vector<ConstraintRow> extra;
+    std::array<int, 3> probeRows{vertexRows[mesh.vertex(p.nx, 0)], vertexRows[mesh.vertex(p.nx, p.ny)], -1};
+    if (p.ny % 2 == 0) {
+        probeRows[2] = vertexRows[mesh.vertex(p.nx, p.ny / 2)];
+    } else {
+        extra.push_back({s.clamped->probe(*s.space, p.length, 0.5 * p.width), p.length});
+        probeRows[2] = static_cast<int>(s.clamped->contactVertices.size());
+    }
+    auto condensed = std::make_shared<const CondensedPlate>(condense(*s.clamped, rootFree, extra, p.modes));
+    auto stepper =
+        std::make_unique<ConservingStepper>(condensed, obstacles, p.dt, p.dampingMass, p.dampingStiffness);
+    stepper->initialize(baseDisplacement0, p.initialLoad);
+    stepper->setLoadAtStart(loadAtStart);
+    s.engine = std::make_unique<ConservingEngine>(std::move(stepper), probeRows, std::move(vertexRows));
 }
 
 void PlateSimulation::requireBaseBetween(const Obstacles& obstacles, double baseDisplacement0) {
@@ -191,21 +226,21 @@ PlateSimulation::~PlateSimulation() = default;
 
 const PlateParameters& PlateSimulation::parameters() const { return impl_->parameters; }
 double PlateSimulation::time() const { return impl_->commTime; }
-long long PlateSimulation::stepCount() const { return impl_->stepper->state().step; }
-double PlateSimulation::baseDisplacement() const { return impl_->stepper->state().z; }
+long long PlateSimulation::stepCount() const { return impl_->engine->stepCount(); }
+double PlateSimulation::baseDisplacement() const { return impl_->engine->baseDisplacement(); }
 
 void PlateSimulation::advance(long long steps, const InputSignal& base, const InputSignal& load) {
     if (!impl_->onGrid) throw StepError("advance() needs a communication time on the grid; use communicate()");
     StepPlan plan;
     plan.steps = steps;
-    plan.end = double(impl_->stepper->state().step + steps) * impl_->parameters.dt;
+    plan.end = double(impl_->engine->stepCount() + steps) * impl_->parameters.dt;
     communicate(plan, base, load);
 }
 
 StepPlan PlateSimulation::plan(double h) const {
     const Impl& s = *impl_;
     const double dt = s.parameters.dt;
-    const long long n = s.stepper->state().step;
+    const long long n = s.engine->stepCount();
     StepPlan p;
     // On the grid, a whole multiple of Δt (importers' steps wobble in the last digits): the grid
     // steps, the inputs' time s = k Δt exactly as the scheme has always taken them.
@@ -242,12 +277,12 @@ void PlateSimulation::communicate(const StepPlan& plan, const InputSignal& base,
     Impl& s = *impl_;
     const double dt = s.parameters.dt;
     if (!std::isfinite(load.value)) throw StepError("non-finite load input at the step start");
-    s.stepper->setLoadAtStart(load.value);
+    s.engine->setLoadAtStart(load.value);
     for (long long k = 1; k <= plan.steps; ++k) {
         // The last step of one that ends between grid points: keep the grid point before it.
         if (k == plan.steps && !plan.endsOnGrid) s.before = gridOutputs(true);
         const double t = plan.offset + k * dt;
-        s.stepper->step(base.at(t), load.at(t));
+        s.engine->step(base.at(t), load.at(t));
     }
     s.commTime = plan.end;
     s.onGrid = plan.endsOnGrid;
@@ -258,23 +293,23 @@ bool PlateSimulation::communicateUntilContactChange(const StepPlan& plan, const 
     Impl& s = *impl_;
     const double dt = s.parameters.dt;
     if (!std::isfinite(load.value)) throw StepError("non-finite load input at the step start");
-    const auto inContact = [&s] { return s.stepper->state().contactVertices > 0; };
+    const auto inContact = [&s] { return s.engine->contactVertices() > 0; };
     const auto stopOnGrid = [&s, dt] {
-        s.commTime = double(s.stepper->state().step) * dt;
+        s.commTime = double(s.engine->stepCount()) * dt;
         s.onGrid = true;
         return true;
     };
     // The last step ended between grid points and the grid point ahead changed the contact set:
     // the event is that grid point, if this step reaches it.
-    if (!s.onGrid && (s.before.contactVertices > 0) != inContact() && double(s.stepper->state().step) * dt <= plan.end)
+    if (!s.onGrid && (s.before.contactVertices > 0) != inContact() && double(s.engine->stepCount()) * dt <= plan.end)
         return stopOnGrid();
-    s.stepper->setLoadAtStart(load.value);
+    s.engine->setLoadAtStart(load.value);
     const bool contactBefore = inContact();
     for (long long k = 1; k <= plan.steps; ++k) {
         // As communicate(), step for step.
         if (k == plan.steps && !plan.endsOnGrid) s.before = gridOutputs(true);
         const double t = plan.offset + k * dt;
-        s.stepper->step(base.at(t), load.at(t));
+        s.engine->step(base.at(t), load.at(t));
         if (inContact() != contactBefore && (k < plan.steps || plan.endsOnGrid)) return stopOnGrid();
     }
     s.commTime = plan.end;
@@ -287,7 +322,7 @@ PlateOutputs PlateSimulation::outputs(bool port) const {
     if (impl_->onGrid) return o;
     // t_c in (t_{n−1}, t_n): linear interpolation, each ledger term alike so the ledger closes.
     const double dt = impl_->parameters.dt;
-    const double theta = (impl_->commTime - double(impl_->stepper->state().step - 1) * dt) / dt;
+    const double theta = (impl_->commTime - double(impl_->engine->stepCount() - 1) * dt) / dt;
     PlateOutputs before = impl_->before;
     const auto from = before.fields();
     const auto to = o.fields();
@@ -296,110 +331,19 @@ PlateOutputs PlateSimulation::outputs(bool port) const {
     return o;
 }
 
-PlateOutputs PlateSimulation::gridOutputs(bool port) const {
-    const Impl& s = *impl_;
-    const NewmarkState& st = s.stepper->state();
-    PlateOutputs o;
-    o.corner1 = st.z + s.corner1(st.w);
-    o.corner2 = st.z + s.corner2(st.w);
-    o.freeEdgeMid = st.z + s.freeEdgeMid(st.w);
-    if (s.energyStep != st.step) {
-        s.energyCache = s.stepper->energy();
-        s.energyStep = st.step;
-    }
-    o.energy = s.energyCache;
-    o.energyDissipated = st.energyDissipated;
-    o.energyInput = st.energyInput;
-    o.energyDamped = st.energyDamped;
-    o.contactVertices = st.contactVertices;
-    o.maxKktResidual = st.maxKktResidual;
-    o.qpIterationsTotal = double(st.qpIterationsTotal);
-    o.qpIterationsMax = st.qpIterationsMax;
-    o.impacts[0] = double(st.impactCount[0]);
-    o.impacts[1] = double(st.impactCount[1]);
-    if (port) portOutputs(o);
-    return o;
-}
+PlateOutputs PlateSimulation::gridOutputs(bool port) const { return impl_->engine->outputs(port); }
 
-void PlateSimulation::portOutputs(PlateOutputs& o) const {
-    // docs/theory.md §14, (T.14a, b): the step from t_n to t_{n+1} summed against the rigid motions 1 and X
-    // (K·1 = K·X = 0) gives the clamp's force and moment on the plate at t_n; the plate exerts
-    // their opposites on the clamp. Levels: w = w_{n+1}, wPrev = w_n, wPrev2 = w_{n−1}.
-    const Impl& s = *impl_;
-    const NewmarkState& st = s.stepper->state();
-    const ClampedPlate& plate = s.discrete->clamped();
-    const double dt = s.parameters.dt, beta = s.parameters.beta, dt2 = dt * dt;
-    const Eigen::VectorXd& rotation = s.discrete->rotationInertia();
-    const double zAcc = (st.z - 2.0 * st.zPrev + st.zPrev2) / dt2;
-    const double translationAcc = (st.baseCoupling - 2.0 * st.baseCouplingPrev + st.baseCouplingPrev2) / dt2;
-    const double rotationAcc = (rotation.dot(st.w) - 2.0 * rotation.dot(st.wPrev) + rotation.dot(st.wPrev2)) / dt2;
-    const double pBeta = beta * st.p + (1.0 - 2.0 * beta) * st.pPrev + beta * st.pPrev2;  // f^{nβ}
-    const double contact = st.stepContactForce[0] + st.stepContactForce[1];
-    o.clampForce = -(plate.totalMass * zAcc + translationAcc - pBeta * plate.loadResultant - contact);
-    o.clampMoment = -(plate.totalMassMoment * zAcc + rotationAcc - pBeta * plate.loadMoment - st.stepContactMoment);
-    // Velocities at t_{n+1} (second order, backward: the outputs' time), accelerations at t_n
-    // (the scheme's own central difference, the level of the forces).
-    const auto velocity = [dt](double now, double prev, double prev2) {
-        return (3.0 * now - 4.0 * prev + prev2) / (2.0 * dt);
-    };
-    o.clampDisplacement = st.z;
-    o.clampVelocity = velocity(st.z, st.zPrev, st.zPrev2);
-    o.clampAcceleration = zAcc;
-    const PointProbe* probes[3] = {&s.corner1, &s.corner2, &s.freeEdgeMid};
-    for (int k = 0; k < 3; ++k) {
-        const double now = st.z + (*probes[k])(st.w), prev = st.zPrev + (*probes[k])(st.wPrev),
-                     prev2 = st.zPrev2 + (*probes[k])(st.wPrev2);
-        o.velocity[k] = velocity(now, prev, prev2);
-        o.acceleration[k] = (now - 2.0 * prev + prev2) / dt2;
-    }
-    for (int k = 0; k < 2; ++k) {
-        o.contactForce[k] = st.stepContactForce[k];
-        o.contactImpulse[k] = st.contactImpulseSum[k];
-    }
-}
-
-std::vector<double> PlateSimulation::vertexDisplacements() const {
-    const Impl& s = *impl_;
-    const NewmarkState& st = s.stepper->state();
-    std::vector<double> u(s.space->mesh().vertexCount(), st.z);
-    Eigen::VectorXd y;
-    s.discrete->gatherContact(st.w, y);
-    for (std::size_t i = 0; i < s.clamped->contactVertices.size(); ++i)
-        u[s.clamped->contactVertices[i]] += y[static_cast<Eigen::Index>(i)];
-    return u;
-}
+std::vector<double> PlateSimulation::vertexDisplacements() const { return impl_->engine->vertexDisplacements(); }
 
 const ResourceEstimate& PlateSimulation::resources() const { return impl_->resources; }
 
-std::string PlateSimulation::engine() const {
-    const auto* modal = dynamic_cast<const ModalPlate*>(impl_->discrete.get());
-    if (!modal) return "sparse";
-    return modal->complete() ? "modal-complete" : "modal-" + std::to_string(modal->size());
-}
+std::string PlateSimulation::engine() const { return impl_->engine->name(); }
 
 Eigen::Index PlateSimulation::dofCount() const { return impl_->clamped->mass.rows(); }
 
-double PlateSimulation::firstFrequency() const {
-    const auto* modal = dynamic_cast<const ModalPlate*>(impl_->discrete.get());
-    double omega2;
-    if (modal) {
-        omega2 = modal->omega2()[0];
-    } else {
-        Eigen::MatrixXd phi;
-        Eigen::VectorXd w2;
-        lowestModes(*impl_->clamped, 1, phi, w2);
-        omega2 = w2[0];
-    }
-    return std::sqrt(omega2) / (2.0 * M_PI);
-}
+double PlateSimulation::firstFrequency() const { return impl_->engine->firstFrequency(); }
 
-double PlateSimulation::kappa() const {
-    if (impl_->kappa < 0.0) {
-        const auto* modal = dynamic_cast<const ModalPlate*>(impl_->discrete.get());
-        impl_->kappa = modal && modal->complete() ? modal->omega2().maxCoeff() : largestEigenvalue(*impl_->clamped);
-    }
-    return impl_->kappa;
-}
+double PlateSimulation::kappa() const { return impl_->engine->kappa(); }
 
 double PlateSimulation::measureFloorSolveSeconds(int repeats) const {
     // The floor is one solve with the sparse factor of A = M + βΔt²K (docs/theory.md), whatever
@@ -428,7 +372,7 @@ double PlateSimulation::measureFloorSolveSeconds(int repeats) const {
 // The scheme's state, then the communication time, whether it is on the grid and the outputs
 // at the grid point before it (§15).
 std::vector<double> PlateSimulation::saveState() const {
-    std::vector<double> out = serialize(impl_->stepper->state());
+    std::vector<double> out = impl_->engine->saveState();
     out.push_back(impl_->commTime);
     out.push_back(impl_->onGrid ? 1.0 : 0.0);
     PlateOutputs before = impl_->before;
@@ -440,27 +384,32 @@ void PlateSimulation::restoreState(const std::vector<double>& in) {
     constexpr std::size_t kTail = 2 + PlateOutputs::kFieldCount;
     if (in.size() < kTail) throw std::invalid_argument("state does not belong to this plate (too short)");
     const std::size_t head = in.size() - kTail;
-    const NewmarkState& current = impl_->stepper->state();
-    NewmarkState state = deserialize(std::vector<double>(in.begin(), in.begin() + std::ptrdiff_t(head)),
-                                     current.w.size(), current.contactState.size(), current.contactImpulse.size());
+    const std::vector<double> engineState(in.begin(), in.begin() + std::ptrdiff_t(head));
     const double* tail = in.data() + head;
-    const double dt = impl_->parameters.dt, gridTime = double(state.step) * dt;
+    const double dt = impl_->parameters.dt;
     const bool onGrid = tail[1] == 1.0;
-    // On the grid the time is the grid point's; between, within one step before it.
-    if ((tail[1] != 0.0 && !onGrid) || !std::isfinite(tail[0]) ||
-        (onGrid ? tail[0] != gridTime : !(tail[0] < gridTime && tail[0] > gridTime - dt)))
-        throw std::invalid_argument("corrupt state: communication time does not fit the grid");
+    PlateEngine& engine = *impl_->engine;
+    const std::vector<double> current = engine.saveState();
+    engine.restoreState(engineState);  // checks the engine's part (throws, the state unchanged)
+    const double gridTime = double(engine.stepCount()) * dt;
     PlateOutputs before;
     const auto fields = before.fields();
+    bool corrupt = false;
     for (int i = 0; i < PlateOutputs::kFieldCount; ++i) {
-        if (!std::isfinite(tail[2 + i])) throw std::invalid_argument("corrupt state: non-finite output");
+        corrupt |= !std::isfinite(tail[2 + i]);
         *fields[i] = tail[2 + i];
     }
-    impl_->stepper->setState(state);
+    // On the grid the time is the grid point's; between, within one step before it.
+    const bool timeFits = (tail[1] == 0.0 || onGrid) && std::isfinite(tail[0]) &&
+                          (onGrid ? tail[0] == gridTime : (tail[0] < gridTime && tail[0] > gridTime - dt));
+    if (corrupt || !timeFits) {
+        engine.restoreState(current);
+        throw std::invalid_argument(corrupt ? "corrupt state: non-finite output"
+                                            : "corrupt state: communication time does not fit the grid");
+    }
     impl_->commTime = tail[0];
     impl_->onGrid = onGrid;
     impl_->before = before;
-    impl_->energyStep = -1;
 }
 
 }  // namespace plate

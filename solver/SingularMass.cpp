@@ -3,6 +3,7 @@
 #include <Eigen/Dense>
 #include <Eigen/OrderingMethods>
 #include <Eigen/SparseQR>
+#include <cmath>
 #include <sstream>
 
 #include "Errors.h"
@@ -12,7 +13,7 @@ namespace plate {
 SingularMass assembleSingularMass(const FiniteElementSpace& space, double surfaceDensity, MassProjection projection) {
     const int perElement = projection == MassProjection::P0 ? 1 : 3;
     const Eigen::Index n = space.dofCount();
-    std::vector<Eigen::Triplet<double>> massTriplets, couplingTriplets;
+    std::vector<Eigen::Triplet<double>> massTriplets, couplingTriplets, rootTriplets;
     LocalBasis basis;
     SingularMass s;
     s.massMoment = Eigen::VectorXd::Zero(n);
@@ -45,8 +46,13 @@ SingularMass assembleSingularMass(const FiniteElementSpace& space, double surfac
         const Eigen::LLT<Eigen::MatrixXd> projection(ce);
         const Eigen::MatrixXd me = surfaceDensity * be * projection.solve(be.transpose());
         const Eigen::VectorXd mx = surfaceDensity * be * projection.solve(xq);
+        // R_e = √(ρt) B_e L_e⁻ᵀ: R_e R_eᵀ = ρt B_e C_e⁻¹ B_eᵀ = the element's M_s block.
+        const Eigen::MatrixXd re = std::sqrt(surfaceDensity) * projection.matrixU().solve<Eigen::OnTheRight>(be);
         for (int a = 0; a < nl; ++a) {
-            for (int k = 0; k < perElement; ++k) couplingTriplets.emplace_back(dofs[a], perElement * e + k, be(a, k));
+            for (int k = 0; k < perElement; ++k) {
+                couplingTriplets.emplace_back(dofs[a], perElement * e + k, be(a, k));
+                rootTriplets.emplace_back(dofs[a], perElement * e + k, re(a, k));
+            }
             for (int b = 0; b < nl; ++b) massTriplets.emplace_back(dofs[a], dofs[b], me(a, b));
             s.massMoment[dofs[a]] += mx[a];
         }
@@ -55,6 +61,8 @@ SingularMass assembleSingularMass(const FiniteElementSpace& space, double surfac
     s.mass.setFromTriplets(massTriplets.begin(), massTriplets.end());
     s.coupling.resize(n, static_cast<Eigen::Index>(perElement) * space.elementCount());
     s.coupling.setFromTriplets(couplingTriplets.begin(), couplingTriplets.end());
+    s.root.resize(n, s.coupling.cols());
+    s.root.setFromTriplets(rootTriplets.begin(), rootTriplets.end());
     return s;
 }
 

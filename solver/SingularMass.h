@@ -21,6 +21,9 @@ struct SingularMass {
     Eigen::SparseMatrix<double> mass;  // M_s over all dofs of the space
     Eigen::SparseMatrix<double> coupling;  // B: dofs x projection functions (geometric, ρt left out)
     Eigen::VectorXd massMoment;  // M_s X = ρt B C⁻¹ (∫ x q_k): the rotation's momentum (§14)
+    // A square root of M_s: R = √(ρt) B L⁻ᵀ with C = L Lᵀ (element blocks), so M_s = R Rᵀ and Rᵀw are
+    // coordinates of the velocity's projection in which the kinetic energy is ½|Rᵀẇ|² (§17).
+    Eigen::SparseMatrix<double> root;
 };
 
 // Element by element: the local block ρt B_e C_e⁻¹ B_eᵀ (Q is discontinuous, so C is block

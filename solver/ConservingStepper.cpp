@@ -1,0 +1,436 @@
+#include "ConservingStepper.h"
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+#include <sstream>
+#include <stdexcept>
+
+#include "Errors.h"
+#include "PlateParameters.h"
+
+namespace plate {
+
+namespace {
+
+// The discrete gradient's fixed point (T.17c) is iterated until the step's energy residual
+// ψ0 − ψ1 − Λᵀ Δr is below this fraction of the energies in play (measured: 2–5 iterations).
+constexpr double kGradientTolerance = 1e-13;
+constexpr int kGradientIterations = 200;
+// The contact solves' relative KKT residual (BoxQP) must reach this.
+constexpr double kKktTolerance = 1e-10;
+
+std::unique_ptr<ContactColumns> denseColumns(const Eigen::MatrixXd& matrix) {
+    const Eigen::MatrixXd* m = &matrix;
+    return std::make_unique<ContactColumns>(
+        static_cast<int>(matrix.cols()), [m](int j, Eigen::VectorXd& z) { z = m->col(j); },
+        [](const Eigen::VectorXd& z, Eigen::VectorXd& y) { y = z; });
+}
+
+}  // namespace
+
+ConservingStepper::ConservingStepper(std::shared_ptr<const CondensedPlate> plate, Obstacles obstacles, double dt,
+                                     double dampingMass, double dampingStiffness)
+    : plate_(std::move(plate)), obstacles_(obstacles), dt_(dt) {
+    const CondensedPlate& c = *plate_;
+    const Eigen::Index m = c.modes(), rows = c.rows();
+    damping_ = (dampingMass + dampingStiffness * c.omega2.array()).matrix();
+    inverseH_ = (1.0 + 0.5 * dt * damping_.array() + 0.25 * dt * dt * c.omega2.array()).inverse().matrix();
+    // W₂ = ½Δt² G H⁻¹ Gᵀ: how the rows move in one step per unit of Λ (T.17c).
+    w2_ = (0.5 * dt * dt) * (c.rowModesT.transpose() * inverseH_.asDiagonal() * c.rowModesT);
+    midpointMatrix_ = 0.5 * w2_ + c.delassus;
+    endMatrix_ = c.delassus;
+    midColumns_ = denseColumns(midpointMatrix_);
+    endColumns_ = denseColumns(endMatrix_);
+    midQP_ = std::make_unique<BoxQP>(*midColumns_);
+    endQP_ = std::make_unique<BoxQP>(*endColumns_);
+    for (Eigen::VectorXd* v : {&rhs_, &dq_, &qNext_, &momentumNext_, &modalForce_, &qCheck_}) v->resize(m);
+    for (Eigen::VectorXd* v : {&forceNext_, &multiplier_, &r0_, &r1_, &drFree_, &dr_, &base_, &e_, &y_})
+        v->resize(rows);
+    midForce_ = endForce_ = Eigen::VectorXd::Zero(rows);
+    lower_ = Eigen::VectorXd::Constant(rows, obstacles_.lower);
+    upper_ = Eigen::VectorXd::Constant(rows, obstacles_.upper);
+    if (rows > 0) rowLoadMax_ = c.rowLoad.cwiseAbs().maxCoeff();
+}
+
+void ConservingStepper::gatherRows(const Eigen::VectorXd& q, double p, double z, Eigen::VectorXd& r) const {
+    r.noalias() = plate_->rowModesT.transpose() * q;
+    r.noalias() += p * plate_->rowLoad;
+    r.array() += z;
+}
+
+void ConservingStepper::solveContact(BoxQP& qp, const Eigen::VectorXd& free, std::vector<signed char>& state,
+                                     Eigen::VectorXd& force, Eigen::VectorXd& y, int& solves) {
+    const QPResult r = qp.solve(free, lower_, upper_, state, force, y);
+    ++solves;
+    kkt_ = std::max(kkt_, r.kktResidual);
+    if (!r.converged || !(r.kktResidual <= kKktTolerance)) {
+        std::ostringstream msg;
+        msg << "contact solve did not converge at t = " << double(state_.step + 1) * dt_ << " (" << r.iterations
+            << " iterations, relative KKT residual " << r.kktResidual << ")";
+        throw StepError(msg.str());
+    }
+}
+
+// The static problem of the condensed plate (§17): Ω² q = p0 F_m + Gᵀλ with the rows
+// r = G q + p0 c_p + z0 + D λ between the obstacles: one contact solve with G Ω⁻² Gᵀ + D.
+void ConservingStepper::initialize(double z0, double p0) {
+    const CondensedPlate& c = *plate_;
+    ConservingState& s = state_;
+    s = ConservingState{};
+    const Eigen::Index m = c.modes(), rows = c.rows();
+    const Eigen::VectorXd qFree = p0 * c.modalLoad.cwiseQuotient(c.omega2);
+    s.force = Eigen::VectorXd::Zero(rows);
+    s.rowState.assign(rows, 0);
+    s.midState.assign(rows, 0);
+    Eigen::VectorXd r(rows);
+    gatherRows(qFree, p0, z0, r);
+    s.q = qFree;
+    if (obstacles_.any() && rows > 0) {
+        const Eigen::MatrixXd flexibility =
+            c.rowModesT.transpose() * c.omega2.cwiseInverse().asDiagonal() * c.rowModesT + c.delassus;
+        const auto columns = denseColumns(flexibility);
+        BoxQP qp(*columns);
+        std::vector<signed char> state(rows, 0);
+        Eigen::VectorXd y(rows);
+        const QPResult result = qp.solve(r, lower_, upper_, state, s.force, y);
+        if (!result.converged || !(result.kktResidual <= kKktTolerance))
+            throw ParameterError("the initial static state's contact problem did not converge");
+        s.q.noalias() += c.omega2.cwiseInverse().cwiseProduct(c.rowModesT * s.force);
+        // The massless part's own contact forces at the rows: λ*(r) with r from the new q.
+        gatherRows(s.q, p0, z0, r);
+        int solves = 0;
+        solveContact(*endQP_, r, s.rowState, endForce_, y, solves);
+        s.force = endForce_;
+    }
+    s.qPrev = s.qPrev2 = s.q;
+    s.momentum = Eigen::VectorXd::Zero(m);
+    s.forcePrev = s.forcePrev2 = s.force;
+    s.z = s.zPrev = s.zPrev2 = z0;
+    s.p = s.pPrev = s.pPrev2 = p0;
+    s.contactRows = static_cast<int>(std::count_if(s.rowState.begin(), s.rowState.end(), [](signed char x) { return x != 0; }));
+    margin_ = -1.0;
+}
+
+void ConservingStepper::setLoadAtStart(double p0) {
+    ConservingState& s = state_;
+    if (s.step != 0 || p0 == s.p) return;
+    s.p = s.pPrev = s.pPrev2 = p0;
+    if (obstacles_.any() && plate_->rows() > 0) {
+        gatherRows(s.q, p0, s.z, r0_);
+        int solves = 0;
+        solveContact(*endQP_, r0_, s.rowState, endForce_, y_, solves);
+        s.force = endForce_;
+        s.forcePrev = s.forcePrev2 = s.force;
+        s.contactRows =
+            static_cast<int>(std::count_if(s.rowState.begin(), s.rowState.end(), [](signed char x) { return x != 0; }));
+    }
+    margin_ = -1.0;
+}
+
+void ConservingStepper::checkInputs(double zNext, double pNext) const {
+    const double t = double(state_.step + 1) * dt_;
+    std::ostringstream msg;
+    msg.precision(15);
+    if (!std::isfinite(zNext) || !std::isfinite(pNext)) {
+        msg << "non-finite input at t = " << t << ": base_displacement = " << zNext << ", load = " << pNext;
+        throw StepError(msg.str());
+    }
+    if (!(std::fabs(zNext) <= kMaxDisplacement && std::fabs(pNext) <= kMaxLoad)) {
+        msg << "input out of range at t = " << t << ": base_displacement = " << zNext << ", load = " << pNext
+            << " (allowed: |base_displacement| <= " << kMaxDisplacement << " m, |load| <= " << kMaxLoad << " Pa)";
+        throw StepError(msg.str());
+    }
+    if (zNext < obstacles_.lower || zNext > obstacles_.upper) {
+        msg << "base_displacement = " << zNext << " at t = " << t << " puts the clamped edge past "
+            << (zNext < obstacles_.lower ? "obstacle_lower = " : "obstacle_upper = ")
+            << (zNext < obstacles_.lower ? obstacles_.lower : obstacles_.upper)
+            << " (allowed: obstacle_lower <= base_displacement <= obstacle_upper)";
+        throw StepError(msg.str());
+    }
+}
+
+// Free flight without looking at the rows: since the last look they can have moved by at most
+// ‖G_i‖ ‖q⁺ − q_check‖ + |Δz| + |Δp| max|c_p| (1e-12 m: roundoff of what it is compared with).
+bool ConservingStepper::farFromObstacles(double zNext, double pNext) {
+    if (margin_ <= 0.0) return false;
+    const double moved = plate_->rowModeNormMax * (qNext_ - qCheck_).norm() + std::abs(zNext - zCheck_) +
+                         std::abs(pNext - pCheck_) * rowLoadMax_;
+    return moved + 1e-12 < margin_;
+}
+
+void ConservingStepper::step(double zNext, double pNext) {
+    const CondensedPlate& c = *plate_;
+    const ConservingState& s = state_;
+    checkInputs(zNext, pNext);
+    const double dt = dt_, dz = zNext - s.z, dp = pNext - s.p, pMid = 0.5 * (s.p + pNext);
+    // The free midpoint step (T.17b with Λ = 0): H Δq = Δt P − b_m Δz + ½Δt²(p̄ F_m − Ω² q).
+    rhs_.noalias() = dt * s.momentum - dz * c.modalBaseInertia;
+    rhs_.noalias() += (0.5 * dt * dt) * (pMid * c.modalLoad - c.omega2.cwiseProduct(s.q));
+    dq_.noalias() = inverseH_.cwiseProduct(rhs_);
+    qNext_.noalias() = s.q + dq_;
+    iterations_ = solves_ = 0;
+    kkt_ = 0.0;
+    bool contact = false;
+    if (obstacles_.any() && c.rows() > 0 && (s.contactRows > 0 || !farFromObstacles(zNext, pNext))) {
+        gatherRows(qNext_, pNext, zNext, r1_);
+        double margin = std::numeric_limits<double>::infinity();
+        for (Eigen::Index i = 0; i < r1_.size(); ++i)
+            margin = std::min(margin, std::min(r1_[i] - obstacles_.lower, obstacles_.upper - r1_[i]));
+        contact = s.contactRows > 0 || margin < 0.0;
+        margin_ = -1.0;
+        if (!contact) {
+            qCheck_ = qNext_;
+            zCheck_ = zNext;
+            pCheck_ = pNext;
+            margin_ = margin;
+        }
+    }
+    multiplier_.setZero();
+    forceNext_.setZero();
+    if (contact) {
+        gatherRows(s.q, s.p, s.z, r0_);
+        drFree_ = r1_ - r0_;
+        discreteGradient(0.5 * s.force.dot(c.delassus * s.force));
+        // Δq = Δq_free + ½Δt² H⁻¹ Gᵀ Λ.
+        modalForce_.noalias() = c.rowModesT * multiplier_;
+        dq_.noalias() += (0.5 * dt * dt) * inverseH_.cwiseProduct(modalForce_);
+        qNext_.noalias() = s.q + dq_;
+    } else {
+        modalForce_.setZero();
+    }
+    momentumNext_.noalias() = (2.0 / dt) * (dq_ + dz * c.modalBaseInertia) - s.momentum;
+    if (!std::isfinite(momentumNext_.sum()) || !std::isfinite(qNext_.sum())) {
+        std::ostringstream msg;
+        msg << "the step to t = " << double(s.step + 1) * dt << " produced a non-finite displacement";
+        throw StepError(msg.str());
+    }
+    // The step's forces on the massive modes at the midpoint (T.17b) and the work (T.17d).
+    const double damped = dq_.dot(damping_.cwiseProduct(dq_)) / dt;
+    rhs_.noalias() = pMid * c.modalLoad - 0.5 * c.omega2.cwiseProduct(s.q + qNext_) + modalForce_ -
+                     damping_.cwiseProduct(dq_) / dt;
+    const double onRigid = c.modalBaseInertia.dot(rhs_) - multiplier_.sum();  // clamp + load on the plate
+    const double work = pMid * c.modalLoad.dot(dq_) - dp * multiplier_.dot(c.rowLoad) + dz * onRigid;
+    ConservingState& st = state_;
+    st.clampForce = onRigid - pMid * c.loadResultant;
+    st.clampMoment = c.modalRotationInertia.dot(rhs_) - pMid * c.loadMoment;
+    st.stepContactMoment = 0.0;
+    double sums[2] = {0.0, 0.0};
+    const double middle = std::isfinite(obstacles_.lower) && std::isfinite(obstacles_.upper)
+                              ? 0.5 * (obstacles_.lower + obstacles_.upper)
+                              : (std::isfinite(obstacles_.lower) ? HUGE_VAL : -HUGE_VAL);
+    if (contact) {
+        for (Eigen::Index i = 0; i < multiplier_.size(); ++i) {
+            if (multiplier_[i] == 0.0) continue;
+            // Each row's force goes to the obstacle nearer to it at the midpoint.
+            sums[0.5 * (r0_[i] + r1_[i]) >= middle] += multiplier_[i];
+            st.stepContactMoment += multiplier_[i] * c.rowAbscissae[static_cast<std::size_t>(i)];
+        }
+        st.clampMoment -= st.stepContactMoment;
+    }
+    for (int k = 0; k < 2; ++k) {
+        st.impactCount[k] += sums[k] != 0.0 && st.stepContactForce[k] == 0.0;
+        st.stepContactForce[k] = sums[k];
+        st.contactImpulseSum[k] += sums[k] * dt;
+    }
+    commit(zNext, pNext, work, damped, iterations_);
+}
+
+// Λ = λ*(r_mid) + c_g Δr with c_g = (ψ0 − ψ1 − λ*(r_mid)·Δr)/|Δr|² (T.17c), so that Λ·Δr = ψ0 − ψ1.
+// With e = c_g Δr held from the last iterate, λ*(r_mid) solves the contact problem with the
+// constant matrix ½W₂ + D at r0 + ½Δr_free + ½W₂e; then Δr = Δr_free + W₂(λ + e), ψ1 = ψ(r0 + Δr)
+// from one solve with D, and e is updated, until the energy residual vanishes.
+void ConservingStepper::discreteGradient(double psi0) {
+    ConservingState& s = state_;
+    e_.setZero();
+    rowTrial_ = s.rowState;
+    midTrial_ = s.midState;
+    Eigen::VectorXd& lambda = multiplier_;
+    // The step's energies set the residual's scale: the contact terms, and the plate's kinetic and
+    // modal strain energy (a contact onset has ψ0 = ψ1 ≈ 0: its residual is measured against those).
+    const double energyScale = 0.5 * s.momentum.squaredNorm() + 0.5 * s.q.dot(plate_->omega2.cwiseProduct(s.q)) +
+                               std::numeric_limits<double>::min();
+    for (int it = 1;; ++it) {
+        base_.noalias() = r0_ + 0.5 * drFree_;
+        if (it > 1) base_.noalias() += 0.5 * (w2_ * e_);
+        solveContact(*midQP_, base_, midTrial_, midForce_, y_, solves_);
+        lambda = midForce_ + e_;  // Λ
+        dr_.noalias() = drFree_ + w2_ * lambda;
+        r1_.noalias() = r0_ + dr_;
+        solveContact(*endQP_, r1_, rowTrial_, endForce_, y_, solves_);
+        forceNext_ = endForce_;
+        const double psi1 = 0.5 * forceNext_.dot(y_ - r1_);  // ½ λ1ᵀ D λ1
+        const double residual = psi0 - psi1 - lambda.dot(dr_);
+        const double scale = psi0 + psi1 + std::abs(lambda.dot(dr_)) + energyScale;
+        iterations_ = it;
+        const double norm2 = dr_.squaredNorm();
+        if (std::abs(residual) <= kGradientTolerance * scale || norm2 == 0.0) return;
+        if (it == kGradientIterations) {
+            std::ostringstream msg;
+            msg << "the discrete gradient of the contact step to t = " << double(s.step + 1) * dt_
+                << " did not converge in " << it << " iterations (energy residual " << residual << " J)";
+            throw StepError(msg.str());
+        }
+        // e ← c_g Δr with c_g from λ*(r_mid) = Λ − e.
+        e_ = ((psi0 - psi1 - (lambda - e_).dot(dr_)) / norm2) * dr_;
+    }
+}
+
+void ConservingStepper::commit(double zNext, double pNext, double work, double damped, int iterations) {
+    const CondensedPlate& c = *plate_;
+    ConservingState& s = state_;
+    const double dt = dt_;
+    // The mass moving with the clamp (discarded modes) and the massless part's load terms enter
+    // the energy (T.17a); their changes are booked as the inputs' work (T.17d).
+    const double zDot = (s.z - s.zPrev) / dt, zDotNext = (zNext - s.z) / dt;
+    const double loadTerms = pNext * forceNext_.dot(c.rowLoad) + 0.5 * pNext * pNext * c.loadFlexibility -
+                             (s.p * s.force.dot(c.rowLoad) + 0.5 * s.p * s.p * c.loadFlexibility);
+    s.energyInput += work + 0.5 * c.clampMass * (zDotNext * zDotNext - zDot * zDot) + loadTerms;
+    s.energyDamped += damped;
+    // The clamp-carried mass's inertia at t_n (its work pairs with (z⁺ − z⁻)/2, §17).
+    const double zAcc = (zNext - 2.0 * s.z + s.zPrev) / (dt * dt);
+    s.clampForce += c.clampMass * zAcc;
+    s.clampMoment += c.clampMassMoment * zAcc;
+    s.qPrev2.swap(s.qPrev);
+    s.qPrev.swap(s.q);
+    s.q.swap(qNext_);
+    s.momentum.swap(momentumNext_);
+    s.forcePrev2.swap(s.forcePrev);
+    s.forcePrev.swap(s.force);
+    s.force.swap(forceNext_);
+    s.zPrev2 = s.zPrev;
+    s.zPrev = s.z;
+    s.z = zNext;
+    s.pPrev2 = s.pPrev;
+    s.pPrev = s.p;
+    s.p = pNext;
+    ++s.step;
+    if (solves_ > 0) {
+        s.rowState.swap(rowTrial_);
+        s.midState.swap(midTrial_);
+    } else {
+        std::fill(s.rowState.begin(), s.rowState.end(), 0);
+    }
+    s.contactRows = static_cast<int>(std::count_if(s.rowState.begin(), s.rowState.end(), [](signed char x) { return x != 0; }));
+    s.lcpSolves += solves_;
+    s.gradientIterationsLast = iterations;
+    s.gradientIterationsMax = std::max(s.gradientIterationsMax, iterations);
+    s.maxKktResidual = std::max(s.maxKktResidual, kkt_);
+}
+
+double ConservingStepper::energy() const {
+    const CondensedPlate& c = *plate_;
+    const ConservingState& s = state_;
+    const double zDot = (s.z - s.zPrev) / dt_;
+    const double kinetic = 0.5 * s.momentum.squaredNorm() + 0.5 * c.clampMass * zDot * zDot;
+    // Strain energy: ½ qᵀΩ²q + ½ bᵀ S b of the massless part b = S⁻¹Q0ᵀ(pF + Cᵀλ) (T.17a).
+    const double massless = 0.5 * s.force.dot(c.delassus * s.force) + s.p * s.force.dot(c.rowLoad) +
+                            0.5 * s.p * s.p * c.loadFlexibility;
+    return kinetic + 0.5 * s.q.dot(c.omega2.cwiseProduct(s.q)) + massless;
+}
+
+double ConservingStepper::rowHeight(int i, int level) const {
+    const CondensedPlate& c = *plate_;
+    const ConservingState& s = state_;
+    const Eigen::VectorXd& q = level == 0 ? s.q : level == 1 ? s.qPrev : s.qPrev2;
+    const Eigen::VectorXd& f = level == 0 ? s.force : level == 1 ? s.forcePrev : s.forcePrev2;
+    const double z = level == 0 ? s.z : level == 1 ? s.zPrev : s.zPrev2;
+    const double p = level == 0 ? s.p : level == 1 ? s.pPrev : s.pPrev2;
+    return c.rowModesT.col(i).dot(q) + p * c.rowLoad[i] + z + c.delassus.row(i).dot(f);
+}
+
+void ConservingStepper::setState(const ConservingState& s) {
+    state_ = s;
+    margin_ = -1.0;  // the free-flight bound restarts from a full look
+}
+
+// The flat form for FMU states: a format tag, the sizes, then every member in one order, written
+// and read by the same table (members()).
+namespace {
+
+constexpr double kFormat = 17.0;  // the conserving engine's state, version 1
+
+template <class State, class Visit>
+void members(State& s, Visit& visit) {
+    for (auto* v : {&s.q, &s.qPrev, &s.qPrev2, &s.momentum}) visit.vector(*v, visit.modes);
+    for (auto* v : {&s.force, &s.forcePrev, &s.forcePrev2}) visit.vector(*v, visit.rows);
+    for (auto* x : {&s.z, &s.zPrev, &s.zPrev2, &s.p, &s.pPrev, &s.pPrev2, &s.energyInput, &s.energyDamped,
+                    &s.maxKktResidual, &s.clampForce, &s.clampMoment, &s.stepContactForce[0], &s.stepContactForce[1],
+                    &s.stepContactMoment, &s.contactImpulseSum[0], &s.contactImpulseSum[1]})
+        visit.real(*x);
+    for (auto* k : {&s.step, &s.lcpSolves, &s.impactCount[0], &s.impactCount[1]}) visit.count(*k);
+    for (auto* k : {&s.gradientIterationsMax, &s.gradientIterationsLast, &s.contactRows}) visit.count(*k);
+    for (auto* v : {&s.rowState, &s.midState}) visit.states(*v);
+}
+
+struct Writer {
+    std::vector<double>& out;
+    std::size_t modes, rows;
+    void vector(const Eigen::VectorXd& v, std::size_t) { out.insert(out.end(), v.data(), v.data() + v.size()); }
+    void real(const double& x) { out.push_back(x); }
+    void count(const long long& k) { out.push_back(static_cast<double>(k)); }
+    void count(const int& k) { out.push_back(static_cast<double>(k)); }
+    void states(const std::vector<signed char>& v) { out.insert(out.end(), v.begin(), v.end()); }
+};
+
+struct Reader {
+    const std::vector<double>& in;
+    std::size_t at, modes, rows;
+    double next() {
+        if (at >= in.size()) throw std::invalid_argument("state does not belong to this plate (too short)");
+        const double x = in[at++];
+        if (!std::isfinite(x)) throw std::invalid_argument("corrupt state: non-finite value");
+        return x;
+    }
+    void vector(Eigen::VectorXd& v, std::size_t n) {
+        v.resize(static_cast<Eigen::Index>(n));
+        for (std::size_t i = 0; i < n; ++i) v[static_cast<Eigen::Index>(i)] = next();
+    }
+    void real(double& x) { x = next(); }
+    double whole() {
+        const double x = next();
+        if (x < 0.0 || x > 9.0e15 || x != std::floor(x)) throw std::invalid_argument("corrupt state: bad count");
+        return x;
+    }
+    void count(long long& k) { k = static_cast<long long>(whole()); }
+    void count(int& k) {
+        const double x = whole();
+        if (x > 2147483647.0) throw std::invalid_argument("corrupt state: bad count");
+        k = static_cast<int>(x);
+    }
+    void states(std::vector<signed char>& v) {
+        v.resize(rows);
+        for (auto& x : v) {
+            const double d = next();
+            if (d != -1.0 && d != 0.0 && d != 1.0) throw std::invalid_argument("corrupt state: bad contact state");
+            x = static_cast<signed char>(d);
+        }
+    }
+};
+
+}  // namespace
+
+std::vector<double> ConservingStepper::serialize() const {
+    const auto modes = static_cast<std::size_t>(plate_->modes()), rows = static_cast<std::size_t>(plate_->rows());
+    std::vector<double> out{kFormat, double(modes), double(rows)};
+    Writer writer{out, modes, rows};
+    members(state_, writer);
+    return out;
+}
+
+ConservingState ConservingStepper::deserialize(const std::vector<double>& data) const {
+    const auto modes = static_cast<std::size_t>(plate_->modes()), rows = static_cast<std::size_t>(plate_->rows());
+    if (data.size() < 3 || data[0] != kFormat)
+        throw std::invalid_argument("state does not belong to this plate (another engine or format)");
+    if (data[1] != double(modes) || data[2] != double(rows))
+        throw std::invalid_argument("state does not belong to this plate (other sizes)");
+    ConservingState s;
+    Reader reader{data, 3, modes, rows};
+    members(s, reader);
+    if (reader.at != data.size()) throw std::invalid_argument("state does not belong to this plate (too long)");
+    if (s.z < obstacles_.lower || s.z > obstacles_.upper)
+        throw std::invalid_argument("corrupt state: clamp past an obstacle");
+    return s;
+}
+
+}  // namespace plate
