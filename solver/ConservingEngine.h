@@ -26,9 +26,7 @@ public:
     PlateOutputs outputs(bool port) const override;
     std::vector<double> vertexDisplacements() const override;
     std::vector<double> saveState() const override { return stepper_->serialize(); }
-    void restoreState(const std::vector<double>& state) override {
-        stepper_->setState(stepper_->deserialize(state));
-    }
+    void restoreState(const std::vector<double>& state) override { stepper_->setState(stepper_->deserialize(state)); }
     std::string name() const override;
     double firstFrequency() const override;
     double kappa() const override { return stepper_->plate().omega2.maxCoeff(); }

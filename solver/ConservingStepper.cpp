@@ -108,7 +108,8 @@ void ConservingStepper::initialize(double z0, double p0) {
     s.forcePrev = s.forcePrev2 = s.force;
     s.z = s.zPrev = s.zPrev2 = z0;
     s.p = s.pPrev = s.pPrev2 = p0;
-    s.contactRows = static_cast<int>(std::count_if(s.rowState.begin(), s.rowState.end(), [](signed char x) { return x != 0; }));
+    s.contactRows =
+        static_cast<int>(std::count_if(s.rowState.begin(), s.rowState.end(), [](signed char x) { return x != 0; }));
     margin_ = -1.0;
 }
 
@@ -207,8 +208,8 @@ void ConservingStepper::step(double zNext, double pNext) {
     }
     // The step's forces on the massive modes at the midpoint (T.17b) and the work (T.17d).
     const double damped = dq_.dot(damping_.cwiseProduct(dq_)) / dt;
-    rhs_.noalias() = pMid * c.modalLoad - 0.5 * c.omega2.cwiseProduct(s.q + qNext_) + modalForce_ -
-                     damping_.cwiseProduct(dq_) / dt;
+    rhs_.noalias() =
+        pMid * c.modalLoad - 0.5 * c.omega2.cwiseProduct(s.q + qNext_) + modalForce_ - damping_.cwiseProduct(dq_) / dt;
     const double onRigid = c.modalBaseInertia.dot(rhs_) - multiplier_.sum();  // clamp + load on the plate
     const double work = pMid * c.modalLoad.dot(dq_) - dp * multiplier_.dot(c.rowLoad) + dz * onRigid;
     ConservingState& st = state_;
@@ -311,7 +312,8 @@ void ConservingStepper::commit(double zNext, double pNext, double work, double d
     } else {
         std::fill(s.rowState.begin(), s.rowState.end(), 0);
     }
-    s.contactRows = static_cast<int>(std::count_if(s.rowState.begin(), s.rowState.end(), [](signed char x) { return x != 0; }));
+    s.contactRows =
+        static_cast<int>(std::count_if(s.rowState.begin(), s.rowState.end(), [](signed char x) { return x != 0; }));
     s.lcpSolves += solves_;
     s.gradientIterationsLast = iterations;
     s.gradientIterationsMax = std::max(s.gradientIterationsMax, iterations);
@@ -324,8 +326,8 @@ double ConservingStepper::energy() const {
     const double zDot = (s.z - s.zPrev) / dt_;
     const double kinetic = 0.5 * s.momentum.squaredNorm() + 0.5 * c.clampMass * zDot * zDot;
     // Strain energy: ½ qᵀΩ²q + ½ bᵀ S b of the massless part b = S⁻¹Q0ᵀ(pF + Cᵀλ) (T.17a).
-    const double massless = 0.5 * s.force.dot(c.delassus * s.force) + s.p * s.force.dot(c.rowLoad) +
-                            0.5 * s.p * s.p * c.loadFlexibility;
+    const double massless =
+        0.5 * s.force.dot(c.delassus * s.force) + s.p * s.force.dot(c.rowLoad) + 0.5 * s.p * s.p * c.loadFlexibility;
     return kinetic + 0.5 * s.q.dot(c.omega2.cwiseProduct(s.q)) + massless;
 }
 

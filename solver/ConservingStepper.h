@@ -81,8 +81,8 @@ private:
     bool farFromObstacles(double zNext, double pNext);
     void gatherRows(const Eigen::VectorXd& q, double p, double z, Eigen::VectorXd& r) const;
     void discreteGradient(double psi0);  // Λ into multiplier_, from r0_, drFree_
-    void solveContact(BoxQP& qp, const Eigen::VectorXd& free, std::vector<signed char>& state,
-                      Eigen::VectorXd& force, Eigen::VectorXd& y, int& solves);
+    void solveContact(BoxQP& qp, const Eigen::VectorXd& free, std::vector<signed char>& state, Eigen::VectorXd& force,
+                      Eigen::VectorXd& y, int& solves);
     void commit(double zNext, double pNext, double work, double damped, int iterations);
 
     std::shared_ptr<const CondensedPlate> plate_;

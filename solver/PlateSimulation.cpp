@@ -155,8 +155,7 @@ void PlateSimulation::buildConserving(const Obstacles& obstacles, double baseDis
         probeRows[2] = static_cast<int>(s.clamped->contactVertices.size());
     }
     auto condensed = std::make_shared<const CondensedPlate>(condense(*s.clamped, rootFree, extra, p.modes));
-    auto stepper =
-        std::make_unique<ConservingStepper>(condensed, obstacles, p.dt, p.dampingMass, p.dampingStiffness);
+    auto stepper = std::make_unique<ConservingStepper>(condensed, obstacles, p.dt, p.dampingMass, p.dampingStiffness);
     stepper->initialize(baseDisplacement0, p.initialLoad);
     stepper->setLoadAtStart(loadAtStart);
     s.engine = std::make_unique<ConservingEngine>(std::move(stepper), probeRows, std::move(vertexRows));
