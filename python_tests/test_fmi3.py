@@ -6,6 +6,7 @@ ends; the vertex displacements as an array sized by the structural parameters; b
 rejected with a logged fmi3Error."""
 
 import os
+import re
 import zipfile
 from pathlib import Path
 
@@ -335,3 +336,19 @@ def test_switches_are_int32_with_their_items(fmu3, switch, items):
     v = {v.name: v for v in md.modelVariables}[switch]
     assert (v.type, v.min, v.declaredType) == ("Int32", "1", None)
     assert v.description.endswith(items)
+
+
+@pytest.mark.parametrize("version", ["2.0", "3.0"])
+def test_metadata_and_licence_texts(fmu2, fmu3, version):
+    """author, license, copyright, version and generationDateAndTime in both descriptions; every
+    licence the license attribute names has its text in documentation/licenses/."""
+    path = fmu2 if version == "2.0" else fmu3
+    md = fmpy.read_model_description(str(path))
+    assert md.fmiVersion == version
+    for attribute in ("author", "license", "copyright", "version", "generationDateAndTime"):
+        assert getattr(md, attribute), attribute
+    with zipfile.ZipFile(path) as z:
+        texts = {Path(n).stem for n in z.namelist() if n.startswith("documentation/licenses/") and n.endswith(".txt")}
+    named = set(re.findall(r"([\w-]+) \(", md.license))
+    assert {"CHOLMOD-Core-Cholesky", "AMD", "COLAMD", "Eigen", "xxHash", "GCC-runtime"} <= named
+    assert named | {"PlateImpact"} == texts, (named, texts)
