@@ -14,8 +14,8 @@ whose base is exact at every internal step (our driver with value and derivative
 Ways of passing the base (each a row):
   derivatives           our driver: value, first and second derivative at every point
   fmpy <mode>           fmpy.simulate_fmu with an input table (held values), base_input_mode=<mode>
-  libcosimpy            libcosim with an override manipulator (held values; default mode, since
-                        libcosimpy ignores Enumeration start values)
+  libcosimpy            libcosim with an override manipulator (held values; the default
+                        base_input_mode, quadratic)
   quadratic-jumps      prototype through the derivative inputs: the quadratic extrapolation
                         without the FMU's continuity (each step starts at the communicated value,
                         so the clamp jumps by the miss at every point) — kept to show what the

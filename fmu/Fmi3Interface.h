@@ -18,7 +18,6 @@ inline const char* fmi3TypeName(VariableType type) {
         case VariableType::Real: return "Float64";
         case VariableType::Integer: return "Int32";
         case VariableType::Boolean: return "Boolean";
-        case VariableType::Enumeration: return "Enumeration";
     }
     return "?";
 }

@@ -121,8 +121,8 @@ fmi2Status Instance::fail(const char* format, ...) {
 // ---------------------------------------------------------------------------------------------
 // Life cycle
 
-Instance::Instance(std::string instanceName, const fmi2CallbackFunctions& callbacks, bool loggingOn)
-    : instanceName_(std::move(instanceName)), callbacks_(callbacks), model_(createModel()) {
+Instance::Instance(std::string instanceName, const fmi2CallbackFunctions& callbacks, bool loggingOn, const char* api)
+    : instanceName_(std::move(instanceName)), callbacks_(callbacks), api_(api), model_(createModel()) {
     // As the Reference FMUs: errors are logged unless switched off with fmi2SetDebugLogging;
     // warnings and the call trace follow loggingOn.
     logCategories_[LogStatusError] = true;
@@ -130,8 +130,9 @@ Instance::Instance(std::string instanceName, const fmi2CallbackFunctions& callba
     logCategories_[LogAll] = loggingOn;
     logCategories_[LogInfo] = loggingOn;
     attachTrace();
-    log(fmi2OK, LogAll, "fmi2Instantiate: instance \"%s\" of %s (GUID %s)", instanceName_.c_str(),
-        model_->info().modelName, modelGuid());
+    const bool fmi3 = std::strcmp(api_, "fmi3") == 0;
+    log(fmi2OK, LogAll, "%s: instance \"%s\" of %s (%s %s)", fmi3 ? "fmi3InstantiateCoSimulation" : "fmi2Instantiate",
+        instanceName_.c_str(), model_->info().modelName, fmi3 ? "instantiationToken" : "GUID", modelGuid());
 }
 
 Instance::~Instance() = default;
@@ -141,7 +142,7 @@ void Instance::attachTrace() {
     model_->inform = [this](const std::string& message) { log(fmi2OK, LogInfo, "%s: %s", function_, message.c_str()); };
 }
 
-void Instance::logFreeInstance() { log(fmi2OK, LogAll, "fmi2FreeInstance"); }
+void Instance::logFreeInstance() { log(fmi2OK, LogAll, "%sFreeInstance", api_); }
 
 fmi2Status Instance::setDebugLogging(fmi2Boolean loggingOn, size_t nCategories, const fmi2String categories[]) {
     const bool on = loggingOn != fmi2False;
@@ -178,8 +179,9 @@ fmi2Status Instance::setupExperiment(fmi2Real startTime, fmi2Boolean toleranceDe
                                      fmi2Boolean stopTimeDefined, fmi2Real stopTime) {
     if (!std::isfinite(startTime)) return fail("startTime = %g is not a finite number", startTime);
     startTime_ = startTime;
-    if (toleranceDefined) log(fmi2OK, LogAll, "fmi2SetupExperiment: tolerance %g ignored (fixed time step)", tolerance);
-    if (stopTimeDefined) log(fmi2OK, LogAll, "fmi2SetupExperiment: stopTime %g", stopTime);
+    // function_: fmi2SetupExperiment, or fmi3EnterInitializationMode, which takes these arguments.
+    if (toleranceDefined) log(fmi2OK, LogAll, "%s: tolerance %g ignored (fixed time step)", function_, tolerance);
+    if (stopTimeDefined) log(fmi2OK, LogAll, "%s: stopTime %g", function_, stopTime);
     return fmi2OK;
 }
 
@@ -219,8 +221,7 @@ const Variable* Instance::variableFor(fmi2ValueReference vr, VariableType type) 
         fail("unknown value reference %u", vr);
         return nullptr;
     }
-    const bool integerTypes = type == VariableType::Integer;  // fmi2Get/SetInteger also serve Enumerations
-    if (!(variable->type == type || (integerTypes && variable->type == VariableType::Enumeration))) {
+    if (variable->type != type) {
         fail("value reference %u (%s) is a %s variable, not %s", vr, variable->name, typeName(variable->type),
              typeName(type));
         return nullptr;
@@ -237,8 +238,8 @@ bool Instance::settable(const Variable& variable) {
         !(state_ & (Instantiated | ConfigurationMode | InitializationMode))) {
         log(fmi2Error, LogStatusError,
             "illegal call sequence: %s of fixed parameter %s (vr %u) in state %s; fixed parameters can only be set "
-            "before fmi2ExitInitializationMode",
-            function_, variable.name, variable.vr, stateName(state_));
+            "before %sExitInitializationMode",
+            function_, variable.name, variable.vr, stateName(state_), api_);
         return false;
     }
     return true;
@@ -271,9 +272,10 @@ fmi2Status Instance::setValues(VariableType type, const fmi2ValueReference vr[],
             !(value[i] >= variable->min && value[i] <= variable->max))
             return fail("%s = %.17g out of range (allowed: %.17g <= %s <= %.17g)", variable->name, value[i],
                         variable->min, variable->name, variable->max);
-        if (variable->type == VariableType::Enumeration && !variable->enumeration->contains(int(value[i])))
-            return fail("%s = %d is not an item of the enumeration %s (%s)", variable->name, int(value[i]),
-                        variable->enumeration->name, variable->enumeration->itemList().c_str());
+        if (variable->enumeration &&
+            !(std::floor(value[i]) == value[i] && variable->enumeration->contains(int(value[i]))))
+            return fail("%s = %.17g is none of its items (%s)", variable->name, value[i],
+                        variable->enumeration->itemList().c_str());
         model_->set(*variable, value[i]);
         // Before initialization ends, what was built (an output was read) came from the old value.
         if (variable->shapesInitialState && (state_ & (Instantiated | ConfigurationMode | InitializationMode)) &&

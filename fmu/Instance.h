@@ -33,7 +33,10 @@ struct Snapshot;
 
 class Instance {
 public:
-    Instance(std::string instanceName, const fmi2CallbackFunctions& callbacks, bool loggingOn);
+    // `api` is the prefix of the front end's function names ("fmi2" or "fmi3"): the messages the
+    // layer writes on its own name the functions of the interface the importer called.
+    Instance(std::string instanceName, const fmi2CallbackFunctions& callbacks, bool loggingOn,
+             const char* api = "fmi2");
     ~Instance();
     Instance(const Instance&) = delete;
     Instance& operator=(const Instance&) = delete;
@@ -98,7 +101,8 @@ private:
     std::string instanceName_;
     fmi2CallbackFunctions callbacks_;
     bool logCategories_[LogCategoryCount];
-    const char* function_ = "";  // the fmi2 function running (message prefix)
+    const char* api_;  // "fmi2" or "fmi3"
+    const char* function_ = "";  // the fmi2/fmi3 function running (message prefix)
     State state_ = Instantiated;
     double startTime_ = 0.0;
     std::unique_ptr<Model> model_;

@@ -1,5 +1,6 @@
 #include "Model.h"
 
+#include <algorithm>
 #include <string>
 
 namespace fmu {
@@ -9,7 +10,6 @@ const char* typeName(VariableType type) {
         case VariableType::Real: return "Real";
         case VariableType::Integer: return "Integer";
         case VariableType::Boolean: return "Boolean";
-        case VariableType::Enumeration: return "Enumeration";
     }
     return "?";
 }
@@ -24,9 +24,28 @@ std::string EnumerationType::itemList() const {
     std::string text;
     for (const EnumerationItem& item : items) {
         if (!text.empty()) text += ", ";
-        text += std::string(item.name) + " = " + std::to_string(item.value);
+        text += std::to_string(item.value) + " = " + item.name;
     }
     return text;
+}
+
+int EnumerationType::lowest() const {
+    int low = items.front().value;
+    for (const EnumerationItem& item : items) low = std::min(low, item.value);
+    return low;
+}
+
+int EnumerationType::highest() const {
+    int high = items.front().value;
+    for (const EnumerationItem& item : items) high = std::max(high, item.value);
+    return high;
+}
+
+Variable integerSwitch(fmi2ValueReference vr, const char* name, const char* description, const EnumerationType& items) {
+    Variable v{vr, name, VariableType::Integer, Causality::Parameter, description, nullptr, &items, true, false};
+    v.min = items.lowest();
+    v.max = items.highest();
+    return v;
 }
 
 const Variable* Model::find(fmi2ValueReference vr) const {

@@ -16,7 +16,7 @@
 
 namespace fmu {
 
-enum class VariableType { Real, Integer, Boolean, Enumeration };
+enum class VariableType { Real, Integer, Boolean };
 enum class Causality { Parameter, Input, Output };
 const char* typeName(VariableType type);  // as modelDescription.xml spells it: "Real", ...
 
@@ -26,14 +26,19 @@ struct EnumerationItem {
     const char* description;
 };
 
-// An Enumeration type of modelDescription.xml (TypeDefinitions): the one place its items are
-// written down. The generic layer checks every Enumeration value against it.
+// The named values of an Integer switch (element, base_drive, ...): the one place its items are
+// written down. A switch is an Integer, not an FMI Enumeration, because several masters
+// (libcosim, ecos, mosaik-fmi) silently ignore Enumeration variables; the description writer
+// declares min/max from the items and lists them in the variable's description, and the
+// generic layer refuses a value that is not an item.
 struct EnumerationType {
     const char* name;
     const char* description;
     std::vector<EnumerationItem> items;
     bool contains(int value) const;
-    std::string itemList() const;  // "argyris = 1, fvs = 2"
+    std::string itemList() const;  // "1 = argyris, 2 = fvs"
+    int lowest() const;
+    int highest() const;
 };
 
 // One row of a model's table of variables.
@@ -44,7 +49,7 @@ struct Variable {
     Causality causality;
     const char* description;
     const char* unit = nullptr;  // Real only; nullptr: none
-    const EnumerationType* enumeration = nullptr;  // Enumeration only
+    const EnumerationType* enumeration = nullptr;  // Integer switches only: their named items
     // A new value before initialization ends invalidates what was built from the old one
     // (parameters; an input that places the initial state).
     bool shapesInitialState = false;
@@ -56,6 +61,10 @@ struct Variable {
     double min = NAN, max = NAN;
     bool hasRange() const { return !std::isnan(min) || !std::isnan(max); }
 };
+
+// A parameter that switches between named items (element, base_drive, ...): an Integer whose
+// min/max are its items' range; the description writer lists the items after `description`.
+Variable integerSwitch(fmi2ValueReference vr, const char* name, const char* description, const EnumerationType& items);
 
 // Capabilities and fixed parts of modelDescription.xml.
 struct ModelInfo {
@@ -108,7 +117,7 @@ public:
     virtual const std::vector<Variable>& variables() const = 0;
     const Variable* find(fmi2ValueReference vr) const;
 
-    // Values, as doubles for every type (Integer, Enumeration and Boolean exactly). The generic
+    // Values, as doubles for every type (Integer and Boolean exactly). The generic
     // layer has checked type, causality and finiteness; `set` may still throw ModelError.
     virtual double get(const Variable& v) const = 0;
     virtual void set(const Variable& v, double value) = 0;

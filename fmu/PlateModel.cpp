@@ -43,22 +43,25 @@ base_displacement = 0.09 sin(2&pi; 10 t) m it hits the obstacles from t &asymp; 
 <ul>
 <li>Any communication step: the scheme keeps its fixed grid of dt and interpolates the outputs between grid
 points; steps that are whole multiples of dt (relative tolerance 1e-9) run exactly on the grid.</li>
-<li>Inputs: give their first and second derivatives (fmi2SetRealInputDerivatives) when you can; otherwise
-the FMU extrapolates the communicated values (base_input_mode, load_input_mode).</li>
-<li>Outputs are absolute displacements; the energy ledger energy = E0 + energy_input &minus; energy_dissipated
+<li>Inputs: {fmi2:give their first and second derivatives (fmi2SetRealInputDerivatives) when you can; otherwise
+}the FMU {fmi2:extrapolates}{fmi3:holds or extrapolates} the communicated values (base_input_mode, load_input_mode).</li>
+<li>Switches (element, mass, base_drive, base_input_mode, load_input_mode) are Integers: the description of each
+lists its items, e.g. base_drive = 2 drives the clamp by base_velocity.</li>
+{fmi3:<li>Early return: a master that grants it at fmi3InstantiateCoSimulation gets every contact onset and
+release as an event, exactly on the internal grid (lastSuccessfulTime), the impact in the outputs there.</li>
+<li>The array output vertex_displacement holds the deflection at every mesh vertex ([vertices_x][vertices_y]);
+vertices_x = nx + 1 and vertices_y = ny + 1 are views of nx and ny.</li>
+}<li>Outputs are absolute displacements; the energy ledger energy = E0 + energy_input &minus; energy_dissipated
 &minus; energy_damped holds to roundoff.</li>
 </ul>
 <h2>Limits: what the FMU refuses</h2>
-<p>Each refusal returns fmi2Error and logs what was wrong and the allowed range. Parameters outside the min/max
-of the table below (poisson_ratio and the obstacles' heights exclude their ends: 0 &lt; poisson_ratio &lt; 0.5,
-obstacle_lower &lt; 0 &lt; obstacle_upper); beta &lt; 0.25 beyond the stability bound on dt; a singular mass with
-modes &gt; 0, beta &lt; 0.25 or without massless directions at every contact vertex; inputs outside their min/max,
-NaN or Inf; a clamp driven past an obstacle; a communication step shorter than 1e-9 dt; calls outside the states
-FMI 2.0 allows; FMU states of another build or damaged (XXH64 checksum).</p>
-<h2>Licences</h2>
-<p>The sparse factor is CHOLMOD's simplicial Cholesky (SuiteSparse 5.12.0: CHOLMOD Core and Cholesky, LGPL-2.1+;
-AMD and COLAMD, BSD-3-Clause), linked statically; texts in licenses/. The win64 binary links the GCC
-runtime libraries (GPL-3.0 with the GCC Runtime Library Exception) and mingw-w64's winpthreads (MIT).</p>
+<p>Each refusal returns fmiXError and logs what was wrong and the allowed range (category logStatusError).
+Parameters outside the min/max of the table below (poisson_ratio and the obstacles' heights exclude their ends:
+0 &lt; poisson_ratio &lt; 0.5, obstacle_lower &lt; 0 &lt; obstacle_upper); beta &lt; 0.25 beyond the stability
+bound on dt; a singular mass with modes &gt; 0, beta &lt; 0.25 or without massless directions at every contact
+vertex; an instance whose estimated memory exceeds memory_limit; inputs outside their min/max, NaN or Inf; a
+clamp driven past an obstacle; a communication step shorter than 1e-9 dt; calls outside the states FMI
+{fmi2:2.0}{fmi3:3.0} allows; FMU states of another build or damaged (XXH64 checksum).</p>
 )",
     /*stateMagic=*/"PLATEIMP",
 };

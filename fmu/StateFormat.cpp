@@ -50,13 +50,11 @@ void checkValue(const Variable& v, double x) {
         case VariableType::Integer:
             if (!(x >= -2147483648.0 && x <= 2147483647.0) || std::floor(x) != x)
                 throw CorruptState(what + " is not an Integer");
+            if (v.enumeration && !v.enumeration->contains(int(x)))
+                throw CorruptState(what + " is none of its items (" + v.enumeration->itemList() + ")");
             return;
         case VariableType::Boolean:
             if (x != 0.0 && x != 1.0) throw CorruptState(what + " is not a Boolean");
-            return;
-        case VariableType::Enumeration:
-            if (!(std::fabs(x) < 2147483648.0) || std::floor(x) != x || !v.enumeration->contains(int(x)))
-                throw CorruptState(what + " is not an item of " + v.enumeration->name);
             return;
     }
 }

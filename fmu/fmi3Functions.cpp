@@ -2,7 +2,7 @@
 // fmi2Functions.cpp: every fmi3* function runs its body through Instance::call with the states
 // that allow it (Fmi3Interface.h), which logs an illegal call sequence, prefixes messages with
 // the function's name and keeps exceptions inside. Beyond FMI 2.0: the independent variable
-// "time", Int64 for Enumerations, array outputs sized by UInt64 structural parameters (views
+// "time", array outputs sized by UInt64 structural parameters (views
 // of Integer parameters of the table, Model.h), configuration mode, and early return with
 // event mode at the model's events (Model::doStepUntilEvent) when the master grants them at
 // fmi3InstantiateCoSimulation. Only the fmi3* symbols leave the shared object (fmu/exports3.map).
@@ -93,12 +93,11 @@ std::string describe(const fmu::Model& model, fmi3ValueReference vr) {
     return "no variable (unknown value reference)";
 }
 
-// The table's type a Kind reads and writes; Enumerations only through Int64.
+// The table's type a Kind reads and writes (Int64 and the rest: none of the table's).
 bool tableTypeOf(Kind kind, const fmu::Variable& v, VariableType* type) {
     switch (kind) {
         case Kind::Float64: *type = VariableType::Real; return v.type == VariableType::Real;
         case Kind::Int32: *type = VariableType::Integer; return v.type == VariableType::Integer;
-        case Kind::Int64: *type = VariableType::Enumeration; return v.type == VariableType::Enumeration;
         case Kind::Boolean: *type = VariableType::Boolean; return v.type == VariableType::Boolean;
         default: return false;
     }
@@ -160,7 +159,10 @@ fmi2Status getValues(Instance& i, Kind kind, const fmi3ValueReference vrs[], siz
             return i.fail("value reference %u is %s", vrs[k], describe(i.model(), vrs[k]).c_str());
         const std::size_t n = array ? arrayLength(i, *array) : 1;
         if (nValues - next < n || next > nValues)
-            return i.fail("nValues = %zu is too small for the values of the %zu value references", nValues, nvr);
+            return i.fail(
+                "nValues = %zu is too small: %s (value reference %u) needs %zu values, from position %zu "
+                "of values[]",
+                nValues, describe(i.model(), vrs[k]).c_str(), vrs[k], n, next);
         if (array) {
             if constexpr (std::is_same_v<T, double>) {
                 if (i.getArray(*array, values + next, n) != fmi2OK) return fmi2Error;
@@ -172,8 +174,15 @@ fmi2Status getValues(Instance& i, Kind kind, const fmi3ValueReference vrs[], siz
         }
         next += n;
     }
-    if (next != nValues)
-        return i.fail("nValues = %zu, but the %zu value references have %zu values", nValues, nvr, next);
+    if (next != nValues) {
+        std::string arrays;  // which of them are arrays, and their sizes
+        for (size_t k = 0; k < nvr; ++k)
+            if (const ArrayOutput* array = findArray(i.model(), vrs[k]))
+                arrays += std::string(arrays.empty() ? "" : ", ") + array->name + " needs " +
+                          std::to_string(arrayLength(i, *array)) + " values";
+        return i.fail("nValues = %zu, but the %zu value references have %zu values%s%s%s", nValues, nvr, next,
+                      arrays.empty() ? "" : " (", arrays.c_str(), arrays.empty() ? "" : ")");
+    }
     return fmi2OK;
 }
 
@@ -299,7 +308,7 @@ fmi3Instance fmi3InstantiateCoSimulation(fmi3String instanceName, fmi3String ins
                                     f, nRequiredIntermediateVariables);
             return nullptr;
         }
-        self->instance = std::make_unique<Instance>(instanceName, callbacks, loggingOn);
+        self->instance = std::make_unique<Instance>(instanceName, callbacks, loggingOn, "fmi3");
         return self.release();
     } catch (...) {
         if (logMessage)

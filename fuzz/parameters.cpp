@@ -22,8 +22,7 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
                 fmi2SetReal(c, &v.vr, 1, &x);
                 break;
             }
-            case fmu::VariableType::Integer:
-            case fmu::VariableType::Enumeration: {
+            case fmu::VariableType::Integer: {
                 const bool size = v.vr == fuzz::kNx || v.vr == fuzz::kNy || v.vr == fuzz::kModes;
                 const fmi2Integer x = size ? in.ConsumeIntegralInRange(-1, 2) : in.ConsumeIntegralInRange(-2, 5);
                 fmi2SetInteger(c, &v.vr, 1, &x);

@@ -1,7 +1,7 @@
 #pragma once
-// Text helpers of the model description writers (WriteModelDescription3.cpp): XML escaping,
-// the shortest decimal of a double, SI units as BaseUnit exponents (the same
-// rules as WriteModelDescription.cpp, for FMI 3.0).
+// Text helpers of the model description writer (WriteModelDescription.cpp): XML escaping,
+// the shortest decimal of a double, SI units as BaseUnit exponents (both FMI versions).
+
 #include <array>
 #include <cmath>
 #include <cstdio>

@@ -6,6 +6,7 @@ ends; the vertex displacements as an array sized by the structural parameters; b
 rejected with a logged fmi3Error."""
 
 import os
+import re
 import zipfile
 from pathlib import Path
 
@@ -87,7 +88,7 @@ def test_same_variables_and_defaults(fmu2, fmu3):
     md3 = fmpy.read_model_description(str(fmu3))
     assert md3.fmiVersion == "3.0"
     assert md3.guid == md2.guid  # one source, one binding: the same GUID as instantiationToken
-    types = {"Real": "Float64", "Integer": "Int32", "Boolean": "Boolean", "Enumeration": "Enumeration"}
+    types = {"Real": "Float64", "Integer": "Int32", "Boolean": "Boolean"}
     by_name3 = {v.name: v for v in md3.modelVariables}
     for v2 in md2.modelVariables:
         v3 = by_name3[v2.name]
@@ -223,14 +224,17 @@ def test_vertex_displacement_array(fmu3, tmp_path):
     assert w[6, 2] == pytest.approx(corners[1], rel=1e-12, abs=1e-15)
     with pytest.raises(FMICallException):
         s.getFloat64([vr["vertex_displacement"]], nValues=90)  # the default mesh's size, not this one's
-    assert any("nValues = 90" in m for m in messages)
+    # The message names the array and the number of values it needs.
+    assert any("nValues = 90" in m and "vertex_displacement" in m and "needs 21 values" in m for m in messages), (
+        messages
+    )
     s.freeInstance()
 
 
 @pytest.mark.parametrize(
     "call, expected",
     [
-        (lambda s, vr: s.getInt32([vr["element"]]), "is the Enumeration variable element"),
+        (lambda s, vr: s.getInt64([vr["element"]]), "is the Int32 variable element"),
         (lambda s, vr: s.setUInt64([vr["vertices_x"]], [2**40]), "out of the Int32 range"),
         (lambda s, vr: s.setFloat64([vr["time"]], [1.0]), "cannot be set"),
         (lambda s, vr: s.getFloat32([vr["length"]]), "no Float32 variables"),
@@ -240,7 +244,7 @@ def test_vertex_displacement_array(fmu3, tmp_path):
 def test_bad_calls_are_logged_errors(fmu3, tmp_path, call, expected):
     md, s, messages = slave(fmu3, tmp_path)
     vr = {v.name: v.valueReference for v in md.modelVariables}
-    if "Enumeration" in expected:
+    if "element" in expected:
         s.enterInitializationMode(startTime=0.0)
     with pytest.raises(FMICallException):
         call(s, vr)
@@ -273,3 +277,78 @@ def test_animate_example_quick(fmu3, tmp_path):
     gif = Image.open(tmp_path / "a.gif")
     assert gif.n_frames > 4  # the regular frames and the contact events between them
     assert (tmp_path / "a.png").stat().st_size > 10_000
+
+
+def fmi3_texts(fmu3):
+    with zipfile.ZipFile(fmu3) as z:
+        return z.read("modelDescription.xml").decode(), z.read("documentation/index.html").decode(), z.namelist()
+
+
+def test_fmi3_logs_its_own_function_names_under_declared_categories(fmu3, tmp_path):
+    """The FMI 3.0 FMU speaks FMI 3.0: the trace names fmi3 functions (none of FMI 2.0's), and
+    every category it logs under is declared in its model description."""
+    md = fmpy.read_model_description(str(fmu3))
+    unzipped = fmpy.extract(str(fmu3), str(tmp_path / "fmu"))
+    s = FMU3Slave(guid=md.guid, unzipDirectory=unzipped, modelIdentifier="PlateImpact", instanceName="t")
+    logged = []
+    s.instantiate(loggingOn=True, logMessage=lambda env, st, cat, msg: logged.append((cat.decode(), msg.decode())))
+    vr = {v.name: v.valueReference for v in md.modelVariables}
+    s.enterInitializationMode(tolerance=1e-6, startTime=0.0, stopTime=0.01)
+    s.exitInitializationMode()
+    s.doStep(0.0, 1e-3)
+    with pytest.raises(FMICallException):
+        s.setInt32([vr["element"]], [2])  # a fixed parameter after initialization: an error
+    s.freeInstance()
+    messages = [m for _, m in logged]
+    for name in (
+        "fmi3InstantiateCoSimulation",
+        "fmi3EnterInitializationMode",
+        "fmi3ExitInitializationMode",
+        "fmi3FreeInstance",
+    ):
+        assert any(m.startswith(name) for m in messages), (name, messages)
+    assert any("before fmi3ExitInitializationMode" in m for m in messages), messages
+    assert not [m for m in messages if "fmi2" in m], [m for m in messages if "fmi2" in m]
+    declared = {c.name for c in md.logCategories}
+    assert {c for c, _ in logged} <= declared, ({c for c, _ in logged}, declared)
+    assert "logInfo" in {c for c, _ in logged}  # the cost estimate of every initialization
+
+
+def test_fmi3_description_and_page_are_its_own(fmu3):
+    """No FMI 2.0 function in the FMI 3.0 texts, no citation of repository files the FMU does not
+    contain, no binary or licence it does not ship; its own page, with the FMI 3.0 variables."""
+    xml, html, names = fmi3_texts(fmu3)
+    for text in (xml, html):
+        assert "fmi2" not in text
+        assert "docs/" not in text and ".md" not in text
+    assert "win64" not in html and "windows" not in html.lower() or any("windows" in n for n in names)
+    assert "FMI 3.0 Co-Simulation" in html and "vertex_displacement" in html and "structuralParameter" in html
+    for listed in ("licenses/" + n.split("/")[-1] for n in names if n.startswith("documentation/licenses/")):
+        assert listed in html, listed
+
+
+@pytest.mark.parametrize(
+    "switch, items",
+    [("element", "(1 = argyris, 2 = fvs)"), ("base_drive", "(1 = displacement, 2 = velocity, 3 = acceleration)")],
+)
+def test_switches_are_int32_with_their_items(fmu3, switch, items):
+    md = fmpy.read_model_description(str(fmu3))
+    v = {v.name: v for v in md.modelVariables}[switch]
+    assert (v.type, v.min, v.declaredType) == ("Int32", "1", None)
+    assert v.description.endswith(items)
+
+
+@pytest.mark.parametrize("version", ["2.0", "3.0"])
+def test_metadata_and_licence_texts(fmu2, fmu3, version):
+    """author, license, copyright, version and generationDateAndTime in both descriptions; every
+    licence the license attribute names has its text in documentation/licenses/."""
+    path = fmu2 if version == "2.0" else fmu3
+    md = fmpy.read_model_description(str(path))
+    assert md.fmiVersion == version
+    for attribute in ("author", "license", "copyright", "version", "generationDateAndTime"):
+        assert getattr(md, attribute), attribute
+    with zipfile.ZipFile(path) as z:
+        texts = {Path(n).stem for n in z.namelist() if n.startswith("documentation/licenses/") and n.endswith(".txt")}
+    named = set(re.findall(r"([\w-]+) \(", md.license))
+    assert {"CHOLMOD-Core-Cholesky", "AMD", "COLAMD", "Eigen", "xxHash", "GCC-runtime"} <= named
+    assert named | {"PlateImpact"} == texts, (named, texts)

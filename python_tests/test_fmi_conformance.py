@@ -32,6 +32,9 @@ from state_bytes import with_checksum
 
 from plateimpact import PlateImpactFMU
 
+# The sanitizer stage of test.sh runs this file against the ASan+UBSan build (pytest.ini).
+pytestmark = pytest.mark.sanitizer
+
 FMI_ERROR = 3
 FMI_DISCARD = 2
 

@@ -26,6 +26,9 @@ from plate_fmu import PlateRun
 
 from plateimpact import PlateImpactFMU
 
+# The sanitizer stage of test.sh runs this file against the ASan+UBSan build (pytest.ini).
+pytestmark = pytest.mark.sanitizer
+
 # A small, quick plate; the reconstruction does not depend on the mesh.
 SMALL = dict(nx=6, ny=2, dt=1e-5, obstacle_lower=-1.0, obstacle_upper=1.0)
 H = 1e-4

@@ -25,6 +25,9 @@ from libcosimpy.CosimManipulator import CosimManipulator  # noqa: E402
 from libcosimpy.CosimObserver import CosimObserver  # noqa: E402
 from libcosimpy.CosimSlave import CosimLocalSlave  # noqa: E402
 
+# The sanitizer stage of test.sh runs this file against the ASan+UBSan build (pytest.ini).
+pytestmark = pytest.mark.sanitizer
+
 
 def interface(fmu_path):
     """Output value references by name (Real and Integer), and every variable's, from the FMU."""
@@ -48,7 +51,7 @@ def base(k):
 
 def run_libcosim(fmu_path):
     REAL_OUTPUTS, INTEGER_OUTPUTS, VR = interface(fmu_path)
-    log_output_level(CosimLogLevel.ERROR)  # its warning that Enumeration variables (element) are ignored
+    log_output_level(CosimLogLevel.ERROR)
     execution = CosimExecution.from_step_size(STEP_NS)
     slave = CosimLocalSlave(fmu_path=str(fmu_path), instance_name="plate")
     index = execution.add_local_slave(slave)
@@ -98,3 +101,53 @@ def test_libcosimpy_and_fmpy_give_the_same_outputs(fmu_path):
         f"libcosimpy vs fmpy over {STEPS} steps: bit-identical: {bool((theirs == ours).all())}, "
         f"worst relative difference {max(worst.values()):.1e}"
     )
+
+
+SWITCH_STEPS = 100  # 0.01 s
+CLAMP_SPEED = 0.5  # m/s: the clamp rises 5 mm, far from the obstacles
+
+
+def switched_fmpy(fmu_path, element):
+    """corner_1 and clamp_displacement after SWITCH_STEPS through fmpy, the clamp driven by
+    base_velocity = CLAMP_SPEED (base_drive = 2, velocity) on the given element."""
+    import fmpy
+
+    result = fmpy.simulate_fmu(
+        str(fmu_path),
+        stop_time=SWITCH_STEPS * H,
+        step_size=H,
+        output_interval=H,
+        start_values={"base_drive": 2, "element": element, "base_velocity": CLAMP_SPEED},
+        output=["corner_1", "clamp_displacement"],
+    )
+    return float(result["corner_1"][-1]), float(result["clamp_displacement"][-1])
+
+
+def test_libcosimpy_sets_the_integer_switches_on_the_unmodified_fmu(fmu_path):
+    """base_drive and element are Integers with min/max (libcosim skips Enumeration variables):
+    libcosim sets base_drive = 2 (velocity) and element = 2 (fvs) as initial values on the FMU as
+    built, and both take effect — the clamp follows the integrated base_velocity and corner_1 is
+    the FVS plate's (fmpy with the same switches), not the Argyris plate's."""
+    _, _, VR = interface(fmu_path)
+    log_output_level(CosimLogLevel.ERROR)
+    execution = CosimExecution.from_step_size(STEP_NS)
+    index = execution.add_local_slave(CosimLocalSlave(fmu_path=str(fmu_path), instance_name="plate"))
+    observer = CosimObserver.create_last_value()
+    assert execution.add_observer(observer)
+    names = {v.name.decode() for v in execution.slave_variables(index)}
+    assert {"base_drive", "element"} <= names, "libcosim does not see the switches"
+    assert execution.integer_initial_value(index, VR["base_drive"], 2)
+    assert execution.integer_initial_value(index, VR["element"], 2)
+    assert execution.real_initial_value(index, VR["base_velocity"], CLAMP_SPEED)
+    for k in range(SWITCH_STEPS):
+        assert execution.step(), f"libcosim step {k} failed: {execution.status()}"
+    switches = list(observer.last_integer_values(index, [VR["base_drive"], VR["element"]]))
+    corner, clamp = observer.last_real_values(index, [VR["corner_1"], VR["clamp_displacement"]])
+    del execution, observer
+    assert switches == [2, 2]
+    assert clamp == pytest.approx(CLAMP_SPEED * SWITCH_STEPS * H, rel=1e-9)  # the velocity drove the clamp
+    fvs_corner, fvs_clamp = switched_fmpy(fmu_path, element=2)
+    argyris_corner, _ = switched_fmpy(fmu_path, element=1)
+    assert clamp == fvs_clamp
+    assert corner == pytest.approx(fvs_corner, rel=1e-12, abs=1e-15)
+    assert abs(fvs_corner - argyris_corner) > 1e3 * abs(corner - fvs_corner) + 1e-9, "element had no effect"

@@ -15,6 +15,9 @@ from plate_fmu import PlateRun
 
 from plateimpact.scenes import AMPLITUDE, FREQUENCY, default_base
 
+# The sanitizer stage of test.sh runs this file against the ASan+UBSan build (pytest.ini).
+pytestmark = pytest.mark.sanitizer
+
 L, W, THICKNESS, YOUNG, NU = 1.2, 0.4, 0.01, 2.1e11, 0.3
 
 
@@ -78,6 +81,7 @@ def test_static_beam_limit_is_exact(fmu_path, element):
         assert all(3.7 <= p <= 4.3 for p in orders), orders  # O(h⁴), measured 4.0
 
 
+@pytest.mark.repeats_paths
 def test_static_corner_converges_between_cylindrical_and_beam_bending(fmu_path):
     """ν = 0.3, Argyris, nx x ny = 3x1 … 48x16 (square cells).
 
@@ -112,6 +116,7 @@ def test_static_corner_converges_between_cylindrical_and_beam_bending(fmu_path):
     assert 0.95 < corners[-1] / beam < 0.975
 
 
+@pytest.mark.repeats_paths
 def test_static_fvs_converges_to_the_argyris_limit(fmu_path):
     """FVS and Argyris discretize the same plate: their corner deflections must agree in the
     limit. Measured at ν = 0.3: FVS 24x8 0.0142482, 48x16 0.0142572 vs Argyris 48x16 0.0142621
@@ -163,6 +168,7 @@ def corner_at(fmu_path, element, nx, ny, dt, t_end, base):
 
 
 @pytest.mark.parametrize("element", ELEMENTS)
+@pytest.mark.repeats_paths
 def test_time_scheme_is_second_order(fmu_path, element):
     """Newmark γ = ½ is second order in Δt for a smooth solution: corner_1 at t = 0.05 s,
     Δt = 4e-4, 2e-4, 1e-4, 5e-5, 6x2 mesh, no obstacles, base (1 − cos)² start.
@@ -183,6 +189,7 @@ def test_time_scheme_is_second_order(fmu_path, element):
     assert all(1.8 <= p <= 2.2 for p in orders), (orders, values)
 
 
+@pytest.mark.repeats_paths
 def test_time_scheme_is_second_order_for_the_sine_start_once_the_mesh_is_resolved(fmu_path):
     """The paper's sine base with its velocity jump at t = 0, on a mesh coarse enough for the
     time step to resolve all its modes: Argyris 1x1 (ω_max = 3.9e4 s⁻¹), Δt = 1e-6, 5e-7,
@@ -292,6 +299,7 @@ def test_free_vibration_dissipates_at_impacts_and_respects_the_obstacle(fmu_path
 
 
 @pytest.mark.parametrize("element,nx,ny", [("argyris", 14, 6), ("fvs", 20, 8)])
+@pytest.mark.repeats_paths
 def test_free_edge_midpoint_respects_the_obstacle_when_it_is_a_vertex(fmu_path, element, nx, ny):
     """Contact is enforced at the mesh vertices only (docs/theory.md). With ny odd (the paper's
     meshes) free_edge_mid = w(L, W/2) lies between vertices and may dip below the obstacle by

@@ -13,6 +13,9 @@ from fmpy import simulate_fmu
 from plateimpact import PlateImpactFMU, default_base
 from plateimpact.scenes import AMPLITUDE, FREQUENCY
 
+# The sanitizer stage of test.sh runs this file against the ASan+UBSan build (pytest.ini).
+pytestmark = pytest.mark.sanitizer
+
 DT = 1e-5
 
 
@@ -61,6 +64,7 @@ LAWS = {
 
 
 @pytest.mark.parametrize("law", LAWS)
+@pytest.mark.repeats_paths
 def test_work_of_the_clamp_force_is_the_energy_input_through_impacts(fmu_path, law):
     # Σ_n F_n (z_{n+1} − z_{n−1})/2 over the steps, F_n the force the clamp exerts on the plate
     # (−clamp_force, centred at t_n), is the ledger's energy_input (load 0) identically (§14).
@@ -77,6 +81,7 @@ def test_work_of_the_clamp_force_is_the_energy_input_through_impacts(fmu_path, l
     assert np.max(np.abs(work - energy_input)) <= 1e-8 * scale
 
 
+@pytest.mark.repeats_paths
 def test_contact_sums_are_consistent(fmu_path):
     rows = run_every_step(fmu_path, 7000)
     lower = np.array([r["contact_force_lower"] for r in rows])

@@ -13,10 +13,14 @@ Bounded here (PLATEIMPACT_HYPOTHESIS_EXAMPLES raises the number of sequences).""
 import math
 import os
 
+import pytest
 from hypothesis import HealthCheck, settings
 from hypothesis import strategies as st
 from hypothesis.stateful import RuleBasedStateMachine, invariant, precondition, rule
 from plate_fmu import PlateRun
+
+# The sanitizer stage of test.sh runs this file against the ASan+UBSan build (pytest.ini).
+pytestmark = pytest.mark.sanitizer
 
 GAP = 0.01
 PLATE = dict(nx=2, ny=1, dt=1e-4, obstacle_lower=-GAP, obstacle_upper=GAP)

@@ -14,8 +14,31 @@ docs/stability.md.
 import pytest
 from stability import CASES, FMICallException, failures, run_case
 
+# The sanitizer stage of test.sh runs this file against the ASan+UBSan build (pytest.ini).
+pytestmark = pytest.mark.sanitizer
 
-@pytest.mark.parametrize("case", CASES, ids=[c.name for c in CASES])
+
+# The cases the sanitizer stage runs (the others repeat their code paths at more cost): many
+# contacts, large dt, beta = 0 and its bound, the sparse engine (56 x 20), a start pressed onto
+# an obstacle, the impact laws (singular mass, restitution, damping).
+SANITIZER_CASES = {
+    "gap_1e-4",
+    "dt_1e-2",
+    "beta_0_0.9x_bound",
+    "beta_0_1.1x_bound",
+    "beta_0_1.1x_bound_14x5",
+    "grid_56x20",
+    "pressed_held",
+    "singular_p0_dt_1e-3",
+    "restitution_1_dt_1e-3",
+    "all_laws",
+}
+
+
+@pytest.mark.parametrize(
+    "case",
+    [pytest.param(c, id=c.name, marks=() if c.name in SANITIZER_CASES else pytest.mark.repeats_paths) for c in CASES],
+)
 def test_stability_case(case, fmu_path):
     r = run_case(case, fmu_path)
     if case.refused:

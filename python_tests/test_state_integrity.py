@@ -12,6 +12,9 @@ from fmpy.fmi1 import FMICallException
 from plate_fmu import PlateRun
 from state_bytes import HEADER, checksum
 
+# The sanitizer stage of test.sh runs this file against the ASan+UBSan build (pytest.ini).
+pytestmark = pytest.mark.sanitizer
+
 TINY = dict(nx=1, ny=1, element="fvs", dt=1e-4)
 WHAT = ("checksum", "magic", "GUID", "format version", "wrong size", "header")
 

@@ -1,8 +1,8 @@
 # The FMI 3.0 co-simulation FMUs, from the same model bindings as the FMI 2.0 ones (included by
 # fmu/CMakeLists.txt after add_fmu): the generic layer with fmi3Functions.cpp instead of
 # fmi2Functions.cpp (fmu_layer3), the binding's object files as compiled for FMI 2.0, and the
-# FMI 3.0 modelDescription.xml written from the same table
-# (modelDescription/WriteModelDescription3.cpp). Lands in ${CMAKE_BINARY_DIR}/fmi3/<Model>.fmu
+# FMI 3.0 modelDescription.xml written from the same table by the same writer
+# (modelDescription/WriteModelDescription.cpp). Lands in ${CMAKE_BINARY_DIR}/fmi3/<Model>.fmu
 # with binaries/x86_64-linux/<Model>.so; ${CMAKE_BINARY_DIR}/<Model>.fmu stays the FMI 2.0 one.
 # Cross builds (win64, aarch64) make only the shared object (target <Model>3); the scripts
 # add it to the FMU (scripts/build-win64.sh, scripts/build-aarch64.sh).
@@ -17,11 +17,11 @@ if(CMAKE_CROSSCOMPILING)
   target_include_directories(fmu_layer3 PRIVATE "${CMAKE_BINARY_DIR}/host-headers")
 endif()
 
-# add_fmu3(<Model> [LIBRARIES <libs>] [LICENSES <files>]): after add_fmu(<Model> ...).
+# add_fmu3(<Model> [LIBRARIES <libs>]): after add_fmu(<Model> ...), whose writer and licence list it uses.
 file(MAKE_DIRECTORY "${CMAKE_BINARY_DIR}/fmi3")
 
 function(add_fmu3 model)
-  cmake_parse_arguments(ARG "" "" "LIBRARIES;LICENSES" ${ARGN})
+  cmake_parse_arguments(ARG "" "" "LIBRARIES" ${ARGN})
   set(out_dir "${CMAKE_CURRENT_BINARY_DIR}/fmi3")
   add_library(${model}3 SHARED $<TARGET_OBJECTS:fmu_layer3> $<TARGET_OBJECTS:${model}Binding>)
   target_link_libraries(${model}3 PRIVATE ${ARG_LIBRARIES})
@@ -41,37 +41,31 @@ function(add_fmu3 model)
     return()
   endif()
 
-  add_executable(write_${model}_description3 "${PLATEIMPACT_DESCRIPTION_DIR}/WriteModelDescription3.cpp"
-    $<TARGET_OBJECTS:fmu_layer3> $<TARGET_OBJECTS:${model}Binding>)
-  target_include_directories(write_${model}_description3 PRIVATE "${CMAKE_CURRENT_SOURCE_DIR}"
-    "${CMAKE_CURRENT_SOURCE_DIR}/fmi2" "${CMAKE_CURRENT_SOURCE_DIR}/fmi3")
-  target_link_libraries(write_${model}_description3 PRIVATE ${ARG_LIBRARIES})
-  target_compile_definitions(write_${model}_description3 PRIVATE "PLATEIMPACT_VERSION=\"${PROJECT_VERSION}\"")
-  target_compile_options(write_${model}_description3 PRIVATE -Wall -Wextra)
+  # The FMI 3.0 modelDescription.xml and its own documentation/index.html, from the same writer
+  # and table as the FMI 2.0 ones (modelDescription/WriteModelDescription.cpp, its FMI 3.0
+  # emitter); the licence texts are those of the FMI 2.0 FMU (the same objects are linked).
+  set(licenses ${${model}_LICENSES})
   set(model_description "${out_dir}/${model}.modelDescription.xml")
+  set(documentation "${out_dir}/${model}.index.html")
   add_custom_command(
-    OUTPUT "${model_description}"
-    COMMAND write_${model}_description3 "${model_description}"
-    DEPENDS write_${model}_description3
+    OUTPUT "${model_description}" "${documentation}"
+    COMMAND write_${model}_description 3 "${model_description}" "${documentation}" ${licenses}
+    DEPENDS write_${model}_description
     COMMENT "Writing the ${model} FMI 3.0 modelDescription.xml from its table of variables"
     VERBATIM)
 
-  # documentation/ as in the FMI 2.0 FMU (the same table; the licence texts of what is linked).
-  set(documentation "${CMAKE_CURRENT_BINARY_DIR}/${model}.index.html")
   set(fmu_file "${CMAKE_BINARY_DIR}/fmi3/${model}.fmu")
   add_custom_command(
     OUTPUT "${fmu_file}"
     COMMAND "${CMAKE_COMMAND}" "-DLIBRARY=$<TARGET_FILE:${model}3>" "-DMODEL_IDENTIFIER=${model}"
             "-DMODEL_DESCRIPTION=${model_description}" "-DSTAGING_DIR=${out_dir}/${model}.fmu.d"
-            "-DFMU_FILE=${fmu_file}" "-DDOCUMENTATION=${documentation}" "-DLICENSES=${ARG_LICENSES}"
+            "-DFMU_FILE=${fmu_file}" "-DDOCUMENTATION=${documentation}" "-DLICENSES=${licenses}"
             "-DPLATFORM=x86_64-linux" -P "${CMAKE_CURRENT_SOURCE_DIR}/cmake/PackageFmu.cmake"
     DEPENDS ${model}3 "${model_description}" "${documentation}" "${CMAKE_CURRENT_SOURCE_DIR}/cmake/PackageFmu.cmake"
     COMMENT "Packaging ${fmu_file}"
     VERBATIM)
   add_custom_target(${model}Fmu3 ALL DEPENDS "${fmu_file}")
-  # The documentation is the FMI 2.0 FMU's output: made by that target first, never twice at once.
-  add_dependencies(${model}Fmu3 ${model}Fmu)
 endfunction()
 
-add_fmu3(PlateImpact LIBRARIES plate_solver LICENSES "${SUITESPARSE_LICENSES}")
+add_fmu3(PlateImpact LIBRARIES plate_solver)
 add_fmu3(SineSweep)

@@ -48,8 +48,8 @@ enum Vr : fmi2ValueReference {
 };
 
 fmu::Variable parameter(fmi2ValueReference vr, const char* name, VariableType type, const char* unit,
-                        const char* description, const fmu::EnumerationType* enumeration = nullptr) {
-    return {vr, name, type, Causality::Parameter, description, unit, enumeration, true, false};
+                        const char* description) {
+    return {vr, name, type, Causality::Parameter, description, unit, nullptr, true, false};
 }
 
 const std::vector<fmu::Variable>& sweepVariables() {
@@ -59,8 +59,7 @@ const std::vector<fmu::Variable>& sweepVariables() {
         parameter(kEndFrequency, "end_frequency", VariableType::Real, "Hz",
                   "Frequency at t = duration and after (> 0)"),
         parameter(kDuration, "duration", VariableType::Real, "s", "Time over which the frequency sweeps (> 0)"),
-        parameter(kLaw, "law", VariableType::Enumeration, nullptr, "Sweep law: linear (1) or logarithmic (2)",
-                  &kSweepLaw),
+        fmu::integerSwitch(kLaw, "law", "Sweep law", kSweepLaw),
         parameter(kRampTime, "ramp_time", VariableType::Real, "s",
                   "Ramp-in time of the envelope sin^2(pi t / (2 ramp_time)); 0: none (the sine starts at full "
                   "amplitude)"),

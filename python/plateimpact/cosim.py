@@ -145,7 +145,7 @@ PLATE_RECORD = (
     "contact_force_upper",
 )
 PLATE_COUNTERS = ("impacts_lower", "impacts_upper")
-BASE_DRIVE_VELOCITY = 2  # PlateImpact's base_drive enumeration: velocity
+BASE_DRIVE_VELOCITY = 2  # PlateImpact's base_drive switch: 2 = velocity
 
 
 def _set_initial_values(execution, slave, vrs, values):
@@ -161,24 +161,6 @@ def _set_initial_values(execution, slave, vrs, values):
 def _connect(execution, source, source_vr, target, target_vr, what):
     if execution.connect_real_variables(source, source_vr, target, target_vr) != 0:  # the C status: 0 on success
         raise RuntimeError(f"libcosim could not connect {what}")
-
-
-def enumerations_as_integers(fmu, target):
-    """A copy of `fmu` at `target` whose modelDescription declares every Enumeration variable an
-    Integer (same value reference, same binary, same GUID). libcosim (0.0.6 and its current
-    source) skips Enumeration variables when it reads a model description, so PlateImpact's
-    base_drive cannot be set through it; the FMU's fmi2SetInteger serves Enumerations (FMI 2.0),
-    so the copy runs the same model with base_drive settable."""
-    import re
-
-    with zipfile.ZipFile(fmu) as source, zipfile.ZipFile(target, "w", zipfile.ZIP_DEFLATED) as copy:
-        for item in source.infolist():
-            data = source.read(item)
-            if item.filename == "modelDescription.xml":
-                text = re.sub(r'<Enumeration declaredType="[^"]*"', "<Integer", data.decode())
-                data = text.encode()
-            copy.writestr(item, data)
-    return target
 
 
 def shaker_execution(fmus, values, h=None, ecco=None, coupled=True):
@@ -229,11 +211,9 @@ def shaker_execution(fmus, values, h=None, ecco=None, coupled=True):
 def run_shaker_system(fmus, values, stop, h=None, ecco=None, coupled=True):
     """Runs sweep -> shaker <-> plate to `stop` (s); returns a dict of arrays over the
     communication points: "time", "shaker.<name>" for SHAKER_RECORD, "plate.<name>" for
-    PLATE_RECORD and PLATE_COUNTERS. The plate runs from a copy with its Enumerations declared
-    Integers (enumerations_as_integers: libcosim cannot set base_drive otherwise)."""
-    with tempfile.TemporaryDirectory() as tmp:
-        plate = enumerations_as_integers(fmus["plate"], Path(tmp) / "PlateImpact.fmu")
-        return _step_shaker_system(dict(fmus, plate=plate), values, stop, h, ecco, coupled)
+    PLATE_RECORD and PLATE_COUNTERS. The plate's base_drive (an Integer switch) is set like any
+    other initial value."""
+    return _step_shaker_system(fmus, values, stop, h, ecco, coupled)
 
 
 def _step_shaker_system(fmus, values, stop, h, ecco, coupled):

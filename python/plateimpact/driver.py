@@ -17,6 +17,7 @@ The FMU's log messages (status, category, message) are kept in `plate.log`; pass
 from __future__ import annotations
 
 import atexit
+import re
 import shutil
 from pathlib import Path
 
@@ -28,6 +29,19 @@ from fmpy.fmi2 import (
     fmi2CallbackFunctions,
     fmi2CallbackLoggerTYPE,
 )
+
+ITEMS = re.compile(r"\((\d+ = \w+(?:, \d+ = \w+)*)\)$")
+
+
+def switch_items(v) -> dict[str, int]:
+    """The named items of an Integer switch (element, base_drive, ...), from the end of its
+    description, where the build lists them: "... (1 = argyris, 2 = fvs)" -> {"argyris": 1,
+    "fvs": 2}. Empty for any other variable."""
+    match = ITEMS.search(v.description or "") if v.type in ("Integer", "Int32") else None
+    if not match:
+        return {}
+    return {name: int(value) for value, name in (item.split(" = ") for item in match.group(1).split(", "))}
+
 
 _extracted = {}  # (resolved path, mtime) -> (unzip directory, model description)
 
@@ -136,9 +150,11 @@ class PlateImpactFMU:
         v = self.vars[name]
         if v.type == "Real":
             self.fmu.setReal([v.valueReference], [float(value)])
-        elif v.type in ("Integer", "Enumeration"):
-            if isinstance(value, str):  # enumeration item by name, e.g. element="fvs"
-                items = {i.name: i.value for i in v.declaredType.items}
+        elif v.type == "Integer":
+            if isinstance(value, str):  # a switch's item by name, e.g. element="fvs"
+                items = switch_items(v)
+                if value not in items:
+                    raise ValueError(f"{name} = {value!r}: not one of its items {sorted(items)}")
                 value = items[value]
             self.fmu.setInteger([v.valueReference], [int(value)])
         elif v.type == "Boolean":

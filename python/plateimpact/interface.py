@@ -12,17 +12,19 @@ from pathlib import Path
 
 from fmpy import read_model_description
 
+from .driver import switch_items
+
 BEGIN = "<!-- variables: written by `python -m plateimpact.interface`; do not edit by hand -->"
 END = "<!-- variables: end -->"
 
 
 def start_text(v):
-    """A variable's start value as the README shows it (enumeration items by name)."""
+    """A variable's start value as the README shows it (a switch's item by name and number)."""
     if v.causality == "output" or v.start is None:
         return ""
-    if v.type == "Enumeration":
-        items = {str(i.value): i.name for i in v.declaredType.items}
-        return f"`{items.get(str(v.start), v.start)}`"
+    names = {value: name for name, value in switch_items(v).items()}
+    if names:
+        return f"{v.start} (`{names.get(int(v.start), '?')}`)"
     if v.type == "Boolean":
         return str(v.start).lower()
     return str(v.start)
@@ -45,9 +47,6 @@ def variables_table(fmu) -> str:
     ]
     for v in md.modelVariables:
         kind = v.type
-        if v.type == "Enumeration":
-            items = ", ".join(f"`{i.name}`" for i in v.declaredType.items)
-            kind = f"Enumeration ({items})"
         description = (v.description or "").replace("|", "\\|")
         rows.append(
             f"| `{v.name}` | {v.causality} | {kind} | {start_text(v)} | {range_text(v)} | {v.unit or ''} | {description} |"
