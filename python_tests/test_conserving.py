@@ -61,7 +61,11 @@ def test_energy_balance_closes_with_base_load_and_both_obstacles(fmu_path, eleme
         0.25,
         h=1e-4,
         base=default_base,
-        load=lambda t: (2000.0 * math.sin(2 * math.pi * 7 * t), 2000.0 * 2 * math.pi * 7 * math.cos(2 * math.pi * 7 * t), 0.0),
+        load=lambda t: (
+            2000.0 * math.sin(2 * math.pi * 7 * t),
+            2000.0 * 2 * math.pi * 7 * math.cos(2 * math.pi * 7 * t),
+            0.0,
+        ),
         dt=dt,
         element=element,
         nx=nx,
@@ -161,9 +165,12 @@ def test_work_of_the_clamp_force_is_the_energy_input_through_impacts(fmu_path, m
     # its work pairs with (z_{n+1} − z_{n−1})/2 (§17), so the identity holds with both pairings.
     dt = 1e-5
     w = 2 * math.pi * 10.0
+
     # A base that starts at rest (no velocity jump at t = 0): the two pairings of the reduced
     # model's clamp-carried part then differ by Σ m_c z̈² dt²/2, O(ω² dt T) ~ 3e-3 of the work.
-    smooth = lambda t: (0.045 * (1 - math.cos(w * t)), 0.045 * w * math.sin(w * t), 0.045 * w * w * math.cos(w * t))
+    def smooth(t):
+        return (0.045 * (1 - math.cos(w * t)), 0.045 * w * math.sin(w * t), 0.045 * w * w * math.cos(w * t))
+
     rows = run(fmu_path, 0.07, h=dt, base=smooth, modes=modes, **CONSERVING)
     z = np.array([r["clamp_displacement"] for r in rows])
     force_on_plate = -np.array([r["clamp_force"] for r in rows[1:]])
