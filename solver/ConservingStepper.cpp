@@ -44,13 +44,28 @@ ConservingStepper::ConservingStepper(std::shared_ptr<const CondensedPlate> plate
     endColumns_ = denseColumns(endMatrix_);
     midQP_ = std::make_unique<BoxQP>(*midColumns_);
     endQP_ = std::make_unique<BoxQP>(*endColumns_);
-    for (Eigen::VectorXd* v : {&rhs_, &dq_, &qNext_, &momentumNext_, &modalForce_, &qCheck_}) v->resize(m);
+    for (Eigen::VectorXd* v : {&rhs_, &dq_, &qNext_, &momentumNext_, &modalForce_, &qCheck_, &modalScratch_})
+        v->resize(m);
+    w2v_.resize(rows);
     for (Eigen::VectorXd* v : {&forceNext_, &multiplier_, &r0_, &r1_, &drFree_, &dr_, &base_, &e_, &y_})
         v->resize(rows);
     midForce_ = endForce_ = Eigen::VectorXd::Zero(rows);
     lower_ = Eigen::VectorXd::Constant(rows, obstacles_.lower);
     upper_ = Eigen::VectorXd::Constant(rows, obstacles_.upper);
     if (rows > 0) rowLoadMax_ = c.rowLoad.cwiseAbs().maxCoeff();
+}
+
+// W₂ v = ½Δt² G H⁻¹ Gᵀ v: through the modes when they are fewer than half the rows (a reduced
+// model: 2·rows·m operations instead of rows²).
+void ConservingStepper::applyW2(const Eigen::VectorXd& v, Eigen::VectorXd& out) {
+    const CondensedPlate& c = *plate_;
+    if (2 * c.modes() >= c.rows()) {
+        out.noalias() = w2_ * v;
+        return;
+    }
+    modalScratch_.noalias() = c.rowModesT * v;
+    modalScratch_.array() *= (0.5 * dt_ * dt_) * inverseH_.array();
+    out.noalias() = c.rowModesT.transpose() * modalScratch_;
 }
 
 void ConservingStepper::gatherRows(const Eigen::VectorXd& q, double p, double z, Eigen::VectorXd& r) const {
@@ -102,6 +117,7 @@ void ConservingStepper::initialize(double z0, double p0) {
         int solves = 0;
         solveContact(*endQP_, r, s.rowState, endForce_, y, solves);
         s.force = endForce_;
+        s.boundary = 0.5 * s.force.dot(y - r);
     }
     s.qPrev = s.qPrev2 = s.q;
     s.momentum = Eigen::VectorXd::Zero(m);
@@ -110,6 +126,7 @@ void ConservingStepper::initialize(double z0, double p0) {
     s.p = s.pPrev = s.pPrev2 = p0;
     s.contactRows =
         static_cast<int>(std::count_if(s.rowState.begin(), s.rowState.end(), [](signed char x) { return x != 0; }));
+    refreshDerived();
     margin_ = -1.0;
 }
 
@@ -122,33 +139,35 @@ void ConservingStepper::setLoadAtStart(double p0) {
         int solves = 0;
         solveContact(*endQP_, r0_, s.rowState, endForce_, y_, solves);
         s.force = endForce_;
+        s.boundary = 0.5 * s.force.dot(y_ - r0_);
         s.forcePrev = s.forcePrev2 = s.force;
         s.contactRows =
             static_cast<int>(std::count_if(s.rowState.begin(), s.rowState.end(), [](signed char x) { return x != 0; }));
     }
+    refreshDerived();
     margin_ = -1.0;
 }
 
 void ConservingStepper::checkInputs(double zNext, double pNext) const {
+    const bool finite = std::isfinite(zNext) && std::isfinite(pNext);
+    const bool inRange = std::fabs(zNext) <= kMaxDisplacement && std::fabs(pNext) <= kMaxLoad;
+    const bool between = zNext >= obstacles_.lower && zNext <= obstacles_.upper;
+    if (finite && inRange && between) return;  // the message is built only for a refusal
     const double t = double(state_.step + 1) * dt_;
     std::ostringstream msg;
     msg.precision(15);
-    if (!std::isfinite(zNext) || !std::isfinite(pNext)) {
+    if (!finite) {
         msg << "non-finite input at t = " << t << ": base_displacement = " << zNext << ", load = " << pNext;
-        throw StepError(msg.str());
-    }
-    if (!(std::fabs(zNext) <= kMaxDisplacement && std::fabs(pNext) <= kMaxLoad)) {
+    } else if (!inRange) {
         msg << "input out of range at t = " << t << ": base_displacement = " << zNext << ", load = " << pNext
             << " (allowed: |base_displacement| <= " << kMaxDisplacement << " m, |load| <= " << kMaxLoad << " Pa)";
-        throw StepError(msg.str());
-    }
-    if (zNext < obstacles_.lower || zNext > obstacles_.upper) {
+    } else {
         msg << "base_displacement = " << zNext << " at t = " << t << " puts the clamped edge past "
             << (zNext < obstacles_.lower ? "obstacle_lower = " : "obstacle_upper = ")
             << (zNext < obstacles_.lower ? obstacles_.lower : obstacles_.upper)
             << " (allowed: obstacle_lower <= base_displacement <= obstacle_upper)";
-        throw StepError(msg.str());
     }
+    throw StepError(msg.str());
 }
 
 // Free flight without looking at the rows: since the last look they can have moved by at most
@@ -187,12 +206,14 @@ void ConservingStepper::step(double zNext, double pNext) {
             margin_ = margin;
         }
     }
-    multiplier_.setZero();
-    forceNext_.setZero();
+    // The contact buffers are zero in free flight: cleared only when the last use left them not.
+    if (multiplierUsed_) multiplier_.setZero();
+    multiplierUsed_ = contact;
+    if (!forceNextZero_) forceNext_.setZero();
     if (contact) {
         gatherRows(s.q, s.p, s.z, r0_);
         drFree_ = r1_ - r0_;
-        discreteGradient(0.5 * s.force.dot(c.delassus * s.force));
+        discreteGradient(s.boundary);
         // Δq = Δq_free + ½Δt² H⁻¹ Gᵀ Λ.
         modalForce_.noalias() = c.rowModesT * multiplier_;
         dq_.noalias() += (0.5 * dt * dt) * inverseH_.cwiseProduct(modalForce_);
@@ -210,8 +231,9 @@ void ConservingStepper::step(double zNext, double pNext) {
     const double damped = dq_.dot(damping_.cwiseProduct(dq_)) / dt;
     rhs_.noalias() =
         pMid * c.modalLoad - 0.5 * c.omega2.cwiseProduct(s.q + qNext_) + modalForce_ - damping_.cwiseProduct(dq_) / dt;
-    const double onRigid = c.modalBaseInertia.dot(rhs_) - multiplier_.sum();  // clamp + load on the plate
-    const double work = pMid * c.modalLoad.dot(dq_) - dp * multiplier_.dot(c.rowLoad) + dz * onRigid;
+    const double contactSum = contact ? multiplier_.sum() : 0.0, onLoad = contact ? multiplier_.dot(c.rowLoad) : 0.0;
+    const double onRigid = c.modalBaseInertia.dot(rhs_) - contactSum;  // clamp + load on the plate
+    const double work = pMid * c.modalLoad.dot(dq_) - dp * onLoad + dz * onRigid;
     ConservingState& st = state_;
     st.clampForce = onRigid - pMid * c.loadResultant;
     st.clampMoment = c.modalRotationInertia.dot(rhs_) - pMid * c.loadMoment;
@@ -253,14 +275,19 @@ void ConservingStepper::discreteGradient(double psi0) {
                                std::numeric_limits<double>::min();
     for (int it = 1;; ++it) {
         base_.noalias() = r0_ + 0.5 * drFree_;
-        if (it > 1) base_.noalias() += 0.5 * (w2_ * e_);
+        if (it > 1) {
+            applyW2(e_, w2v_);
+            base_.noalias() += 0.5 * w2v_;
+        }
         solveContact(*midQP_, base_, midTrial_, midForce_, y_, solves_);
         lambda = midForce_ + e_;  // Λ
-        dr_.noalias() = drFree_ + w2_ * lambda;
+        applyW2(lambda, w2v_);
+        dr_.noalias() = drFree_ + w2v_;
         r1_.noalias() = r0_ + dr_;
         solveContact(*endQP_, r1_, rowTrial_, endForce_, y_, solves_);
         forceNext_ = endForce_;
         const double psi1 = 0.5 * forceNext_.dot(y_ - r1_);  // ½ λ1ᵀ D λ1
+        boundaryNext_ = psi1;
         const double residual = psi0 - psi1 - lambda.dot(dr_);
         const double scale = psi0 + psi1 + std::abs(lambda.dot(dr_)) + energyScale;
         iterations_ = it;
@@ -284,8 +311,10 @@ void ConservingStepper::commit(double zNext, double pNext, double work, double d
     // The mass moving with the clamp (discarded modes) and the massless part's load terms enter
     // the energy (T.17a); their changes are booked as the inputs' work (T.17d).
     const double zDot = (s.z - s.zPrev) / dt, zDotNext = (zNext - s.z) / dt;
-    const double loadTerms = pNext * forceNext_.dot(c.rowLoad) + 0.5 * pNext * pNext * c.loadFlexibility -
-                             (s.p * s.force.dot(c.rowLoad) + 0.5 * s.p * s.p * c.loadFlexibility);
+    const bool nextZero = solves_ == 0;  // a free step leaves λ_{n+1} = 0
+    const double loadTerms =
+        (nextZero ? 0.0 : pNext * forceNext_.dot(c.rowLoad)) + 0.5 * pNext * pNext * c.loadFlexibility -
+        ((forceZero_[0] ? 0.0 : s.p * s.force.dot(c.rowLoad)) + 0.5 * s.p * s.p * c.loadFlexibility);
     s.energyInput += work + 0.5 * c.clampMass * (zDotNext * zDotNext - zDot * zDot) + loadTerms;
     s.energyDamped += damped;
     // The clamp-carried mass's inertia at t_n (its work pairs with (z⁺ − z⁻)/2, §17).
@@ -299,6 +328,9 @@ void ConservingStepper::commit(double zNext, double pNext, double work, double d
     s.forcePrev2.swap(s.forcePrev);
     s.forcePrev.swap(s.force);
     s.force.swap(forceNext_);
+    forceNextZero_ = forceZero_[2];
+    forceZero_ = {nextZero, forceZero_[0], forceZero_[1]};
+    s.boundary = solves_ > 0 ? boundaryNext_ : 0.0;
     s.zPrev2 = s.zPrev;
     s.zPrev = s.z;
     s.z = zNext;
@@ -309,11 +341,12 @@ void ConservingStepper::commit(double zNext, double pNext, double work, double d
     if (solves_ > 0) {
         s.rowState.swap(rowTrial_);
         s.midState.swap(midTrial_);
-    } else {
+        s.contactRows =
+            static_cast<int>(std::count_if(s.rowState.begin(), s.rowState.end(), [](signed char x) { return x != 0; }));
+    } else if (s.contactRows > 0) {
         std::fill(s.rowState.begin(), s.rowState.end(), 0);
+        s.contactRows = 0;
     }
-    s.contactRows =
-        static_cast<int>(std::count_if(s.rowState.begin(), s.rowState.end(), [](signed char x) { return x != 0; }));
     s.lcpSolves += solves_;
     s.gradientIterationsLast = iterations;
     s.gradientIterationsMax = std::max(s.gradientIterationsMax, iterations);
@@ -326,8 +359,7 @@ double ConservingStepper::energy() const {
     const double zDot = (s.z - s.zPrev) / dt_;
     const double kinetic = 0.5 * s.momentum.squaredNorm() + 0.5 * c.clampMass * zDot * zDot;
     // Strain energy: ½ qᵀΩ²q + ½ bᵀ S b of the massless part b = S⁻¹Q0ᵀ(pF + Cᵀλ) (T.17a).
-    const double massless =
-        0.5 * s.force.dot(c.delassus * s.force) + s.p * s.force.dot(c.rowLoad) + 0.5 * s.p * s.p * c.loadFlexibility;
+    const double massless = s.boundary + s.p * s.force.dot(c.rowLoad) + 0.5 * s.p * s.p * c.loadFlexibility;
     return kinetic + 0.5 * s.q.dot(c.omega2.cwiseProduct(s.q)) + massless;
 }
 
@@ -338,12 +370,23 @@ double ConservingStepper::rowHeight(int i, int level) const {
     const Eigen::VectorXd& f = level == 0 ? s.force : level == 1 ? s.forcePrev : s.forcePrev2;
     const double z = level == 0 ? s.z : level == 1 ? s.zPrev : s.zPrev2;
     const double p = level == 0 ? s.p : level == 1 ? s.pPrev : s.pPrev2;
-    return c.rowModesT.col(i).dot(q) + p * c.rowLoad[i] + z + c.delassus.row(i).dot(f);
+    const double heldBack = f.isZero(0.0) ? 0.0 : c.delassus.col(i).dot(f);  // D symmetric: column = row
+    return c.rowModesT.col(i).dot(q) + p * c.rowLoad[i] + z + heldBack;
 }
 
 void ConservingStepper::setState(const ConservingState& s) {
     state_ = s;
     margin_ = -1.0;  // the free-flight bound restarts from a full look
+    refreshDerived();
+}
+
+void ConservingStepper::refreshDerived() {
+    const ConservingState& s = state_;
+    forceZero_ = {s.force.isZero(0.0), s.forcePrev.isZero(0.0), s.forcePrev2.isZero(0.0)};
+    forceNext_.setZero();
+    forceNextZero_ = true;
+    multiplier_.setZero();
+    multiplierUsed_ = false;
 }
 
 // The flat form for FMU states: a format tag, the sizes, then every member in one order, written
@@ -356,7 +399,7 @@ template <class State, class Visit>
 void members(State& s, Visit& visit) {
     for (auto* v : {&s.q, &s.qPrev, &s.qPrev2, &s.momentum}) visit.vector(*v, visit.modes);
     for (auto* v : {&s.force, &s.forcePrev, &s.forcePrev2}) visit.vector(*v, visit.rows);
-    for (auto* x : {&s.z, &s.zPrev, &s.zPrev2, &s.p, &s.pPrev, &s.pPrev2, &s.energyInput, &s.energyDamped,
+    for (auto* x : {&s.z, &s.zPrev, &s.zPrev2, &s.p, &s.pPrev, &s.pPrev2, &s.energyInput, &s.energyDamped, &s.boundary,
                     &s.maxKktResidual, &s.clampForce, &s.clampMoment, &s.stepContactForce[0], &s.stepContactForce[1],
                     &s.stepContactMoment, &s.contactImpulseSum[0], &s.contactImpulseSum[1]})
         visit.real(*x);

@@ -15,6 +15,7 @@
 // step is the diagonal midpoint step; a bound on how far the rows can have moved since they were
 // last looked at skips even the look (as the modal engine's free-flight bound does).
 #include <Eigen/Core>
+#include <array>
 #include <memory>
 #include <vector>
 
@@ -29,6 +30,7 @@ struct ConservingState {
     Eigen::VectorXd q, qPrev, qPrev2;  // massive modal coordinates at t_n, t_{n−1}, t_{n−2}
     Eigen::VectorXd momentum;  // P_n = q̇_n + b_m ż_n
     Eigen::VectorXd force, forcePrev, forcePrev2;  // λ*(r) at t_n, t_{n−1}, t_{n−2} (per row, N)
+    double boundary = 0;  // ψ(r_n) = ½ λ_nᵀ D λ_n, the massless part's contact energy at t_n
     double z = 0, zPrev = 0, zPrev2 = 0;  // base at t_n, t_{n−1}, t_{n−2}
     double p = 0, pPrev = 0, pPrev2 = 0;  // pressure at t_n, t_{n−1}, t_{n−2}
     long long step = 0;
@@ -80,10 +82,12 @@ private:
     void checkInputs(double zNext, double pNext) const;
     bool farFromObstacles(double zNext, double pNext);
     void gatherRows(const Eigen::VectorXd& q, double p, double z, Eigen::VectorXd& r) const;
+    void applyW2(const Eigen::VectorXd& v, Eigen::VectorXd& out);
     void discreteGradient(double psi0);  // Λ into multiplier_, from r0_, drFree_
     void solveContact(BoxQP& qp, const Eigen::VectorXd& free, std::vector<signed char>& state, Eigen::VectorXd& force,
                       Eigen::VectorXd& y, int& solves);
     void commit(double zNext, double pNext, double work, double damped, int iterations);
+    void refreshDerived();  // what is derived from the state (which force levels are zero)
 
     std::shared_ptr<const CondensedPlate> plate_;
     Obstacles obstacles_;
@@ -97,11 +101,17 @@ private:
     ConservingState state_;
     // Step buffers, allocated once.
     Eigen::VectorXd rhs_, dq_, qNext_, momentumNext_, forceNext_, multiplier_, modalForce_;
+    Eigen::VectorXd modalScratch_, w2v_;
     Eigen::VectorXd r0_, r1_, drFree_, dr_, base_, e_, y_, lower_, upper_;
     // Each contact solve's own multipliers (BoxQP keeps them zero off its active set).
     Eigen::VectorXd midForce_, endForce_;
     std::vector<signed char> rowTrial_, midTrial_;
     int iterations_ = 0, solves_ = 0;
+    double boundaryNext_ = 0.0;
+    // Which of λ_n, λ_{n−1}, λ_{n−2} and the next level's buffer are zero (free flight touches none
+    // of the row-sized vectors).
+    std::array<bool, 3> forceZero_{{true, true, true}};
+    bool forceNextZero_ = true, multiplierUsed_ = false;
     double kkt_ = 0.0;
     // Free-flight bound: at the last look the rows were margin_ inside the obstacles with the
     // plate at qCheck_, the base at zCheck_ and the load at pCheck_.

@@ -4,6 +4,8 @@
 //   plate_bench [key=value ...]   keys: element=argyris|fvs nx ny dt beta steps amplitude
 //                                 frequency gap (both obstacles at ±gap; gap=0 disables them)
 //                                 modes initial_load lower_only=0|1
+//                                 mass=consistent|singular_p0|singular_p1dg
+//                                 scheme=newmark|conserving (time_scheme, docs/theory.md §17)
 //                                 engine=auto|sparse|modal (how exact mode runs)
 //                                 port=1 (read the port's outputs too, every communication step)
 //                                 series=FILE (CSV of the outputs every communication step;
@@ -184,6 +186,11 @@ int main(int argc, char** argv) {
                    : e == "modal" ? plate::PlateParameters::Engine::CompleteModal
                                   : plate::PlateParameters::Engine::Auto;
     }
+    if (args.count("mass"))
+        p.mass = args["mass"] == "singular_p0"     ? plate::MassModel::SingularP0
+                 : args["mass"] == "singular_p1dg" ? plate::MassModel::SingularP1dg
+                                                   : plate::MassModel::Consistent;
+    if (args.count("scheme") && args["scheme"] == "conserving") p.timeScheme = plate::TimeScheme::Conserving;
     p.memoryLimit = num("memory_limit", 0.0);
     if (args.count("export")) return exportMatrices(p, args["export"]);
     if (num("estimate_only", 0) != 0) return printEstimate(p);
