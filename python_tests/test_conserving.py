@@ -250,3 +250,18 @@ def test_what_it_cannot_take_is_refused_with_a_message(fmu_path, parameters, nam
         assert any(f"invalid parameter {named}" in m for m in plate.errors()), plate.errors()
     finally:
         plate.free()
+
+
+def test_memory_estimate_refuses_beyond_the_budget(fmu_path):
+    # 28 x 10 cells: 560 massive coordinates, 319 rows; estimated ~35 MB (docs/performance.md).
+    plate = PlateImpactFMU(fmu_path, initialize=False)
+    try:
+        plate.fmu.setupExperiment(startTime=0.0)
+        plate.fmu.enterInitializationMode()
+        for name, value in {"nx": 28, "ny": 10, "memory_limit": 5.0, **CONSERVING}.items():
+            plate.set(name, value)
+        with pytest.raises(FMICallException):
+            plate.fmu.exitInitializationMode()
+        assert any("memory_limit" in m for m in plate.errors()), plate.errors()
+    finally:
+        plate.free()

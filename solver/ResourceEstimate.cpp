@@ -169,6 +169,7 @@ bool completeModalPays(long long n, long long m, long long stiffnessNonZeros) {
 
 EngineKind engineFor(const PlateParameters& p, const ProblemSize& size) {
     using Engine = PlateParameters::Engine;
+    if (p.timeScheme == TimeScheme::Conserving) return EngineKind::Conserving;
     const bool modal =
         !p.singularMass() &&
         (p.modes > 0 || p.engine == Engine::CompleteModal ||
@@ -220,7 +221,18 @@ ResourceEstimate estimateResources(const PlateParameters& p, const ProblemSize& 
     double phases = std::max(assembly, clampPeak);
     if (p.beta < 0.25) phases = std::max(phases, clamped + factorBytes(s) + lower);  // κ_h: factor of M
     double engineBytes = 0.0;
-    if (e.engine == EngineKind::Sparse) {
+    // The conserving engine (CondensedPlate.cpp): the factor of K, then dense matrices over the
+    // massive coordinates (q: one per element, three for P1dg) and the constraint rows (r: the
+    // contact vertices and an output point): T, its eigenvectors and the eigen solver's workspace
+    // (4 q², measured), C K⁻¹ R and its product with Φ (2 r q), and about sixteen r × r matrices (C K⁻¹ Cᵀ, D,
+    // W₂, the two contact matrices and their QP columns, the static problem's).
+    const double massive = double(s.elements) * (p.mass == MassModel::SingularP1dg ? 3.0 : 1.0);
+    const double rows = double(s.contactVertices) + 1.0;
+    if (e.engine == EngineKind::Conserving) {
+        e.factorsMB = factorBytes(s) / kMB;
+        engineBytes = kDouble * (4 * massive * massive + 2 * rows * massive + 16 * rows * rows);
+        phases = std::max(phases, e.matricesMB * kMB + factorBytes(s) + lower + engineBytes);
+    } else if (e.engine == EngineKind::Sparse) {
         // The step factor of A, then the factor of K for the static state beside it.
         e.factorsMB = 2 * factorBytes(s) / kMB;
         phases = std::max(phases, clamped + kEntry * z + lower + factorBytes(s));
@@ -247,10 +259,19 @@ ResourceEstimate estimateResources(const PlateParameters& p, const ProblemSize& 
     e.assemblySeconds = perEntry * t * (p.singularMass() ? 2.0 : 1.0) + kPerPatternEntry * (t + zFull);
     const double oneFactor = kPerAnalysisEntry * z + kPerFactorFlop * s.factorFlops;
     if (e.engine != EngineKind::ReducedModal) e.factorSeconds = 2 * oneFactor;
+    if (e.engine == EngineKind::Conserving) {
+        // One factor of K; a solve per massive coordinate and per row; the dense eigen solution of T.
+        e.factorSeconds = oneFactor;
+        e.spectrumSeconds =
+            (massive + rows) * 4.0 * (l + z) * kPerFactorFlop + kPerDenseEigenCube * massive * massive * massive;
+    }
     if (p.beta < 0.25) e.spectrumSeconds += oneFactor + kPowerIterations * kPerFactorFlop * 4.0 * (l + z);
     e.staticSeconds = kPerAnalysisEntry * z;  // the QP of the static state is small without contact
     e.initSeconds = e.assemblySeconds + e.factorSeconds + e.spectrumSeconds + e.staticSeconds;
-    if (e.engine == EngineKind::Sparse) {
+    if (e.engine == EngineKind::Conserving) {
+        const double m = p.modes > 0 && p.modes < massive ? double(p.modes) : massive;
+        e.stepSeconds = kPerModalStepEntry * (8 * m + m * rows / 10);  // a look at the rows every ~10 steps
+    } else if (e.engine == EngineKind::Sparse) {
         e.stepSeconds = kPerSparseStepEntry * (2 * l + 2 * z);
     } else {
         const double m = e.engine == EngineKind::CompleteModal ? n : double(p.modes);
@@ -263,6 +284,7 @@ std::string ResourceEstimate::describe() const {
     const ProblemSize& s = size;
     const char* name = engine == EngineKind::Sparse          ? "sparse"
                        : engine == EngineKind::CompleteModal ? "modal-complete"
+                       : engine == EngineKind::Conserving    ? "conserving"
                                                              : "modal-reduced";
     char text[600];
     if (!complete) {

@@ -136,6 +136,7 @@ int printEstimate(const plate::PlateParameters& p) {
         const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
         const char* engine = e.engine == plate::EngineKind::Sparse          ? "sparse"
                              : e.engine == plate::EngineKind::CompleteModal ? "modal-complete"
+                             : e.engine == plate::EngineKind::Conserving    ? "conserving"
                                                                             : "modal-reduced";
         std::printf(
             "{\"element\": \"%s\", \"nx\": %d, \"ny\": %d, \"engine\": \"%s\", \"dofs\": %lld, \"nnz_k\": %lld, "

@@ -1,0 +1,259 @@
+"""Speed against error after impact, per impact law (docs/performance.md, "After impact"), and the
+per-step cost of the conserving engine against the paper's scheme, measured in one run with the
+C++ benchmark (solver/bench/plate_bench; no FMI layer in the timings).
+
+    python tools/impact_speed_error.py [--repo .] [--quick] [--markdown docs/performance.md]
+                                       [--figure docs/figures/impact_pareto.png] [--json out.json]
+
+Laws: the paper's scheme (consistent mass), singular_p0 (the three-level scheme with a singular
+mass), conserving (time_scheme = conserving, docs/theory.md §17) and its reduced models (modes = m).
+Each is run on the §5.2 release scene (8600 Pa, lower obstacle, 0.5 s) at dt = 4e-5 … 2.5e-6 and
+compared with its own family's reference at dt = 1.25e-6 (same mesh): the energy after 0.5 s, the
+onsets of impacts 1 and 2, and corner_1 over the first 0.3 s, against CPU time per simulated second.
+"""
+
+from __future__ import annotations
+
+import argparse
+import csv
+import json
+import subprocess
+import tempfile
+from pathlib import Path
+
+import numpy as np
+
+RELEASE = ["amplitude=0", "initial_load=8600", "lower_only=1"]
+LAWS = {
+    "paper": [],
+    "singular_p0": ["mass=singular_p0"],
+    "conserving": ["mass=singular_p0", "scheme=conserving"],
+    "conserving m=80": ["mass=singular_p0", "scheme=conserving", "modes=80"],
+    "conserving m=40": ["mass=singular_p0", "scheme=conserving", "modes=40"],
+    "conserving m=20": ["mass=singular_p0", "scheme=conserving", "modes=20"],
+}
+DTS = [4e-5, 2e-5, 1e-5, 5e-6, 2.5e-6]
+REFERENCE_DT = 1.25e-6
+STOP = 0.5
+
+
+def bench(repo: Path, *args: str) -> dict:
+    exe = repo / "build" / "solver" / "bench" / "plate_bench"
+    out = subprocess.run([str(exe), *args, "floor_repeats=20"], check=True, capture_output=True, text=True)
+    return json.loads(out.stdout)
+
+
+def simulate(repo: Path, law: list[str], dt: float, mesh: list[str]) -> dict:
+    """One run on the release scene; the series every max(dt, 2.5e-6) s."""
+    comm = max(dt, 2.5e-6)
+    with tempfile.NamedTemporaryFile(suffix=".csv") as series:
+        result = bench(
+            repo,
+            *mesh,
+            *RELEASE,
+            *law,
+            f"dt={dt}",
+            f"steps={round(STOP / dt)}",
+            f"comm={comm}",
+            f"series={series.name}",
+        )
+        with open(series.name) as f:
+            rows = list(csv.DictReader(f))
+    t = np.array([float(r["time"]) for r in rows])
+    contact = np.array([float(r["contact_vertices"]) > 0 for r in rows])
+    onsets = [t[k] for k in range(1, len(t)) if contact[k] and not contact[k - 1]]
+    episodes = [onsets[0]] if onsets else []
+    for o in onsets[1:]:  # a new episode: more than 0.05 s after the last onset
+        if o - episodes[-1] > 0.05:
+            episodes.append(o)
+    return {
+        "t": t,
+        "corner_1": np.array([float(r["corner_1"]) for r in rows]),
+        "energy": np.array([float(r["energy"]) for r in rows]),
+        "episodes": episodes,
+        "cpu_per_second": result["step_cpu_s"] / dt,
+    }
+
+
+def compare(run: dict, ref: dict) -> dict:
+    window = np.arange(0.0, 0.3 + 1e-12, 1e-4)
+    corner = np.interp(window, run["t"], run["corner_1"]) - np.interp(window, ref["t"], ref["corner_1"])
+    e0 = run["energy"][0]
+    impacts = [
+        abs(a - b) if a is not None and b is not None else float("nan")
+        for a, b in zip((run["episodes"] + [None, None])[:2], (ref["episodes"] + [None, None])[:2])
+    ]
+    return {
+        "energy_loss": (e0 - run["energy"][-1]) / e0,
+        "energy_error": abs(run["energy"][-1] - ref["energy"][-1]) / e0,
+        "impact_1_error": impacts[0],
+        "impact_2_error": impacts[1],
+        "corner_error": float(np.max(np.abs(corner))),
+        "cpu_per_second": run["cpu_per_second"],
+        "impacts": [round(x, 6) for x in run["episodes"][:3]],
+    }
+
+
+def per_step_costs(repo: Path, repeats: int) -> list[dict]:
+    """Per-step CPU time, best of `repeats`, interleaved so the machine's load hits all alike."""
+    cases = [
+        ("§5.2, 14 x 5", ["nx=14", "ny=5", *RELEASE, "steps=50000"]),
+        ("default scene, 14 x 5", ["nx=14", "ny=5", "steps=50000"]),
+        ("§5.2, 28 x 10", ["nx=28", "ny=10", *RELEASE, "steps=50000"]),
+    ]
+    variants = {
+        "paper": [],
+        "conserving": LAWS["conserving"],
+        "conserving m=40": LAWS["conserving m=40"],
+        "conserving m=20": LAWS["conserving m=20"],
+    }
+    best: dict = {}
+    for _ in range(repeats):
+        for scene, args in cases:
+            for name, law in variants.items():
+                cost = bench(repo, *args, *law)["step_cpu_s"]
+                key = (scene, name)
+                best[key] = min(best.get(key, cost), cost)
+    rows = []
+    for scene, _ in cases:
+        paper, full = best[(scene, "paper")], best[(scene, "conserving")]
+        for name in variants:
+            cost = best[(scene, name)]
+            rows.append(
+                {
+                    "scene": scene,
+                    "law": name,
+                    "step_us": cost * 1e6,
+                    "over_paper": cost / paper,
+                    "speedup_over_conserving": full / cost,
+                }
+            )
+    return rows
+
+
+def markdown(costs: list[dict], errors: dict, verdicts: dict) -> str:
+    lines = [
+        "<!-- impact-speed-error: written by tools/impact_speed_error.py; do not edit by hand -->",
+        "",
+        "Per-step CPU time (best of the runs, interleaved in one invocation of the script), the "
+        "default communication step 1e-4 s, outputs read every communication step:",
+        "",
+        "| scene | law | µs per step | × the paper's scheme | speed-up over the full conserving engine |",
+        "|---|---|---:|---:|---:|",
+    ]
+    for r in costs:
+        lines.append(
+            f"| {r['scene']} | {r['law']} | {r['step_us']:.3f} | {r['over_paper']:.2f} | "
+            f"{r['speedup_over_conserving']:.1f} |"
+        )
+    lines += [
+        "",
+        "After impact, §5.2 (14 × 5 Argyris, 0.5 s), each law against its own reference at "
+        f"dt = {REFERENCE_DT:g} s (same mesh); energy loss = (E0 − E(0.5 s))/E0:",
+        "",
+        "| law | dt (s) | CPU s per simulated s | energy loss | impact 1 error (s) | impact 2 error (s) | "
+        "corner_1 error over 0.3 s (m) |",
+        "|---|---:|---:|---:|---:|---:|---:|",
+    ]
+    for law, runs in errors.items():
+        for dt, e in runs.items():
+            lines.append(
+                f"| {law} | {dt:g} | {e['cpu_per_second']:.3g} | {e['energy_loss']:.3g} | "
+                f"{e['impact_1_error']:.2g} | {e['impact_2_error']:.2g} | {e['corner_error']:.2g} |"
+            )
+    lines += ["", "Verdicts (does the quantity converge as dt → 0?):", ""]
+    lines += [f"- **{law}**: {text}" for law, text in verdicts.items()]
+    lines += ["", "<!-- impact-speed-error: end -->"]
+    return "\n".join(lines)
+
+
+def verdict(runs: dict) -> str:
+    dts = sorted(runs, reverse=True)
+    loss = [runs[dt]["energy_loss"] for dt in dts]
+    corner = [runs[dt]["corner_error"] for dt in dts]
+    energy = (
+        "energy conserved at every dt (|loss| ≤ 1e-9)"
+        if max(abs(x) for x in loss) <= 1e-9
+        else ("energy loss shrinks with dt" if abs(loss[-1]) < 0.5 * abs(loss[0]) else "energy loss does not shrink")
+    )
+    trend = "converges" if corner[-1] < 0.5 * corner[0] else "does not converge"
+    return f"{energy}; corner_1 over 0.3 s {trend} ({corner[0]:.2g} → {corner[-1]:.2g} m)"
+
+
+def figure(errors: dict, path: Path) -> None:
+    import matplotlib
+
+    matplotlib.use("Agg")
+    import matplotlib.pyplot as plt
+
+    fig, axes = plt.subplots(1, 2, figsize=(11, 4.2))
+    for law, runs in errors.items():
+        cpu = [e["cpu_per_second"] for e in runs.values()]
+        axes[0].loglog(cpu, [max(e["corner_error"], 1e-9) for e in runs.values()], "o-", label=law)
+        axes[1].loglog(cpu, [max(abs(e["energy_loss"]), 1e-13) for e in runs.values()], "o-", label=law)
+    axes[0].set_ylabel("corner_1 error over 0.3 s (m)")
+    axes[1].set_ylabel("|energy lost| after 0.5 s / E0")
+    for ax in axes:
+        ax.set_xlabel("CPU s per simulated s")
+        ax.grid(True, which="both", alpha=0.3)
+    axes[0].legend(fontsize=8)
+    fig.suptitle("§5.2 after impact: error against cost, each law against its own finest-dt reference")
+    fig.tight_layout()
+    fig.savefig(path, dpi=110)
+
+
+def replace_section(path: Path, text: str) -> None:
+    start, end = "<!-- impact-speed-error: written", "<!-- impact-speed-error: end -->"
+    doc = path.read_text()
+    if start in doc:
+        a = doc.index(start)
+        b = doc.index(end) + len(end)
+        doc = doc[:a] + text + doc[b:]
+    else:
+        doc = doc.rstrip() + "\n\n## After impact: speed against error per law\n\n" + text + "\n"
+    path.write_text(doc)
+
+
+def main() -> None:
+    parser = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
+    parser.add_argument("--repo", type=Path, default=Path("."))
+    parser.add_argument("--quick", action="store_true", help="two dt, one repeat: a smoke run")
+    parser.add_argument("--markdown", type=Path)
+    parser.add_argument("--figure", type=Path)
+    parser.add_argument("--json", type=Path)
+    args = parser.parse_args()
+    repo = args.repo.resolve()
+    dts = DTS[1:3] if args.quick else DTS
+    laws = {k: v for k, v in LAWS.items() if not args.quick or k in ("paper", "conserving")}
+    costs = per_step_costs(repo, 1 if args.quick else 3)
+    for r in costs:
+        print(
+            f"{r['scene']:24s} {r['law']:18s} {r['step_us']:8.3f} us/step  x{r['over_paper']:.2f} of paper  "
+            f"speed-up {r['speedup_over_conserving']:.1f}"
+        )
+    errors = {}
+    for law, flags in laws.items():
+        ref = simulate(repo, flags, REFERENCE_DT if not args.quick else 5e-6, ["nx=14", "ny=5"])
+        errors[law] = {dt: compare(simulate(repo, flags, dt, ["nx=14", "ny=5"]), ref) for dt in dts}
+        for dt, e in errors[law].items():
+            print(
+                f"{law:18s} dt={dt:<8g} loss={e['energy_loss']:+.3e} impacts={e['impacts']} "
+                f"corner={e['corner_error']:.2e} cpu/s={e['cpu_per_second']:.3g}"
+            )
+    verdicts = {law: verdict(runs) for law, runs in errors.items()}
+    for law, text in verdicts.items():
+        print(f"verdict {law}: {text}")
+    if args.markdown:
+        replace_section(args.markdown, markdown(costs, errors, verdicts))
+    if args.figure:
+        figure(errors, args.figure)
+    if args.json:
+        args.json.write_text(
+            json.dumps(
+                {"costs": costs, "errors": {k: {str(d): v for d, v in r.items()} for k, r in errors.items()}}, indent=1
+            )
+        )
+
+
+if __name__ == "__main__":
+    main()
