@@ -264,12 +264,13 @@ int main(int argc, char** argv) {
             "%.6g, "
             "\"step_cpu_s\": %.6g, \"floor_cpu_s\": %.6g, "
             "\"floor_solve_s\": %.6g, \"step_over_floor\": %.4g, \"qp_iterations_total\": %.0f, "
-            "\"energy_dissipated\": %.10g, \"checksum\": %.10g, %s%s}\n",
+            "\"energy_dissipated\": %.10g, \"impacts_lower\": %.0f, \"impacts_upper\": %.0f, \"checksum\": %.10g, "
+            "%s%s}\n",
             p.element == plate::ElementType::Fvs ? "fvs" : "argyris", p.nx, p.ny, p.dt, p.beta, p.modes,
             sim.engine().c_str(), static_cast<long>(sim.dofCount()), steps,
             std::chrono::duration<double>(t1 - t0).count(), std::chrono::duration<double>(t3 - t2).count(), perStep,
-            (cpu3 - cpu2) / steps, floorCpu, floor, perStep / floor, o.qpIterationsTotal, o.energyDissipated, energySum,
-            resources.c_str(), spectrum.c_str());
+            (cpu3 - cpu2) / steps, floorCpu, floor, perStep / floor, o.qpIterationsTotal, o.energyDissipated,
+            o.impacts[0], o.impacts[1], energySum, resources.c_str(), spectrum.c_str());
     } catch (const std::exception& e) {
         std::fprintf(stderr, "plate_bench: %s\n", e.what());
         return 1;
