@@ -228,3 +228,37 @@ def test_bad_port_inputs_are_refused_with_a_message(fmu_path):
         with pytest.raises(Exception):
             plate.fmu.setInteger([plate.vars["base_drive"].valueReference], [4])
         assert any("base_drive" in m for m in plate.errors())
+
+
+@pytest.mark.parametrize(
+    "law",
+    [
+        {},
+        {"mass": "singular_p0"},
+        {"mass": "singular_p0", "time_scheme": "conserving"},
+        {"mass": "singular_p0", "time_scheme": "conserving", "modes": 20},
+    ],
+)
+@pytest.mark.parametrize(
+    "scene",
+    [
+        {"initial_load": 1000.0},  # free: the reaction is p·L·W = 480 N
+        {"initial_load": -2000.0, "obstacle_lower": -0.012, "obstacle_upper": 0.012},  # pressed on an obstacle
+    ],
+)
+def test_port_outputs_at_t0_describe_the_initial_state(fmu_path, law, scene):
+    # Before any step the port reports the initial static state: the clamp carries what the load
+    # and the obstacles put on the plate. Held under the same load the state stays static, so the
+    # value is the one the steps then report (a second difference over dt²: roundoff ~1e-6 N).
+    p = scene["initial_load"]
+    with PlateImpactFMU(fmu_path, load0=p, **scene, **law) as plate:
+        at0 = plate.outputs()
+        later = [plate.step(DT, load=p) for _ in range(3)][-1]
+    if "obstacle_lower" not in scene:
+        assert at0["clamp_force"] == pytest.approx(p * 1.2 * 0.4, rel=1e-9)
+        assert at0["clamp_moment"] == pytest.approx(p * 1.2 * 0.4 * 0.6, rel=1e-9)
+    else:
+        assert at0["contact_vertices"] > 0
+    assert at0["clamp_force"] == pytest.approx(later["clamp_force"], rel=1e-6, abs=1e-5)
+    assert at0["clamp_moment"] == pytest.approx(later["clamp_moment"], rel=1e-6, abs=1e-5)
+    assert at0["corner_1_acceleration"] == 0.0 and at0["energy_input"] == 0.0

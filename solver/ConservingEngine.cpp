@@ -34,6 +34,7 @@ PlateOutputs ConservingEngine::outputs(bool port) const {
     };
     o.clampForce = -st.clampForce;
     o.clampMoment = -st.clampMoment;
+    if (st.step == 0) stepper.initialReaction(o.clampForce, o.clampMoment);  // no step yet (§17)
     o.clampDisplacement = st.z;
     o.clampVelocity = velocity(st.z, st.zPrev, st.zPrev2);
     o.clampAcceleration = (st.z - 2.0 * st.zPrev + st.zPrev2) / dt2;

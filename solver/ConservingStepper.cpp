@@ -374,6 +374,19 @@ double ConservingStepper::rowHeight(int i, int level) const {
     return c.rowModesT.col(i).dot(q) + p * c.rowLoad[i] + z + heldBack;
 }
 
+void ConservingStepper::initialReaction(double& force, double& moment) const {
+    const CondensedPlate& c = *plate_;
+    const ConservingState& s = state_;
+    const Eigen::VectorXd rate = s.p * c.modalLoad - c.omega2.cwiseProduct(s.q) + c.rowModesT * s.force;
+    double contact = 0.0, contactMoment = 0.0;
+    for (Eigen::Index i = 0; i < s.force.size(); ++i) {
+        contact += s.force[i];
+        contactMoment += s.force[i] * c.rowAbscissae[static_cast<std::size_t>(i)];
+    }
+    force = -(c.modalBaseInertia.dot(rate) - contact - s.p * c.loadResultant);
+    moment = -(c.modalRotationInertia.dot(rate) - contactMoment - s.p * c.loadMoment);
+}
+
 void ConservingStepper::setState(const ConservingState& s) {
     state_ = s;
     margin_ = -1.0;  // the free-flight bound restarts from a full look

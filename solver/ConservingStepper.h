@@ -66,6 +66,9 @@ public:
 
     // E_n = ½|P|² + ½ m_c ż² + ½ qᵀΩ²q + (strain energy of the massless part), J (T.17a).
     double energy() const;
+    // What the plate at t_n, at rest, exerts on the clamp: −R with R from the instantaneous rates
+    // Ṗ = −Ω²q + p F_m + Gᵀλ (docs/theory.md §17); the port's outputs before the first step.
+    void initialReaction(double& force, double& moment) const;
     // Absolute height of constraint row i at t_n, t_{n−1}, t_{n−2} (level 0, 1, 2).
     double rowHeight(int i, int level = 0) const;
 

@@ -71,6 +71,10 @@ void NewmarkEngine::portOutputs(PlateOutputs& o) const {
         o.velocity[k] = velocity(now, prev, prev2);
         o.acceleration[k] = (now - 2.0 * prev + prev2) / dt2;
     }
+    if (st.step == 0) {  // no step yet: the initial static state's reaction (§14)
+        o.clampForce = initialForce_;
+        o.clampMoment = initialMoment_;
+    }
     for (int k = 0; k < 2; ++k) {
         o.contactForce[k] = st.stepContactForce[k];
         o.contactImpulse[k] = st.contactImpulseSum[k];

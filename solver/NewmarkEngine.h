@@ -29,6 +29,11 @@ public:
     double kappa() const override;
 
     NewmarkContactStepper& stepper() { return *stepper_; }
+    // The clamp's load at t = 0: the initial static state's reaction (force N, moment N·m).
+    void setInitialReaction(double force, double moment) {
+        initialForce_ = force;
+        initialMoment_ = moment;
+    }
 
 private:
     void portOutputs(PlateOutputs& o) const;
@@ -37,6 +42,7 @@ private:
     std::unique_ptr<NewmarkContactStepper> stepper_;
     int vertexCount_;
     PointProbe corner1_, corner2_, freeEdgeMid_;
+    double initialForce_ = 0.0, initialMoment_ = 0.0;
     mutable long long energyStep_ = -1;
     mutable double energyCache_ = 0.0, kappa_ = -1.0;
 };

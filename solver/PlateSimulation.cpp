@@ -194,24 +194,25 @@ void PlateSimulation::initializeState(const Obstacles& obstacles, double baseDis
                                       const Eigen::SparseMatrix<double>& couplingFree) {
     Impl& s = *impl_;
     const PlateParameters& p = s.parameters;
-    Eigen::VectorXd w0;
+    Eigen::VectorXd w0, force;
     const auto* modalPlate = dynamic_cast<const ModalPlate*>(s.discrete.get());
     if (modalPlate && modalPlate->complete()) {
         // Exact mode in modal coordinates: solve the static problem with the sparse factor of
         // K (roundoff ~eps·cond(K) rather than the dense eigen solution's eps·λ_max/λ_1) and
         // change coordinates, α0 = ΦᵀM w0, exact for the complete basis.
         const FullOrderPlate full(s.space, s.clamped, p.dt, p.beta);
-        w0 = modalPlate->fromFullSpace(staticEquilibrium(full, obstacles, baseDisplacement0, p.initialLoad));
+        w0 = modalPlate->fromFullSpace(staticEquilibrium(full, obstacles, baseDisplacement0, p.initialLoad, &force));
     } else if (!p.singularMass()) {
-        w0 = staticEquilibrium(*s.discrete, obstacles, baseDisplacement0, p.initialLoad);
+        w0 = staticEquilibrium(*s.discrete, obstacles, baseDisplacement0, p.initialLoad, &force);
     }
     if (!p.singularMass()) {
+        setInitialReaction(force);
         s.stepper->initialize(w0, baseDisplacement0, 0.0);
     } else {
         // §11: only the part of w0 the singular mass sees is initial data; the massless part
         // is in equilibrium with the load at t = 0 (unless the static state already is).
-        Eigen::VectorXd force;
         w0 = staticEquilibrium(*s.discrete, obstacles, baseDisplacement0, p.initialLoad, &force);
+        setInitialReaction(force);
         s.stepper->initialize(w0, baseDisplacement0, loadAtStart);
         if (loadAtStart != p.initialLoad) {
             w0 = masslessEquilibrium(*s.clamped, couplingFree, obstacles, baseDisplacement0, loadAtStart, w0, force);
@@ -219,6 +220,19 @@ void PlateSimulation::initializeState(const Obstacles& obstacles, double baseDis
         }
         s.stepper->setInitialContactForce(force);
     }
+}
+
+// The port at t = 0 (docs/theory.md §14): the plate at rest in the static state of initial_load
+// exerts on the clamp what the load and the obstacles put on it, p0·|Ω| + Σλ and p0·∫x + Σλ_i x_i.
+void PlateSimulation::setInitialReaction(const Eigen::VectorXd& contactForce) {
+    Impl& s = *impl_;
+    const ClampedPlate& plate = *s.clamped;
+    double force = s.parameters.initialLoad * plate.loadResultant, moment = s.parameters.initialLoad * plate.loadMoment;
+    for (Eigen::Index i = 0; i < contactForce.size(); ++i) {
+        force += contactForce[i];
+        moment += contactForce[i] * plate.contactAbscissae[static_cast<std::size_t>(i)];
+    }
+    static_cast<NewmarkEngine&>(*s.engine).setInitialReaction(force, moment);
 }
 
 PlateSimulation::~PlateSimulation() = default;

@@ -96,6 +96,7 @@ private:
                          const Eigen::SparseMatrix<double>& couplingFree);
     void buildConserving(const Obstacles& obstacles, double baseDisplacement0, double loadAtStart,
                          const Eigen::SparseMatrix<double>& rootFree);
+    void setInitialReaction(const Eigen::VectorXd& contactForce);
     PlateOutputs gridOutputs(bool port) const;
     struct Impl;
     std::unique_ptr<Impl> impl_;

@@ -67,8 +67,8 @@ void expectIdentities(const Condensed& s) {
     double loadLoad;
     s.flexibilities(rows, load, loadLoad);
     // Static flexibility = massive part G Ω⁻² Gᵀ + massless part D (every mode kept).
-    const Eigen::MatrixXd split = c.rowModesT.transpose() * c.omega2.cwiseInverse().asDiagonal() * c.rowModesT +
-                                  c.delassus;
+    const Eigen::MatrixXd split =
+        c.rowModesT.transpose() * c.omega2.cwiseInverse().asDiagonal() * c.rowModesT + c.delassus;
     EXPECT_LE((split - rows).cwiseAbs().maxCoeff(), 1e-9 * rows.cwiseAbs().maxCoeff());
     EXPECT_LE((c.rowModesT.transpose() * c.omega2.cwiseInverse().asDiagonal() * c.modalLoad + c.rowLoad - load)
                   .cwiseAbs()
@@ -86,9 +86,13 @@ void expectIdentities(const Condensed& s) {
 
 }  // namespace
 
-TEST(CondensedPlate, ArgyrisP0SplitsTheFlexibility) { expectIdentities(Condensed(ElementType::Argyris, 14, 5, MassProjection::P0)); }
+TEST(CondensedPlate, ArgyrisP0SplitsTheFlexibility) {
+    expectIdentities(Condensed(ElementType::Argyris, 14, 5, MassProjection::P0));
+}
 
-TEST(CondensedPlate, FvsP0SplitsTheFlexibility) { expectIdentities(Condensed(ElementType::Fvs, 10, 3, MassProjection::P0)); }
+TEST(CondensedPlate, FvsP0SplitsTheFlexibility) {
+    expectIdentities(Condensed(ElementType::Fvs, 10, 3, MassProjection::P0));
+}
 
 TEST(CondensedPlate, ArgyrisP1dgSplitsTheFlexibility) {
     expectIdentities(Condensed(ElementType::Argyris, 6, 2, MassProjection::P1dg));
@@ -126,8 +130,8 @@ TEST(ConservingStepper, LedgerClosesEveryStepThroughImpacts) {
         stepper.step(0.01 * std::sin(2 * M_PI * 5 * t), 100.0 * std::sin(2 * M_PI * 3 * t));
         const ConservingState& after = stepper.state();
         const double e = stepper.energy();
-        const double balance = (e - previous) - (after.energyInput - before.energyInput) +
-                               (after.energyDamped - before.energyDamped);
+        const double balance =
+            (e - previous) - (after.energyInput - before.energyInput) + (after.energyDamped - before.energyDamped);
         worst = std::max(worst, std::abs(balance));
         contactSteps += after.contactRows > 0;
         previous = e;
