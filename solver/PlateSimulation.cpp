@@ -176,12 +176,13 @@ void PlateSimulation::requireBaseBetween(const Obstacles& obstacles, double base
 // Stability of γ = ½, β < ¼ (docs/theory.md §4): Δt < 2 / √((1 − 4β) κ_h).
 void PlateSimulation::requireStableStep() const {
     const PlateParameters& p = impl_->parameters;
-    const double bound = 2.0 / std::sqrt((1.0 - 4.0 * p.beta) * kappa());
+    const double kappaH = kappa();  // a power iteration: once
+    const double bound = 2.0 / std::sqrt((1.0 - 4.0 * p.beta) * kappaH);
     if (!(p.dt < bound)) {
         std::ostringstream msg;
         msg.precision(6);
         msg << "invalid parameter dt = " << p.dt << " for beta = " << p.beta
-            << " (allowed: dt < 2/sqrt((1-4 beta) kappa_h) = " << bound << " s, kappa_h = " << kappa()
+            << " (allowed: dt < 2/sqrt((1-4 beta) kappa_h) = " << bound << " s, kappa_h = " << kappaH
             << " s^-2; or beta >= 0.25)";
         throw ParameterError(msg.str());
     }
@@ -356,7 +357,11 @@ Eigen::Index PlateSimulation::dofCount() const { return impl_->clamped->mass.row
 
 double PlateSimulation::firstFrequency() const { return impl_->engine->firstFrequency(); }
 
-double PlateSimulation::kappa() const { return impl_->engine->kappa(); }
+double PlateSimulation::kappa() const {
+    // Before the engine exists (the β < ¼ check of the constructor) from the clamped plate itself.
+    if (!impl_->engine) return largestEigenvalue(*impl_->clamped);
+    return impl_->engine->kappa();
+}
 
 double PlateSimulation::measureFloorSolveSeconds(int repeats) const {
     // The floor is one solve with the sparse factor of A = M + βΔt²K (docs/theory.md), whatever
