@@ -177,7 +177,7 @@ def test_unknown_mode_is_rejected(fmu_path, name, value):
         run.fmu.enterInitializationMode()
         with pytest.raises(FMICallException):
             run.set(name, value)
-        assert any("InputMode" in m and "hold = 1" in m for m in run.errors()), run.errors()
+        assert any(name in m and "1 = hold" in m for m in run.errors()), run.errors()
 
 
 @pytest.mark.parametrize("order, value, words", [(1, float("nan"), "NaN"), (3, 1.0, "order 3")])
