@@ -54,7 +54,10 @@ of the table below (poisson_ratio and the obstacles' heights exclude their ends:
 obstacle_lower &lt; 0 &lt; obstacle_upper); beta &lt; 0.25 beyond the stability bound on dt; a singular mass with
 modes &gt; 0, beta &lt; 0.25 or without massless directions at every contact vertex; inputs outside their min/max,
 NaN or Inf; a clamp driven past an obstacle; a communication step shorter than 1e-9 dt; calls outside the states
-FMI 2.0 allows; FMU states of another build or damaged (XXH64 checksum).</p>
+FMI 2.0 allows; FMU states of another build or damaged (XXH64 checksum). With the clamp carried (base_drive = force:
+an armature inside the FMU; tlm: the end of a transmission line to a partner FMU): armature_mass &le; 0,
+tlm_impedance &le; 0, a singular mass, a second input driving the clamp (a motion input with force or tlm, a
+drive_force with a motion drive), communication steps that are not whole multiples of dt.</p>
 <h2>Licences</h2>
 <p>The sparse factor is CHOLMOD's simplicial Cholesky (SuiteSparse 5.12.0: CHOLMOD Core and Cholesky, LGPL-2.1+;
 AMD and COLAMD, BSD-3-Clause), linked statically; texts in licenses/. The win64 binary links the GCC
