@@ -258,7 +258,10 @@ const std::vector<Row>& rows() {
          OUTPUT_FIELD(qpIterationsMax)},
         {output(kVrClampForce, "clamp_force", VariableType::Real, "N",
                 "Vertical force the plate exerts on the clamp (positive upward): what a shaker carrying the clamp "
-                "feels; the scheme's value at the last internal step's centre t - dt (docs/theory.md §14)"),
+                "feels; the scheme's value at the last internal step's centre t - dt (docs/theory.md §14). Fed back "
+                "with held values to a partner that moves the clamp (base_velocity) the loop is unstable: it carries "
+                "the plate's rigid inertia one step late (an added mass), and impacts make it worse; base_drive = tlm "
+                "couples stably, base_drive = force puts the armature inside (docs/system-model.md)"),
          PORT_FIELD(clampForce)},
         {output(kVrClampMoment, "clamp_moment", VariableType::Real, "N.m",
                 "Moment about the clamp line x = 0 of the forces the plate exerts on the clamp (positive when "

@@ -43,12 +43,18 @@ def run_armature(plate, steps, h=1e-4, start=0):
     return rows
 
 
-def test_monolithic_ledger_closes_to_roundoff_through_impacts(fmu_path):
-    with PlateImpactFMU(fmu_path, **SCENE) as plate:
+# Every impact law of the consistent mass and both engines (§17): the default (complete modal
+# basis), the reduced modal model, restitution, stiffness-proportional damping, beta = 1/4.
+LAWS = [{}, {"modes": 20}, {"restitution": 0.5}, {"damping_stiffness": 1e-4}, {"beta": 0.25}]
+
+
+@pytest.mark.parametrize("law", LAWS, ids=["default", "modes_20", "restitution", "stiffness_damping", "beta_quarter"])
+def test_monolithic_ledger_closes_to_roundoff_through_impacts(fmu_path, law):
+    with PlateImpactFMU(fmu_path, **SCENE, **law) as plate:
         rows = run_armature(plate, 8000)
     drive_work = rows[-1]["armature_drive_work"]
     impacts = rows[-1]["impacts_lower"] + rows[-1]["impacts_upper"]
-    assert impacts >= 10 and rows[-1]["impacts_upper"] > 0 and rows[-1]["impacts_lower"] > 0, rows[-1]
+    assert impacts >= 5 and rows[-1]["impacts_upper"] > 0 and rows[-1]["impacts_lower"] > 0, rows[-1]
     closure = max(
         abs(
             r["energy"]

@@ -86,8 +86,11 @@ const std::vector<fmu::Variable>& shakerVariables() {
                   "Largest internal substep (1e-9 to 1 s): a communication step h is split into ceil(h/dt) equal "
                   "trapezoidal substeps, so any h is accepted"),
         input(kDriveForce, "drive_force", "Force of the drive (the coil) on the armature, positive upward"),
-        input(kPlateForce, "plate_force",
-              "Force the load exerts on the armature, positive upward: connect PlateImpact's clamp_force"),
+        input(
+            kPlateForce, "plate_force",
+            "Force the load exerts on the armature, positive upward: connect PlateImpact's clamp_force (coupling = 1; "
+            "with held values unstable when the load's rigid mass is not small against the armature's, and "
+            "through impacts: use coupling = 2)"),
         output(kDisplacement, "armature_displacement", "m", "Armature displacement x, positive upward"),
         output(kVelocity, "armature_velocity", "m/s", "Armature velocity: connect to PlateImpact's base_velocity"),
         output(kAcceleration, "armature_acceleration", "m/s2",
