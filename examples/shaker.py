@@ -1,51 +1,59 @@
-"""The two-way system model: SineSweep.fmu -> Shaker.fmu <-> PlateImpact.fmu, run by libcosimpy
-with fixed communication steps and with ECCO (issue 20, item 4).
+"""The two-way system model: a sine sweep drives a shaker's armature that carries PlateImpact's
+clamp, run three ways and measured against each other (issue 27; docs/system-model.md):
 
-    bash run.sh                                    # builds build/{SineSweep,Shaker,PlateImpact}.fmu
-    .venv/bin/python examples/shaker.py            # measures, prints the report, writes out/shaker.png
-    .venv/bin/python examples/shaker.py --quick    # the suite's short version (~20 s)
-    .venv/bin/python examples/shaker.py --markdown docs/system-model.md --figure docs/figures/shaker.png
+- monolithic: PlateImpact.fmu alone with the armature inside (base_drive = force): the exact
+  coupling through impacts, the reference;
+- tlm: Shaker.fmu <-> PlateImpact.fmu through a transmission line (base_drive = tlm, coupling = 2):
+  each side sends its mean outgoing wave, the line's energy is booked;
+- force: Shaker.fmu <-> PlateImpact.fmu, armature velocity in, clamp force out, held values (the
+  motion-in / force-out port), with libcosim's fixed step and with ECCO.
 
-The sweep's signal (its output base_displacement, unit m) is connected to the shaker's
-drive_force (N): its `amplitude` is set in newtons. libcosim does not compare units; an SSP or a
-master that does would need a unit-free controller output. The armature's velocity drives the
-clamp (PlateImpact base_drive = velocity), the plate's clamp_force acts back on the armature.
+    bash run.sh                                        # builds build/{SineSweep,Shaker,PlateImpact}.fmu
+    .venv/bin/python examples/shaker.py --quick        # the suite's version: 1 s, 20 kg, impacts (~15 s)
+    .venv/bin/python examples/shaker.py --mass 20 --duration 20 --step 1e-3 --coupling tlm --json out/run.json
+    .venv/bin/python examples/shaker.py --goals --json out/shaker_goals.json \\
+        --markdown docs/system-model.md --figure docs/figures/shaker.png   # the issue's goals, one run
 
-Measured, from one run: (1) the base acceleration against the sweep frequency under a constant
-drive-force amplitude, coupled and one-way (the drop at the plate's first resonance); (2) the
-clamp force the shaker feels at impacts; (3) a very heavy armature: coupled against one-way;
-(4) the energy closure of the coupled system per master (fixed steps, ECCO).
+The sweep's signal (SineSweep.fmu's output base_displacement, unit m) is connected as the drive
+force (N): its `amplitude` is set in newtons; libcosim does not compare units.
+
+--json PATH writes, per run: the coupling error (the energy the coupling created: drive work -
+stored - losses, a line's energy in transit counting as stored and its loss as a loss), the drive
+work, the largest clamp force, the impact count, and the deviations from the monolithic reference
+(largest clamp force ratio, base acceleration envelope before the first impact, impact count).
 """
 
 from __future__ import annotations
 
 import argparse
+import json
 import sys
 import time
 from pathlib import Path
 
 import numpy as np
 
-from plateimpact.cosim import energy_closure, run_shaker_system
+from plateimpact.cosim import run_system, system_energy
 
 # The plate: the default 14x5 Argyris plate (37.3 kg, first mode 5.95 Hz) with 2 % Rayleigh
-# (mass-proportional) damping at its first mode, dt = 1e-4 s. The shaker: 100 kg armature on a
-# 2 Hz suspension with 10 % damping (heavier than the plate: with held values a 20 kg armature
-# carrying the 37 kg plate is unstable, docs/system-model.md). The sweep: 4 -> 8 Hz, linear,
-# 500 N, 0.5 s ramp-in.
+# (mass-proportional) damping at its first mode, internal step dt = 1e-4 s.
 F1 = 5.9459  # Hz, first mode of the default plate (docs/impact-laws.md)
-PLATE = {"dt": 1e-4, "damping_mass": 2 * 0.02 * 2 * np.pi * F1, "base_drive": 2}
-SHAKER = {"mass": 100.0, "stiffness": 15791.0, "damping": 251.3, "dt": 1e-5}
+PLATE_MASS = 37.3  # kg
+PLATE = {"dt": 1e-4, "damping_mass": 2 * 0.02 * 2 * np.pi * F1}
+# The sweep of the issue: 4 -> 8 Hz over 20 s, 500 N, 0.5 s ramp-in; obstacles at +-0.1 m.
 SWEEP = {"amplitude": 500.0, "start_frequency": 4.0, "end_frequency": 8.0, "duration": 20.0, "ramp_time": 0.5}
-QUICK_SWEEP = dict(SWEEP, start_frequency=5.0, end_frequency=7.0, duration=4.0)
-# The heavy armature: 1e6 kg, suspension and drive scaled with the mass (the same armature
-# motion as the 100 kg armature without load), over the first second of the sweep.
-HEAVY_MASS = 1e6
-# The energy closure: the first `CLOSURE_TIME` s with obstacles at +-0.01 m (impacts from
-# within the first second), for each fixed step and ECCO.
-CLOSURE_TIME, CLOSURE_STEPS = 2.0, (4e-4, 2e-4, 1e-4, 5e-5)
-QUICK_CLOSURE_TIME, QUICK_CLOSURE_STEPS = 1.0, (1e-4, 5e-5)
-NEAR_STOPS = {"obstacle_lower": -0.01, "obstacle_upper": 0.01}
+GAP = 0.1
+# --quick: the first second of the sweep with obstacles at +-0.025 m (impacts from 0.3 s on with a
+# 20 kg armature; at +-0.02 m the armature's swing itself reaches the obstacles).
+QUICK = {"mass": 20.0, "duration": 1.0, "gap": 0.025}
+# The armature: a 2 Hz suspension with 10 % damping for any mass.
+SUSPENSION_HZ, SUSPENSION_ZETA = 2.0, 0.1
+# The line's impedance: Z = (M + m_p) 2 pi f1, the impedance of the moving mass (armature and plate)
+# at the plate's first mode, where the coupling matters; the line then adds an inertia Z h and a
+# compliance h / Z (docs/system-model.md: the choice, measured).
+# ECCO (force coupling): the step may grow again after an impact (max_change_rate > 1) and the
+# tolerances are on the scale of the bond's energy per step (500 N x 0.1 m/s x 1e-4 s = 5e-3 J):
+# libcosimpy's defaults (max_change_rate 0.2) only let it shrink.
 ECCO = {
     "safety_factor": 0.8,
     "step_size": 1e-4,
@@ -53,11 +61,15 @@ ECCO = {
     "max_step_size": 1e-3,
     "min_change_rate": 0.2,
     "max_change_rate": 1.5,
-    "abs_tolerance": 1e-6,
-    "rel_tolerance": 1e-4,
+    "abs_tolerance": 1e-4,
+    "rel_tolerance": 1e-2,
     "p_gain": 0.2,
     "i_gain": 0.15,
 }
+WINDOW = 0.25  # s, the envelope's window
+# Contact onsets within 10 ms of each other are one impact (the plate's first period is 170 ms;
+# one impact chatters over a few ms).
+EPISODE_SEPARATION = 0.01
 
 
 def fmus(plate_fmu):
@@ -66,212 +78,455 @@ def fmus(plate_fmu):
     return {"sweep": build / "SineSweep.fmu", "shaker": build / "Shaker.fmu", "plate": Path(plate_fmu)}
 
 
-def system_values(sweep=SWEEP, shaker=SHAKER, plate=PLATE):
-    return {"sweep": dict(sweep), "shaker": dict(shaker), "plate": dict(plate)}
+def shaker_values(mass):
+    k = mass * (2 * np.pi * SUSPENSION_HZ) ** 2
+    return {"mass": mass, "stiffness": k, "damping": 2 * SUSPENSION_ZETA * np.sqrt(k * mass), "dt": 1e-5}
 
 
-def frequency(t, sweep):
-    f0, f1, d = sweep["start_frequency"], sweep["end_frequency"], sweep["duration"]
+def impedance(mass, h):
+    return (mass + PLATE_MASS) * 2 * np.pi * F1
+
+
+def values(mass, h, gap, duration, z=None, dt=None):
+    sweep = dict(SWEEP)
+    plate = dict(PLATE, obstacle_lower=-gap, obstacle_upper=gap)
+    if dt is not None:
+        plate["dt"] = dt
+    shaker = shaker_values(mass)
+    shaker["tlm_impedance"] = plate["tlm_impedance"] = z if z is not None else impedance(mass, h)
+    return {"sweep": sweep, "shaker": shaker, "plate": plate}
+
+
+def frequency(t):
+    f0, f1, d = SWEEP["start_frequency"], SWEEP["end_frequency"], SWEEP["duration"]
     return f0 + (f1 - f0) * np.minimum(t, d) / d
 
 
-def envelope(run, sweep, window=0.25):
-    """Amplitude of the base (armature) acceleration per window: sqrt(2) x RMS, against the
-    sweep's frequency at the window's middle (after the ramp-in)."""
-    t, a = run["time"], run["shaker.armature_acceleration"]
-    edges = np.arange(sweep["ramp_time"] + window, t[-1], window)
-    f, amp = [], []
+def envelope(t, a, end=None):
+    """Amplitude of the base acceleration per window (sqrt(2) x RMS) after the ramp-in, up to
+    `end`: window centres (s) and amplitudes."""
+    end = t[-1] if end is None else min(end, t[-1])
+    edges = np.arange(SWEEP["ramp_time"], end + 1e-12, WINDOW)
+    mid, amp = [], []
     for lo, hi in zip(edges[:-1], edges[1:]):
         sel = (t >= lo) & (t < hi)
-        f.append(frequency(0.5 * (lo + hi), sweep))
+        if sel.sum() < 2:
+            continue
+        mid.append(0.5 * (lo + hi))
         amp.append(np.sqrt(2 * np.mean(a[sel] ** 2)))
-    return np.array(f), np.array(amp)
+    return np.array(mid), np.array(amp)
 
 
-def sweep_measurement(paths, sweep, h):
-    """Coupled and one-way runs of the sweep; the drop and the impacts."""
-    values = system_values(sweep)
-    coupled = run_shaker_system(paths, values, sweep["duration"], h=h)
-    oneway = run_shaker_system(paths, values, sweep["duration"], h=h, coupled=False)
-    fc, ac = envelope(coupled, sweep)
-    fo, ao = envelope(oneway, sweep)
-    i = int(np.argmin(ac))
-    impacts = coupled["plate.impacts_lower"] + coupled["plate.impacts_upper"]
-    contact = (np.abs(coupled["plate.contact_force_lower"]) + np.abs(coupled["plate.contact_force_upper"])) > 0
-    clamp = np.abs(coupled["plate.clamp_force"])
-    return {
-        "coupled": coupled,
-        "oneway": oneway,
-        "env_coupled": (fc, ac),
-        "env_oneway": (fo, ao),
-        "drop_frequency": fc[i],
-        "drop_amplitude": ac[i],
-        "oneway_at_drop": ao[i],
-        "coupled_max": ac.max(),
-        "impacts": int(impacts[-1]),
-        "clamp_max_contact": clamp[contact].max() if contact.any() else 0.0,
-        "clamp_max_free": clamp[~contact].max(),
+def acceleration(run, position):
+    """Times and the base acceleration from the second difference of `position` at the
+    communication points (any spacing; ECCO's steps vary). With h = dt it is the scheme's own
+    acceleration (clamp_acceleration); at larger h it averages over the step, where a point sample
+    of the acceleration would pick up the step's jumps of a held wave (§19) at a fixed phase."""
+    t, z = run["time"], run[position]
+    h = np.diff(t)
+    a = 2 * (np.diff(z[1:]) / h[1:] - np.diff(z[:-1]) / h[:-1]) / (h[1:] + h[:-1])
+    return t[1:-1], a
+
+
+def first_impact(run):
+    impacts = run["plate.impacts_lower"] + run["plate.impacts_upper"]
+    hit = np.nonzero(impacts > 0)[0]
+    return run["time"][hit[0]] if len(hit) else np.inf
+
+
+def impact_episodes(run, separation=EPISODE_SEPARATION):
+    """Impacts as episodes: contact onsets (steps whose contact force starts from zero, the
+    counters impacts_*) closer than `separation` to the previous one belong to its episode. The
+    onsets themselves are not a converged count: a vertex that chatters on the obstacle makes
+    more of them at a smaller dt (docs/system-model.md)."""
+    onsets = run["time"][np.diff(np.concatenate([[0.0], run["plate.impacts_lower"] + run["plate.impacts_upper"]])) > 0]
+    return int(len(onsets) and 1 + np.count_nonzero(np.diff(onsets) > separation))
+
+
+def simulate(paths, coupling, mass, h, duration, gap, ecco=False, z=None, dt=None):
+    """One run; a dict of its numbers (and the arrays under "run" when it finished). `dt`: the
+    plate's internal step (default PLATE's)."""
+    v = values(mass, h, gap, duration, z, dt)
+    row = {
+        "coupling": coupling + (" (ECCO)" if ecco else ""),
+        "mass": mass,
+        "step": None if ecco else h,
+        "dt": v["plate"]["dt"],
+        "duration": duration,
+        "gap": gap,
+        "impedance": v["plate"]["tlm_impedance"] if coupling == "tlm" else None,
     }
-
-
-def heavy_check(paths, sweep, h, stop=1.0):
-    """A 1e6 kg armature driven with the force scaled by the mass ratio: the coupled run against
-    the one-way run. The plate's force on the armature, |F| <= F_max, moves it by at most
-    F_max T^2 / (2 M) over the time T (any suspension only holds it back)."""
-    ratio = HEAVY_MASS / SHAKER["mass"]
-    heavy = {k: SHAKER[k] * ratio for k in ("mass", "stiffness", "damping")}
-    values = system_values(dict(sweep, amplitude=sweep["amplitude"] * ratio), dict(SHAKER, **heavy))
-    coupled = run_shaker_system(paths, values, stop, h=h)
-    oneway = run_shaker_system(paths, values, stop, h=h, coupled=False)
-    f_max = np.abs(coupled["plate.clamp_force"]).max()
-    return {
-        "base": np.abs(coupled["shaker.armature_displacement"] - oneway["shaker.armature_displacement"]).max(),
-        "base_scale": np.abs(oneway["shaker.armature_displacement"]).max(),
-        "bound": f_max * stop**2 / (2 * HEAVY_MASS),
-        "corner": np.abs(coupled["plate.corner_1"] - oneway["plate.corner_1"]).max(),
-        "corner_scale": np.abs(oneway["plate.corner_1"]).max(),
-        "clamp_force_max": f_max,
-        "stop": stop,
-    }
-
-
-def closure_row(paths, sweep, master, h=None, stop=CLOSURE_TIME):
-    values = system_values(sweep, plate=dict(PLATE, **NEAR_STOPS))
     start = time.perf_counter()
-    run = run_shaker_system(paths, values, stop, h=h, ecco=ECCO if h is None else None)
-    wall = time.perf_counter() - start
-    e = energy_closure(run)
-    contact = (np.abs(run["plate.contact_force_lower"]) + np.abs(run["plate.contact_force_upper"])) > 0
-    clamp = np.abs(run["plate.clamp_force"])
+    try:
+        run = run_system(paths, v, duration, coupling, h=None if ecco else h, ecco=ECCO if ecco else None)
+    except RuntimeError as e:
+        row.update(finished=False, failure=str(e), wall=time.perf_counter() - start)
+        return row
+    row["wall"] = time.perf_counter() - start
+    e = system_energy(run, coupling)
+    drive = float(e["drive_work"][-1])
     steps = np.diff(np.concatenate([[0.0], run["time"]]))
-    return {
-        "master": master,
-        "steps": len(steps),
-        "h_min": steps.min(),
-        "h_max": steps.max(),
-        "wall": wall,
-        "drive_work": e["drive_work"][-1],
-        "coupling_error": e["coupling_error"][-1],
-        "max_coupling_error": np.abs(e["coupling_error"]).max(),
-        "closure_minus_coupling": np.abs(e["closure"] - e["coupling_error"]).max(),
-        "shaker_ledger": np.abs(e["shaker_ledger"]).max(),
-        "plate_ledger": np.abs(e["plate_ledger"]).max(),
-        "impacts": int(run["plate.impacts_lower"][-1] + run["plate.impacts_upper"][-1]),
-        "clamp_max_contact": clamp[contact].max() if contact.any() else 0.0,
-        "clamp_max_free": clamp[~contact].max(),
-        "stop": stop,
-    }
+    row.update(
+        finished=True,
+        steps=len(steps),
+        h_min=float(steps.min()),
+        h_max=float(steps.max()),
+        drive_work=drive,
+        coupling_error=float(e["coupling_error"][-1]),
+        max_coupling_error=float(np.abs(e["coupling_error"]).max()),
+        relative_coupling_error=float(np.abs(e["coupling_error"]).max() / abs(drive)),
+        line_energy=float(e["line"][-1]),
+        line_loss=float(e["line_loss"][-1]),
+        ledgers=float(e["ledgers"]),
+        clamp_force_max=float(np.abs(run["plate.clamp_force"]).max()),
+        impacts=impact_episodes(run),
+        contact_onsets=int(run["plate.impacts_lower"][-1] + run["plate.impacts_upper"][-1]),
+        first_impact=float(first_impact(run)),
+        run=run,
+    )
+    t, a = envelope(*acceleration(run, "plate.clamp_displacement"))
+    band = (frequency(t) > 5.0) & (frequency(t) < 7.0) & (t < row["first_impact"])
+    if band.any():  # the force drop-out at the plate's first resonance
+        i = np.argmin(np.where(band, a, np.inf))
+        row["drop_frequency"], row["drop_amplitude"] = float(frequency(t[i])), float(a[i])
+        for f in (5, 7):
+            row[f"envelope_at_{f}hz"] = float(a[np.argmin(np.abs(frequency(t) - f))])
+    return row
 
 
-def closure_table(paths, sweep, steps, stop, ecco=True):
+def compare(row, reference):
+    """The deviations of a finished run from the monolithic reference (same mass)."""
+    if not row.get("finished") or not reference.get("finished"):
+        return
+    run, ref = row["run"], reference["run"]
+    end = min(row["first_impact"], reference["first_impact"])
+    tc, ac = envelope(*acceleration(run, "plate.clamp_displacement"), end)
+    tm, am = envelope(*acceleration(ref, "plate.clamp_displacement"), end)
+    n = min(len(ac), len(am))
+    if n:
+        row["envelope_deviation"] = float(np.max(np.abs(ac[:n] - am[:n]) / am[:n]))
+        row["envelope_deviation_of_peak"] = float(np.max(np.abs(ac[:n] - am[:n])) / am[:n].max())
+        row["envelope_until"] = float(end)
+    if "shaker.armature_displacement" in run:  # the shaker's table, beyond the line (§19)
+        ts, as_ = envelope(*acceleration(run, "shaker.armature_displacement"), end)
+        n = min(len(as_), len(am))
+        if n:
+            row["armature_envelope_deviation"] = float(np.max(np.abs(as_[:n] - am[:n]) / am[:n]))
+    row["clamp_force_ratio"] = row["clamp_force_max"] / reference["clamp_force_max"]
+    row["impact_count_deviation"] = (row["impacts"] - reference["impacts"]) / max(reference["impacts"], 1)
+
+
+def run_refinement(paths, mass, dt, duration, gap, log=print):
+    """The monolithic reference and the line with the plate's dt = h = `dt`: how far the
+    reference itself moves with dt, and whether the line converges to it."""
+    reference = simulate(paths, "monolithic", mass, dt, duration, gap, dt=dt)
+    log(summary(reference))
+    line = simulate(paths, "tlm", mass, dt, duration, gap, dt=dt)
+    compare(line, reference)
+    log(summary(line))
+    return [reference, line]
+
+
+def run_matrix(paths, masses, steps, couplings, duration, gap, ecco, z=None, log=print):
+    """Every run of the matrix; the monolithic reference per mass at the plate's own step (its
+    result does not depend on the master's step beyond the force's reconstruction)."""
     rows = []
-    for master, h in [(f"fixed step {h:g} s", h) for h in steps] + ([("ECCO", None)] if ecco else []):
-        try:
-            rows.append(closure_row(paths, sweep, master, h, stop))
-        except RuntimeError as e:  # a coupled run that goes unstable is reported, not hidden
-            print(f"{master}: FAILED: {str(e)[:200]}", file=sys.stderr)
-            rows.append({"master": master, "failed": str(e)[:90], "stop": stop})
-    for r in (r for r in rows if "failed" not in r):
-        print(
-            f"{r['master']}: coupling error {r['coupling_error']:.3e} J of drive work {r['drive_work']:.4g} J "
-            f"({r['steps']} steps, {r['impacts']} impacts, {r['wall']:.1f} s)",
-            file=sys.stderr,
-        )
+    for mass in masses:
+        reference = simulate(paths, "monolithic", mass, PLATE["dt"], duration, gap)
+        rows.append(reference)
+        log(summary(reference))
+        runs = [(c, h, False) for c in couplings if c != "monolithic" for h in steps]
+        if ecco:
+            runs.append(("force", None, True))
+        for coupling, h, use_ecco in runs:
+            row = simulate(paths, coupling, mass, h or PLATE["dt"], duration, gap, use_ecco, z)
+            compare(row, reference)
+            rows.append(row)
+            log(summary(row))
     return rows
 
 
-def figure(sweep_result, path):
+def summary(r):
+    head = f"{r['coupling']:>13} M = {r['mass']:g} kg h = {r['step'] or 'ECCO'}: "
+    if not r["finished"]:
+        return head + f"FAILED ({r['failure'][:90]}) after {r['wall']:.0f} s"
+    text = (
+        f"drive {r['drive_work']:.4g} J, coupling error {r['max_coupling_error']:.2e} J "
+        f"({r['relative_coupling_error']:.1e}), clamp force max {r['clamp_force_max']:.4g} N, "
+        f"{r['impacts']} impacts ({r['contact_onsets']} onsets), line {r['line_energy']:.2e} J stored {r['line_loss']:.2e} J lost, {r['wall']:.0f} s"
+    )
+    if "clamp_force_ratio" in r:
+        text += (
+            f"; vs monolithic: force x{r['clamp_force_ratio']:.2f}, impacts {r['impact_count_deviation']:+.1%}, "
+            f"envelope {r.get('envelope_deviation', float('nan')):.1%}"
+        )
+    return head + text
+
+
+def figure(rows, path):
     import matplotlib
 
     matplotlib.use("Agg")
     import matplotlib.pyplot as plt
 
-    fig, (ax1, ax2) = plt.subplots(2, 1, figsize=(8, 7.5))
-    (fc, ac), (fo, ao) = sweep_result["env_coupled"], sweep_result["env_oneway"]
-    ax1.plot(fo, ao, label="one-way (plate not felt)")
-    ax1.plot(fc, ac, label="two-way (Shaker.fmu <-> PlateImpact.fmu)")
-    ax1.axvline(F1, color="gray", ls=":", label=f"plate's first mode {F1:.2f} Hz")
-    ax1.set_xlabel("sweep frequency [Hz]")
-    ax1.set_ylabel("base acceleration amplitude [m/s²]")
-    ax1.set_title("constant drive-force amplitude: the base acceleration drops at the plate's resonance")
-    ax1.legend()
-    run = sweep_result["coupled"]
-    t = run["time"]
-    contact = (np.abs(run["plate.contact_force_lower"]) + np.abs(run["plate.contact_force_upper"])) > 0
-    k = int(np.argmax(contact)) if contact.any() else len(t) // 2
-    sel = (t > t[k] - 0.3) & (t < t[k] + 0.5)
-    ax2.plot(t[sel], run["plate.clamp_force"][sel], label="clamp_force → shaker plate_force [N]")
-    ax2.plot(t[sel], 20 * run["shaker.armature_acceleration"][sel], label="20 × armature acceleration [m/s²]")
-    ax2.plot(
-        t[sel][contact[sel]], run["plate.clamp_force"][sel][contact[sel]], "r.", ms=3, label="plate on an obstacle"
-    )
-    ax2.set_xlabel("time [s]")
-    ax2.set_title("impacts felt by the shaker")
-    ax2.legend(fontsize=8)
+    masses = sorted({r["mass"] for r in rows})
+    fig, axes = plt.subplots(len(masses), 1, figsize=(8.5, 3.6 * len(masses)), squeeze=False)
+    for ax, mass in zip(axes[:, 0], masses):
+        for r in (r for r in rows if r["mass"] == mass and r.get("finished")):
+            run = r["run"]
+            t, a = envelope(*acceleration(run, "plate.clamp_displacement"))
+            label = r["coupling"] + ("" if r["step"] is None else f" h = {r['step']:g} s")
+            style = {"lw": 2.5, "color": "k"} if r["coupling"] == "monolithic" else {"lw": 1}
+            (line,) = ax.semilogy(frequency(t), a, label=label + " (clamp)", **style)
+            if "shaker.armature_displacement" in run:  # the shaker's table, beyond the line
+                t, a = envelope(*acceleration(run, "shaker.armature_displacement"))
+                ax.semilogy(frequency(t), a, ls="--", lw=1, color=line.get_color(), label=label + " (armature)")
+        for r in (r for r in rows if r["mass"] == mass and not r.get("finished")):
+            ax.plot([], [], " ", label=f"{r['coupling']} h = {r['step'] or 'ECCO'}: failed")
+        ax.axvline(F1, color="gray", ls=":")
+        ax.set_title(
+            f"armature {mass:g} kg: base acceleration envelope, 500 N sweep, obstacles ±{rows[0]['gap']:g} m",
+            fontsize=10,
+        )
+        ax.set_xlabel("sweep frequency [Hz]")
+        ax.set_ylabel("√2·RMS over 0.25 s [m/s²]")
+        ax.set_ylim(0.5, 1e5)
+        ax.legend(fontsize=6, ncol=2, loc="upper left")
     fig.tight_layout()
     Path(path).parent.mkdir(parents=True, exist_ok=True)
-    fig.savefig(path, dpi=110)
+    fig.savefig(path, dpi=100)
     plt.close(fig)
+
+
+def public(row):
+    return {k: v for k, v in row.items() if k != "run"}
 
 
 MARKER = "## Two-way: a shaker carries the plate"
 
 
-def markdown(sweep, sr, heavy, rows, h, figure_path):
+def num(r, key, fmt):
+    return format(r[key], fmt) if key in r else "–"
+
+
+def table(rows):
+    lines = [
+        "| coupling | armature | h (plate dt) | finished | drive work [J] | \\|coupling error\\| max [J] | relative | "
+        "line stored / lost [J] | max clamp force [N] | × monolithic | impacts (onsets) | vs monolithic | "
+        "envelope before 1st impact: clamp (armature) | wall [s] |",
+        "|---|---|---|---|---|---|---|---|---|---|---|---|---|---|",
+    ]
+    for r in rows:
+        h = "ECCO" if r["step"] is None else f"{r['step']:g} s" + (f" ({r['dt']:g} s)" if r["dt"] != r["step"] else "")
+        if not r["finished"]:
+            lines.append(
+                f"| {r['coupling']} | {r['mass']:g} kg | {h} | **no**: {r['failure'][:80]} | | | | | | | | | | "
+                f"{r['wall']:.0f} |"
+            )
+            continue
+        lines.append(
+            f"| {r['coupling']} | {r['mass']:g} kg | {h} | yes | {r['drive_work']:.5g} | "
+            f"{r['max_coupling_error']:.2e} | {r['relative_coupling_error']:.1e} | "
+            f"{r['line_energy']:.2e} / {r['line_loss']:.2e} | {r['clamp_force_max']:.4g} | "
+            f"{num(r, 'clamp_force_ratio', '.2f')} | {r['impacts']} ({r['contact_onsets']}) | "
+            f"{num(r, 'impact_count_deviation', '+.1%')} | {num(r, 'envelope_deviation', '.1%')} "
+            f"({num(r, 'armature_envelope_deviation', '.1%')}) | {r['wall']:.0f} |"
+        )
+    return lines
+
+
+def goals(rows):
+    """The issue's goals, each as (goal, measured, met) from the matrix's rows."""
+    out = []
+    coupled = [r for r in rows if r["coupling"] == "tlm"]
+    refs = {r["mass"]: r for r in rows if r["coupling"] == "monolithic"}
+    done = all(r["finished"] for r in coupled)
+    out.append(
+        (
+            "every run of the line coupling finishes (20 and 100 kg, h = 1e-4 and 1e-3 s)",
+            f"{sum(r['finished'] for r in coupled)} of {len(coupled)}",
+            done,
+        )
+    )
+    ratios = [r.get("clamp_force_ratio", np.inf) for r in coupled]
+    out.append(
+        (
+            "largest clamp force within 2x the monolithic run's",
+            ", ".join(f"x{x:.2f}" for x in ratios),
+            all(x <= 2.0 for x in ratios),
+        )
+    )
+    errors = [r.get("relative_coupling_error", np.inf) for r in coupled]
+    out.append(
+        (
+            "|coupling error| <= 1e-3 of the drive work (line's transit stored, its loss a loss)",
+            "max " + format(max(errors), ".1e"),
+            max(errors) <= 1e-3,
+        )
+    )
+    ledgers = [r["relative_coupling_error"] for r in refs.values() if r["finished"]]
+    out.append(
+        (
+            "the monolithic ledger closes to roundoff through impacts",
+            "max " + format(max(ledgers), ".1e") + " of the drive work",
+            max(ledgers) <= 1e-9,
+        )
+    )
+    fine = [r for r in coupled if r["step"] == 1e-4 and r["finished"]]
+    env = [r.get("envelope_deviation", np.inf) for r in fine]
+    out.append(
+        (
+            "base acceleration envelope within 5 % of the monolithic before the first impact at h = 1e-4 s",
+            ", ".join(f"{x:.1%}" for x in env),
+            all(x <= 0.05 for x in env),
+        )
+    )
+    counts = [(r["impacts"], refs[r["mass"]]["impacts"]) for r in fine]
+    dev = [abs(a - b) / max(b, 1) for a, b in counts]
+    out.append(
+        (
+            "impact count over the sweep within 5 % (h = 1e-4 s)",
+            ", ".join(f"{a} vs {b}" for a, b in counts),
+            all(d <= 0.05 for d in dev),
+        )
+    )
+    return out
+
+
+def markdown(rows, refinement, figure_path, command):
+    refs = {r["mass"]: r for r in rows if r["coupling"] == "monolithic" and r["finished"]}
+    force = [r for r in rows if r["coupling"].startswith("force")]
+    drop = [r for r in refs.values() if "drop_frequency" in r]
+    failed = sum(not r["finished"] for r in force)
+    blown = ", ".join(
+        f"{r['clamp_force_max']:.3g} N ({r['coupling']}, {r['mass']:g} kg; coupling error {r['max_coupling_error']:.3g} J)"
+        for r in force
+        if r["finished"]
+    )
     lines = [
         MARKER,
         "",
-        "Generated by `examples/shaker.py --markdown docs/system-model.md --figure docs/figures/shaker.png` "
-        "(one run). SineSweep.fmu (its signal connected as a force: `amplitude` in N; libcosim does not "
-        f"compare units) drives Shaker.fmu (armature {SHAKER['mass']:g} kg on a 2 Hz suspension, damping ratio 0.1; "
-        "m x'' + c x' + k x = drive_force + plate_force, trapezoidal rule, energy ledger exact to "
-        "roundoff); the armature velocity drives PlateImpact's clamp (`base_drive = velocity`) and "
-        "`clamp_force` comes back as `plate_force`. Plate: default 14×5 Argyris, Δt = 1e-4 s, "
-        f"2 % Rayleigh damping at its first mode ({F1} Hz). libcosimpy, fixed step h = {h:g} s unless said.",
+        f"Generated by `{command}` (one run; every number also in its `--json`). SineSweep.fmu (4 → 8 Hz over "
+        f"20 s, {SWEEP['amplitude']:g} N, 0.5 s ramp-in; its signal connected as a force) drives an armature on a "
+        f"{SUSPENSION_HZ:g} Hz suspension with {SUSPENSION_ZETA:.0%} damping, which carries the clamp of the default "
+        f"plate (14×5 Argyris, Δt = {PLATE['dt']:g} s, 2 % Rayleigh damping at its first mode {F1} Hz) between "
+        f"obstacles at ±{rows[0]['gap']:g} m. Three couplings, all under libcosimpy:",
         "",
-        f"**Force drop-out at the first resonance.** Sweep {sweep['start_frequency']:g} → "
-        f"{sweep['end_frequency']:g} Hz over {sweep['duration']:g} s, constant {sweep['amplitude']:g} N. "
-        f"Base acceleration amplitude (√2·RMS over 0.25 s windows): two-way minimum "
-        f"**{sr['drop_amplitude']:.3g} m/s² at {sr['drop_frequency']:.2f} Hz**, where the one-way run (the "
-        f"same shaker not feeling the plate) gives {sr['oneway_at_drop']:.3g} m/s² "
-        f"(ratio {sr['drop_amplitude'] / sr['oneway_at_drop']:.2f}); two-way maximum {sr['coupled_max']:.3g} m/s². "
-        "One-way driving prescribes the base motion, so it can never show this: the plate's "
-        "apparent mass at the clamp becomes large at its fixed-base resonance and the same force "
-        "moves the base less (the drop sits slightly above f₁ because the sweep passes the "
-        "resonance faster than its 1.3 s decay time).",
+        "- **monolithic** (`base_drive = force`, docs/theory.md §18): the armature inside PlateImpact, one "
+        "Newmark step for plate and armature with the contact QP on the bordered columns. Exact coupling: the "
+        "reference. The sweep drives `drive_force` directly.",
+        "- **tlm** (`base_drive = tlm` with Shaker.fmu's `coupling = 2`, §19): a transmission line between "
+        "Shaker.fmu and PlateImpact.fmu.",
+        "- **force**: today's port, armature velocity in, `clamp_force` out, held values, with the fixed step "
+        "and with ECCO.",
         "",
-        f"**Impacts felt by the shaker.** {sr['impacts']} impacts in the sweep; |clamp_force| reaches "
-        f"{sr['clamp_max_contact']:.4g} N while the plate touches an obstacle, against at most "
-        f"{sr['clamp_max_free']:.4g} N in free flight — the armature feels every impact through plate_force.",
+        "**Why held force and motion fail.** The clamp force contains the plate's rigid inertia m_p z̈ "
+        f"(m_p = {PLATE_MASS} kg) and, at impacts, the contact forces through a stiff path. Passed one step late "
+        "to an armature it acts as a negative added mass — the instability of staggered partitioned schemes "
+        "(Causin, Gerbeau & Nobile 2005; Förster, Wall & Ramm 2007), which smaller steps do not cure. Measured "
+        f"below: of {len(force)} force-coupled runs (fixed steps and ECCO) {failed} failed and "
+        f"{len(force) - failed} {'finished with clamp forces of ' + blown if blown else 'finished'}, while the "
+        "monolithic runs stay bounded. The port stays for masters that can only pass force and motion; "
+        "Shaker.fmu's `coupling` says when it is unstable.",
         "",
-        f"**Heavy armature = one-way.** Armature {HEAVY_MASS:g} kg (suspension and drive force scaled by the mass "
-        f"ratio, so the unloaded armature motion is the same), first {heavy['stop']:g} s: coupled against one-way, "
-        f"max |Δ base displacement| = {heavy['base']:.3g} m (base amplitude {heavy['base_scale']:.3g} m), below the "
-        f"bound F_max T²/(2M) = {heavy['bound']:.3g} m (F_max = {heavy['clamp_force_max']:.4g} N, the plate's force "
-        f"acting on the free mass for the whole time T; the suspension only holds it back); max |Δ corner_1| = "
-        f"{heavy['corner']:.3g} m (amplitude {heavy['corner_scale']:.3g} m). The test asserts both against the bound.",
+        "**The line.** Each end exchanges waves instead: side i and the line press on each other with "
+        "N = c + Z v (c the wave from the partner, held over the step, v the side's velocity into the line, Z "
+        "the characteristic impedance `tlm_impedance`), side i launches a = c + 2Z v, and its power into the line "
+        "is exactly (a² − c²)/(4Z) (T.20). Each FMU integrates that power inside its own scheme (the plate's end "
+        "is §18's carrier with no mass, no spring and the damper Z) and outputs the mean wave of the step; the "
+        "master delivers it to the partner one step later. What was launched is either in transit (`tlm_transit`, "
+        "h ā²/(4Z), stored) or lost because the mean cannot carry the wave's variation inside the step "
+        "(`tlm_line_loss` ≥ 0 by Cauchy–Schwarz): the line is passive, so the coupled system cannot gain energy "
+        "and stays stable for any h, impacts included, and its ledger closes to roundoff. Its cost is accuracy: "
+        "the line adds an inertia ≈ Z h and a compliance ≈ h/Z between the partners. Relative to a moving mass M "
+        "at angular frequency ω those are Zh/M and Mω²h/Z, whose product (ωh)² does not depend on Z; they are "
+        "equal for Z = Mω. The example takes Z = (M + m_p)·2πf₁, the impedance of the moving mass at the "
+        "plate's first mode where the coupling matters (Z "
+        + ", ".join(f"{impedance(m, 1e-4):.0f} N·s/m for {m:g} kg" for m in sorted(refs))
+        + "). Both errors then are of order ωh: 0.4 % at h = 1e-4 s, 4 % at 1e-3 s, so the line converges "
+        "to the monolithic system at first order in h.",
         "",
-        f"**Energy closure per master.** Drive work = shaker energy + plate energy + damper, impact and Rayleigh "
-        f"losses + coupling error, the coupling error being the energy the port creates: "
-        f"−(shaker.plate_work + plate.energy_input) (each side integrates the port power with its own held input). "
-        f"First {rows[0]['stop']:g} s of the sweep with obstacles at ±0.01 m. Each FMU's own ledger closes "
-        f"to roundoff (columns 'ledgers'); the rest is the coupling error.",
+        "**ECCO.** libcosimpy's default EccoParams (max_change_rate 0.2) only let the step shrink; the example "
+        f"sets max_change_rate {ECCO['max_change_rate']}, tolerances {ECCO['abs_tolerance']:g} J absolute and "
+        f"{ECCO['rel_tolerance']:g} relative (the bond's energy per step is ~5e-3 J), steps "
+        f"{ECCO['min_step_size']:g}–{ECCO['max_step_size']:g} s. ECCO estimates the power residual of the bond "
+        "and shrinks the step, but it does not remove the added-mass instability: it only delays it.",
         "",
-        "| master | steps (min–max h) | impacts | drive work [J] | coupling error at the end [J] | max \\|coupling error\\| [J] "
-        "| relative | ledgers [J] | wall [s] |",
-        "|---|---|---|---|---|---|---|---|---|",
     ]
-    for r in rows:
-        if "failed" in r:
-            lines.append(f"| {r['master']} | unstable: {r['failed']} | | | | | | | |")
-            continue
-        lines.append(
-            f"| {r['master']} | {r['steps']} ({r['h_min']:.2g}–{r['h_max']:.2g} s) | {r['impacts']} | "
-            f"{r['drive_work']:.5g} | {r['coupling_error']:.3e} | {r['max_coupling_error']:.3e} | "
-            f"{r['max_coupling_error'] / abs(r['drive_work']):.2e} | "
-            f"{max(r['shaker_ledger'], r['plate_ledger'], r['closure_minus_coupling']):.1e} | {r['wall']:.1f} |"
+    lines += table(rows)
+    lines += [
+        "",
+        "'impacts' are impact episodes: contact onsets (the FMU's `impacts_*`, steps whose contact force starts "
+        f"from zero) within {EPISODE_SEPARATION * 1e3:g} ms of the previous one belong to its impact; the "
+        "onsets themselves are not a converged count (a vertex chattering on the obstacle makes more of them at "
+        "a smaller Δt). The envelope is √2·RMS of the base acceleration over 0.25 s windows after the ramp-in, "
+        "compared window by window up to the first impact of either run, the acceleration being the second "
+        "difference of the position at the communication points (at h = Δt the scheme's own `clamp_acceleration`; "
+        "at h = 1e-3 s a point sample would catch the held wave's jump at each step at a fixed phase): at the "
+        "clamp and, in brackets, at the shaker's armature (its table).",
+        "",
+    ]
+    tlm = [r for r in rows if r["coupling"] == "tlm" and r["finished"]]
+    if tlm:
+        lines += [
+            "**What the line costs** (energy it loses, in % of the drive work; deviations from the monolithic "
+            "run): "
+            + "; ".join(
+                f"{r['mass']:g} kg at h = {r['step']:g} s: loss {r['line_loss'] / r['drive_work']:.2%}, clamp force "
+                f"×{num(r, 'clamp_force_ratio', '.2f')}, envelope {num(r, 'envelope_deviation', '.1%')} at the clamp "
+                f"and {num(r, 'armature_envelope_deviation', '.1%')} at the armature"
+                for r in tlm
+            )
+            + ". At h = 1e-4 s the line is close to the monolithic system before the impacts (after them the "
+            "clamp, behind the line's compliance, rings at impacts: the figure's solid curves above 7.6 Hz, while "
+            "the armature follows the monolithic run); at 1e-3 s it stays stable and keeps its energy, but its "
+            "inertia Z h and compliance h/Z (each ≈ ωh ≈ 4 % at the first mode) shift the resonances, and the "
+            "window-by-window deviation is that shift seen on the steep flanks of the drop-out; impacts, shorter "
+            "than a step, are resolved worse still. Where accuracy through impacts matters: the monolithic mode, "
+            "or the line with h ≤ 1e-4 s.",
+            "",
+        ]
+    if drop:
+        lines += [
+            "**Force drop-out at the first resonance** (monolithic; the figure, with the co-simulated curves). "
+            + "; ".join(
+                f"{r['mass']:g} kg: base acceleration minimum {r['drop_amplitude']:.3g} m/s² at "
+                f"{r['drop_frequency']:.2f} Hz, against {r['envelope_at_5hz']:.3g} m/s² at 5 Hz and "
+                f"{r['envelope_at_7hz']:.3g} m/s² at 7 Hz"
+                for r in drop
+            )
+            + ". The plate's apparent mass at the clamp grows at its fixed-base resonance and the same force moves "
+            "the base less; a prescribed base motion (one-way) cannot show this.",
+            "",
+        ]
+    if refinement:
+        ref, line = refinement
+        base = refs[ref["mass"]]
+        coarse = next(
+            (
+                r
+                for r in rows
+                if r["coupling"] == "tlm" and r["mass"] == ref["mass"] and r["step"] == base["dt"] and r["finished"]
+            ),
+            None,
         )
-    lines += ["", f"![two-way shaker system]({figure_path})", ""]
+        lines += [
+            f"**How converged the reference is.** The monolithic run with the plate's Δt = {ref['dt']:g} s "
+            f"(and the line at h = {line['step']:g} s on it): {ref['impacts']} impacts ({ref['contact_onsets']} onsets) "
+            + f"against {base['impacts']} ({base['contact_onsets']}) at Δt = {base['dt']:g} s"
+            + f"; the line {line['impacts']} impacts ({num(line, 'impact_count_deviation', '+.1%')} of that "
+            f"reference), envelope {num(line, 'envelope_deviation', '.1%')}"
+            + (f" against {coarse['envelope_deviation']:.1%} at h = {coarse['step']:g} s" if coarse else "")
+            + f". The impacts of this sweep come after t = {base['first_impact']:.2f} s, {base['impacts']} of "
+            f"them: one impact more or less is {1 / max(base['impacts'], 1):.0%}, and the reference itself moves by "
+            f"{abs(ref['impacts'] - base['impacts']) / max(base['impacts'], 1):.0%} with its own Δt: an impact count "
+            "within 5 % is below what this scene resolves.",
+            "",
+        ]
+    lines += ["**The goals, as measured in this run:**", ""]
+    for goal, measured, met in goals(rows):
+        lines.append(f"- {goal}: {measured} — **{'met' if met else 'not met'}**")
+    lines += ["", f"![base acceleration envelopes]({figure_path})", ""]
     return "\n".join(lines)
 
 
@@ -286,37 +541,58 @@ def write_section(path, text):
 def main(argv=None):
     ap = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
     ap.add_argument("--fmu", default="build/PlateImpact.fmu", help="SineSweep.fmu and Shaker.fmu beside it")
-    ap.add_argument("--out", default="out")
-    ap.add_argument("--quick", action="store_true", help="short sweep and closure runs (the suite)")
-    ap.add_argument("--step", type=float, default=1e-4, help="communication step of the sweep runs, s")
-    ap.add_argument("--figure", help="default: <out>/shaker.png")
+    ap.add_argument(
+        "--quick", action="store_true", help="1 s, 20 kg, obstacles +-0.025 m, h = 1e-4 s and ECCO (the suite)"
+    )
+    ap.add_argument("--goals", action="store_true", help="the issue's matrix: 20 and 100 kg x h = 1e-4, 1e-3 s")
+    ap.add_argument("--mass", type=float, nargs="+", default=[20.0], help="armature mass(es), kg")
+    ap.add_argument("--duration", type=float, default=SWEEP["duration"], help="simulated time, s")
+    ap.add_argument("--step", type=float, nargs="+", default=[1e-4], help="communication step(s) h, s")
+    ap.add_argument("--gap", type=float, default=GAP, help="obstacles at +-gap, m")
+    ap.add_argument(
+        "--coupling", nargs="+", default=["tlm", "force"], choices=["tlm", "force"], help="besides the monolithic"
+    )
+    ap.add_argument("--impedance", type=float, help="the line's Z, N s/m (default (M + m_p) 2 pi f1)")
+    ap.add_argument("--ecco", action="store_true", help="also the force coupling under ECCO")
+    ap.add_argument("--json", help="write the runs' numbers here")
+    ap.add_argument("--figure", help="the envelopes (default: no figure)")
     ap.add_argument("--markdown", help="write the two-way section into this file (docs/system-model.md)")
     args = ap.parse_args(argv)
-    paths = fmus(args.fmu)
-    figure_path = Path(args.figure or Path(args.out) / "shaker.png")
-    sweep = QUICK_SWEEP if args.quick else SWEEP
-    sr = sweep_measurement(paths, sweep, args.step)
-    print(
-        f"drop: {sr['drop_amplitude']:.3g} m/s2 at {sr['drop_frequency']:.2f} Hz (one-way {sr['oneway_at_drop']:.3g}); "
-        f"{sr['impacts']} impacts, clamp force {sr['clamp_max_contact']:.4g} N in contact, "
-        f"{sr['clamp_max_free']:.4g} N free",
-        file=sys.stderr,
-    )
-    heavy = heavy_check(paths, sweep, args.step, stop=0.5 if args.quick else 1.0)
-    print(
-        f"heavy armature: base {heavy['base']:.3g} m (bound {heavy['bound']:.3g}), corner {heavy['corner']:.3g} m",
-        file=sys.stderr,
-    )
+    masses, steps, duration, gap, ecco = args.mass, args.step, args.duration, args.gap, args.ecco
     if args.quick:
-        rows = closure_table(paths, sweep, QUICK_CLOSURE_STEPS, QUICK_CLOSURE_TIME)
-    else:
-        rows = closure_table(paths, sweep, CLOSURE_STEPS, CLOSURE_TIME)
-    figure(sr, figure_path)
-    text = markdown(sweep, sr, heavy, rows, args.step, "figures/" + figure_path.name)
-    print(text)
+        masses, steps, duration, gap, ecco = [QUICK["mass"]], [1e-4], QUICK["duration"], QUICK["gap"], True
+    if args.goals:
+        masses, steps, ecco = [20.0, 100.0], [1e-4, 1e-3], True
+    for name, x in (("--mass", min(masses)), ("--step", min(steps)), ("--duration", duration), ("--gap", gap)):
+        if not x > 0:
+            ap.error(f"{name} must be > 0")
+    if args.impedance is not None and not args.impedance > 0:
+        ap.error("--impedance must be > 0")
+    paths = fmus(args.fmu)
+    rows = run_matrix(
+        paths,
+        masses,
+        steps,
+        args.coupling,
+        duration,
+        gap,
+        ecco,
+        args.impedance,
+        log=lambda s: print(s, file=sys.stderr),
+    )
+    refinement = []
+    if args.goals:  # the reference's own dt dependence and the line's convergence, 20 kg
+        refinement = run_refinement(paths, 20.0, 5e-5, duration, gap, log=lambda s: print(s, file=sys.stderr))
+    if args.json:
+        Path(args.json).parent.mkdir(parents=True, exist_ok=True)
+        Path(args.json).write_text(json.dumps([public(r) for r in rows + refinement], indent=1))
+    if args.figure:
+        figure(rows, args.figure)
     if args.markdown:
+        command = "examples/shaker.py " + " ".join(argv if argv is not None else sys.argv[1:])
+        text = markdown(rows, refinement, "figures/" + Path(args.figure or "shaker.png").name, command)
         write_section(args.markdown, text)
-    return {"sweep": sr, "heavy": heavy, "closure": rows}
+    return rows + refinement
 
 
 if __name__ == "__main__":

@@ -61,7 +61,11 @@ Parameters outside the min/max of the table below (poisson_ratio and the obstacl
 bound on dt; a singular mass with modes &gt; 0, beta &lt; 0.25 or without massless directions at every contact
 vertex; an instance whose estimated memory exceeds memory_limit; inputs outside their min/max, NaN or Inf; a
 clamp driven past an obstacle; a communication step shorter than 1e-9 dt; calls outside the states FMI
-{fmi2:2.0}{fmi3:3.0} allows; FMU states of another build or damaged (XXH64 checksum).</p>
+{fmi2:2.0}{fmi3:3.0} allows; FMU states of another build or damaged (XXH64 checksum); time_scheme = conserving
+with mass = consistent or restitution &gt; 0. With the clamp carried (base_drive = force: an armature inside the
+FMU; tlm: the end of a transmission line to a partner FMU): armature_mass &le; 0, tlm_impedance &le; 0, a singular
+mass, a second input driving the clamp (a motion input with force or tlm, a drive_force with a motion drive),
+communication steps that are not whole multiples of dt.</p>
 )",
     /*stateMagic=*/"PLATEIMP",
 };
@@ -122,6 +126,7 @@ public:
             if (estimate == "no estimate was made") estimate = line;
             inform(line);
         };
+        requireOneDrive();
         try {
             simulation_ = std::make_unique<plate::PlateSimulation>(
                 values_.parameters, values_.baseDisplacement.signal.value, values_.load.signal.value, log);
@@ -157,6 +162,12 @@ public:
         // derivatives gets the inputs reconstructed from them (docs/theory.md §8). The
         // history's times are the model's own: a master's roundoff in t does not reach the
         // divided differences.
+        requireOneDrive();
+        if (carried() && (!plan.endsOnGrid || plan.offset != 0.0))
+            throw fmu::ModelError(format(
+                "communicationStepSize h = %.17g is not a whole multiple of dt = %g: with base_drive = force or tlm "
+                "the clamp is carried inside the FMU, which takes communication steps on the grid of dt only",
+                h, values_.parameters.dt));
         const double now = simulation_->time();
         for (InputPort* port : ports()) port->history.record(now, port->signal.value);
         try {
@@ -253,8 +264,41 @@ private:
         values_.portValid = false;
     }
 
-    std::array<InputPort*, 4> ports() {
-        return {&values_.baseDisplacement, &values_.baseVelocity, &values_.baseAcceleration, &values_.load};
+    std::array<InputPort*, 6> ports() {
+        return {&values_.baseDisplacement, &values_.baseVelocity, &values_.baseAcceleration, &values_.load,
+                &values_.driveForce,       &values_.tlmWaveIn};
+    }
+    bool carried() const { return values_.baseDrive == BaseDrive::Force || values_.baseDrive == BaseDrive::Tlm; }
+    // A clamp moved by one input only (docs/theory.md §16–18): a force-driven or line-carried clamp
+    // whose motion inputs are set as well, or a motion-driven one given a force, is refused.
+    void requireOneDrive() const {
+        const double base0 = simulation_ ? simulationBase0_ : values_.baseDisplacement.signal.value;
+        const struct {
+            const char* name;
+            double value;
+            bool used;
+        } inputs[] = {
+            {"base_displacement", values_.baseDisplacement.signal.value - base0,
+             values_.baseDrive == BaseDrive::Displacement},
+            {"base_velocity", values_.baseVelocity.signal.value, values_.baseDrive == BaseDrive::Velocity},
+            {"base_acceleration", values_.baseAcceleration.signal.value, values_.baseDrive == BaseDrive::Acceleration},
+            {"drive_force", values_.driveForce.signal.value, values_.baseDrive == BaseDrive::Force},
+            {"tlm_wave_in", values_.tlmWaveIn.signal.value, values_.baseDrive == BaseDrive::Tlm},
+        };
+        const bool motion = !carried();
+        for (const auto& input : inputs) {
+            if (input.used || input.value == 0.0) continue;
+            const bool inputIsMotion = input.name[0] == 'b';
+            if (motion && inputIsMotion) continue;  // the motion drives ignore each other's inputs (§16)
+            static const char* const drives[] = {"", "displacement", "velocity", "acceleration", "force", "tlm"};
+            throw fmu::ModelError(
+                std::string("invalid parameter base_drive = ") + drives[static_cast<int>(values_.baseDrive)] +
+                " with " + input.name + " set (" + format("%.17g", input.value, 0.0) +
+                (input.name == std::string("base_displacement") ? " from the initial position" : "") +
+                "): the clamp is driven by one input only; a clamp carried by the armature (force) or by the line "
+                "(tlm) is not also moved by a motion input, nor a motion-driven clamp by a force (allowed: set "
+                "base_drive to the input you drive, leave the others at 0)");
+        }
     }
 
     // The clamp's path over a step of length span from the communication time (docs/theory.md
@@ -273,6 +317,11 @@ private:
                 return values_.baseAcceleration.stepSignal(span, -kMaxBaseAcceleration, kMaxBaseAcceleration)
                     .integral(clampVelocity_)
                     .integral(clampPosition_);
+            case BaseDrive::Force:  // the drive force on the armature (§18)
+                return values_.driveForce.stepSignal(span, -plate::kMaxCarrierForce, plate::kMaxCarrierForce);
+            case BaseDrive::Tlm:  // the wave, held: what the partner launched is what arrives (§19)
+                values_.tlmWaveIn.history.reached(values_.tlmWaveIn.signal.value);
+                return plate::InputSignal{values_.tlmWaveIn.signal.value, 0.0, 0.0};
             case BaseDrive::Displacement:
             default: return values_.baseDisplacement.stepSignal(span, lower, upper);
         }
@@ -281,7 +330,7 @@ private:
     // first contact onset or release on the grid. Returns the span of the step as taken; after
     // an early end, every input ends the step where its signal stands then.
     double communicate(const plate::StepPlan& plan, const plate::InputSignal& base, const plate::InputSignal& load) {
-        if (!stopAtContactChange_) {
+        if (!stopAtContactChange_ || carried()) {  // a carried clamp: no early return (§18)
             simulation_->communicate(plan, base, load);
             return plan.span;
         }
@@ -304,7 +353,7 @@ private:
         return span;
     }
     void advanceClamp(const plate::InputSignal& base, double span) {
-        if (values_.baseDrive == BaseDrive::Displacement) return;
+        if (values_.baseDrive == BaseDrive::Displacement || carried()) return;
         clampPosition_ = base.at(span);
         clampVelocity_ = base.d1 + span * (base.d2 + span * (0.5 * base.d3 + span * base.d4 / 6.0));
     }

@@ -52,7 +52,11 @@ const fmu::EnumerationType kBaseDrive{
     "Which input moves the clamped edge",
     {{"displacement", 1, "base_displacement (the clamp position)"},
      {"velocity", 2, "base_velocity, integrated exactly over each communication step from the position at its start"},
-     {"acceleration", 3, "base_acceleration, integrated twice exactly over each communication step"}}};
+     {"acceleration", 3, "base_acceleration, integrated twice exactly over each communication step"},
+     {"force", 4,
+      "drive_force on an armature that carries the clamp inside the FMU (armature_mass, _stiffness, _damping)"},
+     {"tlm", 5,
+      "tlm_wave_in: the clamp is the end of a transmission line of impedance tlm_impedance to a partner FMU"}}};
 
 // A row: the variable as modelDescription.xml declares it, and how its value is read and set.
 struct Row {
@@ -92,7 +96,7 @@ void setElement(PlateValues& v, double x) { v.parameters.element = x == 2.0 ? El
 double getBaseInputMode(const PlateValues& v) { return double(static_cast<int>(v.baseDisplacement.mode)); }
 void setBaseInputMode(PlateValues& v, double x) {
     // One mode for every input of the clamp's motion.
-    for (InputPort* port : {&v.baseDisplacement, &v.baseVelocity, &v.baseAcceleration})
+    for (InputPort* port : {&v.baseDisplacement, &v.baseVelocity, &v.baseAcceleration, &v.driveForce})
         port->mode = static_cast<InputMode>(int(x));
 }
 double getLoadInputMode(const PlateValues& v) { return double(static_cast<int>(v.load.mode)); }
@@ -102,7 +106,11 @@ void setMass(PlateValues& v, double x) { v.parameters.mass = static_cast<MassMod
 double getTimeScheme(const PlateValues& v) { return double(static_cast<int>(v.parameters.timeScheme)); }
 void setTimeScheme(PlateValues& v, double x) { v.parameters.timeScheme = static_cast<TimeScheme>(int(x)); }
 double getBaseDrive(const PlateValues& v) { return double(static_cast<int>(v.baseDrive)); }
-void setBaseDrive(PlateValues& v, double x) { v.baseDrive = static_cast<BaseDrive>(int(x)); }
+void setBaseDrive(PlateValues& v, double x) {
+    v.baseDrive = static_cast<BaseDrive>(int(x));
+    using Carrier = plate::PlateParameters::Carrier;  // §18–19
+    v.parameters.carrier = x == 4.0 ? Carrier::Armature : x == 5.0 ? Carrier::Line : Carrier::None;
+}
 
 double saturate(double n) { return n > INT_MAX ? double(INT_MAX) : n; }  // counts are >= 0
 
@@ -111,6 +119,8 @@ double saturate(double n) { return n > INT_MAX ? double(INT_MAX) : n; }  // coun
         [](PlateValues& v, double x) { v.parameters.field = decltype(v.parameters.field)(x); }
 #define OUTPUT_FIELD(field) [](const PlateValues& v) { return double(v.outputs.field); }, nullptr
 #define PORT_FIELD(field) [](const PlateValues& v) { return v.port().field; }, nullptr
+#define CARRIER_FIELD(field) \
+    [](const PlateValues& v) { return v.simulation ? v.simulation->carrierOutputs().field : 0.0; }, nullptr
 
 // The table: one row per variable, in the order of modelDescription.xml. A new variable is one
 // row here (and its value reference in PlateVariables.h); nothing else lists the variables.
@@ -268,7 +278,10 @@ const Row kRows[] = {
      OUTPUT_FIELD(qpIterationsMax)},
     {output(kVrClampForce, "clamp_force", VariableType::Real, "N",
             "Vertical force the plate exerts on the clamp (positive upward): what a shaker carrying the clamp "
-            "feels; the scheme's value at the last internal step's centre t - dt"),
+            "feels; the scheme's value at the last internal step's centre t - dt (t - dt/2 with time_scheme = "
+            "conserving). Fed back with held values to a partner that moves the clamp (base_velocity) the loop is "
+            "unstable: it carries the plate's rigid inertia one step late (an added mass), and impacts make it "
+            "worse; base_drive = tlm couples stably, base_drive = force puts the armature inside"),
      PORT_FIELD(clampForce)},
     {output(kVrClampMoment, "clamp_moment", VariableType::Real, "N.m",
             "Moment about the clamp line x = 0 of the forces the plate exerts on the clamp (positive when "
@@ -320,11 +333,59 @@ const Row kRows[] = {
     {output(kVrFreeEdgeMidAcceleration, "free_edge_mid_acceleration", VariableType::Real, "m/s2",
             "Absolute acceleration at free_edge_mid at t - dt"),
      PORT_FIELD(acceleration[2])},
+    // The carried clamp (docs/theory.md §18–19): its motion is clamp_displacement, _velocity, _acceleration.
+    {parameter(kVrArmatureMass, "armature_mass", VariableType::Real, "kg",
+               "Mass of the armature carrying the clamp (base_drive = force; > 0)", plate::ranges::kArmatureMass),
+     PARAMETER_FIELD(armatureMass)},
+    {parameter(kVrArmatureStiffness, "armature_stiffness", VariableType::Real, "N/m",
+               "Suspension stiffness of the armature (base_drive = force), relaxed at the initial clamp position",
+               plate::ranges::kArmatureStiffness),
+     PARAMETER_FIELD(armatureStiffness)},
+    {parameter(kVrArmatureDamping, "armature_damping", VariableType::Real, "N.s/m",
+               "Suspension damping of the armature (base_drive = force)", plate::ranges::kArmatureDamping),
+     PARAMETER_FIELD(armatureDamping)},
+    {parameter(kVrTlmImpedance, "tlm_impedance", VariableType::Real, "N.s/m",
+               "Characteristic impedance Z of the transmission line to the partner (base_drive = tlm; > 0)",
+               plate::ranges::kTlmImpedance),
+     PARAMETER_FIELD(tlmImpedance)},
+    {input(kVrDriveForce, "drive_force", "N", false, plate::kMaxCarrierForce,
+           "Drive force on the armature, positive upward (base_drive = force)"),
+     [](const PlateValues& v) { return v.driveForce.signal.value; },
+     [](PlateValues& v, double x) { v.driveForce.setValue(x); }},
+    {input(kVrTlmWaveIn, "tlm_wave_in", "N", false, plate::kMaxCarrierForce,
+           "Wave arriving from the partner (base_drive = tlm): connect the partner's tlm_wave_out; held over "
+           "the step"),
+     [](const PlateValues& v) { return v.tlmWaveIn.signal.value; },
+     [](PlateValues& v, double x) { v.tlmWaveIn.setValue(x); }},
+    {output(kVrArmatureEnergy, "armature_energy", VariableType::Real, "J",
+            "Discrete energy of the armature (kinetic + suspension spring); 0 for a line end"),
+     CARRIER_FIELD(energy)},
+    {output(kVrArmatureDriveWork, "armature_drive_work", VariableType::Real, "J",
+            "Work of drive_force (or of tlm_wave_in) on the carrier since t = 0"),
+     CARRIER_FIELD(driveWork)},
+    {output(kVrArmatureDamped, "armature_damped", VariableType::Real, "J",
+            "Energy dissipated in the carrier's damper (the suspension, or the line's impedance) since t = 0"),
+     CARRIER_FIELD(damperWork)},
+    {output(kVrArmaturePortWork, "armature_port_work", VariableType::Real, "J",
+            "Work of the plate on the carrier since t = 0 (= -energy_input with load 0)"),
+     CARRIER_FIELD(portWork)},
+    {output(kVrTlmWaveOut, "tlm_wave_out", VariableType::Real, "N",
+            "Mean wave launched into the line over the last communication step (base_drive = tlm): connect to "
+            "the partner's tlm_wave_in"),
+     CARRIER_FIELD(waveOut)},
+    {output(kVrTlmTransit, "tlm_transit", VariableType::Real, "J",
+            "Energy of the wave this end launched in the last step, stored in the line until the partner "
+            "receives it"),
+     CARRIER_FIELD(transit)},
+    {output(kVrTlmLineLoss, "tlm_line_loss", VariableType::Real, "J",
+            "Energy this end launched that the mean wave does not carry, since t = 0 (>= 0: the line is passive)"),
+     CARRIER_FIELD(lineLoss)},
 };
 
 #undef PARAMETER_FIELD
 #undef OUTPUT_FIELD
 #undef PORT_FIELD
+#undef CARRIER_FIELD
 
 const Row& rowOf(const fmu::Variable& v) {
     // `v` is an element of plateVariables(), which lists the rows' variables in the same order.
@@ -348,6 +409,8 @@ InputPort* PlateValues::inputPort(fmi2ValueReference vr) {
         case kVrBaseVelocity: return &baseVelocity;
         case kVrBaseAcceleration: return &baseAcceleration;
         case kVrLoad: return &load;
+        case kVrDriveForce: return &driveForce;
+        case kVrTlmWaveIn: return &tlmWaveIn;
         default: return nullptr;
     }
 }

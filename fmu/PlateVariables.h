@@ -34,7 +34,8 @@ struct InputPort {
 };
 
 // Which input moves the clamp (docs/theory.md §16): the others are ignored.
-enum class BaseDrive { Displacement = 1, Velocity = 2, Acceleration = 3 };
+// Force and Tlm: the clamp is carried inside the step (docs/theory.md §18–19).
+enum class BaseDrive { Displacement = 1, Velocity = 2, Acceleration = 3, Force = 4, Tlm = 5 };
 
 // Everything an importer can set or read, as plain values.
 struct PlateValues {
@@ -45,6 +46,8 @@ struct PlateValues {
     InputPort baseVelocity{plate::InputMode::Quadratic};
     InputPort baseAcceleration{plate::InputMode::Quadratic};
     InputPort load{plate::InputMode::Hold};
+    InputPort driveForce{plate::InputMode::Quadratic};  // base_drive = force (§18)
+    InputPort tlmWaveIn{plate::InputMode::Hold};  // base_drive = tlm: always held (§19)
     BaseDrive baseDrive = BaseDrive::Displacement;
     // The outputs after each change; the port's fields only once one of them is read (they cost
     // probe and rotation products nobody else needs): port() fills them in.
@@ -120,6 +123,20 @@ enum PlateVr : fmi2ValueReference {
     kVrFreeEdgeMidAcceleration = 86,
     kVrMemoryLimit = 60,
     kVrTimeScheme = 65,
+    // The carried clamp (docs/theory.md §18–19).
+    kVrArmatureMass = 100,
+    kVrArmatureStiffness = 101,
+    kVrArmatureDamping = 102,
+    kVrTlmImpedance = 103,
+    kVrDriveForce = 104,
+    kVrTlmWaveIn = 105,
+    kVrArmatureEnergy = 106,
+    kVrArmatureDriveWork = 107,
+    kVrArmatureDamped = 108,
+    kVrArmaturePortWork = 109,
+    kVrTlmWaveOut = 110,
+    kVrTlmTransit = 111,
+    kVrTlmLineLoss = 112,
 };
 
 // Bounds of the clamp's velocity and acceleration inputs: far beyond any shaker (1 km/s,

@@ -226,7 +226,7 @@ def test_bad_port_inputs_are_refused_with_a_message(fmu_path):
         plate.fmu.setupExperiment(startTime=0.0)
         plate.fmu.enterInitializationMode()
         with pytest.raises(Exception):
-            plate.fmu.setInteger([plate.vars["base_drive"].valueReference], [4])
+            plate.fmu.setInteger([plate.vars["base_drive"].valueReference], [6])  # 4, 5: force, tlm
         assert any("base_drive" in m for m in plate.errors())
 
 

@@ -9,7 +9,6 @@ The shaker alone (through fmpy):
   fmi2Error.
 """
 
-import importlib.util
 import math
 from pathlib import Path
 
@@ -180,68 +179,4 @@ def test_bad_forces_and_steps_are_refused(shaker_fmu):
     shaker.fmu.freeInstance()  # after fmi2Error: only free, reset or set a state
 
 
-# -- the two-way system through libcosimpy (examples/shaker.py, its --quick sizes) ---------------
-
-
-@pytest.fixture(scope="module")
-def example():
-    pytest.importorskip("libcosimpy.CosimExecution")
-    spec = importlib.util.spec_from_file_location("shaker_example", REPO / "examples" / "shaker.py")
-    module = importlib.util.module_from_spec(spec)
-    spec.loader.exec_module(module)
-    return module
-
-
-@pytest.fixture(scope="module")
-def system(fmu_path, shaker_fmu, example):
-    return example.fmus(fmu_path)
-
-
-def test_base_acceleration_drops_at_the_first_resonance(system, example):
-    sr = example.sweep_measurement(system, example.QUICK_SWEEP, 1e-4)
-    fo, ao = sr["env_oneway"]
-    # One-way, the bare shaker above its 2 Hz suspension: a = F/M w^2/(w^2 - ws^2), 5.95 to
-    # 5.44 m/s^2 from 5 to 7 Hz: no drop (ratio 0.91 > 0.8).
-    assert ao.min() > 0.8 * ao.max()
-    # Two-way, measured 1.2 m/s^2 at 5.94 Hz against 5.65 one-way (ratio 0.21). The linear
-    # estimate of the dip, 2 zeta F / m1 over F / (M + m) = 2 (0.02) 137 / 23 = 0.24, holds
-    # only in steady state; the 0.5 Hz/s sweep does not wait for the 1.3 s decay time, so the
-    # bound 0.4 leaves room for that and the minimum is located to +-0.3 Hz (0.25 s windows
-    # are 0.125 Hz wide, plus the lag of the response).
-    assert abs(sr["drop_frequency"] - example.F1) < 0.3, sr["drop_frequency"]
-    assert sr["drop_amplitude"] < 0.4 * sr["oneway_at_drop"], (sr["drop_amplitude"], sr["oneway_at_drop"])
-
-
-def test_heavy_armature_reproduces_the_one_way_run(system, example):
-    heavy = example.heavy_check(system, example.QUICK_SWEEP, 1e-4, stop=0.5)
-    # The plate's force |F| <= F_max on the 1e6 kg armature moves it by at most F_max T^2/(2M)
-    # (the suspension only holds it back); the plate, linear here (no impact at +-0.1 m in
-    # 0.5 s), passes a base difference on amplified at most by its response ratio
-    # corner/base (~5 near 5 Hz), doubled for the phase of the difference.
-    assert 0 < heavy["base"] <= heavy["bound"], heavy
-    amplification = heavy["corner_scale"] / heavy["base_scale"]
-    assert heavy["corner"] <= 2 * amplification * heavy["bound"], heavy
-
-
-# Largest |coupling error| / drive work over the first second with obstacles at +-0.01 m (25-29
-# impacts), measured at the end of the run: fixed step 1e-4 s 0.62 (2.06 J of 3.32 J; 5e-5 s:
-# 0.15), ECCO 0.13 (0.44 J of 3.31 J). Held-value coupling passes each impact's clamp force to
-# the armature one step late, so this error is large; the bounds are the measurements with a
-# margin of about 1.6 for the impact timing, which moves with the last bits of the coupled run.
-COUPLING_BOUND = {"fixed step 1e-4 s": 1.0, "ECCO": 0.21}
-
-
-@pytest.mark.parametrize("master", ["fixed step 1e-4 s", "ECCO"])
-def test_coupled_energy_closes_to_the_coupling_error(system, example, master):
-    h = 1e-4 if master.startswith("fixed") else None
-    r = example.closure_row(system, example.QUICK_SWEEP, master, h, example.QUICK_CLOSURE_TIME)
-    drive = abs(r["drive_work"])
-    # Each FMU's ledger closes to roundoff (measured ~1e-12 J of ~2.7 J), so the balance drive
-    # work = stored + losses misses by the port's coupling error alone.
-    assert max(r["shaker_ledger"], r["plate_ledger"], r["closure_minus_coupling"]) <= 1e-9 * drive, r
-    # The coupling error, measured (docs/system-model.md, 1 s, obstacles +-0.01 m): see
-    # COUPLING_BOUND; a change of the port's discretization that makes it worse fails here.
-    assert r["max_coupling_error"] <= COUPLING_BOUND[master] * drive, r
-    # Impacts are felt by the shaker: its plate_force (the clamp force) reaches more than twice
-    # the largest clamp force of the impact-free sweep (1080 N, measured; 3.0 to 3.6 kN here).
-    assert r["impacts"] > 0 and max(r["clamp_max_contact"], r["clamp_max_free"]) > 2 * 1080.0, r
+# -- the two-way system through libcosimpy: python_tests/test_carrier.py (examples/shaker.py) ------

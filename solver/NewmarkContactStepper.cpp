@@ -24,11 +24,13 @@ NewmarkContactStepper::NewmarkContactStepper(std::shared_ptr<const DiscretePlate
         massVelocity_.resize(n);
         massVelocityNext_.resize(n);
     }
+    if (options_.carried) armature_ = std::make_unique<Armature>(*plate_, options_.carrier);
     if (obstacles_.any()) {
         const DiscretePlate* p = plate_.get();
         columns_ = std::make_unique<ContactColumns>(
             m, [p](int j, Eigen::VectorXd& z) { p->stepMatrixContactColumn(j, z); },
             [p](const Eigen::VectorXd& z, Eigen::VectorXd& y) { p->gatherContact(z, y); });
+        if (armature_) columns_ = armature_->contactColumns();  // the bordered matrix's (T.19)
         qp_ = std::make_unique<BoxQP>(*columns_);
         law_ = makeImpactLaw(*plate_, obstacles_, options_.restitution, options_.singularMass);
         for (Eigen::VectorXd* v : {&contact_.yFree, &contact_.y, &contact_.yPrev, &contact_.lower, &contact_.upper})
@@ -58,6 +60,7 @@ void NewmarkContactStepper::initialize(const Eigen::VectorXd& w0, double z0, dou
         s.contactImpulsePrev = s.contactImpulse;
     }
     if (law_) law_->reset();
+    if (armature_) armature_->reset();
     if (obstacles_.any()) {
         Eigen::VectorXd& y = contact_.y;
         plate_->gatherContact(w0, y);
@@ -85,6 +88,7 @@ void NewmarkContactStepper::setLoadAtStart(double p0) {
 // The step of (3.6) = docs/theory.md (T.1) in w = u − z·1 (§3–4): the free solution, the law's
 // contact phase, then the ledger (§6) of what the step did.
 void NewmarkContactStepper::step(double zNext, double pNext) {
+    if (armature_) return stepCarried(zNext, pNext);  // zNext is the drive force (§18)
     const NewmarkState& s = state_;
     checkInputs(zNext, pNext);
     const double baseJump = zNext - 2.0 * s.z + s.zPrev;  // Δt² z̈_n
@@ -173,12 +177,15 @@ ContactWork NewmarkContactStepper::resolveContact(double zNext, int& iterations,
                 << " iterations, relative KKT residual " << kkt << ")";
             throw StepError(msg.str());
         }
-        for (int i : qp_->active()) wNext_.noalias() += contact_.mu[i] * columns_->column(i);
+        if (armature_)
+            carrierShift_ = armature_->correct(*columns_, qp_->active(), contact_.mu, wNext_, contact_.y);
+        else
+            for (int i : qp_->active()) wNext_.noalias() += contact_.mu[i] * columns_->column(i);
         contactCount = static_cast<int>(qp_->active().size());
     } else {
         std::fill(trialState_.begin(), trialState_.end(), 0);
     }
-    return law_->work(s, violated, zNext, contact_);
+    return law_->work(s, violated, zNext + carrierShift_, contact_);
 }
 
 double NewmarkContactStepper::dampingWork() {

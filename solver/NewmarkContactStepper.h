@@ -17,6 +17,7 @@
 #include <memory>
 #include <vector>
 
+#include "Armature.h"
 #include "BoxQP.h"
 #include "DiscretePlate.h"
 #include "ImpactLaw.h"
@@ -31,6 +32,10 @@ struct SchemeOptions {
     // The plate's mass is singular: carry the contact impulses (docs/theory.md §11). Off with a
     // singular mass gives the plain Newmark step with M_s (kept to measure what it changes).
     bool singularMass = false;
+    // The clamp carried by an armature or a line end inside the step (docs/theory.md §18–18): step()
+    // then takes the carrier's drive force in place of the base position.
+    bool carried = false;
+    CarrierOptions carrier;
 };
 
 class NewmarkContactStepper {
@@ -67,9 +72,12 @@ public:
     double beta() const { return plate_->beta(); }
     const SchemeOptions& options() const { return options_; }
     const Obstacles& obstacles() const { return obstacles_; }
+    Armature* carrier() { return armature_.get(); }  // nullptr unless options().carried
+    const Armature* carrier() const { return armature_.get(); }
 
 private:
     void checkInputs(double zNext, double pNext) const;
+    void stepCarried(double fNext, double pNext);  // step() with the carrier (Armature.cpp)
     void assembleRightHandSide(double baseJump, double pBeta);  // rhs_ of (3.6) for d
     // The contact phase (§3.4 + the law): the QP where an obstacle is violated, wNext_ corrected.
     ContactWork resolveContact(double zNext, int& iterations, double& kkt, int& contactCount);
@@ -95,6 +103,8 @@ private:
     Eigen::VectorXd massVelocity_, massVelocityNext_;
     bool massVelocityValid_ = false;
     std::vector<signed char> trialState_;
+    std::unique_ptr<Armature> armature_;
+    double carrierShift_ = 0.0;  // the contact phase's change of z⁺ (carrier only)
     mutable Eigen::VectorXd scratch_, dwScratch_;
 };
 

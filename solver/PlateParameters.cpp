@@ -74,6 +74,17 @@ void validate(const PlateParameters& p) {
     requireRange("damping_mass", p.dampingMass, kDampingMass);
     requireRange("damping_stiffness", p.dampingStiffness, kDampingStiffness);
     requireRange("memory_limit", p.memoryLimit, kMemoryLimit);  // MB; 0 = no limit
+    if (p.carrier == PlateParameters::Carrier::Armature) {
+        requireRange("armature_mass", p.armatureMass, kArmatureMass, "when base_drive = force");
+        requireRange("armature_stiffness", p.armatureStiffness, kArmatureStiffness, "when base_drive = force");
+        requireRange("armature_damping", p.armatureDamping, kArmatureDamping, "when base_drive = force");
+    }
+    if (p.carrier == PlateParameters::Carrier::Line)
+        requireRange("tlm_impedance", p.tlmImpedance, kTlmImpedance, "when base_drive = tlm");
+    if (p.carrier != PlateParameters::Carrier::None && p.singularMass())
+        reject("mass", static_cast<int>(p.mass),
+               "1 (consistent) when base_drive = force or tlm (a carried clamp with a singular mass is not "
+               "implemented)");
 }
 
 }  // namespace plate

@@ -52,6 +52,14 @@ struct PlateParameters {
     // How exact mode runs (not an FMU parameter: the result is the same scheme either way;
     // benchmarks and tests pin it to compare the two).
     enum class Engine { Auto, SparseFactor, CompleteModal } engine = Engine::Auto;
+    // What carries the clamp (docs/theory.md §18–19; not an FMU parameter: base_drive chooses):
+    // the master's motion input (None), an armature driven by a force inside the step, or the end
+    // of a transmission line to a partner FMU. The carrier's values are checked only when used.
+    enum class Carrier { None, Armature, Line } carrier = Carrier::None;
+    double armatureMass = 20.0;  // kg
+    double armatureStiffness = 3158.0;  // N/m (2 Hz with 20 kg)
+    double armatureDamping = 50.0;  // N·s/m
+    double tlmImpedance = 2.0e4;  // N·s/m, the line's characteristic impedance
 
     double bendingStiffness() const {
         return youngsModulus * thickness * thickness * thickness / (12.0 * (1.0 - poissonRatio * poissonRatio));
@@ -64,6 +72,7 @@ struct PlateParameters {
 // inside what the arithmetic of the scheme keeps finite.
 constexpr double kMaxDisplacement = 1e4;  // m, |base_displacement|, |obstacle heights|
 constexpr double kMaxLoad = 1e12;  // Pa, |load|, |initial_load|
+constexpr double kMaxCarrierForce = 1e12;  // N, |drive_force|, |tlm_wave_in|
 
 // The allowed range of one parameter: the one place it is written. validate() checks it, the
 // FMU's table of variables declares it (modelDescription.xml min/max, documentation, README).
@@ -87,6 +96,9 @@ constexpr Range kDt{1e-12, 1.0}, kBeta{0.0, 0.5}, kInitialLoad{-kMaxLoad, kMaxLo
 constexpr Range kModes{0, 2147483647.0}, kRestitution{0.0, 1.0};
 constexpr Range kDampingMass{0.0, 1e6}, kDampingStiffness{0.0, 1.0};
 constexpr Range kMemoryLimit{0.0, 1e9};  // MB; 0 = no limit
+// The carrier (§18–19): a mass > 0 (a massless armature is a line end or no carrier at all).
+constexpr Range kArmatureMass{0.0, 1e9, true}, kArmatureStiffness{0.0, 1e12}, kArmatureDamping{0.0, 1e12};
+constexpr Range kTlmImpedance{0.0, 1e12, true};
 }  // namespace ranges
 
 // Checks everything that can be checked without assembling (throws ParameterError).

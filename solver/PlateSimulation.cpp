@@ -46,6 +46,18 @@ bool completeModalPays(const ClampedPlate& plate) {
                                     plate.stiffness.nonZeros());
 }
 
+// The clamp's carrier (docs/theory.md §18–19): an armature, or a line end (massless, the line's
+// impedance as its damper); the suspension is relaxed where the clamp starts.
+CarrierOptions carrierOptions(const PlateParameters& p, double baseDisplacement0) {
+    CarrierOptions c;
+    c.line = p.carrier == PlateParameters::Carrier::Line;
+    c.mass = c.line ? 0.0 : p.armatureMass;
+    c.stiffness = c.line ? 0.0 : p.armatureStiffness;
+    c.damping = c.line ? p.tlmImpedance : p.armatureDamping;
+    c.restPosition = baseDisplacement0;
+    return c;
+}
+
 }  // namespace
 
 struct PlateSimulation::Impl {
@@ -55,7 +67,7 @@ struct PlateSimulation::Impl {
     std::shared_ptr<const DiscretePlate> discrete;
     mutable std::unique_ptr<SparseCholesky> floorFactor;  // sparse A, for the floor measurement
     std::unique_ptr<PlateEngine> engine;
-    NewmarkContactStepper* stepper = nullptr;  // the Newmark engine's, while it is built
+    NewmarkContactStepper* stepper = nullptr;  // the Newmark engine's (its carrier's hooks); none for conserving
     // Between grid points (docs/theory.md §15): the communication time, and the outputs at the
     // grid point before it (the one after it is the scheme's state).
     double commTime = 0.0;
@@ -125,13 +137,14 @@ PlateSimulation::PlateSimulation(const PlateParameters& p, double baseDisplaceme
     options.dampingStiffness = p.dampingStiffness;
     options.singularMass = p.singularMass();  // carry the impulses (§11; the tests of the plain
         // step build their NewmarkContactStepper directly)
+    options.carried = p.carrier != PlateParameters::Carrier::None;  // §18–19
+    if (options.carried) options.carrier = carrierOptions(p, baseDisplacement0);
     auto stepper = std::make_unique<NewmarkContactStepper>(s.discrete, obstacles, options);
     s.stepper = stepper.get();
     s.engine = std::make_unique<NewmarkEngine>(s.discrete, std::move(stepper), p.length, p.width,
                                                s.space->mesh().vertexCount());
     progress.phase("static initial state (factor of K)", s.resources.staticSeconds + 0.5 * s.resources.factorSeconds);
     initializeState(obstacles, baseDisplacement0, loadAtStart, couplingFree);
-    s.stepper = nullptr;
     progress.done(s.resources.peakMB);
 }
 
@@ -292,12 +305,15 @@ void PlateSimulation::communicate(const StepPlan& plan, const InputSignal& base,
     const double dt = s.parameters.dt;
     if (!std::isfinite(load.value)) throw StepError("non-finite load input at the step start");
     s.engine->setLoadAtStart(load.value);
+    Armature* carrier = s.stepper ? s.stepper->carrier() : nullptr;
+    if (carrier) carrier->beginCommunication();
     for (long long k = 1; k <= plan.steps; ++k) {
         // The last step of one that ends between grid points: keep the grid point before it.
         if (k == plan.steps && !plan.endsOnGrid) s.before = gridOutputs(true);
         const double t = plan.offset + k * dt;
         s.engine->step(base.at(t), load.at(t));
     }
+    if (carrier) carrier->endCommunication(plan.steps);
     s.commTime = plan.end;
     s.onGrid = plan.endsOnGrid;
 }
@@ -351,6 +367,21 @@ std::vector<double> PlateSimulation::vertexDisplacements() const { return impl_-
 
 const ResourceEstimate& PlateSimulation::resources() const { return impl_->resources; }
 
+CarrierOutputs PlateSimulation::carrierOutputs() const {
+    CarrierOutputs o;
+    const Armature* carrier = impl_->stepper ? impl_->stepper->carrier() : nullptr;
+    if (!carrier) return o;
+    const CarrierState& c = carrier->state();
+    o.energy = carrier->energy(impl_->stepper->state());
+    o.driveWork = c.driveWork;
+    o.damperWork = c.damperWork;
+    o.portWork = c.portWork;
+    o.waveOut = c.waveOut;
+    o.transit = c.transit;
+    o.lineLoss = c.lineLoss;
+    return o;
+}
+
 std::string PlateSimulation::engine() const { return impl_->engine->name(); }
 
 Eigen::Index PlateSimulation::dofCount() const { return impl_->clamped->mass.rows(); }
@@ -395,10 +426,27 @@ std::vector<double> PlateSimulation::saveState() const {
     out.push_back(impl_->onGrid ? 1.0 : 0.0);
     PlateOutputs before = impl_->before;
     for (double* x : before.fields()) out.push_back(*x);
+    if (const Armature* carrier = impl_->stepper ? impl_->stepper->carrier() : nullptr) {  // last (§18)
+        CarrierState c = carrier->state();
+        for (double* x : c.fields()) out.push_back(*x);
+    }
     return out;
 }
 
-void PlateSimulation::restoreState(const std::vector<double>& in) {
+void PlateSimulation::restoreState(const std::vector<double>& all) {
+    std::vector<double> in = all;
+    CarrierState carried;
+    Armature* carrier = impl_->stepper ? impl_->stepper->carrier() : nullptr;
+    if (carrier) {  // the carrier's state last (§18)
+        if (in.size() < std::size_t(CarrierState::kSize))
+            throw std::invalid_argument("state does not belong to this plate (too short)");
+        const double* x = in.data() + in.size() - CarrierState::kSize;
+        for (double* field : carried.fields()) {
+            if (!std::isfinite(*x)) throw std::invalid_argument("corrupt state: non-finite carrier value");
+            *field = *x++;
+        }
+        in.resize(in.size() - CarrierState::kSize);
+    }
     constexpr std::size_t kTail = 2 + PlateOutputs::kFieldCount;
     if (in.size() < kTail) throw std::invalid_argument("state does not belong to this plate (too short)");
     const std::size_t head = in.size() - kTail;
@@ -425,6 +473,7 @@ void PlateSimulation::restoreState(const std::vector<double>& in) {
         throw std::invalid_argument(corrupt ? "corrupt state: non-finite output"
                                             : "corrupt state: communication time does not fit the grid");
     }
+    if (carrier) carrier->setState(carried);
     impl_->commTime = tail[0];
     impl_->onGrid = onGrid;
     impl_->before = before;

@@ -16,6 +16,14 @@
 
 namespace plate {
 
+// The clamp's carrier at a communication point (docs/theory.md §18–19): zero without one. Only
+// on the grid (a carried clamp refuses steps between grid points).
+struct CarrierOutputs {
+    double energy = 0;  // ½ M_a v² + the suspension's Φ, J
+    double driveWork = 0, damperWork = 0, portWork = 0;  // cumulative, J (portWork: the plate's work on it)
+    double waveOut = 0, transit = 0, lineLoss = 0;  // a line end: ā (N), h ā²/(4Z) and the line's loss (J)
+};
+
 // How one communication step of length h maps onto the scheme's fixed grid t_k = k Δt
 // (docs/theory.md §15): the internal steps to take, where the inputs' time s starts at the
 // first of them (s = offset + k Δt), and whether the step ends on a grid point.
@@ -72,6 +80,7 @@ public:
 
     // What this instance was estimated to cost before it was built (ResourceEstimate.h).
     const ResourceEstimate& resources() const;
+    CarrierOutputs carrierOutputs() const;
 
     // "sparse" (factor of A), "modal-complete" (exact, all modes) or "modal-<m>" (reduced).
     std::string engine() const;

@@ -24,12 +24,16 @@ void validate(const ShakerParameters& p) {
     check(p.stiffness >= 0 && p.stiffness <= kMaxStiffness, "stiffness", p.stiffness, "0 <= stiffness <= 1e15 N/m");
     check(p.damping >= 0 && p.damping <= kMaxDamping, "damping", p.damping, "0 <= damping <= 1e15 N s/m");
     check(p.dt >= kMinDt && p.dt <= kMaxDt, "dt", p.dt, "1e-9 s <= dt <= 1 s");
+    if (p.tlm)
+        check(p.impedance > 0 && p.impedance <= kMaxDamping, "tlm_impedance", p.impedance,
+              "0 < tlm_impedance <= 1e15 N s/m when coupling = 2 (tlm)");
 }
 
 Shaker::Shaker(const ShakerParameters& p) : p_(p) { validate(p_); }
 
 void Shaker::settle(double driveForce, double plateForce) {
-    s_.acceleration = (driveForce + plateForce - p_.stiffness * s_.displacement - p_.damping * s_.velocity) / p_.mass;
+    const double load = p_.tlm ? -(plateForce + p_.impedance * s_.velocity) : plateForce;  // the line end's push
+    s_.acceleration = (driveForce + load - p_.stiffness * s_.displacement - p_.damping * s_.velocity) / p_.mass;
 }
 
 void Shaker::step(double h, double driveForce, double plateForce) {
@@ -45,6 +49,17 @@ void Shaker::step(double h, double driveForce, double plateForce) {
         throw std::invalid_argument(text.str());
     }
     const double tau = h / n;
+    if (p_.tlm) {
+        double sum = 0.0, squares = 0.0;
+        for (long long i = 0; i < static_cast<long long>(n); ++i)
+            sum += substepLine(tau, driveForce, plateForce, squares);
+        const double z = p_.impedance;
+        s_.waveOut = sum / h;
+        s_.transit = h * s_.waveOut * s_.waveOut / (4.0 * z);
+        s_.lineLoss += (squares - h * s_.waveOut * s_.waveOut) / (4.0 * z);
+        settle(driveForce, plateForce);
+        return;
+    }
     const double force = driveForce + plateForce;
     for (long long i = 0; i < static_cast<long long>(n); ++i) substep(tau, force, driveForce, plateForce);
     settle(driveForce, plateForce);
@@ -63,6 +78,24 @@ void Shaker::substep(double tau, double force, double driveForce, double plateFo
     s_.driveWork += driveForce * dx;
     s_.plateWork += plateForce * dx;
     s_.damperLoss += c * tau * 0.25 * s * s;
+}
+
+// The line's end as the load: force -(c + Z x') with x' = s/2 over the substep, i.e. the substep
+// above with the damping c + Z and the force F - c; the launched wave a = c + Z s, and the line's
+// work on the armature -(c + Z s/2) dx = -(a² - c²) tau / (4Z) (docs/theory.md §19).
+double Shaker::substepLine(double tau, double driveForce, double wave, double& squares) {
+    const double m = p_.mass, c = p_.damping, k = p_.stiffness, z = p_.impedance;
+    const double x0 = s_.displacement, v0 = s_.velocity;
+    const double s = (driveForce - wave - k * x0 + 2.0 * m * v0 / tau) / (m / tau + 0.5 * (c + z) + 0.25 * k * tau);
+    const double dx = 0.5 * tau * s;
+    s_.displacement = x0 + dx;
+    s_.velocity = s - v0;
+    s_.driveWork += driveForce * dx;
+    s_.plateWork -= (wave + 0.5 * z * s) * dx;
+    s_.damperLoss += c * tau * 0.25 * s * s;
+    const double a = wave + z * s;
+    squares += a * a * tau;
+    return a * tau;
 }
 
 double Shaker::energy() const {

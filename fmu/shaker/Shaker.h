@@ -8,6 +8,12 @@
 // E = m v²/2 + k x²/2 obeys, over every substep, exactly
 //     E1 - E0 = (drive_force + plate_force) (x1 - x0) - c tau ((v0 + v1)/2)²,
 // so the ledger (drive_work, plate_work, damper_loss) closes to roundoff for any h.
+//
+// Coupled through a transmission line instead (tlm, docs/theory.md §19): the load is the line's
+// end, which pushes the armature with -(c + Z x') — c the wave arriving from the partner, held
+// over the step, Z the line's impedance — and the armature launches the wave a = c + 2 Z x'
+// (its mean over the step is the output tlm_wave_out). plate_work is then the line's work on the
+// armature, exactly -(a² - c²) tau / (4 Z) summed over the substeps.
 #include <stdexcept>
 
 namespace shaker {
@@ -17,6 +23,8 @@ struct ShakerParameters {
     double stiffness = 3158.0;  // N/m, suspension: f = sqrt(k/m)/(2 pi) = 2.0 Hz
     double damping = 50.0;  // N s/m, suspension: damping ratio c / (2 sqrt(k m)) = 0.1
     double dt = 1e-5;  // s, largest internal substep
+    bool tlm = false;  // coupled by a transmission line: the second force input is its wave
+    double impedance = 2.0e4;  // N s/m, the line's characteristic impedance (tlm only)
 };
 
 // Ranges: 0 < mass <= kMaxMass, 0 <= stiffness <= kMaxStiffness, 0 <= damping <= kMaxDamping,
@@ -32,6 +40,9 @@ struct ShakerState {
     double driveWork = 0.0;  // J, work of drive_force on the armature
     double plateWork = 0.0;  // J, work of plate_force on the armature
     double damperLoss = 0.0;  // J, energy dissipated in the damper (>= 0)
+    // tlm: the mean wave launched over the last step (N), its energy h ā²/(4Z) carried to the
+    // partner (J), and what the mean wave cannot carry, sum over steps of (∫a² - h ā²)/(4Z) >= 0 (J).
+    double waveOut = 0.0, transit = 0.0, lineLoss = 0.0;
 };
 
 class Shaker {
@@ -57,6 +68,8 @@ public:
 
 private:
     void substep(double tau, double force, double driveForce, double plateForce);
+    // One substep with the line's end as the load (wave c held): returns a tau, adds a² tau to squares.
+    double substepLine(double tau, double driveForce, double wave, double& squares);
 
     ShakerParameters p_;
     ShakerState s_;

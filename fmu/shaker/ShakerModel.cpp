@@ -48,10 +48,24 @@ enum Vr : fmi2ValueReference {
     kDriveWork = 24,
     kPlateWork = 25,
     kDamperLoss = 26,
+    // The transmission-line coupling (docs/theory.md §19).
+    kCoupling = 4,
+    kTlmImpedance = 5,
+    kTlmWaveIn = 12,
+    kTlmWaveOut = 27,
+    kTlmTransit = 28,
+    kTlmLineLoss = 29,
 };
 
 fmu::Variable parameter(fmi2ValueReference vr, const char* name, const char* unit, const char* description) {
     return {vr, name, VariableType::Real, Causality::Parameter, description, unit, nullptr, true, false};
+}
+
+fmu::Variable switchParameter(fmi2ValueReference vr, const char* name, const char* description, int lo, int hi) {
+    fmu::Variable v{vr, name, VariableType::Integer, Causality::Parameter, description, nullptr, nullptr, true, false};
+    v.min = lo;
+    v.max = hi;
+    return v;
 }
 
 // The inputs set the acceleration at t = 0: a new value before initialization ends rebuilds.
@@ -72,8 +86,11 @@ const std::vector<fmu::Variable>& shakerVariables() {
                   "Largest internal substep (1e-9 to 1 s): a communication step h is split into ceil(h/dt) equal "
                   "trapezoidal substeps, so any h is accepted"),
         input(kDriveForce, "drive_force", "Force of the drive (the coil) on the armature, positive upward"),
-        input(kPlateForce, "plate_force",
-              "Force the load exerts on the armature, positive upward: connect PlateImpact's clamp_force"),
+        input(
+            kPlateForce, "plate_force",
+            "Force the load exerts on the armature, positive upward: connect PlateImpact's clamp_force (coupling = 1; "
+            "with held values unstable when the load's rigid mass is not small against the armature's, and "
+            "through impacts: use coupling = 2)"),
         output(kDisplacement, "armature_displacement", "m", "Armature displacement x, positive upward"),
         output(kVelocity, "armature_velocity", "m/s", "Armature velocity: connect to PlateImpact's base_velocity"),
         output(kAcceleration, "armature_acceleration", "m/s2",
@@ -83,6 +100,21 @@ const std::vector<fmu::Variable>& shakerVariables() {
         output(kPlateWork, "plate_work", "J",
                "Work of plate_force on the armature since t = 0 (minus the work the armature did on the load)"),
         output(kDamperLoss, "damper_loss", "J", "Energy dissipated in the suspension damper since t = 0"),
+        switchParameter(kCoupling, "coupling",
+                        "How the load is coupled: 1 = force (plate_force, held: unstable through impacts and for "
+                        "armatures lighter than the plate, docs/system-model.md), 2 = tlm (a transmission line: "
+                        "tlm_wave_in / tlm_wave_out with PlateImpact's base_drive = tlm, stable and energy-conserving)",
+                        1, 2),
+        parameter(kTlmImpedance, "tlm_impedance", "N.s/m",
+                  "Characteristic impedance Z of the line (coupling = 2; 0 < Z <= 1e15): the same value on both ends"),
+        input(kTlmWaveIn, "tlm_wave_in",
+              "Wave arriving from the partner (coupling = 2): connect PlateImpact's tlm_wave_out"),
+        output(kTlmWaveOut, "tlm_wave_out", "N",
+               "Mean wave the armature launched over the last step (coupling = 2): connect PlateImpact's tlm_wave_in"),
+        output(kTlmTransit, "tlm_transit", "J",
+               "Energy of that wave, stored in the line until the partner receives it"),
+        output(kTlmLineLoss, "tlm_line_loss", "J",
+               "Energy launched that the mean wave does not carry, since t = 0 (>= 0: the line is passive)"),
     };
     return table;
 }
@@ -109,7 +141,8 @@ private:
     static void checkForce(const fmu::Variable& v, double x);
 
     ShakerParameters p_;
-    double driveForce_ = 0.0, plateForce_ = 0.0;
+    double driveForce_ = 0.0, plateForce_ = 0.0, waveIn_ = 0.0;
+    double loadInput() const { return p_.tlm ? waveIn_ : plateForce_; }  // the load's input of the coupling
     std::unique_ptr<Shaker> shaker_;
     double time_ = 0.0;  // since the start of the experiment
 };
@@ -130,6 +163,12 @@ double ShakerModel::get(const fmu::Variable& v) const {
         case kDriveWork: return s.driveWork;
         case kPlateWork: return s.plateWork;
         case kDamperLoss: return s.damperLoss;
+        case kCoupling: return p_.tlm ? 2.0 : 1.0;
+        case kTlmImpedance: return p_.impedance;
+        case kTlmWaveIn: return waveIn_;
+        case kTlmWaveOut: return s.waveOut;
+        case kTlmTransit: return s.transit;
+        case kTlmLineLoss: return s.lineLoss;
     }
     throw fmu::ModelError("unknown variable");
 }
@@ -147,6 +186,19 @@ void ShakerModel::set(const fmu::Variable& v, double x) {
         case kStiffness: p_.stiffness = x; break;
         case kDamping: p_.damping = x; break;
         case kDt: p_.dt = x; break;
+        case kCoupling:
+            if (x != 1.0 && x != 2.0) {
+                std::ostringstream text;
+                text << "coupling = " << x << " is out of range; allowed: 1 (force) or 2 (tlm)";
+                throw fmu::ModelError(text.str());
+            }
+            p_.tlm = x == 2.0;
+            break;
+        case kTlmImpedance: p_.impedance = x; break;
+        case kTlmWaveIn:
+            checkForce(v, x);
+            waveIn_ = x;
+            return;
         case kDriveForce:
             checkForce(v, x);
             driveForce_ = x;
@@ -166,13 +218,21 @@ void ShakerModel::build() {
     } catch (const std::invalid_argument& e) {
         throw fmu::ModelError(e.what());
     }
-    shaker_->settle(driveForce_, plateForce_);
+    if (p_.tlm && plateForce_ != 0.0)
+        throw fmu::ModelError(
+            "invalid parameter coupling = 2 (tlm) with plate_force set: the line carries the load "
+            "(connect tlm_wave_in), plate_force must stay 0");
+    shaker_->settle(driveForce_, loadInput());
 }
 
 void ShakerModel::doStep(double, double h) {
     if (!shaker_) throw fmu::ModelError("the shaker is not built");
     try {
-        shaker_->step(h, driveForce_, plateForce_);
+        if (p_.tlm && plateForce_ != 0.0)
+            throw std::invalid_argument(
+                "invalid parameter coupling = 2 (tlm) with plate_force set: the line "
+                "carries the load (connect tlm_wave_in), plate_force must stay 0");
+        shaker_->step(h, driveForce_, loadInput());
     } catch (const std::invalid_argument& e) {
         throw fmu::ModelError(e.what());
     }
@@ -182,16 +242,16 @@ void ShakerModel::doStep(double, double h) {
 void ShakerModel::saveState(std::vector<double>& out) const {
     const ShakerState s = current();
     out.insert(out.end(), {shaker_ ? 1.0 : 0.0, time_, s.displacement, s.velocity, s.acceleration, s.driveWork,
-                           s.plateWork, s.damperLoss});
+                           s.plateWork, s.damperLoss, s.waveOut, s.transit, s.lineLoss});
 }
 
 void ShakerModel::restoreState(const double*& in, const double* end) {
-    constexpr std::ptrdiff_t kSize = 8;
+    constexpr std::ptrdiff_t kSize = 11;
     if (end - in != kSize || (in[0] != 0.0 && in[0] != 1.0)) throw fmu::ModelError("bad shaker state");
     for (std::ptrdiff_t i = 1; i < kSize; ++i)
         if (!std::isfinite(in[i])) throw fmu::ModelError("bad shaker state");
     const bool wasBuilt = in[0] == 1.0;
-    const ShakerState s{in[2], in[3], in[4], in[5], in[6], in[7]};
+    const ShakerState s{in[2], in[3], in[4], in[5], in[6], in[7], in[8], in[9], in[10]};
     time_ = in[1];
     in += kSize;
     if (!wasBuilt) {

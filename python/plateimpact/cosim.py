@@ -260,3 +260,180 @@ def energy_closure(run):
         "plate_ledger": plate_stored
         - (run["plate.energy_input"] - run["plate.energy_dissipated"] - run["plate.energy_damped"]),
     }
+
+
+# ---------------------------------------------------------------------------------------------
+# The shaker system with a choice of coupling (issue 27; docs/theory.md §18-18, examples/shaker.py):
+#   "force"      Shaker.fmu <-> PlateImpact.fmu, motion in / force out with held values (as above);
+#   "tlm"        Shaker.fmu <-> PlateImpact.fmu through a transmission line: each side sends its mean
+#                outgoing wave (tlm_wave_out -> the partner's tlm_wave_in), both with tlm_impedance;
+#   "monolithic" PlateImpact.fmu alone with the armature inside (base_drive = force), the sweep
+#                driving its drive_force: the exact coupling, the reference.
+# `values` maps "sweep", "shaker", "plate" to initial values; the shaker's mass, stiffness and
+# damping become the plate's armature_* in the monolithic run.
+
+COUPLINGS = ("force", "tlm", "monolithic")
+BASE_DRIVE = {"force": 4, "tlm": 5}  # PlateImpact's base_drive items for a carried clamp
+_PLATE_COMMON = (
+    "clamp_force",
+    "clamp_displacement",
+    "clamp_acceleration",
+    "corner_1",
+    "energy",
+    "energy_input",
+    "energy_dissipated",
+    "energy_damped",
+    "contact_force_lower",
+    "contact_force_upper",
+)
+SYSTEM_RECORD = {
+    "force": {"shaker": SHAKER_RECORD, "plate": _PLATE_COMMON},
+    "tlm": {
+        "shaker": SHAKER_RECORD + ("tlm_wave_out", "tlm_transit", "tlm_line_loss"),
+        "plate": _PLATE_COMMON + ("tlm_wave_out", "tlm_transit", "tlm_line_loss"),
+    },
+    "monolithic": {
+        "plate": _PLATE_COMMON + ("armature_energy", "armature_drive_work", "armature_damped", "armature_port_work")
+    },
+}
+
+
+def system_execution(fmus, values, coupling, h=None, ecco=None):
+    """A libcosim execution of the shaker system with `coupling` (COUPLINGS); fixed step `h` or
+    ECCO (force coupling only: its power bond is velocity/force). Returns ((execution,
+    algorithm), observer, slaves, value references)."""
+    from libcosimpy.CosimAlgorithm import CosimAlgorithm, EccoParams
+    from libcosimpy.CosimExecution import CosimExecution
+    from libcosimpy.CosimLogging import CosimLogLevel, log_output_level
+    from libcosimpy.CosimObserver import CosimObserver
+    from libcosimpy.CosimSlave import CosimLocalSlave
+
+    if coupling not in COUPLINGS:
+        raise ValueError(f"coupling = {coupling!r}; allowed: {', '.join(COUPLINGS)}")
+    if ecco is not None and coupling != "force":
+        raise ValueError("ECCO runs the force coupling only (its power bond pairs a velocity with a force)")
+    log_output_level(CosimLogLevel.ERROR)
+    algorithm = None
+    if ecco is None:
+        execution = CosimExecution.from_step_size(round(h * 1e9))  # libcosim's time: integer ns
+    else:
+        algorithm = CosimAlgorithm.create_ecco_algorithm(EccoParams(**ecco))
+        execution = CosimExecution.from_algorithm(algorithm)
+    names = ("sweep", "plate") if coupling == "monolithic" else ("sweep", "shaker", "plate")
+    slaves = {
+        name: execution.add_local_slave(CosimLocalSlave(fmu_path=str(Path(fmus[name]).resolve()), instance_name=name))
+        for name in names
+    }
+    vrs = {name: variables(fmus[name]) for name in names}
+    observer = CosimObserver.create_last_value()
+    execution.add_observer(observer)
+    plate_values = dict(values.get("plate", {}))
+    shaker_values = dict(values.get("shaker", {}))
+    if coupling == "monolithic":
+        plate_values["base_drive"] = BASE_DRIVE["force"]
+        for key in ("mass", "stiffness", "damping"):
+            if key in shaker_values:
+                plate_values[f"armature_{key}"] = shaker_values[key]
+    elif coupling == "tlm":
+        plate_values["base_drive"] = BASE_DRIVE["tlm"]
+        shaker_values["coupling"] = 2
+        impedance = shaker_values.get("tlm_impedance", plate_values.get("tlm_impedance"))
+        if impedance is not None:
+            shaker_values["tlm_impedance"] = plate_values["tlm_impedance"] = impedance
+    else:
+        plate_values["base_drive"] = BASE_DRIVE_VELOCITY
+    if coupling != "tlm":  # the line's impedance means nothing to the other couplings
+        plate_values.pop("tlm_impedance", None)
+        shaker_values.pop("tlm_impedance", None)
+    _set_initial_values(execution, slaves["sweep"], vrs["sweep"], values.get("sweep", {}))
+    _set_initial_values(execution, slaves["plate"], vrs["plate"], plate_values)
+    sweep, plate, p = slaves["sweep"], slaves["plate"], vrs["plate"]
+    signal = vrs["sweep"]["base_displacement"]
+    if coupling == "monolithic":
+        _connect(execution, sweep, signal, plate, p["drive_force"], "sweep -> plate.drive_force")
+    else:
+        _set_initial_values(execution, slaves["shaker"], vrs["shaker"], shaker_values)
+        shaker, s = slaves["shaker"], vrs["shaker"]
+        _connect(execution, sweep, signal, shaker, s["drive_force"], "sweep -> drive_force")
+        if coupling == "tlm":
+            _connect(execution, shaker, s["tlm_wave_out"], plate, p["tlm_wave_in"], "shaker -> plate wave")
+            _connect(execution, plate, p["tlm_wave_out"], shaker, s["tlm_wave_in"], "plate -> shaker wave")
+        else:
+            _connect(execution, shaker, s["armature_velocity"], plate, p["base_velocity"], "armature -> base_velocity")
+            _connect(execution, plate, p["clamp_force"], shaker, s["plate_force"], "clamp_force -> plate_force")
+            if algorithm is not None and (
+                algorithm.add_power_bond(
+                    shaker, s["armature_velocity"], s["plate_force"], plate, p["clamp_force"], p["base_velocity"]
+                )
+                != 0
+            ):
+                raise RuntimeError("libcosim could not add the power bond")
+    return (execution, algorithm), observer, slaves, vrs
+
+
+def run_system(fmus, values, stop, coupling, h=None, ecco=None):
+    """Runs the shaker system with `coupling` to `stop` (s); a dict of arrays over the
+    communication points: "time", "<slave>.<name>" for SYSTEM_RECORD[coupling] and the plate's
+    impact counters. Raises RuntimeError (with the time) if a step fails."""
+    # The switches are Integer parameters: libcosim sets them on the FMU as built.
+    (execution, _algorithm), observer, slaves, vrs = system_execution(fmus, values, coupling, h, ecco)
+    record = SYSTEM_RECORD[coupling]
+    real = [(slave, [vrs[slave][n] for n in names]) for slave, names in record.items()]
+    counters = [vrs["plate"][n] for n in PLATE_COUNTERS]
+    rows = []
+    stop_ns = round(stop * 1e9)
+    while True:
+        now = execution.status().current_time
+        if now >= stop_ns - (round(h * 1e9) // 2 if h else 0):
+            break
+        if not execution.step():
+            raise RuntimeError(f"libcosim step at t = {now * 1e-9:.6f} s failed")
+        row = [execution.status().current_time * 1e-9]
+        for slave, refs in real:
+            row += list(observer.last_real_values(slaves[slave], refs))
+        row += list(observer.last_integer_values(slaves["plate"], counters))
+        rows.append(row)
+    data = np.array(rows)
+    names = ["time"]
+    for slave, fields in record.items():
+        names += [f"{slave}.{n}" for n in fields]
+    names += [f"plate.{n}" for n in PLATE_COUNTERS]
+    return {name: data[:, i] for i, name in enumerate(names)}
+
+
+def system_energy(run, coupling):
+    """The coupled system's energy balance over a run (arrays over the communication points):
+    drive work = stored + losses + coupling error, where for a line its energy in transit counts
+    as stored and its loss (what the mean waves cannot carry, >= 0) as a loss; `ledgers` is the
+    largest residual of the FMUs' own ledgers (roundoff)."""
+    if coupling == "monolithic":
+        drive = run["plate.armature_drive_work"]
+        stored = run["plate.energy"] + run["plate.armature_energy"]
+        losses = run["plate.armature_damped"] + run["plate.energy_dissipated"] + run["plate.energy_damped"]
+        # The armature's port work is the plate's energy input with the sign turned: no error by construction.
+        coupling_error = -(run["plate.armature_port_work"] + run["plate.energy_input"])
+        line = np.zeros_like(drive)
+        line_loss = np.zeros_like(drive)
+        ledgers = np.abs(stored - (drive - losses - coupling_error)).max()
+    else:
+        e = energy_closure(run)
+        drive, losses = e["drive_work"], e["losses"]
+        stored = e["stored"]
+        coupling_error = e["coupling_error"]
+        ledgers = max(np.abs(e["shaker_ledger"]).max(), np.abs(e["plate_ledger"]).max())
+        if coupling == "tlm":
+            line = run["shaker.tlm_transit"] + run["plate.tlm_transit"]
+            line_loss = run["shaker.tlm_line_loss"] + run["plate.tlm_line_loss"]
+            coupling_error = coupling_error - (line + line_loss)
+        else:
+            line = np.zeros_like(drive)
+            line_loss = np.zeros_like(drive)
+    return {
+        "drive_work": drive,
+        "stored": stored,
+        "line": line,
+        "line_loss": line_loss,
+        "losses": losses,
+        "coupling_error": coupling_error,
+        "ledgers": ledgers,
+    }
