@@ -15,6 +15,8 @@ from fmpy.fmi1 import FMICallException
 
 from plateimpact import PlateImpactFMU, default_base
 
+pytestmark = pytest.mark.sanitizer  # the conserving engine's code paths (test.sh's sanitizer stage)
+
 CONSERVING = {"mass": "singular_p0", "time_scheme": "conserving"}
 # §5.2: released from the static shape under 8600 Pa onto the lower obstacle alone.
 RELEASE = {"initial_load": 8600.0, "obstacle_upper_enabled": False}
@@ -41,6 +43,7 @@ def run(fmu_path, stop, h=1e-3, base=None, load=None, every=None, **parameters):
     return rows
 
 
+@pytest.mark.repeats_paths
 @pytest.mark.parametrize("dt", [4e-5, 1e-5, 2.5e-6])
 @pytest.mark.parametrize("element, nx, ny", [("argyris", 14, 5), ("fvs", 20, 7)])
 def test_energy_is_conserved_through_impacts_in_free_vibration(fmu_path, dt, element, nx, ny):
@@ -52,6 +55,7 @@ def test_energy_is_conserved_through_impacts_in_free_vibration(fmu_path, dt, ele
     assert worst <= LEDGER_TOLERANCE * e0
 
 
+@pytest.mark.repeats_paths
 @pytest.mark.parametrize("element, nx, ny", [("argyris", 14, 5), ("fvs", 20, 7)])
 @pytest.mark.parametrize("dt", [4e-5, 1e-5])
 def test_energy_balance_closes_with_base_load_and_both_obstacles(fmu_path, element, nx, ny, dt):
@@ -117,6 +121,7 @@ def corner_path(fmu_path, stop, **parameters):
     return np.array([r["corner_1"] for r in run(fmu_path, stop, h=1e-4, **RELEASE, **CONSERVING, **parameters)])
 
 
+@pytest.mark.repeats_paths
 def test_reduced_model_tends_to_the_full_engine(fmu_path):
     # 140 massive modes on 14 x 5 Argyris cells (one per triangle); over 0.1 s (the first impact).
     full = corner_path(fmu_path, 0.1)
@@ -136,6 +141,7 @@ def second_impact_time(fmu_path, dt, **law):
     raise AssertionError("no impact between 0.2 and 0.24 s")
 
 
+@pytest.mark.repeats_paths
 def test_conserving_and_singular_p0_tend_to_the_same_impact_times(fmu_path):
     gaps = [
         abs(second_impact_time(fmu_path, dt, **CONSERVING) - second_impact_time(fmu_path, dt, mass="singular_p0"))
@@ -236,6 +242,7 @@ def test_fmi3_early_return_stops_at_contact_events(fmu_path):
         ({"time_scheme": "conserving"}, "mass"),
         ({**CONSERVING, "restitution": 0.5}, "restitution"),
         ({"mass": "singular_p0", "modes": 20}, "modes"),
+        ({**CONSERVING, "base_drive": 4, "armature_mass": 20.0}, "base_drive"),
     ],
 )
 def test_what_it_cannot_take_is_refused_with_a_message(fmu_path, parameters, named):

@@ -81,6 +81,10 @@ void validate(const PlateParameters& p) {
     }
     if (p.carrier == PlateParameters::Carrier::Line)
         requireRange("tlm_impedance", p.tlmImpedance, kTlmImpedance, "when base_drive = tlm");
+    if (p.carrier != PlateParameters::Carrier::None && p.timeScheme == TimeScheme::Conserving)
+        reject("base_drive", p.carrier == PlateParameters::Carrier::Armature ? "force" : "tlm",
+               "displacement, velocity or acceleration with time_scheme = conserving (the carried clamp is built on "
+               "time_scheme = newmark)");
     if (p.carrier != PlateParameters::Carrier::None && p.singularMass())
         reject("mass", static_cast<int>(p.mass),
                "1 (consistent) when base_drive = force or tlm (a carried clamp with a singular mass is not "
