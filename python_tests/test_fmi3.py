@@ -329,13 +329,18 @@ def test_fmi3_description_and_page_are_its_own(fmu3):
 
 @pytest.mark.parametrize(
     "switch, items",
-    [("element", "(1 = argyris, 2 = fvs)"), ("base_drive", "(1 = displacement, 2 = velocity, 3 = acceleration)")],
+    [
+        ("element", "(1 = argyris, 2 = fvs)"),
+        ("base_drive", "(1 = displacement, 2 = velocity, 3 = acceleration, 4 = force, 5 = tlm)"),
+        ("time_scheme", "(1 = newmark, 2 = conserving)"),
+    ],
 )
 def test_switches_are_int32_with_their_items(fmu3, switch, items):
     md = fmpy.read_model_description(str(fmu3))
     v = {v.name: v for v in md.modelVariables}[switch]
     assert (v.type, v.min, v.declaredType) == ("Int32", "1", None)
     assert v.description.endswith(items)
+    assert v.max == str(items.count(" = "))  # max is the last item: no value without a name
 
 
 @pytest.mark.parametrize("version", ["2.0", "3.0"])
