@@ -1,7 +1,7 @@
 """The plate between its stops, from the FMI 3.0 FMU's array output: the default scene (base
 0.09 sin(2π·10 t) m, obstacles at ±0.1 m) run with fmpy.simulate_fmu(early_return_allowed=True),
 so that every contact onset and release is a frame of its own; vertex_displacement (the
-deflection at every mesh vertex, [vertices_x][vertices_y]) drawn as a surface, the vertices on
+deflection at every mesh vertex, [vertex_output = 1][vertices_x][vertices_y]) drawn as a surface, the vertices on
 an obstacle in red. Writes a GIF (Pillow) of the first impacts and a still PNG.
 
     python examples/animate.py --fmu build/fmi3/PlateImpact.fmu --gif docs/figures/plate_impact.gif --png docs/figures/plate_impact.png
@@ -40,7 +40,7 @@ def parameters(fmu):
 
 def draw(ax, row, p, tol=1e-9):
     """One frame: the deflected plate, its vertices on an obstacle (within tol) in red."""
-    w = row["vertex_displacement"]  # [i along x][j along y]
+    w = row["vertex_displacement"][0]  # [vertex_output = 1][i along x][j along y]
     nx, ny = w.shape[0] - 1, w.shape[1] - 1
     x, y = np.meshgrid(np.linspace(0, p["length"], nx + 1), np.linspace(0, p["width"], ny + 1), indexing="ij")
     on = (np.abs(w - p["obstacle_upper"]) < tol) | (np.abs(w - p["obstacle_lower"]) < tol)

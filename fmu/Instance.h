@@ -81,6 +81,7 @@ public:
     // FMI 3.0 transitions without work of their own (configuration, event and step mode).
     void enterState(State next) { state_ = next; }
     const Model& model() const { return *model_; }
+    Model& model() { return *model_; }
     fmi2Status statusNotAvailable(fmi2StatusKind kind);
     double currentTime() const;
 

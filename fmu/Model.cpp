@@ -76,4 +76,19 @@ void Model::getArray(const ArrayOutput& a, double*, std::size_t) const {
     throw ModelError(std::string(a.name) + " is not an array output of this model");
 }
 
+double Model::ownStructuralValue(const StructuralParameter& s) const {
+    for (const auto& [vr, value] : ownStructuralValues_)
+        if (vr == s.vr) return value;
+    return s.offset;
+}
+
+void Model::setOwnStructuralValue(const StructuralParameter& s, double value) {
+    for (auto& [vr, stored] : ownStructuralValues_)
+        if (vr == s.vr) {
+            stored = value;
+            return;
+        }
+    ownStructuralValues_.emplace_back(s.vr, value);
+}
+
 }  // namespace fmu

@@ -10,6 +10,7 @@
 #include <memory>
 #include <stdexcept>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include "fmi2Functions.h"
@@ -83,14 +84,20 @@ struct ModelInfo {
 };
 
 // FMI 3.0 only (FMI 2.0 has no arrays): a structural parameter giving one extent of an array
-// output. It is a view of an Integer parameter of the table, not a value of its own:
+// output. Either a view of an Integer parameter of the table, not a value of its own:
 // extent = parameter + offset; setting it sets the parameter (FMU states carry the parameter).
+// Or (parameter = kOwnValue) a value of its own in [min, max], starting at `offset`, that the
+// model keeps (Model::ownStructuralValue) and nothing else reads: an array's switch (min = 0
+// lets the master empty the array, FMI 3.0 §2.4.7.3).
+constexpr fmi2ValueReference kOwnValue = 0xFFFFFFFFu;
 struct StructuralParameter {
     fmi2ValueReference vr;
     const char* name;
     const char* description;
-    fmi2ValueReference parameter;  // the table's Integer parameter it is a view of
-    int offset;
+    fmi2ValueReference parameter;  // the table's Integer parameter it is a view of, or kOwnValue
+    int offset;  // a view: extent = parameter + offset; an own value: its start
+    int min = 0, max = 0;  // an own value's range (a view's is its parameter's check)
+    bool ownValue() const { return parameter == kOwnValue; }
 };
 
 // FMI 3.0 only: an array output (row-major, the first extent varies slowest).
@@ -149,6 +156,10 @@ public:
     virtual const std::vector<StructuralParameter>& structuralParameters() const;
     virtual const std::vector<ArrayOutput>& arrayOutputs() const;
     virtual void getArray(const ArrayOutput& a, double* out, std::size_t n) const;
+    // The value of a structural parameter with a value of its own (its start until set; the
+    // caller has checked the range). A new instance (fmi3Reset) starts again from the starts.
+    double ownStructuralValue(const StructuralParameter& s) const;
+    void setOwnStructuralValue(const StructuralParameter& s, double value);
 
     // Everything beyond the variables' values that an FMU state must carry (append / read
     // back in the same order; `in` advances). restoreState throws ModelError on bad data.
@@ -160,6 +171,9 @@ public:
     // Where the model's information for the user goes (the instance's logInfo category): what
     // an initialization will cost and how far it is.
     std::function<void(const std::string&)> inform = [](const std::string&) {};
+
+private:
+    std::vector<std::pair<fmi2ValueReference, double>> ownStructuralValues_;  // those set so far
 };
 
 // Defined once by each model binding.

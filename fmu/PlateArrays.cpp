@@ -9,9 +9,13 @@ namespace plateimpact {
 const std::vector<fmu::StructuralParameter>& plateStructuralParameters() {
     static const std::vector<fmu::StructuralParameter> table = {
         {kVrVerticesX, "vertices_x",
-         "Mesh vertices along x, nx + 1: the first extent of vertex_displacement (setting it sets nx)", kVrNx, 1},
+         "Mesh vertices along x, nx + 1: the second extent of vertex_displacement (setting it sets nx)", kVrNx, 1},
         {kVrVerticesY, "vertices_y",
-         "Mesh vertices along y, ny + 1: the second extent of vertex_displacement (setting it sets ny)", kVrNy, 1},
+         "Mesh vertices along y, ny + 1: the third extent of vertex_displacement (setting it sets ny)", kVrNy, 1},
+        {kVrVertexOutput, "vertex_output",
+         "Switch of the array output: 1 = vertex_displacement holds the mesh ([1][vertices_x][vertices_y]), 0 = it is "
+         "empty (for a master that records every output); the first extent of vertex_displacement",
+         fmu::kOwnValue, 1, 0, 1},
     };
     return table;
 }
@@ -20,10 +24,10 @@ const std::vector<fmu::ArrayOutput>& plateArrayOutputs() {
     static const std::vector<fmu::ArrayOutput> table = {
         {kVrVertexDisplacement,
          "vertex_displacement",
-         "Absolute displacement w at every mesh vertex, [vertices_x][vertices_y]: vertex (i, j) at (i length/nx, "
-         "j width/ny); a vertex on an obstacle sits at its height",
+         "Absolute displacement w at every mesh vertex, [vertex_output][vertices_x][vertices_y]: vertex (i, j) at "
+         "(i length/nx, j width/ny); a vertex on an obstacle sits at its height; empty when vertex_output = 0",
          "m",
-         {kVrVerticesX, kVrVerticesY}},
+         {kVrVertexOutput, kVrVerticesX, kVrVerticesY}},
     };
     return table;
 }

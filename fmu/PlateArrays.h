@@ -1,7 +1,8 @@
 #pragma once
 // FMI 3.0 only (FMI 2.0 has no arrays): the plate's array output — the absolute displacement
-// at every mesh vertex — and the two UInt64 structural parameters that size it, views of the
-// table's nx and ny (vertices_x = nx + 1, vertices_y = ny + 1).
+// at every mesh vertex — and the UInt64 structural parameters that size it: vertex_output (its
+// switch, 1 or 0: a value of its own) and views of the table's nx and ny (vertices_x = nx + 1,
+// vertices_y = ny + 1).
 #include <cstddef>
 #include <vector>
 
@@ -15,6 +16,7 @@ enum PlateArrayVr : fmi2ValueReference {
     kVrVerticesX = 1001,
     kVrVerticesY = 1002,
     kVrVertexDisplacement = 1003,
+    kVrVertexOutput = 1004,
 };
 
 const std::vector<fmu::StructuralParameter>& plateStructuralParameters();

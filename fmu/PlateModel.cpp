@@ -49,8 +49,9 @@ points; steps that are whole multiples of dt (relative tolerance 1e-9) run exact
 lists its items, e.g. base_drive = 2 drives the clamp by base_velocity.</li>
 {fmi3:<li>Early return: a master that grants it at fmi3InstantiateCoSimulation gets every contact onset and
 release as an event, exactly on the internal grid (lastSuccessfulTime), the impact in the outputs there.</li>
-<li>The array output vertex_displacement holds the deflection at every mesh vertex ([vertices_x][vertices_y]);
-vertices_x = nx + 1 and vertices_y = ny + 1 are views of nx and ny.</li>
+<li>The array output vertex_displacement holds the deflection at every mesh vertex
+([vertex_output][vertices_x][vertices_y]); vertices_x = nx + 1 and vertices_y = ny + 1 are views of nx and ny;
+vertex_output = 0 (before initialization) leaves the array empty.</li>
 }<li>Outputs are absolute displacements; the energy ledger energy = E0 + energy_input &minus; energy_dissipated
 &minus; energy_damped holds to roundoff.</li>
 </ul>

@@ -105,7 +105,7 @@ bool tableTypeOf(Kind kind, const fmu::Variable& v, VariableType* type) {
 
 std::size_t structuralValue(const Instance& i, const StructuralParameter& s) {
     const fmu::Variable* base = i.model().find(s.parameter);
-    const double value = base ? i.model().get(*base) + s.offset : 0.0;
+    const double value = s.ownValue() ? i.model().ownStructuralValue(s) : base ? i.model().get(*base) + s.offset : 0.0;
     return value > 0 ? static_cast<std::size_t>(value) : 0;
 }
 
@@ -164,8 +164,8 @@ fmi2Status getValues(Instance& i, Kind kind, const fmi3ValueReference vrs[], siz
                 "of values[]",
                 nValues, describe(i.model(), vrs[k]).c_str(), vrs[k], n, next);
         if (array) {
-            if constexpr (std::is_same_v<T, double>) {
-                if (i.getArray(*array, values + next, n) != fmi2OK) return fmi2Error;
+            if constexpr (std::is_same_v<T, double>) {  // an emptied array (an extent 0) has nothing to ask
+                if (n > 0 && i.getArray(*array, values + next, n) != fmi2OK) return fmi2Error;
             }
         } else {
             double x = 0.0;
@@ -186,8 +186,19 @@ fmi2Status getValues(Instance& i, Kind kind, const fmi3ValueReference vrs[], siz
     return fmi2OK;
 }
 
-// A structural parameter set: its Integer parameter becomes value - offset.
+// A structural parameter set: its own value, or its Integer parameter becomes value - offset.
 fmi2Status setStructural(Instance& i, const StructuralParameter& s, double value) {
+    if (s.ownValue()) {
+        if (!(i.state() & (fmu::Instantiated | fmu::ConfigurationMode)))
+            return i.fail(
+                "%s is a fixed structural parameter: set it before initialization (instantiated or "
+                "configuration mode)",
+                s.name);
+        if (!(value >= s.min && value <= s.max))
+            return i.fail("%s = %.0f rejected: allowed %d to %d", s.name, value, s.min, s.max);
+        i.model().setOwnStructuralValue(s, value);
+        return fmi2OK;
+    }
     const double parameter = value - s.offset;
     const fmu::Variable* base = i.model().find(s.parameter);
     if (!base) return i.fail("internal error: %s is a view of no parameter", s.name);

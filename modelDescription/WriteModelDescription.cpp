@@ -220,11 +220,13 @@ public:
                 << causalityAttributes(v) << rangeAndStart(model, v) << " description=\""
                 << escape(describe(v, version)) << "\"/>\n";
         }
-        for (const fmu::StructuralParameter& s : model.structuralParameters())
+        for (const fmu::StructuralParameter& s : model.structuralParameters()) {
             xml << "    <UInt64 name=\"" << s.name << "\" valueReference=\"" << s.vr
                 << "\" causality=\"structuralParameter\" variability=\"fixed\" initial=\"exact\" start=\""
-                << structuralStart(model, s) << "\" description=\"" << escape(forVersion(s.description, version))
-                << "\"/>\n";
+                << structuralStart(model, s) << "\"";
+            if (s.ownValue()) xml << " min=\"" << s.min << "\" max=\"" << s.max << "\"";
+            xml << " description=\"" << escape(forVersion(s.description, version)) << "\"/>\n";
+        }
         for (const fmu::ArrayOutput& a : model.arrayOutputs()) {
             xml << "    <Float64 name=\"" << a.name << "\" valueReference=\"" << a.vr
                 << "\" causality=\"output\" variability=\"continuous\" initial=\"calculated\"";
@@ -251,9 +253,10 @@ public:
                 "time</td></tr>\n";
         for (const fmu::StructuralParameter& s : model.structuralParameters())
             html << "<tr><td><code>" << s.name << "</code></td><td>" << s.vr
-                 << "</td><td>structuralParameter</td><td>UInt64</td><td>" << structuralStart(model, s)
-                 << "</td><td></td><td></td><td></td><td>" << escape(forVersion(s.description, version))
-                 << "</td></tr>\n";
+                 << "</td><td>structuralParameter</td><td>UInt64</td><td>" << structuralStart(model, s) << "</td><td>"
+                 << (s.ownValue() ? std::to_string(s.min) : "") << "</td><td>"
+                 << (s.ownValue() ? std::to_string(s.max) : "") << "</td><td></td><td>"
+                 << escape(forVersion(s.description, version)) << "</td></tr>\n";
         for (const fmu::ArrayOutput& a : model.arrayOutputs()) {
             html << "<tr><td><code>" << a.name << "</code></td><td>" << a.vr << "</td><td>output</td><td>Float64[";
             for (std::size_t k = 0; k < a.extents.size(); ++k) {
@@ -272,6 +275,7 @@ private:
         return nullptr;
     }
     static long long structuralStart(const fmu::Model& model, const fmu::StructuralParameter& s) {
+        if (s.ownValue()) return s.offset;
         const Variable* base = model.find(s.parameter);
         if (!base) throw std::runtime_error(std::string(s.name) + " is a view of no parameter of the table");
         return static_cast<long long>(model.get(*base)) + s.offset;

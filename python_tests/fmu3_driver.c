@@ -1,8 +1,8 @@
-/* A plain C master of the FMI 3.0 PlateImpact binary (no fmpy), for python_tests/test_aarch64.py:
- * the same program built for x86-64 and for aarch64 (run under qemu-aarch64) must print the same
- * bits.
+/* A plain C master of the FMI 3.0 PlateImpact binary (no fmpy), for python_tests/test_aarch64.py
+ * and python_tests/test_win64.py: the same program built for x86-64 Linux, for aarch64 (run under
+ * qemu-aarch64) and for x86-64 Windows (run under Wine) prints the same events and values.
  *
- *   fmu3_driver <binaries/<platform>/PlateImpact.so> <instantiationToken>
+ *   fmu3_driver <binaries/<platform>/PlateImpact.so|.dll> <instantiationToken>
  *
  * The life cycle: a wrong token refused; instantiate (early return and event mode granted);
  * initialize; the default scene for 0.1 s in communication steps of 1e-4 s (base 0.09 sin(2 pi 10 t)
@@ -10,7 +10,19 @@
  * taken at t = 0.05 s, serialized, restored and the step after it repeated bit for bit; a bad call
  * answered with fmi3Error; terminate and free. Prints every output of every communication point
  * and event as C99 hex floats (%a) and exits 0 only if every check held. */
+#if defined(_WIN32)
+#include <windows.h>
+typedef HMODULE Library;
+static Library open_library(const char* path) { return LoadLibraryA(path); }
+static void* find_symbol(Library lib, const char* name) { return (void*)GetProcAddress(lib, name); }
+static const char* library_error(void) { return "LoadLibrary failed"; }
+#else
 #include <dlfcn.h>
+typedef void* Library;
+static Library open_library(const char* path) { return dlopen(path, RTLD_NOW | RTLD_LOCAL); }
+static void* find_symbol(Library lib, const char* name) { return dlsym(lib, name); }
+static const char* library_error(void) { return dlerror(); }
+#endif
 #include <math.h>
 #include <stdio.h>
 #include <stdlib.h>
@@ -78,8 +90,8 @@ typedef struct {
     fmi3TerminateTYPE* terminate;
 } Api;
 
-static void* symbol(void* lib, const char* name) {
-    void* f = dlsym(lib, name);
+static void* symbol(Library lib, const char* name) {
+    void* f = find_symbol(lib, name);
     if (!f) {
         fprintf(stderr, "fmu3_driver: %s not exported\n", name);
         exit(2);
@@ -87,7 +99,7 @@ static void* symbol(void* lib, const char* name) {
     return f;
 }
 
-static void load(Api* a, void* lib) {
+static void load(Api* a, Library lib) {
     a->instantiate = (fmi3InstantiateCoSimulationTYPE*)symbol(lib, "fmi3InstantiateCoSimulation");
     a->freeInstance = (fmi3FreeInstanceTYPE*)symbol(lib, "fmi3FreeInstance");
     a->enterInit = (fmi3EnterInitializationModeTYPE*)symbol(lib, "fmi3EnterInitializationMode");
@@ -147,9 +159,9 @@ int main(int argc, char** argv) {
         fprintf(stderr, "usage: %s <PlateImpact.so> <instantiationToken>\n", argv[0]);
         return 2;
     }
-    void* lib = dlopen(argv[1], RTLD_NOW | RTLD_LOCAL);
+    Library lib = open_library(argv[1]);
     if (!lib) {
-        fprintf(stderr, "fmu3_driver: %s\n", dlerror());
+        fprintf(stderr, "fmu3_driver: %s\n", library_error());
         return 2;
     }
     Api a;

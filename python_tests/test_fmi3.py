@@ -95,11 +95,14 @@ def test_same_variables_and_defaults(fmu2, fmu3):
         assert (v3.valueReference, v3.causality, v3.type) == (v2.valueReference, v2.causality, types[v2.type])
         assert (v3.start, v3.unit, v3.declaredType is None) == (v2.start, v2.unit, v2.declaredType is None)
     extra = {v.name for v in md3.modelVariables} - {v.name for v in md2.modelVariables}
-    assert extra == {"time", "vertices_x", "vertices_y", "vertex_displacement"}
+    assert extra == {"time", "vertex_output", "vertices_x", "vertices_y", "vertex_displacement"}
     assert by_name3["time"].causality == "independent"
     assert (by_name3["vertices_x"].start, by_name3["vertices_y"].start) == ("15", "6")  # nx + 1, ny + 1
     assert by_name3["vertices_x"].causality == "structuralParameter"
-    assert by_name3["vertex_displacement"].shape == (15, 6)
+    assert by_name3["vertex_displacement"].shape == (1, 15, 6)
+    assert (by_name3["vertex_output"].causality, by_name3["vertex_output"].start) == ("structuralParameter", "1")
+    xml = zipfile.ZipFile(fmu3).read("modelDescription.xml").decode()
+    assert re.search(r'name="vertex_output"[^>]* min="0" max="1"', xml)  # (fmpy reads no UInt64 range)
     cs = md3.coSimulation
     assert float(cs.fixedInternalStepSize) == DT == float(by_name3["dt"].start)
     assert cs.mightReturnEarlyFromDoStep and cs.hasEventMode and cs.canHandleVariableCommunicationStepSize
@@ -217,7 +220,7 @@ def test_vertex_displacement_array(fmu3, tmp_path):
     s.setFloat64([vr["base_displacement"]], [0.0])
     for k in range(20):
         s.doStep(k * 1e-3, 1e-3)
-    w = np.array(s.getFloat64([vr["vertex_displacement"]], nValues=21)).reshape(7, 3)
+    w = np.array(s.getFloat64([vr["vertex_displacement"]], nValues=21)).reshape(1, 7, 3)[0]
     corners = s.getFloat64([vr["corner_1"], vr["corner_2"]])
     assert np.all(w[0] == 0.0)  # the clamped edge at x = 0, base at rest
     assert w[6, 0] == pytest.approx(corners[0], rel=1e-12, abs=1e-15)
@@ -228,6 +231,42 @@ def test_vertex_displacement_array(fmu3, tmp_path):
     assert any("nValues = 90" in m and "vertex_displacement" in m and "needs 21 values" in m for m in messages), (
         messages
     )
+    s.freeInstance()
+
+
+def test_vertex_output_switches_the_array_off(fmu3, tmp_path):
+    """vertex_output = 0 (the array's first extent) empties vertex_displacement: it needs zero
+    values and reads as none, beside the scalars; the run itself is the same bits as with the
+    array on. Out of its range 0..1 it is refused with the range; after initialization (fixed)
+    it cannot be set."""
+
+    def run(switch):
+        md, s, messages = slave(fmu3, tmp_path / str(switch))
+        vr = {v.name: v.valueReference for v in md.modelVariables}
+        if switch is not None:
+            s.setUInt64([vr["vertex_output"]], [switch])
+        s.enterInitializationMode(startTime=0.0)
+        s.exitInitializationMode()
+        for k in range(30):
+            s.setFloat64([vr["base_displacement"]], [0.09 * np.sin(2 * np.pi * 10 * k * 1e-3)])
+            s.doStep(k * 1e-3, 1e-3)
+        return md, s, vr, messages
+
+    md, s, vr, _ = run(0)
+    assert s.getUInt64([vr["vertex_output"], vr["vertices_x"]]) == [0, 15]  # the mesh is still there
+    off = s.getFloat64([vr["corner_1"], vr["vertex_displacement"], vr["energy"]], nValues=2)
+    assert len(off) == 2
+    with pytest.raises(FMICallException):
+        s.setUInt64([vr["vertex_output"]], [1])  # fixed: not after initialization
+    s.freeInstance()
+    md, s, vr, _ = run(None)
+    on = s.getFloat64([vr["corner_1"], vr["vertex_displacement"], vr["energy"]], nValues=92)
+    assert [on[0], on[-1]] == off and max(abs(x) for x in on[1:-1]) > 0.0
+    s.freeInstance()
+    md, s, messages = slave(fmu3, tmp_path / "bad")
+    with pytest.raises(FMICallException):
+        s.setUInt64([vr["vertex_output"]], [2])
+    assert any("vertex_output = 2 rejected: allowed 0 to 1" in m for m in messages), messages
     s.freeInstance()
 
 

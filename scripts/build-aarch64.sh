@@ -42,6 +42,9 @@ cp build-aarch64/fmu/fmi3/PlateImpact.so "$stage/binaries/aarch64-linux/PlateImp
 if [ -f build-win64/fmu/fmi3/PlateImpact.dll ]; then
   mkdir -p "$stage/binaries/x86_64-windows"
   cp build-win64/fmu/fmi3/PlateImpact.dll "$stage/binaries/x86_64-windows/PlateImpact.dll"
+  # what the Windows binary links statically (as scripts/build-win64.sh ships it)
+  cp /usr/share/doc/g++-mingw-w64-x86-64-posix/copyright "$stage/documentation/licenses/GCC-runtime-mingw-w64.txt"
+  cp /usr/share/doc/mingw-w64-common/copyright "$stage/documentation/licenses/mingw-w64-runtime-winpthreads.txt"
 fi
 rm -f build/dist/fmi3/PlateImpact.fmu
 (cd "$stage" && cmake -E tar cf ../PlateImpact.fmu --format=zip modelDescription.xml binaries documentation)
