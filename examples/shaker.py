@@ -11,6 +11,8 @@ clamp, run three ways and measured against each other (issue 27; docs/system-mod
     bash run.sh                                        # builds build/{SineSweep,Shaker,PlateImpact}.fmu
     .venv/bin/python examples/shaker.py --quick        # the suite's version: 1 s, 20 kg, impacts (~15 s)
     .venv/bin/python examples/shaker.py --mass 20 --duration 20 --step 1e-3 --coupling tlm --json out/run.json
+    .venv/bin/python examples/shaker.py --master fmpy-ssp --mass 20 100 --step 1e-4 1e-3 --duration 20 \\
+        --coupling tlm --json out/shaker_fmpy_ssp.json      # the line in fmpy's SSP master
     .venv/bin/python examples/shaker.py --goals --json out/shaker_goals.json \\
         --markdown docs/system-model.md --figure docs/figures/shaker.png   # the issue's goals, one run
 
@@ -33,7 +35,7 @@ from pathlib import Path
 
 import numpy as np
 
-from plateimpact.cosim import run_system, system_energy
+from plateimpact.cosim import run_system, run_system_fmpy_ssp, system_energy
 
 # The plate: the default 14x5 Argyris plate (37.3 kg, first mode 5.95 Hz) with 2 % Rayleigh
 # (mass-proportional) damping at its first mode, internal step dt = 1e-4 s.
@@ -143,12 +145,13 @@ def impact_episodes(run, separation=EPISODE_SEPARATION):
     return int(len(onsets) and 1 + np.count_nonzero(np.diff(onsets) > separation))
 
 
-def simulate(paths, coupling, mass, h, duration, gap, ecco=False, z=None, dt=None):
+def simulate(paths, coupling, mass, h, duration, gap, ecco=False, z=None, dt=None, master="libcosim"):
     """One run; a dict of its numbers (and the arrays under "run" when it finished). `dt`: the
     plate's internal step (default PLATE's)."""
     v = values(mass, h, gap, duration, z, dt)
     row = {
-        "coupling": coupling + (" (ECCO)" if ecco else ""),
+        "coupling": coupling + (" (ECCO)" if ecco else "" if master == "libcosim" else f" ({master})"),
+        "master": "libcosim" if ecco else master,
         "mass": mass,
         "step": None if ecco else h,
         "dt": v["plate"]["dt"],
@@ -158,7 +161,10 @@ def simulate(paths, coupling, mass, h, duration, gap, ecco=False, z=None, dt=Non
     }
     start = time.perf_counter()
     try:
-        run = run_system(paths, v, duration, coupling, h=None if ecco else h, ecco=ECCO if ecco else None)
+        if master == "fmpy-ssp" and not ecco:  # the same system as an SSP file, fmpy's fixed-step master
+            run = run_system_fmpy_ssp(paths, v, duration, coupling, h)
+        else:
+            run = run_system(paths, v, duration, coupling, h=None if ecco else h, ecco=ECCO if ecco else None)
     except RuntimeError as e:
         row.update(finished=False, failure=str(e), wall=time.perf_counter() - start)
         return row
@@ -227,19 +233,19 @@ def run_refinement(paths, mass, dt, duration, gap, log=print):
     return [reference, line]
 
 
-def run_matrix(paths, masses, steps, couplings, duration, gap, ecco, z=None, log=print):
+def run_matrix(paths, masses, steps, couplings, duration, gap, ecco, z=None, log=print, master="libcosim"):
     """Every run of the matrix; the monolithic reference per mass at the plate's own step (its
     result does not depend on the master's step beyond the force's reconstruction)."""
     rows = []
     for mass in masses:
-        reference = simulate(paths, "monolithic", mass, PLATE["dt"], duration, gap)
+        reference = simulate(paths, "monolithic", mass, PLATE["dt"], duration, gap, master=master)
         rows.append(reference)
         log(summary(reference))
         runs = [(c, h, False) for c in couplings if c != "monolithic" for h in steps]
         if ecco:
             runs.append(("force", None, True))
         for coupling, h, use_ecco in runs:
-            row = simulate(paths, coupling, mass, h or PLATE["dt"], duration, gap, use_ecco, z)
+            row = simulate(paths, coupling, mass, h or PLATE["dt"], duration, gap, use_ecco, z, master=master)
             compare(row, reference)
             rows.append(row)
             log(summary(row))
@@ -554,6 +560,12 @@ def main(argv=None):
     )
     ap.add_argument("--impedance", type=float, help="the line's Z, N s/m (default (M + m_p) 2 pi f1)")
     ap.add_argument("--ecco", action="store_true", help="also the force coupling under ECCO")
+    ap.add_argument(
+        "--master",
+        default="libcosim",
+        choices=["libcosim", "fmpy-ssp"],
+        help="libcosim's fixed step, or the system as an SSP file run by fmpy's SSP master (not ECCO)",
+    )
     ap.add_argument("--json", help="write the runs' numbers here")
     ap.add_argument("--figure", help="the envelopes (default: no figure)")
     ap.add_argument("--markdown", help="write the two-way section into this file (docs/system-model.md)")
@@ -579,6 +591,7 @@ def main(argv=None):
         ecco,
         args.impedance,
         log=lambda s: print(s, file=sys.stderr),
+        master=args.master,
     )
     refinement = []
     if args.goals:  # the reference's own dt dependence and the line's convergence, 20 kg

@@ -298,35 +298,12 @@ SYSTEM_RECORD = {
 }
 
 
-def system_execution(fmus, values, coupling, h=None, ecco=None):
-    """A libcosim execution of the shaker system with `coupling` (COUPLINGS); fixed step `h` or
-    ECCO (force coupling only: its power bond is velocity/force). Returns ((execution,
-    algorithm), observer, slaves, value references)."""
-    from libcosimpy.CosimAlgorithm import CosimAlgorithm, EccoParams
-    from libcosimpy.CosimExecution import CosimExecution
-    from libcosimpy.CosimLogging import CosimLogLevel, log_output_level
-    from libcosimpy.CosimObserver import CosimObserver
-    from libcosimpy.CosimSlave import CosimLocalSlave
-
+def system_plan(values, coupling):
+    """What a master must build for the shaker system with `coupling` (COUPLINGS), whatever the
+    master: the slaves in order, each one's initial values (the switches as Integers), and the
+    connections (source slave, output, target slave, input)."""
     if coupling not in COUPLINGS:
         raise ValueError(f"coupling = {coupling!r}; allowed: {', '.join(COUPLINGS)}")
-    if ecco is not None and coupling != "force":
-        raise ValueError("ECCO runs the force coupling only (its power bond pairs a velocity with a force)")
-    log_output_level(CosimLogLevel.ERROR)
-    algorithm = None
-    if ecco is None:
-        execution = CosimExecution.from_step_size(round(h * 1e9))  # libcosim's time: integer ns
-    else:
-        algorithm = CosimAlgorithm.create_ecco_algorithm(EccoParams(**ecco))
-        execution = CosimExecution.from_algorithm(algorithm)
-    names = ("sweep", "plate") if coupling == "monolithic" else ("sweep", "shaker", "plate")
-    slaves = {
-        name: execution.add_local_slave(CosimLocalSlave(fmu_path=str(Path(fmus[name]).resolve()), instance_name=name))
-        for name in names
-    }
-    vrs = {name: variables(fmus[name]) for name in names}
-    observer = CosimObserver.create_last_value()
-    execution.add_observer(observer)
     plate_values = dict(values.get("plate", {}))
     shaker_values = dict(values.get("shaker", {}))
     if coupling == "monolithic":
@@ -345,30 +322,169 @@ def system_execution(fmus, values, coupling, h=None, ecco=None):
     if coupling != "tlm":  # the line's impedance means nothing to the other couplings
         plate_values.pop("tlm_impedance", None)
         shaker_values.pop("tlm_impedance", None)
-    _set_initial_values(execution, slaves["sweep"], vrs["sweep"], values.get("sweep", {}))
-    _set_initial_values(execution, slaves["plate"], vrs["plate"], plate_values)
-    sweep, plate, p = slaves["sweep"], slaves["plate"], vrs["plate"]
-    signal = vrs["sweep"]["base_displacement"]
     if coupling == "monolithic":
-        _connect(execution, sweep, signal, plate, p["drive_force"], "sweep -> plate.drive_force")
+        slaves = {"sweep": dict(values.get("sweep", {})), "plate": plate_values}
+        connections = [("sweep", "base_displacement", "plate", "drive_force")]
     else:
-        _set_initial_values(execution, slaves["shaker"], vrs["shaker"], shaker_values)
-        shaker, s = slaves["shaker"], vrs["shaker"]
-        _connect(execution, sweep, signal, shaker, s["drive_force"], "sweep -> drive_force")
+        slaves = {"sweep": dict(values.get("sweep", {})), "shaker": shaker_values, "plate": plate_values}
+        connections = [("sweep", "base_displacement", "shaker", "drive_force")]
         if coupling == "tlm":
-            _connect(execution, shaker, s["tlm_wave_out"], plate, p["tlm_wave_in"], "shaker -> plate wave")
-            _connect(execution, plate, p["tlm_wave_out"], shaker, s["tlm_wave_in"], "plate -> shaker wave")
+            connections += [
+                ("shaker", "tlm_wave_out", "plate", "tlm_wave_in"),
+                ("plate", "tlm_wave_out", "shaker", "tlm_wave_in"),
+            ]
         else:
-            _connect(execution, shaker, s["armature_velocity"], plate, p["base_velocity"], "armature -> base_velocity")
-            _connect(execution, plate, p["clamp_force"], shaker, s["plate_force"], "clamp_force -> plate_force")
-            if algorithm is not None and (
-                algorithm.add_power_bond(
-                    shaker, s["armature_velocity"], s["plate_force"], plate, p["clamp_force"], p["base_velocity"]
-                )
-                != 0
-            ):
-                raise RuntimeError("libcosim could not add the power bond")
+            connections += [
+                ("shaker", "armature_velocity", "plate", "base_velocity"),
+                ("plate", "clamp_force", "shaker", "plate_force"),
+            ]
+    return slaves, connections
+
+
+def system_execution(fmus, values, coupling, h=None, ecco=None):
+    """A libcosim execution of the shaker system with `coupling` (COUPLINGS); fixed step `h` or
+    ECCO (force coupling only: its power bond is velocity/force). Returns ((execution,
+    algorithm), observer, slaves, value references)."""
+    from libcosimpy.CosimAlgorithm import CosimAlgorithm, EccoParams
+    from libcosimpy.CosimExecution import CosimExecution
+    from libcosimpy.CosimLogging import CosimLogLevel, log_output_level
+    from libcosimpy.CosimObserver import CosimObserver
+    from libcosimpy.CosimSlave import CosimLocalSlave
+
+    plan, connections = system_plan(values, coupling)
+    if ecco is not None and coupling != "force":
+        raise ValueError("ECCO runs the force coupling only (its power bond pairs a velocity with a force)")
+    log_output_level(CosimLogLevel.ERROR)
+    algorithm = None
+    if ecco is None:
+        execution = CosimExecution.from_step_size(round(h * 1e9))  # libcosim's time: integer ns
+    else:
+        algorithm = CosimAlgorithm.create_ecco_algorithm(EccoParams(**ecco))
+        execution = CosimExecution.from_algorithm(algorithm)
+    slaves = {
+        name: execution.add_local_slave(CosimLocalSlave(fmu_path=str(Path(fmus[name]).resolve()), instance_name=name))
+        for name in plan
+    }
+    vrs = {name: variables(fmus[name]) for name in plan}
+    observer = CosimObserver.create_last_value()
+    execution.add_observer(observer)
+    for name, initial in plan.items():
+        _set_initial_values(execution, slaves[name], vrs[name], initial)
+    for source, output, target, input_ in connections:
+        _connect(
+            execution,
+            slaves[source],
+            vrs[source][output],
+            slaves[target],
+            vrs[target][input_],
+            f"{source}.{output} -> {target}.{input_}",
+        )
+    if algorithm is not None:
+        shaker, s, plate, p = slaves["shaker"], vrs["shaker"], slaves["plate"], vrs["plate"]
+        if (
+            algorithm.add_power_bond(
+                shaker, s["armature_velocity"], s["plate_force"], plate, p["clamp_force"], p["base_velocity"]
+            )
+            != 0
+        ):
+            raise RuntimeError("libcosim could not add the power bond")
     return (execution, algorithm), observer, slaves, vrs
+
+
+def system_ssd(fmus, values, coupling, stop):
+    """The shaker system with `coupling` as an SSP 1.0 system structure (text of
+    SystemStructure.ssd): the components (resources/<slave>.fmu) with their initial values as
+    parameter bindings, a connector for every connection end and every recorded output
+    (SYSTEM_RECORD, the impact counters), and the connections."""
+    from xml.sax.saxutils import quoteattr
+
+    plan, connections = system_plan(values, coupling)
+    record = {name: list(SYSTEM_RECORD[coupling].get(name, ())) for name in plan}
+    record["plate"] += list(PLATE_COUNTERS)
+    lines = [
+        '<?xml version="1.0" encoding="UTF-8"?>',
+        f'<ssd:SystemStructureDescription version="1.0" name="Shaker_{coupling}"',
+        '    xmlns:ssc="http://ssp-standard.org/SSP1/SystemStructureCommon"',
+        '    xmlns:ssd="http://ssp-standard.org/SSP1/SystemStructureDescription"',
+        '    xmlns:ssv="http://ssp-standard.org/SSP1/SystemStructureParameterValues">',
+        f'  <ssd:System name="Shaker_{coupling}">',
+        "    <ssd:Elements>",
+    ]
+    for name, initial in plan.items():
+        kinds = {}
+        for source, output, target, input_ in connections:
+            if source == name:
+                kinds[output] = "output"
+            if target == name:
+                kinds[input_] = "input"
+        for output in record[name]:
+            kinds.setdefault(output, "output")
+        lines.append(
+            f'      <ssd:Component name="{name}" source="resources/{name}.fmu" type="application/x-fmu-sharedlibrary">'
+        )
+        lines.append("        <ssd:Connectors>")
+        for connector, kind in kinds.items():
+            element = "ssc:Integer" if connector in PLATE_COUNTERS else "ssc:Real"
+            lines.append(f'          <ssd:Connector name="{connector}" kind="{kind}"><{element}/></ssd:Connector>')
+        lines.append("        </ssd:Connectors>")
+        lines.append("        <ssd:ParameterBindings><ssd:ParameterBinding><ssd:ParameterValues>")
+        lines.append(f'          <ssv:ParameterSet version="1.0" name="{name}"><ssv:Parameters>')
+        for key, value in initial.items():
+            integer = isinstance(value, int) and not isinstance(value, bool)
+            typed = f'<ssv:Integer value="{value}"/>' if integer else f'<ssv:Real value="{float(value)!r}"/>'
+            lines.append(f"            <ssv:Parameter name={quoteattr(key)}>{typed}</ssv:Parameter>")
+        lines.append("          </ssv:Parameters></ssv:ParameterSet>")
+        lines.append("        </ssd:ParameterValues></ssd:ParameterBinding></ssd:ParameterBindings>")
+        lines.append("      </ssd:Component>")
+    lines.append("    </ssd:Elements>")
+    lines.append("    <ssd:Connections>")
+    for source, output, target, input_ in connections:
+        lines.append(
+            f'      <ssd:Connection startElement="{source}" startConnector="{output}" '
+            f'endElement="{target}" endConnector="{input_}"/>'
+        )
+    lines += [
+        "    </ssd:Connections>",
+        "  </ssd:System>",
+        f'  <ssd:DefaultExperiment startTime="0" stopTime="{stop!r}"/>',
+    ]
+    lines.append("</ssd:SystemStructureDescription>")
+    return "\n".join(lines) + "\n"
+
+
+def run_system_fmpy_ssp(fmus, values, stop, coupling, h):
+    """The shaker system with `coupling` (not ECCO) as an SSP file (system_ssd) run by fmpy's
+    SSP master (fixed step h, held values, every slave stepped from the values of the last
+    communication point): the same dict as run_system. fmpy's master applies the parameter
+    bindings only when passed as its parameter set (run_fmpy_ssp), so they go both ways."""
+    from types import SimpleNamespace
+
+    from fmpy.ssp.simulation import simulate_ssp
+
+    plan, _ = system_plan(values, coupling)
+    folder = Path(tempfile.mkdtemp())
+    try:
+        ssp = folder / f"Shaker_{coupling}.ssp"
+        with zipfile.ZipFile(ssp, "w", zipfile.ZIP_DEFLATED) as archive:
+            archive.writestr("SystemStructure.ssd", system_ssd(fmus, values, coupling, stop))
+            for name in plan:
+                archive.write(fmus[name], f"resources/{name}.fmu")
+        parameters = [
+            SimpleNamespace(name=f"{n}.{k}", value=v) for n, initial in plan.items() for k, v in initial.items()
+        ]
+        n = round(stop / h)
+        result = simulate_ssp(
+            str(ssp), stop_time=n * h - 0.5 * h, step_size=h, parameter_set=SimpleNamespace(parameters=parameters)
+        )
+    finally:
+        shutil.rmtree(folder, ignore_errors=True)
+    run = {"time": np.asarray(result["time"][:n]) + h}  # fmpy stamps a row with the step's start
+    for slave, names in SYSTEM_RECORD[coupling].items():
+        for name in names:
+            run[f"{slave}.{name}"] = np.asarray(result[f"{slave}.{name}"][:n], dtype=float)
+    for name in PLATE_COUNTERS:
+        run[f"plate.{name}"] = np.asarray(result[f"plate.{name}"][:n], dtype=float)
+    return run
 
 
 def run_system(fmus, values, stop, coupling, h=None, ecco=None):
