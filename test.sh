@@ -19,11 +19,11 @@ cd "$repo/build"
 ctest --output-on-failure -j"$(nproc)"
 cd "$repo"
 if [ "${PLATEIMPACT_WIN64_STAGE:-1}" != 0 ]; then
-  echo "test.sh: win64 stage: build/dist/PlateImpact.fmu (linux64 + win64), tested under Wine by test_win64.py"
+  echo "test.sh: win64 stage: build/dist/PlateImpact.fmu (linux64 + win64) and build/dist/fmi3/PlateImpact.fmu (+ x86_64-windows), tested under Wine by test_win64.py"
   bash "$repo/scripts/build-win64.sh"
 fi
 if [ "${PLATEIMPACT_AARCH64_STAGE:-1}" != 0 ]; then
-  echo "test.sh: aarch64 stage: build/dist/fmi3/PlateImpact.fmu (x86_64-linux + aarch64-linux), run under qemu-aarch64 by test_aarch64.py"
+  echo "test.sh: aarch64 stage: build/dist/fmi3/PlateImpact.fmu (+ aarch64-linux), run under qemu-aarch64 by test_aarch64.py"
   bash "$repo/scripts/build-aarch64.sh"
 fi
 "$repo/.venv/bin/python" -m pytest -q python_tests "$@"
@@ -40,9 +40,9 @@ if [ "${PLATEIMPACT_SANITIZER_STAGE:-1}" = 0 ]; then
 fi
 
 # --- Sanitizer stage ------------------------------------------------------------------------
-# Only the FMU (no unit tests, no benchmark), optimized as shipped plus line tables for the
-# reports; incremental like build/.
-PLATEIMPACT_BUILD_DIR="$repo/build-asan" PLATEIMPACT_BUILD_TARGET=PlateImpactFmu \
+# Only the FMUs, FMI 2.0 and 3.0 (no unit tests, no benchmark), optimized as shipped plus line
+# tables for the reports; incremental like build/.
+PLATEIMPACT_BUILD_DIR="$repo/build-asan" PLATEIMPACT_BUILD_TARGET="PlateImpactFmu PlateImpactFmu3" \
 PLATEIMPACT_CMAKE_ARGS="-DPLATEIMPACT_SANITIZE=ON -DPLATEIMPACT_TESTS=OFF -DCMAKE_CXX_FLAGS=-g1" \
   bash "$repo/scripts/setup.sh"
 # A sanitized shared object needs the sanitizer runtimes loaded first: preload them into Python

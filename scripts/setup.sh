@@ -41,7 +41,7 @@ build="${PLATEIMPACT_BUILD_DIR:-$repo/build}"
 if [ ! -f "$build/CMakeCache.txt" ]; then
   cmake -S "$repo" -B "$build" -DCMAKE_BUILD_TYPE=Release ${PLATEIMPACT_CMAKE_ARGS:-} >/dev/null
 fi
-# PLATEIMPACT_BUILD_TARGET: one target instead of all (test.sh: the sanitizer FMU only)
-cmake --build "$build" -j"$(nproc)" ${PLATEIMPACT_BUILD_TARGET:+--target "$PLATEIMPACT_BUILD_TARGET"} \
+# PLATEIMPACT_BUILD_TARGET: these targets (space-separated) instead of all (test.sh: the sanitizer FMUs only)
+cmake --build "$build" -j"$(nproc)" ${PLATEIMPACT_BUILD_TARGET:+--target $PLATEIMPACT_BUILD_TARGET} \
   -- --no-print-directory >/dev/null
 echo "setup: built $build/PlateImpact.fmu"
