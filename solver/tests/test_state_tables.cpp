@@ -51,9 +51,10 @@ TEST(StateTables, CarrierTableReachesEveryFieldOnce) {
 // A state of n coordinates, m contact vertices and k impulses per level, every member nonzero.
 NewmarkState sampleState(Eigen::Index n, std::size_t m, Eigen::Index k) {
     NewmarkState s;
-    int i = 0;
+    double i = 0.0;
     for (Eigen::VectorXd* v : {&s.w, &s.wPrev, &s.wPrev2, &s.kw, &s.kwPrev}) {
-        *v = Eigen::VectorXd::LinSpaced(n, 0.1 * ++i, -0.37 * i);
+        i += 1.0;
+        *v = Eigen::VectorXd::LinSpaced(n, 0.1 * i, -0.37 * i);
     }
     s.contactImpulse = Eigen::VectorXd::LinSpaced(k, 1.5, 2.75);
     s.contactImpulsePrev = Eigen::VectorXd::LinSpaced(k, -1.5, 0.25);
