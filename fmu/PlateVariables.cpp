@@ -58,36 +58,60 @@ const fmu::EnumerationType kBaseDrive{
      {"tlm", 5,
       "tlm_wave_in: the clamp is the end of a transmission line of impedance tlm_impedance to a partner FMU"}}};
 
+using Get = double (*)(const PlateValues&);
+using Set = void (*)(PlateValues&, double);
+
 // A row: the variable as modelDescription.xml declares it, and how its value is read and set.
 struct Row {
     fmu::Variable variable;
-    double (*get)(const PlateValues&);
-    void (*set)(PlateValues&, double);  // nullptr for outputs
+    Get get;
+    Set set;  // nullptr for outputs
 };
 
-fmu::Variable parameter(fmi2ValueReference vr, const char* name, VariableType type, const char* unit,
-                        const char* description) {
-    return {vr, name, type, Causality::Parameter, description, unit, nullptr, true, false};
-}
-// A parameter with its range (solver/PlateParameters.h, the one place it is written).
-fmu::Variable parameter(fmi2ValueReference vr, const char* name, VariableType type, const char* unit,
-                        const char* description, const plate::Range& range) {
-    fmu::Variable v = parameter(vr, name, type, unit, description);
-    v.min = range.min;
-    v.max = range.max;
+// The variable; a parameter's new value invalidates what was built from the old one.
+fmu::Variable declared(fmi2ValueReference vr, const char* name, VariableType type, Causality causality,
+                       const char* unit, const char* description, double min = NAN, double max = NAN) {
+    fmu::Variable v{vr, name, type, causality, description, unit, nullptr, causality == Causality::Parameter, false};
+    v.min = min;
+    v.max = max;
     return v;
 }
-fmu::Variable input(fmi2ValueReference vr, const char* name, const char* unit, bool shapesInitialState, double bound,
-                    const char* description) {
-    fmu::Variable v{vr,  name, VariableType::Real, Causality::Input, description, unit, nullptr, shapesInitialState,
-                    true};
-    v.min = -bound;
-    v.max = bound;
-    return v;
+
+// The rows' makers, one per kind of variable, each with the description last so that a row of
+// the table below keeps its data on its first line. Ranges are solver/PlateParameters.h's (the one
+// place they are written); an Integer or a Boolean here has no unit.
+Row parameter(fmi2ValueReference vr, const char* name, const char* unit, const plate::Range& range, Get get, Set set,
+              const char* description) {
+    return {declared(vr, name, VariableType::Real, Causality::Parameter, unit, description, range.min, range.max), get,
+            set};
 }
-fmu::Variable output(fmi2ValueReference vr, const char* name, VariableType type, const char* unit,
+Row integerParameter(fmi2ValueReference vr, const char* name, const plate::Range& range, Get get, Set set,
                      const char* description) {
-    return {vr, name, type, Causality::Output, description, unit, nullptr, false, false};
+    return {declared(vr, name, VariableType::Integer, Causality::Parameter, nullptr, description, range.min, range.max),
+            get, set};
+}
+Row booleanParameter(fmi2ValueReference vr, const char* name, Get get, Set set, const char* description) {
+    return {declared(vr, name, VariableType::Boolean, Causality::Parameter, nullptr, description), get, set};
+}
+// A parameter that switches between named items (fmu::integerSwitch).
+Row choice(fmi2ValueReference vr, const char* name, const fmu::EnumerationType& items, Get get, Set set,
+           const char* description) {
+    return {fmu::integerSwitch(vr, name, description, items), get, set};
+}
+// A Real input in [-bound, bound] with derivatives; shapesInitialState: its value at
+// initialization places the initial state.
+Row input(fmi2ValueReference vr, const char* name, const char* unit, bool shapesInitialState, double bound, Get get,
+          Set set, const char* description) {
+    fmu::Variable v = declared(vr, name, VariableType::Real, Causality::Input, unit, description, -bound, bound);
+    v.shapesInitialState = shapesInitialState;
+    v.hasDerivatives = true;
+    return {v, get, set};
+}
+Row output(fmi2ValueReference vr, const char* name, const char* unit, Get get, const char* description) {
+    return {declared(vr, name, VariableType::Real, Causality::Output, unit, description), get, nullptr};
+}
+Row integerOutput(fmi2ValueReference vr, const char* name, Get get, const char* description) {
+    return {declared(vr, name, VariableType::Integer, Causality::Output, nullptr, description), get, nullptr};
 }
 
 // The switches' accessors (Integer values of the items above).
@@ -113,279 +137,198 @@ void setBaseDrive(PlateValues& v, double x) {
 }
 
 double saturate(double n) { return n > INT_MAX ? double(INT_MAX) : n; }  // counts are >= 0
+double getQpIterationsTotal(const PlateValues& v) { return saturate(v.outputs.qpIterationsTotal); }
 
-#define PARAMETER_FIELD(field)                                       \
+// The accessors of the rows that read (and set) a field: of the parameters, of an input port, of
+// the cheap outputs, of the port's outputs (computed on the first read), of the carrier's.
+#define PARAMETER(field)                                             \
     [](const PlateValues& v) { return double(v.parameters.field); }, \
         [](PlateValues& v, double x) { v.parameters.field = decltype(v.parameters.field)(x); }
-#define OUTPUT_FIELD(field) [](const PlateValues& v) { return double(v.outputs.field); }, nullptr
-#define PORT_FIELD(field) [](const PlateValues& v) { return v.port().field; }, nullptr
-#define CARRIER_FIELD(field) \
-    [](const PlateValues& v) { return v.simulation ? v.simulation->carrierOutputs().field : 0.0; }, nullptr
+#define INPUT(member) \
+    [](const PlateValues& v) { return v.member.signal.value; }, [](PlateValues& v, double x) { v.member.setValue(x); }
+#define OUTPUT(field) [](const PlateValues& v) { return double(v.outputs.field); }
+#define PORT(field) [](const PlateValues& v) { return v.port().field; }
+#define CARRIER(field) [](const PlateValues& v) { return v.simulation ? v.simulation->carrierOutputs().field : 0.0; }
+
+using namespace plate::ranges;  // the parameters' ranges: kLength, kCells, ...
 
 // The table: one row per variable, in the order of modelDescription.xml. A new variable is one
 // row here (and its value reference in PlateVariables.h); nothing else lists the variables.
+// Each row: its maker's data on one line (value reference, name, then as the maker says), the
+// description after it.
+// clang-format off
 const Row kRows[] = {
-    {parameter(kVrLength, "length", VariableType::Real, "m", "Plate length along x (clamped edge at x = 0)",
-               plate::ranges::kLength),
-     PARAMETER_FIELD(length)},
-    {parameter(kVrWidth, "width", VariableType::Real, "m", "Plate width along y", plate::ranges::kWidth),
-     PARAMETER_FIELD(width)},
-    {parameter(kVrThickness, "thickness", VariableType::Real, "m", "Plate thickness", plate::ranges::kThickness),
-     PARAMETER_FIELD(thickness)},
-    {parameter(kVrYoungsModulus, "youngs_modulus", VariableType::Real, "Pa", "Young's modulus E",
-               plate::ranges::kYoungsModulus),
-     PARAMETER_FIELD(youngsModulus)},
-    {parameter(kVrPoissonRatio, "poisson_ratio", VariableType::Real, "1", "Poisson's ratio, in (0, 0.5)",
-               plate::ranges::kPoissonRatio),
-     PARAMETER_FIELD(poissonRatio)},
-    {parameter(kVrDensity, "density", VariableType::Real, "kg/m3", "Mass density of the plate material",
-               plate::ranges::kDensity),
-     PARAMETER_FIELD(density)},
-    {parameter(kVrNx, "nx", VariableType::Integer, nullptr, "Number of mesh cells along x (at least 1)",
-               plate::ranges::kCells),
-     PARAMETER_FIELD(nx)},
-    {parameter(kVrNy, "ny", VariableType::Integer, nullptr, "Number of mesh cells along y (at least 1)",
-               plate::ranges::kCells),
-     PARAMETER_FIELD(ny)},
-    {fmu::integerSwitch(kVrElement, "element", "Finite element", kElementType), getElement, setElement},
-    {parameter(kVrObstacleLower, "obstacle_lower", VariableType::Real, "m",
-               "Height of the lower obstacle (negative; used when obstacle_lower_enabled)",
-               plate::ranges::kObstacleLower),
-     PARAMETER_FIELD(obstacleLower)},
-    {parameter(kVrObstacleUpper, "obstacle_upper", VariableType::Real, "m",
-               "Height of the upper obstacle (positive; used when obstacle_upper_enabled)",
-               plate::ranges::kObstacleUpper),
-     PARAMETER_FIELD(obstacleUpper)},
-    {parameter(kVrObstacleLowerEnabled, "obstacle_lower_enabled", VariableType::Boolean, nullptr,
-               "Whether the lower obstacle is present"),
-     PARAMETER_FIELD(obstacleLowerEnabled)},
-    {parameter(kVrObstacleUpperEnabled, "obstacle_upper_enabled", VariableType::Boolean, nullptr,
-               "Whether the upper obstacle is present"),
-     PARAMETER_FIELD(obstacleUpperEnabled)},
-    {parameter(kVrDt, "dt", VariableType::Real, "s",
-               "Internal time step of the scheme's fixed grid; a communication step of any length is taken on it, the "
-               "outputs interpolated between grid points",
-               plate::ranges::kDt),
-     PARAMETER_FIELD(dt)},
-    {parameter(kVrBeta, "beta", VariableType::Real, "1",
-               "Newmark parameter beta in [0, 0.5] (gamma = 1/2); unconditionally stable for beta >= 1/4",
-               plate::ranges::kBeta),
-     PARAMETER_FIELD(beta)},
-    {parameter(kVrInitialLoad, "initial_load", VariableType::Real, "Pa",
-               "Uniform pressure (positive upward) whose static equilibrium is the initial shape; the plate "
-               "starts at rest",
-               plate::ranges::kInitialLoad),
-     PARAMETER_FIELD(initialLoad)},
-    {parameter(kVrModes, "modes", VariableType::Integer, nullptr,
-               "0: full finite element space (exact scheme); m > 0: reduced model on m modes", plate::ranges::kModes),
-     PARAMETER_FIELD(modes)},
-    {fmu::integerSwitch(kVrBaseInputMode, "base_input_mode",
-                        "How base_displacement (and base_velocity, base_acceleration) moves inside a "
-                        "communication step{fmi2: when the master gives no input derivatives}: held, or extrapolated "
-                        "from the communicated values{fmi2: (derivatives set by the master always win)}",
-                        kInputMode),
-     getBaseInputMode, setBaseInputMode},
-    {fmu::integerSwitch(kVrLoadInputMode, "load_input_mode",
-                        "How load moves inside a communication step{fmi2: when the master gives no input "
-                        "derivatives}: held (a load may step; extrapolating a step overshoots) or extrapolated",
-                        kInputMode),
-     getLoadInputMode, setLoadInputMode},
-    {fmu::integerSwitch(kVrMass, "mass",
-                        "Mass matrix: consistent (the paper's scheme; impacts lose energy at every mesh vertex), "
-                        "singular_p0 (energy-consistent impacts, results converge after impact) or singular_p1dg",
-                        kMassModel),
-     getMass, setMass},
-    {fmu::integerSwitch(kVrTimeScheme, "time_scheme",
-                        "Time scheme: newmark (the paper's scheme, default) or conserving (needs a singular mass: the "
-                        "energy balance closes exactly through impacts at any dt and every reported displacement stays "
-                        "within the obstacles; modes = m keeps the m lowest massive modes, damping acts on them; beta "
-                        "and restitution do not apply)",
-                        kTimeScheme),
-     getTimeScheme, setTimeScheme},
-    {parameter(kVrRestitution, "restitution", VariableType::Real, "1",
-               "Restitution coefficient e in [0, 1] of the impact law on (u+ + e u-)/(1 + e); 0 is the paper's "
-               "scheme",
-               plate::ranges::kRestitution),
-     PARAMETER_FIELD(restitution)},
-    {parameter(kVrDampingMass, "damping_mass", VariableType::Real, "1/s",
-               "Rayleigh damping, mass-proportional coefficient a (C = a M + b K; damping ratio a/(2 omega) + "
-               "b omega/2), >= 0",
-               plate::ranges::kDampingMass),
-     PARAMETER_FIELD(dampingMass)},
-    {parameter(kVrDampingStiffness, "damping_stiffness", VariableType::Real, "s",
-               "Rayleigh damping, stiffness-proportional coefficient b (C = a M + b K), >= 0",
-               plate::ranges::kDampingStiffness),
-     PARAMETER_FIELD(dampingStiffness)},
-    {parameter(kVrMemoryLimit, "memory_limit", VariableType::Real, "MB",
-               "Memory budget of the instance: one whose estimated peak exceeds it is refused at "
-               "fmiXExitInitializationMode before allocating (the estimate is logged, category logInfo); 0 = no "
-               "limit",
-               plate::ranges::kMemoryLimit),
-     PARAMETER_FIELD(memoryLimit)},
-    {input(kVrBaseDisplacement, "base_displacement", "m", true, plate::kMaxDisplacement,
-           "Vertical displacement z of the clamped edge (base motion); its value at initialization places "
-           "the clamp at t = 0"),
-     [](const PlateValues& v) { return v.baseDisplacement.signal.value; },
-     [](PlateValues& v, double x) { v.baseDisplacement.setValue(x); }},
-    {input(kVrLoad, "load", "Pa", false, plate::kMaxLoad,
-           "Uniform pressure on the plate, positive upward, acting from t = 0 on"),
-     [](const PlateValues& v) { return v.load.signal.value; }, [](PlateValues& v, double x) { v.load.setValue(x); }},
-    {fmu::integerSwitch(kVrBaseDrive, "base_drive",
-                        "Which input moves the clamped edge: displacement (base_displacement), velocity "
-                        "(base_velocity, integrated from the initial base_displacement) or acceleration "
-                        "(base_acceleration, integrated twice, the clamp at rest at t = 0)",
-                        kBaseDrive),
-     getBaseDrive, setBaseDrive},
-    {input(kVrBaseVelocity, "base_velocity", "m/s", false, kMaxBaseVelocity,
-           "Vertical velocity of the clamped edge (used when base_drive = velocity)"),
-     [](const PlateValues& v) { return v.baseVelocity.signal.value; },
-     [](PlateValues& v, double x) { v.baseVelocity.setValue(x); }},
-    {input(kVrBaseAcceleration, "base_acceleration", "m/s2", false, kMaxBaseAcceleration,
-           "Vertical acceleration of the clamped edge (used when base_drive = acceleration)"),
-     [](const PlateValues& v) { return v.baseAcceleration.signal.value; },
-     [](PlateValues& v, double x) { v.baseAcceleration.setValue(x); }},
-    {output(kVrCorner1, "corner_1", VariableType::Real, "m", "Absolute displacement w at the free corner (length, 0)"),
-     OUTPUT_FIELD(corner1)},
-    {output(kVrCorner2, "corner_2", VariableType::Real, "m",
-            "Absolute displacement w at the free corner (length, width)"),
-     OUTPUT_FIELD(corner2)},
-    {output(kVrFreeEdgeMid, "free_edge_mid", VariableType::Real, "m",
-            "Absolute displacement w at the middle of the free edge (length, width/2)"),
-     OUTPUT_FIELD(freeEdgeMid)},
-    {output(kVrEnergy, "energy", VariableType::Real, "J", "Discrete energy of the scheme (kinetic + bending)"),
-     OUTPUT_FIELD(energy)},
-    {output(kVrEnergyDissipated, "energy_dissipated", VariableType::Real, "J",
-            "Energy lost in impacts since t = 0 (cumulative; non-negative with the paper's scheme, a net "
-            "amount with restitution > 0 or a singular mass)"),
-     OUTPUT_FIELD(energyDissipated)},
-    {output(kVrEnergyInput, "energy_input", VariableType::Real, "J",
-            "Work done by base motion and load since t = 0 (cumulative)"),
-     OUTPUT_FIELD(energyInput)},
-    {output(kVrEnergyDamped, "energy_damped", VariableType::Real, "J",
-            "Energy dissipated by the Rayleigh damping since t = 0 (cumulative)"),
-     OUTPUT_FIELD(energyDamped)},
-    {output(kVrContactVertices, "contact_vertices", VariableType::Integer, nullptr,
-            "Number of mesh vertices on an obstacle after the last step"),
-     OUTPUT_FIELD(contactVertices)},
-    {output(kVrQpKktResidualMax, "qp_kkt_residual_max", VariableType::Real, "1",
-            "Largest relative KKT residual of the per-step contact QPs so far"),
-     OUTPUT_FIELD(maxKktResidual)},
-    {output(kVrQpIterationsTotal, "qp_iterations_total", VariableType::Integer, nullptr,
-            "Active-set iterations of all per-step QPs so far (saturates at 2147483647)"),
-     [](const PlateValues& v) { return saturate(v.outputs.qpIterationsTotal); }, nullptr},
-    {output(kVrQpIterationsMax, "qp_iterations_max", VariableType::Integer, nullptr,
-            "Largest number of active-set iterations of one per-step QP so far"),
-     OUTPUT_FIELD(qpIterationsMax)},
-    {output(kVrClampForce, "clamp_force", VariableType::Real, "N",
-            "Vertical force the plate exerts on the clamp (positive upward): what a shaker carrying the clamp "
-            "feels; the scheme's value at the last internal step's centre t - dt (t - dt/2 with time_scheme = "
-            "conserving). Fed back with held values to a partner that moves the clamp (base_velocity) the loop is "
-            "unstable: it carries the plate's rigid inertia one step late (an added mass), and impacts make it "
-            "worse; base_drive = tlm couples stably, base_drive = force puts the armature inside"),
-     PORT_FIELD(clampForce)},
-    {output(kVrClampMoment, "clamp_moment", VariableType::Real, "N.m",
-            "Moment about the clamp line x = 0 of the forces the plate exerts on the clamp (positive when "
-            "they lift the plate side), at t - dt"),
-     PORT_FIELD(clampMoment)},
-    {output(kVrClampDisplacement, "clamp_displacement", VariableType::Real, "m",
-            "Position z of the clamped edge as the scheme took it (the integrated input for base_drive = "
-            "velocity or acceleration)"),
-     PORT_FIELD(clampDisplacement)},
-    {output(kVrClampVelocity, "clamp_velocity", VariableType::Real, "m/s",
-            "Velocity of the clamped edge (second-order backward difference of the scheme's positions)"),
-     PORT_FIELD(clampVelocity)},
-    {output(kVrClampAcceleration, "clamp_acceleration", VariableType::Real, "m/s2",
-            "Acceleration of the clamped edge at t - dt (the scheme's central difference): the control "
-            "accelerometer"),
-     PORT_FIELD(clampAcceleration)},
-    {output(kVrContactForceLower, "contact_force_lower", VariableType::Real, "N",
-            "Force of the lower obstacle on the plate over the last internal step (>= 0, upward)"),
-     PORT_FIELD(contactForce[0])},
-    {output(kVrContactForceUpper, "contact_force_upper", VariableType::Real, "N",
-            "Force of the upper obstacle on the plate over the last internal step (<= 0, downward)"),
-     PORT_FIELD(contactForce[1])},
-    {output(kVrContactImpulseLower, "contact_impulse_lower", VariableType::Real, "N.s",
-            "Impulse of the lower obstacle on the plate since t = 0 (cumulative)"),
-     PORT_FIELD(contactImpulse[0])},
-    {output(kVrContactImpulseUpper, "contact_impulse_upper", VariableType::Real, "N.s",
-            "Impulse of the upper obstacle on the plate since t = 0 (cumulative, <= 0)"),
-     PORT_FIELD(contactImpulse[1])},
-    {output(kVrImpactsLower, "impacts_lower", VariableType::Integer, nullptr,
-            "Contact onsets on the lower obstacle since t = 0 (steps whose contact force starts from zero)"),
-     PORT_FIELD(impacts[0])},
-    {output(kVrImpactsUpper, "impacts_upper", VariableType::Integer, nullptr,
-            "Contact onsets on the upper obstacle since t = 0"),
-     PORT_FIELD(impacts[1])},
-    {output(kVrCorner1Velocity, "corner_1_velocity", VariableType::Real, "m/s",
-            "Absolute velocity at corner_1 (second-order backward difference)"),
-     PORT_FIELD(velocity[0])},
-    {output(kVrCorner2Velocity, "corner_2_velocity", VariableType::Real, "m/s", "Absolute velocity at corner_2"),
-     PORT_FIELD(velocity[1])},
-    {output(kVrFreeEdgeMidVelocity, "free_edge_mid_velocity", VariableType::Real, "m/s",
-            "Absolute velocity at free_edge_mid"),
-     PORT_FIELD(velocity[2])},
-    {output(kVrCorner1Acceleration, "corner_1_acceleration", VariableType::Real, "m/s2",
-            "Absolute acceleration at corner_1 at t - dt (the scheme's central difference)"),
-     PORT_FIELD(acceleration[0])},
-    {output(kVrCorner2Acceleration, "corner_2_acceleration", VariableType::Real, "m/s2",
-            "Absolute acceleration at corner_2 at t - dt"),
-     PORT_FIELD(acceleration[1])},
-    {output(kVrFreeEdgeMidAcceleration, "free_edge_mid_acceleration", VariableType::Real, "m/s2",
-            "Absolute acceleration at free_edge_mid at t - dt"),
-     PORT_FIELD(acceleration[2])},
+    parameter(kVrLength,            "length",             "m",     kLength,            PARAMETER(length),
+        "Plate length along x (clamped edge at x = 0)"),
+    parameter(kVrWidth,             "width",              "m",     kWidth,             PARAMETER(width),
+        "Plate width along y"),
+    parameter(kVrThickness,         "thickness",          "m",     kThickness,         PARAMETER(thickness),
+        "Plate thickness"),
+    parameter(kVrYoungsModulus,     "youngs_modulus",     "Pa",    kYoungsModulus,     PARAMETER(youngsModulus),
+        "Young's modulus E"),
+    parameter(kVrPoissonRatio,      "poisson_ratio",      "1",     kPoissonRatio,      PARAMETER(poissonRatio),
+        "Poisson's ratio, in (0, 0.5)"),
+    parameter(kVrDensity,           "density",            "kg/m3", kDensity,           PARAMETER(density),
+        "Mass density of the plate material"),
+    integerParameter(kVrNx,    "nx",    kCells, PARAMETER(nx),
+        "Number of mesh cells along x (at least 1)"),
+    integerParameter(kVrNy,    "ny",    kCells, PARAMETER(ny),
+        "Number of mesh cells along y (at least 1)"),
+    choice(kVrElement,       "element",         kElementType, getElement,       setElement,
+        "Finite element"),
+    parameter(kVrObstacleLower,     "obstacle_lower",     "m",     kObstacleLower,     PARAMETER(obstacleLower),
+        "Height of the lower obstacle (negative; used when obstacle_lower_enabled)"),
+    parameter(kVrObstacleUpper,     "obstacle_upper",     "m",     kObstacleUpper,     PARAMETER(obstacleUpper),
+        "Height of the upper obstacle (positive; used when obstacle_upper_enabled)"),
+    booleanParameter(kVrObstacleLowerEnabled, "obstacle_lower_enabled", PARAMETER(obstacleLowerEnabled),
+        "Whether the lower obstacle is present"),
+    booleanParameter(kVrObstacleUpperEnabled, "obstacle_upper_enabled", PARAMETER(obstacleUpperEnabled),
+        "Whether the upper obstacle is present"),
+    parameter(kVrDt,                "dt",                 "s",     kDt,                PARAMETER(dt),
+        "Internal time step of the scheme's fixed grid; a communication step of any length is taken on it, the "
+        "outputs interpolated between grid points"),
+    parameter(kVrBeta,              "beta",               "1",     kBeta,              PARAMETER(beta),
+        "Newmark parameter beta in [0, 0.5] (gamma = 1/2); unconditionally stable for beta >= 1/4"),
+    parameter(kVrInitialLoad,       "initial_load",       "Pa",    kInitialLoad,       PARAMETER(initialLoad),
+        "Uniform pressure (positive upward) whose static equilibrium is the initial shape; the plate starts at rest"),
+    integerParameter(kVrModes, "modes", kModes, PARAMETER(modes),
+        "0: full finite element space (exact scheme); m > 0: reduced model on m modes"),
+    choice(kVrBaseInputMode, "base_input_mode", kInputMode,   getBaseInputMode, setBaseInputMode,
+        "How base_displacement (and base_velocity, base_acceleration) moves inside a communication step{fmi2: when "
+        "the master gives no input derivatives}: held, or extrapolated from the communicated values{fmi2: "
+        "(derivatives set by the master always win)}"),
+    choice(kVrLoadInputMode, "load_input_mode", kInputMode,   getLoadInputMode, setLoadInputMode,
+        "How load moves inside a communication step{fmi2: when the master gives no input derivatives}: held (a load "
+        "may step; extrapolating a step overshoots) or extrapolated"),
+    choice(kVrMass,          "mass",            kMassModel,   getMass,          setMass,
+        "Mass matrix: consistent (the paper's scheme; impacts lose energy at every mesh vertex), singular_p0 "
+        "(energy-consistent impacts, results converge after impact) or singular_p1dg"),
+    choice(kVrTimeScheme,    "time_scheme",     kTimeScheme,  getTimeScheme,    setTimeScheme,
+        "Time scheme: newmark (the paper's scheme, default) or conserving (needs a singular mass: the energy balance "
+        "closes exactly through impacts at any dt and every reported displacement stays within the obstacles; modes "
+        "= m keeps the m lowest massive modes, damping acts on them; beta and restitution do not apply)"),
+    parameter(kVrRestitution,       "restitution",        "1",     kRestitution,       PARAMETER(restitution),
+        "Restitution coefficient e in [0, 1] of the impact law on (u+ + e u-)/(1 + e); 0 is the paper's scheme"),
+    parameter(kVrDampingMass,       "damping_mass",       "1/s",   kDampingMass,       PARAMETER(dampingMass),
+        "Rayleigh damping, mass-proportional coefficient a (C = a M + b K; damping ratio a/(2 omega) + b omega/2), "
+        ">= 0"),
+    parameter(kVrDampingStiffness,  "damping_stiffness",  "s",     kDampingStiffness,  PARAMETER(dampingStiffness),
+        "Rayleigh damping, stiffness-proportional coefficient b (C = a M + b K), >= 0"),
+    parameter(kVrMemoryLimit,       "memory_limit",       "MB",    kMemoryLimit,       PARAMETER(memoryLimit),
+        "Memory budget of the instance: one whose estimated peak exceeds it is refused at fmiXExitInitializationMode "
+        "before allocating (the estimate is logged, category logInfo); 0 = no limit"),
+    input(kVrBaseDisplacement, "base_displacement", "m",    true,  plate::kMaxDisplacement, INPUT(baseDisplacement),
+        "Vertical displacement z of the clamped edge (base motion); its value at initialization places the clamp at "
+        "t = 0"),
+    input(kVrLoad,             "load",              "Pa",   false, plate::kMaxLoad,         INPUT(load),
+        "Uniform pressure on the plate, positive upward, acting from t = 0 on"),
+    choice(kVrBaseDrive,     "base_drive",      kBaseDrive,   getBaseDrive,     setBaseDrive,
+        "Which input moves the clamped edge: displacement (base_displacement), velocity (base_velocity, integrated "
+        "from the initial base_displacement) or acceleration (base_acceleration, integrated twice, the clamp at rest "
+        "at t = 0)"),
+    input(kVrBaseVelocity,     "base_velocity",     "m/s",  false, kMaxBaseVelocity,        INPUT(baseVelocity),
+        "Vertical velocity of the clamped edge (used when base_drive = velocity)"),
+    input(kVrBaseAcceleration, "base_acceleration", "m/s2", false, kMaxBaseAcceleration,    INPUT(baseAcceleration),
+        "Vertical acceleration of the clamped edge (used when base_drive = acceleration)"),
+    output(kVrCorner1,                 "corner_1",                   "m",    OUTPUT(corner1),
+        "Absolute displacement w at the free corner (length, 0)"),
+    output(kVrCorner2,                 "corner_2",                   "m",    OUTPUT(corner2),
+        "Absolute displacement w at the free corner (length, width)"),
+    output(kVrFreeEdgeMid,             "free_edge_mid",              "m",    OUTPUT(freeEdgeMid),
+        "Absolute displacement w at the middle of the free edge (length, width/2)"),
+    output(kVrEnergy,                  "energy",                     "J",    OUTPUT(energy),
+        "Discrete energy of the scheme (kinetic + bending)"),
+    output(kVrEnergyDissipated,        "energy_dissipated",          "J",    OUTPUT(energyDissipated),
+        "Energy lost in impacts since t = 0 (cumulative; non-negative with the paper's scheme, a net amount with "
+        "restitution > 0 or a singular mass)"),
+    output(kVrEnergyInput,             "energy_input",               "J",    OUTPUT(energyInput),
+        "Work done by base motion and load since t = 0 (cumulative)"),
+    output(kVrEnergyDamped,            "energy_damped",              "J",    OUTPUT(energyDamped),
+        "Energy dissipated by the Rayleigh damping since t = 0 (cumulative)"),
+    integerOutput(kVrContactVertices,   "contact_vertices",    OUTPUT(contactVertices),
+        "Number of mesh vertices on an obstacle after the last step"),
+    output(kVrQpKktResidualMax,        "qp_kkt_residual_max",        "1",    OUTPUT(maxKktResidual),
+        "Largest relative KKT residual of the per-step contact QPs so far"),
+    integerOutput(kVrQpIterationsTotal, "qp_iterations_total", getQpIterationsTotal,
+        "Active-set iterations of all per-step QPs so far (saturates at 2147483647)"),
+    integerOutput(kVrQpIterationsMax,   "qp_iterations_max",   OUTPUT(qpIterationsMax),
+        "Largest number of active-set iterations of one per-step QP so far"),
+    output(kVrClampForce,              "clamp_force",                "N",    PORT(clampForce),
+        "Vertical force the plate exerts on the clamp (positive upward): what a shaker carrying the clamp feels; the "
+        "scheme's value at the last internal step's centre t - dt (t - dt/2 with time_scheme = conserving). Fed back "
+        "with held values to a partner that moves the clamp (base_velocity) the loop is unstable: it carries the "
+        "plate's rigid inertia one step late (an added mass), and impacts make it worse; base_drive = tlm couples "
+        "stably, base_drive = force puts the armature inside"),
+    output(kVrClampMoment,             "clamp_moment",               "N.m",  PORT(clampMoment),
+        "Moment about the clamp line x = 0 of the forces the plate exerts on the clamp (positive when they lift the "
+        "plate side), at t - dt"),
+    output(kVrClampDisplacement,       "clamp_displacement",         "m",    PORT(clampDisplacement),
+        "Position z of the clamped edge as the scheme took it (the integrated input for base_drive = velocity or "
+        "acceleration)"),
+    output(kVrClampVelocity,           "clamp_velocity",             "m/s",  PORT(clampVelocity),
+        "Velocity of the clamped edge (second-order backward difference of the scheme's positions)"),
+    output(kVrClampAcceleration,       "clamp_acceleration",         "m/s2", PORT(clampAcceleration),
+        "Acceleration of the clamped edge at t - dt (the scheme's central difference): the control accelerometer"),
+    output(kVrContactForceLower,       "contact_force_lower",        "N",    PORT(contactForce[0]),
+        "Force of the lower obstacle on the plate over the last internal step (>= 0, upward)"),
+    output(kVrContactForceUpper,       "contact_force_upper",        "N",    PORT(contactForce[1]),
+        "Force of the upper obstacle on the plate over the last internal step (<= 0, downward)"),
+    output(kVrContactImpulseLower,     "contact_impulse_lower",      "N.s",  PORT(contactImpulse[0]),
+        "Impulse of the lower obstacle on the plate since t = 0 (cumulative)"),
+    output(kVrContactImpulseUpper,     "contact_impulse_upper",      "N.s",  PORT(contactImpulse[1]),
+        "Impulse of the upper obstacle on the plate since t = 0 (cumulative, <= 0)"),
+    integerOutput(kVrImpactsLower,      "impacts_lower",       PORT(impacts[0]),
+        "Contact onsets on the lower obstacle since t = 0 (steps whose contact force starts from zero)"),
+    integerOutput(kVrImpactsUpper,      "impacts_upper",       PORT(impacts[1]),
+        "Contact onsets on the upper obstacle since t = 0"),
+    output(kVrCorner1Velocity,         "corner_1_velocity",          "m/s",  PORT(velocity[0]),
+        "Absolute velocity at corner_1 (second-order backward difference)"),
+    output(kVrCorner2Velocity,         "corner_2_velocity",          "m/s",  PORT(velocity[1]),
+        "Absolute velocity at corner_2"),
+    output(kVrFreeEdgeMidVelocity,     "free_edge_mid_velocity",     "m/s",  PORT(velocity[2]),
+        "Absolute velocity at free_edge_mid"),
+    output(kVrCorner1Acceleration,     "corner_1_acceleration",      "m/s2", PORT(acceleration[0]),
+        "Absolute acceleration at corner_1 at t - dt (the scheme's central difference)"),
+    output(kVrCorner2Acceleration,     "corner_2_acceleration",      "m/s2", PORT(acceleration[1]),
+        "Absolute acceleration at corner_2 at t - dt"),
+    output(kVrFreeEdgeMidAcceleration, "free_edge_mid_acceleration", "m/s2", PORT(acceleration[2]),
+        "Absolute acceleration at free_edge_mid at t - dt"),
     // The carried clamp (docs/theory.md §18–19): its motion is clamp_displacement, _velocity, _acceleration.
-    {parameter(kVrArmatureMass, "armature_mass", VariableType::Real, "kg",
-               "Mass of the armature carrying the clamp (base_drive = force; > 0)", plate::ranges::kArmatureMass),
-     PARAMETER_FIELD(armatureMass)},
-    {parameter(kVrArmatureStiffness, "armature_stiffness", VariableType::Real, "N/m",
-               "Suspension stiffness of the armature (base_drive = force), relaxed at the initial clamp position",
-               plate::ranges::kArmatureStiffness),
-     PARAMETER_FIELD(armatureStiffness)},
-    {parameter(kVrArmatureDamping, "armature_damping", VariableType::Real, "N.s/m",
-               "Suspension damping of the armature (base_drive = force)", plate::ranges::kArmatureDamping),
-     PARAMETER_FIELD(armatureDamping)},
-    {parameter(kVrTlmImpedance, "tlm_impedance", VariableType::Real, "N.s/m",
-               "Characteristic impedance Z of the transmission line to the partner (base_drive = tlm; > 0)",
-               plate::ranges::kTlmImpedance),
-     PARAMETER_FIELD(tlmImpedance)},
-    {input(kVrDriveForce, "drive_force", "N", false, plate::kMaxCarrierForce,
-           "Drive force on the armature, positive upward (base_drive = force)"),
-     [](const PlateValues& v) { return v.driveForce.signal.value; },
-     [](PlateValues& v, double x) { v.driveForce.setValue(x); }},
-    {input(kVrTlmWaveIn, "tlm_wave_in", "N", false, plate::kMaxCarrierForce,
-           "Wave arriving from the partner (base_drive = tlm): connect the partner's tlm_wave_out; held over "
-           "the step"),
-     [](const PlateValues& v) { return v.tlmWaveIn.signal.value; },
-     [](PlateValues& v, double x) { v.tlmWaveIn.setValue(x); }},
-    {output(kVrArmatureEnergy, "armature_energy", VariableType::Real, "J",
-            "Discrete energy of the armature (kinetic + suspension spring); 0 for a line end"),
-     CARRIER_FIELD(energy)},
-    {output(kVrArmatureDriveWork, "armature_drive_work", VariableType::Real, "J",
-            "Work of drive_force (or of tlm_wave_in) on the carrier since t = 0"),
-     CARRIER_FIELD(driveWork)},
-    {output(kVrArmatureDamped, "armature_damped", VariableType::Real, "J",
-            "Energy dissipated in the carrier's damper (the suspension, or the line's impedance) since t = 0"),
-     CARRIER_FIELD(damperWork)},
-    {output(kVrArmaturePortWork, "armature_port_work", VariableType::Real, "J",
-            "Work of the plate on the carrier since t = 0 (= -energy_input with load 0)"),
-     CARRIER_FIELD(portWork)},
-    {output(kVrTlmWaveOut, "tlm_wave_out", VariableType::Real, "N",
-            "Mean wave launched into the line over the last communication step (base_drive = tlm): connect to "
-            "the partner's tlm_wave_in"),
-     CARRIER_FIELD(waveOut)},
-    {output(kVrTlmTransit, "tlm_transit", VariableType::Real, "J",
-            "Energy of the wave this end launched in the last step, stored in the line until the partner "
-            "receives it"),
-     CARRIER_FIELD(transit)},
-    {output(kVrTlmLineLoss, "tlm_line_loss", VariableType::Real, "J",
-            "Energy this end launched that the mean wave does not carry, since t = 0 (>= 0: the line is passive)"),
-     CARRIER_FIELD(lineLoss)},
+    parameter(kVrArmatureMass,      "armature_mass",      "kg",    kArmatureMass,      PARAMETER(armatureMass),
+        "Mass of the armature carrying the clamp (base_drive = force; > 0)"),
+    parameter(kVrArmatureStiffness, "armature_stiffness", "N/m",   kArmatureStiffness, PARAMETER(armatureStiffness),
+        "Suspension stiffness of the armature (base_drive = force), relaxed at the initial clamp position"),
+    parameter(kVrArmatureDamping,   "armature_damping",   "N.s/m", kArmatureDamping,   PARAMETER(armatureDamping),
+        "Suspension damping of the armature (base_drive = force)"),
+    parameter(kVrTlmImpedance,      "tlm_impedance",      "N.s/m", kTlmImpedance,      PARAMETER(tlmImpedance),
+        "Characteristic impedance Z of the transmission line to the partner (base_drive = tlm; > 0)"),
+    input(kVrDriveForce,       "drive_force",       "N",    false, plate::kMaxCarrierForce, INPUT(driveForce),
+        "Drive force on the armature, positive upward (base_drive = force)"),
+    input(kVrTlmWaveIn,        "tlm_wave_in",       "N",    false, plate::kMaxCarrierForce, INPUT(tlmWaveIn),
+        "Wave arriving from the partner (base_drive = tlm): connect the partner's tlm_wave_out; held over the step"),
+    output(kVrArmatureEnergy,          "armature_energy",            "J",    CARRIER(energy),
+        "Discrete energy of the armature (kinetic + suspension spring); 0 for a line end"),
+    output(kVrArmatureDriveWork,       "armature_drive_work",        "J",    CARRIER(driveWork),
+        "Work of drive_force (or of tlm_wave_in) on the carrier since t = 0"),
+    output(kVrArmatureDamped,          "armature_damped",            "J",    CARRIER(damperWork),
+        "Energy dissipated in the carrier's damper (the suspension, or the line's impedance) since t = 0"),
+    output(kVrArmaturePortWork,        "armature_port_work",         "J",    CARRIER(portWork),
+        "Work of the plate on the carrier since t = 0 (= -energy_input with load 0)"),
+    output(kVrTlmWaveOut,              "tlm_wave_out",               "N",    CARRIER(waveOut),
+        "Mean wave launched into the line over the last communication step (base_drive = tlm): connect to the "
+        "partner's tlm_wave_in"),
+    output(kVrTlmTransit,              "tlm_transit",                "J",    CARRIER(transit),
+        "Energy of the wave this end launched in the last step, stored in the line until the partner receives it"),
+    output(kVrTlmLineLoss,             "tlm_line_loss",              "J",    CARRIER(lineLoss),
+        "Energy this end launched that the mean wave does not carry, since t = 0 (>= 0: the line is passive)"),
 };
+// clang-format on
 
-#undef PARAMETER_FIELD
-#undef OUTPUT_FIELD
-#undef PORT_FIELD
-#undef CARRIER_FIELD
+#undef PARAMETER
+#undef INPUT
+#undef OUTPUT
+#undef PORT
+#undef CARRIER
 
 const Row& rowOf(const fmu::Variable& v) {
     // `v` is an element of plateVariables(), which lists the rows' variables in the same order.

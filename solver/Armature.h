@@ -12,12 +12,13 @@
 // costs one dot and one axpy beyond the plate's solve, and the contact columns of the bordered
 // matrix are the plate's minus a multiple of g (a rank-one change of W, (T.19)).
 #include <Eigen/Core>
-#include <array>
+#include <iterator>
 #include <memory>
 #include <vector>
 
 #include "BoxQP.h"
 #include "DiscretePlate.h"
+#include "FieldTable.h"
 #include "NewmarkState.h"
 
 namespace plate {
@@ -40,13 +41,28 @@ struct CarrierState {
     double transit = 0.0;  // h ā²/(4Z): the energy the line carries to the partner, J
     double lineLoss = 0.0;  // Σ (Σ a_n²Δt − h ā²)/(4Z) ≥ 0: what the mean wave cannot carry, J
     double clampForce = 0.0;  // f_n of the last step, N
-
-    static constexpr int kSize = 11;  // FMU states: every field, in this order
-    std::array<double*, kSize> fields() {
-        return {&force,       &forcePrev, &driveWork, &damperWork, &portWork,  &waveSum,
-                &waveSquares, &waveOut,   &transit,   &lineLoss,   &clampForce};
-    }
 };
+
+// Every field of CarrierState once (checked below), in the order of the FMU states
+// (PlateSimulation::saveState): a new field is one row here.
+// clang-format off
+inline constexpr NamedField<CarrierState> kCarrierFields[] = {
+    {"force",       fieldOf<&CarrierState::force>},
+    {"forcePrev",   fieldOf<&CarrierState::forcePrev>},
+    {"driveWork",   fieldOf<&CarrierState::driveWork>},
+    {"damperWork",  fieldOf<&CarrierState::damperWork>},
+    {"portWork",    fieldOf<&CarrierState::portWork>},
+    {"waveSum",     fieldOf<&CarrierState::waveSum>},
+    {"waveSquares", fieldOf<&CarrierState::waveSquares>},
+    {"waveOut",     fieldOf<&CarrierState::waveOut>},
+    {"transit",     fieldOf<&CarrierState::transit>},
+    {"lineLoss",    fieldOf<&CarrierState::lineLoss>},
+    {"clampForce",  fieldOf<&CarrierState::clampForce>},
+};
+// clang-format on
+constexpr std::size_t kCarrierStateSize = std::size(kCarrierFields);
+static_assert(coversEachFieldOnce<CarrierState>(kCarrierFields),
+              "kCarrierFields must list every double of CarrierState exactly once");
 
 class Armature {
 public:

@@ -33,7 +33,8 @@ struct NewmarkState {
     long long impactCount[2] = {0, 0};
 };
 
-// Flat form: format version, sizes, the four vectors, the scalars, the contact set, the impulses.
+// Flat form: format version, sizes, then the members in the order of one table (NewmarkState.cpp,
+// members()): the five vectors, the scalars, the contact set, the impulses.
 std::vector<double> serialize(const NewmarkState& state);
 // Throws std::invalid_argument if the data does not fit a plate with n coordinates, m contact
 // vertices and `impulses` stored impulses per level (0, or m with a singular mass), or is corrupt

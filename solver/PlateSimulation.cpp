@@ -353,11 +353,12 @@ PlateOutputs PlateSimulation::outputs(bool port) const {
     // t_c in (t_{n−1}, t_n): linear interpolation, each ledger term alike so the ledger closes.
     const double dt = impl_->parameters.dt;
     const double theta = (impl_->commTime - double(impl_->engine->stepCount() - 1) * dt) / dt;
-    PlateOutputs before = impl_->before;
-    const auto from = before.fields();
-    const auto to = o.fields();
-    for (int i = 0; i < PlateOutputs::kFieldCount; ++i)
-        *to[i] = i < PlateOutputs::kRealCount ? *from[i] + theta * (*to[i] - *from[i]) : *from[i];
+    const PlateOutputs& before = impl_->before;
+    for (const OutputField& f : kOutputFields) {
+        const double from = f.value(before);
+        double& to = f.field(o);
+        to = f.between == Between::Interpolated ? from + theta * (to - from) : from;
+    }
     return o;
 }
 
@@ -424,11 +425,9 @@ std::vector<double> PlateSimulation::saveState() const {
     std::vector<double> out = impl_->engine->saveState();
     out.push_back(impl_->commTime);
     out.push_back(impl_->onGrid ? 1.0 : 0.0);
-    PlateOutputs before = impl_->before;
-    for (double* x : before.fields()) out.push_back(*x);
+    for (const OutputField& f : kOutputFields) out.push_back(f.value(impl_->before));
     if (const Armature* carrier = impl_->stepper ? impl_->stepper->carrier() : nullptr) {  // last (§18)
-        CarrierState c = carrier->state();
-        for (double* x : c.fields()) out.push_back(*x);
+        for (const auto& f : kCarrierFields) out.push_back(f.value(carrier->state()));
     }
     return out;
 }
@@ -438,16 +437,17 @@ void PlateSimulation::restoreState(const std::vector<double>& all) {
     CarrierState carried;
     Armature* carrier = impl_->stepper ? impl_->stepper->carrier() : nullptr;
     if (carrier) {  // the carrier's state last (§18)
-        if (in.size() < std::size_t(CarrierState::kSize))
+        if (in.size() < kCarrierStateSize)
             throw std::invalid_argument("state does not belong to this plate (too short)");
-        const double* x = in.data() + in.size() - CarrierState::kSize;
-        for (double* field : carried.fields()) {
-            if (!std::isfinite(*x)) throw std::invalid_argument("corrupt state: non-finite carrier value");
-            *field = *x++;
+        const double* x = in.data() + in.size() - kCarrierStateSize;
+        for (const auto& f : kCarrierFields) {
+            if (!std::isfinite(*x))
+                throw std::invalid_argument(std::string("corrupt state: non-finite carrier value ") + f.name);
+            f.field(carried) = *x++;
         }
-        in.resize(in.size() - CarrierState::kSize);
+        in.resize(in.size() - kCarrierStateSize);
     }
-    constexpr std::size_t kTail = 2 + PlateOutputs::kFieldCount;
+    constexpr std::size_t kTail = 2 + kOutputCount;
     if (in.size() < kTail) throw std::invalid_argument("state does not belong to this plate (too short)");
     const std::size_t head = in.size() - kTail;
     const std::vector<double> engineState(in.begin(), in.begin() + std::ptrdiff_t(head));
@@ -459,18 +459,18 @@ void PlateSimulation::restoreState(const std::vector<double>& all) {
     engine.restoreState(engineState);  // checks the engine's part (throws, the state unchanged)
     const double gridTime = double(engine.stepCount()) * dt;
     PlateOutputs before;
-    const auto fields = before.fields();
-    bool corrupt = false;
-    for (int i = 0; i < PlateOutputs::kFieldCount; ++i) {
-        corrupt |= !std::isfinite(tail[2 + i]);
-        *fields[i] = tail[2 + i];
+    const char* corrupt = nullptr;  // the first non-finite output
+    for (std::size_t i = 0; i < kOutputCount; ++i) {
+        const OutputField& f = kOutputFields[i];
+        if (!corrupt && !std::isfinite(tail[2 + i])) corrupt = f.name;
+        f.field(before) = tail[2 + i];
     }
     // On the grid the time is the grid point's; between, within one step before it.
     const bool timeFits = (tail[1] == 0.0 || onGrid) && std::isfinite(tail[0]) &&
                           (onGrid ? tail[0] == gridTime : (tail[0] < gridTime && tail[0] > gridTime - dt));
     if (corrupt || !timeFits) {
         engine.restoreState(current);
-        throw std::invalid_argument(corrupt ? "corrupt state: non-finite output"
+        throw std::invalid_argument(corrupt ? std::string("corrupt state: non-finite output ") + corrupt
                                             : "corrupt state: communication time does not fit the grid");
     }
     if (carrier) carrier->setState(carried);
