@@ -16,12 +16,14 @@ typedef HMODULE Library;
 static Library open_library(const char* path) { return LoadLibraryA(path); }
 static void* find_symbol(Library lib, const char* name) { return (void*)GetProcAddress(lib, name); }
 static const char* library_error(void) { return "LoadLibrary failed"; }
+static void close_library(Library lib) { FreeLibrary(lib); }
 #else
 #include <dlfcn.h>
 typedef void* Library;
 static Library open_library(const char* path) { return dlopen(path, RTLD_NOW | RTLD_LOCAL); }
 static void* find_symbol(Library lib, const char* name) { return dlsym(lib, name); }
 static const char* library_error(void) { return dlerror(); }
+static void close_library(Library lib) { dlclose(lib); }
 #endif
 #include <math.h>
 #include <stdio.h>
@@ -199,7 +201,7 @@ int main(int argc, char** argv) {
     a.freeState(s, &mid);
     a.freeState(s, &copy);
     a.freeInstance(s);
-    dlclose(lib);
+    close_library(lib);
     printf("failures %d\n", failures);
     return failures == 0 ? 0 : 1;
 }
