@@ -44,6 +44,7 @@ from speed_study import (
     study_scaling,
     study_short,
 )
+from speed_summary import summarize
 
 
 def main(argv=None):
@@ -181,7 +182,8 @@ def main(argv=None):
     )
     plot_speed_vs_error(short, free, out / "figures" / "speed_vs_error.png")
     plot_scaling(scaling, out / "figures" / "scaling.png")
-    summary = write_report(ctx, out / "performance.md")
+    summary = summarize(ctx)
+    write_report(summary, ctx, out / "performance.md")
     summary["runs"] = bench.log  # every plate_bench run: wall and CPU step times, floors, engine
     (out / "speed_vs_error.json").write_text(json.dumps(summary, indent=1, default=float))
     print(
