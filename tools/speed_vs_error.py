@@ -9,11 +9,14 @@ run) and, for the default scene's wall time, with the FMU through fmpy.
 
     .venv/bin/python tools/speed_vs_error.py            # full: docs/performance.md (~10 min)
     .venv/bin/python tools/speed_vs_error.py --quick --out /tmp/perf   # smoke run, seconds
+    .venv/bin/python tools/speed_vs_error.py --quick --no-report --out /tmp/perf   # the suite's run
 
 Errors are used only for quantities shown to converge (successive differences of a refinement
 sequence shrinking, rule in `converges()`); a quantity that does not is reported and flagged,
-never used as an error. Writes <out>/performance.md, <out>/figures/speed_vs_error.png,
-<out>/figures/scaling.png and <out>/speed_vs_error.json (all numbers, for checks).
+never used as an error. speed_summary computes the summary from the measurements (errors,
+verdicts, goals), speed_report renders it. Writes <out>/speed_vs_error.json (the summary: all
+numbers, for checks) and, unless --no-report, <out>/performance.md, <out>/figures/speed_vs_error.png
+and <out>/figures/scaling.png.
 """
 
 from __future__ import annotations
@@ -51,7 +54,14 @@ def main(argv=None):
     ap = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
     ap.add_argument("--quick", action="store_true", help="smoke run on tiny grids (seconds)")
     add_checkout_arguments(ap)
-    ap.add_argument("--out", help="output directory (performance.md, figures/; default: <repo>/docs)")
+    ap.add_argument(
+        "--out", help="output directory (speed_vs_error.json, performance.md, figures/; default: <repo>/docs)"
+    )
+    ap.add_argument(
+        "--no-report",
+        action="store_true",
+        help="measure and summarize only: write speed_vs_error.json, no markdown, no figures",
+    )
     ap.add_argument("--bench", help="plate_bench (default: $PLATEIMPACT_BUILD_DIR or <repo>/build, solver/bench/)")
     args = ap.parse_args(argv)
     build = Path(os.environ.get("PLATEIMPACT_BUILD_DIR", args.repo / "build"))
@@ -59,7 +69,9 @@ def main(argv=None):
     args.fmu = fmu_path(args)
 
     out = Path(args.out) if args.out else args.repo / "docs"
-    (out / "figures").mkdir(parents=True, exist_ok=True)
+    out.mkdir(parents=True, exist_ok=True)
+    if not args.no_report:
+        (out / "figures").mkdir(exist_ok=True)
     plan = make_plan(args.quick)
     started = time.perf_counter()
     load_before = os.getloadavg()
@@ -180,16 +192,22 @@ def main(argv=None):
         runs=bench.count,
         args=args,
     )
-    plot_speed_vs_error(short, free, out / "figures" / "speed_vs_error.png")
-    plot_scaling(scaling, out / "figures" / "scaling.png")
     summary = summarize(ctx)
-    write_report(summary, ctx, out / "performance.md")
+    written = []
+    if not args.no_report:
+        md, fig_error, fig_scaling = (
+            out / "performance.md",
+            out / "figures" / "speed_vs_error.png",
+            out / "figures" / "scaling.png",
+        )
+        plot_speed_vs_error(short, free, fig_error)
+        plot_scaling(scaling, fig_scaling)
+        write_report(summary, ctx, md)
+        written += [md, fig_error, fig_scaling]
     summary["runs"] = bench.log  # every plate_bench run: wall and CPU step times, floors, engine
     (out / "speed_vs_error.json").write_text(json.dumps(summary, indent=1, default=float))
-    print(
-        f"== wrote {out / 'performance.md'}, {out / 'figures' / 'speed_vs_error.png'}, "
-        f"{out / 'figures' / 'scaling.png'} in {elapsed:.0f} s ({bench.count} plate_bench runs)"
-    )
+    written.append(out / "speed_vs_error.json")
+    print(f"== wrote {', '.join(str(p) for p in written)} in {elapsed:.0f} s ({bench.count} plate_bench runs)")
     for line in summary["headline_lines"]:
         print("  " + line)
     return 0
