@@ -44,9 +44,12 @@ public:
     virtual void reset() {}
 };
 
-// The laws of docs/theory.md: the paper's (e = 0, consistent mass: §4–5, with the free-flight
-// bound that skips looking at the vertices), and the general one — the constraint on
-// (u⁺ + e u⁻)/(1 + e) (§12) with, for a singular mass, the contact impulses carried (§11).
+// The laws of docs/theory.md, chosen by makeImpactLaw:
+//   carryImpulses       → SingularMassImpact: the constraint on (u⁺ + e u⁻)/(1 + e), any e ≥ 0,
+//                         with the contact impulses of the two previous steps carried (§11, §12);
+//   restitution > 0     → RestitutionImpact: the constraint on (u⁺ + e u⁻)/(1 + e) (§12);
+//   otherwise           → InelasticImpact: the paper's (e = 0, consistent mass: §4–5, with the
+//                         free-flight bound that skips looking at the vertices).
 std::unique_ptr<ImpactLaw> makeImpactLaw(const DiscretePlate& plate, const Obstacles& obstacles, double restitution,
                                          bool carryImpulses);
 
