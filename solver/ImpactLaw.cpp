@@ -179,6 +179,21 @@ public:
         s.contactImpulse.swap(next_);
     }
 
+    // No impulse before t = 0 unless setInitialContactForce gives one.
+    void initialize(NewmarkState& s) override {
+        s.contactImpulse = Eigen::VectorXd::Zero(plate_.contactCount());
+        s.contactImpulsePrev = s.contactImpulse;
+    }
+
+    // The impulse history βΔt²λ0 at t_0 and t_{−1}: the massless part balanced at both.
+    void setInitialContactForce(NewmarkState& s, const Eigen::VectorXd& force) override {
+        s.contactImpulse = (plate_.beta() * plate_.dt() * plate_.dt()) * force;
+        s.contactImpulsePrev = s.contactImpulse;
+    }
+
+    // The initial state's massless part is in equilibrium with the load it was made with (§11).
+    bool keepsLoadBeforeStart() const override { return true; }
+
 private:
     Eigen::VectorXd carried_, next_;
 };
