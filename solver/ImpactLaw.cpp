@@ -80,56 +80,46 @@ private:
     double zCheck_ = 0.0, margin_ = -1.0;
 };
 
-// The constraint on (u⁺ + e u⁻)/(1 + e) (§12) and, with a singular mass, the contact impulses
-// of the two previous steps carried into the right-hand side (§11). Every vertex is looked at,
-// every step; the contact work is not clamped (it can return energy).
-class GeneralImpact final : public ImpactLaw {
+// What the laws that look at every vertex, every step share: the constraint on
+// (u⁺ + e u⁻)/(1 + e) (§12; e = 0: on u⁺) and the contact work of the whole impulse τ of the
+// step, not clamped (it can return energy). The derived law gives τ per vertex from the QP's
+// multiplier (workOf's `impulse`, inlined: no virtual call per vertex).
+class VertexImpact : public ImpactLaw {
 public:
-    GeneralImpact(const DiscretePlate& plate, const Obstacles& obstacles, double restitution, bool carry)
-        : plate_(plate), obstacles_(obstacles), e_(restitution), carry_(carry) {
-        if (carry_) {
-            carried_.resize(plate.contactCount());
-            next_.resize(plate.contactCount());
-        }
-    }
-
-    // Cᵀν with ν = ((1−2β)/β) μ_n + μ_{n−1} (T.4): the β-average of the contact forces of the massless
-    // equilibria at t_{n−1}, t_n, t_{n+1} (§11); μ_{n+1} comes from this step's QP.
-    void addCarried(const NewmarkState& s, Eigen::VectorXd& rhs) override {
-        if (!carry_) return;
-        const double beta = plate_.beta();
-        carried_.noalias() = ((1.0 - 2.0 * beta) / beta) * s.contactImpulse + s.contactImpulsePrev;
-        plate_.scatterContact(carried_, rhs);
-    }
-
     // Per-vertex bounds on y⁺ = C w⁺: (1+e)·obstacle − e u⁻ − z⁺.
-    bool bounds(const NewmarkState& s, const Eigen::VectorXd& wFree, double zNext, ContactBuffers& b) override {
-        const double lo = obstacles_.lower - zNext, hi = obstacles_.upper - zNext;
+    bool bounds(const NewmarkState& s, const Eigen::VectorXd& wFree, double zNext, ContactBuffers& b) final {
         plate_.gatherContact(s.wPrev, b.yPrev);
         plate_.gatherContact(wFree, b.yFree);
-        bool violated = false;
-        for (int i = 0; i < b.yFree.size(); ++i) {
-            const double uPrev = b.yPrev[i] + s.zPrev;
-            b.lower[i] = e_ > 0.0 ? (1.0 + e_) * obstacles_.lower - e_ * uPrev - zNext : lo;
-            b.upper[i] = e_ > 0.0 ? (1.0 + e_) * obstacles_.upper - e_ * uPrev - zNext : hi;
-            violated |= (b.yFree[i] < b.lower[i]) | (b.yFree[i] > b.upper[i]);
+        if (e_ > 0.0) {
+            for (int i = 0; i < b.yFree.size(); ++i) {
+                const double uPrev = b.yPrev[i] + s.zPrev;
+                b.lower[i] = (1.0 + e_) * obstacles_.lower - e_ * uPrev - zNext;
+                b.upper[i] = (1.0 + e_) * obstacles_.upper - e_ * uPrev - zNext;
+            }
+        } else {
+            b.lower.setConstant(obstacles_.lower - zNext);
+            b.upper.setConstant(obstacles_.upper - zNext);
         }
+        bool violated = false;
+        for (int i = 0; i < b.yFree.size(); ++i) violated |= (b.yFree[i] < b.lower[i]) | (b.yFree[i] > b.upper[i]);
         return violated;
     }
 
-    // ½ τᵀ(u⁺ − u⁻)/Δt² with τ = μ (+ ν carried) the whole impulse: at a vertex on the law's
-    // constraint u⁺ − u⁻ = (1+e)(obstacle − u⁻) (§12).
-    ContactWork work(const NewmarkState& s, bool violated, double zNext, ContactBuffers& b) override {
+protected:
+    VertexImpact(const DiscretePlate& plate, const Obstacles& obstacles, double restitution)
+        : plate_(plate), obstacles_(obstacles), e_(restitution) {}
+
+    // ½ τᵀ(u⁺ − u⁻)/Δt² with τ_i = impulse(i, μ_i) the whole impulse at vertex i (μ_i = 0 where
+    // the QP did not run): at a vertex on the law's constraint u⁺ − u⁻ = (1+e)(obstacle − u⁻) (§12).
+    template <class Impulse>
+    ContactWork workOf(const NewmarkState& s, bool violated, double zNext, const ContactBuffers& b,
+                       Impulse&& impulse) const {
         ContactWork w;
         const std::vector<double>& lever = plate_.contactAbscissae();
         const Eigen::VectorXd& yNext = violated ? b.y : b.yFree;
         double tauSum = 0.0;
         for (int i = 0; i < yNext.size(); ++i) {
-            double tau = violated ? b.mu[i] : 0.0;
-            if (carry_) {
-                next_[i] = tau;
-                tau += carried_[i];
-            }
+            const double tau = impulse(i, violated ? b.mu[i] : 0.0);
             if (tau == 0.0) continue;
             w.sum[tau < 0.0] += tau;
             w.moment += tau * lever[i];
@@ -142,17 +132,69 @@ public:
         return w;
     }
 
+    const DiscretePlate& plate_;
+    Obstacles obstacles_;
+    double e_;
+};
+
+// Restitution with a consistent mass (§12, e > 0): the impulse of a step is the QP's multiplier.
+class RestitutionImpact final : public VertexImpact {
+public:
+    RestitutionImpact(const DiscretePlate& plate, const Obstacles& obstacles, double restitution)
+        : VertexImpact(plate, obstacles, restitution) {}
+
+    ContactWork work(const NewmarkState& s, bool violated, double zNext, ContactBuffers& b) override {
+        return workOf(s, violated, zNext, b, [](int, double mu) { return mu; });
+    }
+};
+
+// A singular mass (§11), any e ≥ 0 (§12): the contact impulses of the two previous steps carried
+// into the right-hand side, kept in the state (contactImpulse, contactImpulsePrev); the impulse of
+// a step is the QP's multiplier plus what was carried.
+class SingularMassImpact final : public VertexImpact {
+public:
+    SingularMassImpact(const DiscretePlate& plate, const Obstacles& obstacles, double restitution)
+        : VertexImpact(plate, obstacles, restitution) {
+        carried_.resize(plate.contactCount());
+        next_.resize(plate.contactCount());
+    }
+
+    // Cᵀν with ν = ((1−2β)/β) μ_n + μ_{n−1} (T.4): the β-average of the contact forces of the massless
+    // equilibria at t_{n−1}, t_n, t_{n+1} (§11); μ_{n+1} comes from this step's QP.
+    void addCarried(const NewmarkState& s, Eigen::VectorXd& rhs) override {
+        const double beta = plate_.beta();
+        carried_.noalias() = ((1.0 - 2.0 * beta) / beta) * s.contactImpulse + s.contactImpulsePrev;
+        plate_.scatterContact(carried_, rhs);
+    }
+
+    ContactWork work(const NewmarkState& s, bool violated, double zNext, ContactBuffers& b) override {
+        return workOf(s, violated, zNext, b, [this](int i, double mu) {
+            next_[i] = mu;
+            return mu + carried_[i];
+        });
+    }
+
     void commit(NewmarkState& s) override {
-        if (!carry_) return;
         s.contactImpulsePrev.swap(s.contactImpulse);
         s.contactImpulse.swap(next_);
     }
 
+    // No impulse before t = 0 unless setInitialContactForce gives one.
+    void initialize(NewmarkState& s) override {
+        s.contactImpulse = Eigen::VectorXd::Zero(plate_.contactCount());
+        s.contactImpulsePrev = s.contactImpulse;
+    }
+
+    // The impulse history βΔt²λ0 at t_0 and t_{−1}: the massless part balanced at both.
+    void setInitialContactForce(NewmarkState& s, const Eigen::VectorXd& force) override {
+        s.contactImpulse = (plate_.beta() * plate_.dt() * plate_.dt()) * force;
+        s.contactImpulsePrev = s.contactImpulse;
+    }
+
+    // The initial state's massless part is in equilibrium with the load it was made with (§11).
+    bool keepsLoadBeforeStart() const override { return true; }
+
 private:
-    const DiscretePlate& plate_;
-    Obstacles obstacles_;
-    double e_;
-    bool carry_;
     Eigen::VectorXd carried_, next_;
 };
 
@@ -160,8 +202,8 @@ private:
 
 std::unique_ptr<ImpactLaw> makeImpactLaw(const DiscretePlate& plate, const Obstacles& obstacles, double restitution,
                                          bool carryImpulses) {
-    if (restitution > 0.0 || carryImpulses)
-        return std::make_unique<GeneralImpact>(plate, obstacles, restitution, carryImpulses);
+    if (carryImpulses) return std::make_unique<SingularMassImpact>(plate, obstacles, restitution);
+    if (restitution > 0.0) return std::make_unique<RestitutionImpact>(plate, obstacles, restitution);
     return std::make_unique<InelasticImpact>(plate, obstacles);
 }
 

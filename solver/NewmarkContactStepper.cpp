@@ -18,7 +18,6 @@ NewmarkContactStepper::NewmarkContactStepper(std::shared_ptr<const DiscretePlate
     d_.resize(n);
     wNext_.resize(n);
     kwNext_.resize(n);
-    if (!obstacles_.any()) options_.singularMass = false;  // no contact, no impulses to carry
     if (options_.dampingMass > 0.0 || options_.dampingStiffness > 0.0) {
         dampingBuffer_.resize(n);
         massVelocity_.resize(n);
@@ -55,11 +54,10 @@ void NewmarkContactStepper::initialize(const Eigen::VectorXd& w0, double z0, dou
     s.pressureWork = s.pressureWorkPrev = plate_->pressureLoad().dot(w0);
     s.baseCoupling = s.baseCouplingPrev = s.baseCouplingPrev2 = plate_->baseInertia().dot(w0);
     s.contactState.assign(obstacles_.any() ? plate_->contactCount() : 0, 0);
-    if (options_.singularMass) {
-        s.contactImpulse = Eigen::VectorXd::Zero(plate_->contactCount());
-        s.contactImpulsePrev = s.contactImpulse;
+    if (law_) {
+        law_->initialize(s);  // its part of the state (e.g. the carried impulses, zero)
+        law_->reset();
     }
-    if (law_) law_->reset();
     if (armature_) armature_->reset();
     if (obstacles_.any()) {
         Eigen::VectorXd& y = contact_.y;
@@ -74,15 +72,13 @@ void NewmarkContactStepper::initialize(const Eigen::VectorXd& w0, double z0, dou
 }
 
 void NewmarkContactStepper::setInitialContactForce(const Eigen::VectorXd& force) {
-    if (!options_.singularMass || state_.step != 0) return;
-    state_.contactImpulse = (beta() * dt() * dt()) * force;
-    state_.contactImpulsePrev = state_.contactImpulse;
+    if (law_ && state_.step == 0) law_->setInitialContactForce(state_, force);
 }
 
 void NewmarkContactStepper::setLoadAtStart(double p0) {
-    // With a singular mass the load before t = 0 stays the one the initial state's massless part
-    // is in equilibrium with (docs/theory.md §11).
-    if (state_.step == 0 && !options_.singularMass) state_.p = state_.pPrev = state_.pPrev2 = p0;
+    // The law may keep the load the initial state was made with (a singular mass: its massless
+    // part is in equilibrium with it, docs/theory.md §11).
+    if (state_.step == 0 && !(law_ && law_->keepsLoadBeforeStart())) state_.p = state_.pPrev = state_.pPrev2 = p0;
 }
 
 // The step of (3.6) = docs/theory.md (T.1) in w = u − z·1 (§3–4): the free solution, the law's

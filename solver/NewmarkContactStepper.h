@@ -29,8 +29,10 @@ namespace plate {
 struct SchemeOptions {
     double restitution = 0.0;  // e ∈ [0, 1]
     double dampingMass = 0.0, dampingStiffness = 0.0;  // Rayleigh C = a M + b K on w
-    // The plate's mass is singular: carry the contact impulses (docs/theory.md §11). Off with a
-    // singular mass gives the plain Newmark step with M_s (kept to measure what it changes).
+    // The plate's mass is singular: carry the contact impulses (docs/theory.md §11). It only
+    // chooses the law (makeImpactLaw: SingularMassImpact, which keeps the impulses in the state;
+    // no obstacle, no law: nothing carried). Off with a singular mass gives the plain Newmark
+    // step with M_s (kept to measure what it changes).
     bool singularMass = false;
     // The clamp carried by an armature or a line end inside the step (docs/theory.md §18–18): step()
     // then takes the carrier's drive force in place of the base position.
@@ -46,12 +48,14 @@ public:
     // The plate at rest for t ≤ 0 in the shape w0 with the clamp at z0, pressure p0.
     void initialize(const Eigen::VectorXd& w0, double z0, double p0);
     // Singular mass: the contact forces λ0 (per contact vertex) that hold the initial state's
-    // massless part in equilibrium; the impulse history becomes βΔt²λ0 at t_0 and t_{−1}.
+    // massless part in equilibrium; the impulse history becomes βΔt²λ0 at t_0 and t_{−1} (the
+    // law's: ImpactLaw::setInitialContactForce; ignored by a law that carries nothing).
     void setInitialContactForce(const Eigen::VectorXd& force);
 
     // The load input at t = 0, known only when the master starts stepping: the history holds
     // it for t ≤ 0 (docs/theory.md: the load acts from t = 0 on; the initial load only shapes u⁰).
-    // Only before the first step.
+    // Only before the first step, and not when the law keeps the initial load (ImpactLaw::
+    // keepsLoadBeforeStart: a singular mass, §11).
     void setLoadAtStart(double p0);
 
     // One step to t_{n+1} with the base at zNext and the pressure at pNext there.
