@@ -1,4 +1,4 @@
-"""The carried clamp (issue 27; docs/theory.md §18-18): PlateImpact's armature mode (base_drive =
+"""The carried clamp (issue 27; docs/theory.md §18–19): PlateImpact's armature mode (base_drive =
 force) and its transmission-line end (base_drive = tlm) with Shaker.fmu's (coupling = 2).
 
 - the monolithic ledger energy + armature_energy = drive work - losses closes to roundoff

@@ -34,7 +34,7 @@ struct SchemeOptions {
     // no obstacle, no law: nothing carried). Off with a singular mass gives the plain Newmark
     // step with M_s (kept to measure what it changes).
     bool singularMass = false;
-    // The clamp carried by an armature or a line end inside the step (docs/theory.md §18–18): step()
+    // The clamp carried by an armature or a line end inside the step (docs/theory.md §18–19): step()
     // then takes the carrier's drive force in place of the base position.
     bool carried = false;
     CarrierOptions carrier;

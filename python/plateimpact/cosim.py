@@ -263,7 +263,7 @@ def energy_closure(run):
 
 
 # ---------------------------------------------------------------------------------------------
-# The shaker system with a choice of coupling (issue 27; docs/theory.md §18-18, examples/shaker.py):
+# The shaker system with a choice of coupling (issue 27; docs/theory.md §18–19, examples/shaker.py):
 #   "force"      Shaker.fmu <-> PlateImpact.fmu, motion in / force out with held values (as above);
 #   "tlm"        Shaker.fmu <-> PlateImpact.fmu through a transmission line: each side sends its mean
 #                outgoing wave (tlm_wave_out -> the partner's tlm_wave_in), both with tlm_impedance;
