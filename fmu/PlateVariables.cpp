@@ -224,8 +224,9 @@ const Row kRows[] = {
         "Uniform pressure on the plate, positive upward, acting from t = 0 on"),
     choice(kVrBaseDrive,     "base_drive",      kBaseDrive,   getBaseDrive,     setBaseDrive,
         "Which input moves the clamped edge: displacement (base_displacement), velocity (base_velocity, integrated "
-        "from the initial base_displacement) or acceleration (base_acceleration, integrated twice, the clamp at rest "
-        "at t = 0)"),
+        "from the initial base_displacement), acceleration (base_acceleration, integrated twice, the clamp at rest "
+        "at t = 0), force (drive_force on an armature inside the FMU that carries the clamp) or tlm (a transmission "
+        "line to a partner: tlm_wave_in, tlm_wave_out)"),
     input(kVrBaseVelocity,     "base_velocity",     "m/s",  false, kMaxBaseVelocity,        INPUT(baseVelocity),
         "Vertical velocity of the clamped edge (used when base_drive = velocity)"),
     input(kVrBaseAcceleration, "base_acceleration", "m/s2", false, kMaxBaseAcceleration,    INPUT(baseAcceleration),
