@@ -159,15 +159,7 @@ void NewmarkContactStepper::stepCarried(double fNext, double pNext) {
                "this gap";
         throw StepError(msg.str());
     }
-    plate_->applyStiffness(wNext_, kwNext_);
-    const double damped = dampingWork();
-    const double sNext = plate_->pressureLoad().dot(wNext_);
-    const double tNext = plate_->baseInertia().dot(wNext_);
-    if (!std::isfinite(sNext) || !std::isfinite(tNext)) {
-        std::ostringstream msg;
-        msg << "the step to t = " << (s.step + 1) * dt() << " produced a non-finite displacement";
-        throw StepError(msg.str());
-    }
+    const auto [damped, sNext, tNext] = finishSolve();
     const double baseJump = zNext - 2.0 * s.z + s.zPrev;
     const double work = inputWork(zNext, baseJump, pBeta, sNext, tNext, contact);
     armature_->commit(s, zNext, fNext, fBeta);

@@ -81,6 +81,19 @@ void NewmarkContactStepper::setLoadAtStart(double p0) {
     if (state_.step == 0 && !(law_ && law_->keepsLoadBeforeStart())) state_.p = state_.pPrev = state_.pPrev2 = p0;
 }
 
+NewmarkContactStepper::SolvedStep NewmarkContactStepper::finishSolve() {
+    plate_->applyStiffness(wNext_, kwNext_);
+    const double damped = dampingWork();
+    const double sNext = plate_->pressureLoad().dot(wNext_);
+    const double tNext = plate_->baseInertia().dot(wNext_);
+    if (!std::isfinite(sNext) || !std::isfinite(tNext)) {
+        std::ostringstream msg;
+        msg << "the step to t = " << (state_.step + 1) * dt() << " produced a non-finite displacement";
+        throw StepError(msg.str());
+    }
+    return {damped, sNext, tNext};
+}
+
 // The step of (3.6) = docs/theory.md (T.1) in w = u − z·1 (§3–4): the free solution, the law's
 // contact phase, then the ledger (§6) of what the step did.
 void NewmarkContactStepper::step(double zNext, double pNext) {
@@ -96,15 +109,7 @@ void NewmarkContactStepper::step(double zNext, double pNext) {
     int iterations = 0, contactCount = 0;
     double kkt = 0.0;
     if (law_) contact = resolveContact(zNext, iterations, kkt, contactCount);
-    plate_->applyStiffness(wNext_, kwNext_);
-    const double damped = dampingWork();
-    const double sNext = plate_->pressureLoad().dot(wNext_);
-    const double tNext = plate_->baseInertia().dot(wNext_);
-    if (!std::isfinite(sNext) || !std::isfinite(tNext)) {
-        std::ostringstream msg;
-        msg << "the step to t = " << (s.step + 1) * dt() << " produced a non-finite displacement";
-        throw StepError(msg.str());
-    }
+    const auto [damped, sNext, tNext] = finishSolve();
     const double work = inputWork(zNext, baseJump, pBeta, sNext, tNext, contact);
     commit(zNext, pNext, sNext, tNext, contact, damped, work, iterations, kkt, contactCount);
 }

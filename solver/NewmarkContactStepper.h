@@ -86,6 +86,12 @@ private:
     // The contact phase (§3.4 + the law): the QP where an obstacle is violated, wNext_ corrected.
     ContactWork resolveContact(double zNext, int& iterations, double& kkt, int& contactCount);
     double dampingWork();  // the step's Rayleigh dissipation (§13); also M(w⁺ − w) for the next step
+    // After the contact phase: K w⁺, the damping work and Fᵀw⁺, (M·1)ᵀw⁺ (§6); a non-finite step
+    // throws StepError.
+    struct SolvedStep {
+        double damped, pressureWork, baseCoupling;
+    };
+    SolvedStep finishSolve();
     double inputWork(double zNext, double baseJump, double pBeta, double sNext, double tNext,
                      const ContactWork& contact) const;
     void commit(double zNext, double pNext, double sNext, double tNext, const ContactWork& contact, double damped,

@@ -274,26 +274,14 @@ def energy_closure(run):
 
 COUPLINGS = ("force", "tlm", "monolithic")
 BASE_DRIVE = {"force": 4, "tlm": 5}  # PlateImpact's base_drive items for a carried clamp
-_PLATE_COMMON = (
-    "clamp_force",
-    "clamp_displacement",
-    "clamp_acceleration",
-    "corner_1",
-    "energy",
-    "energy_input",
-    "energy_dissipated",
-    "energy_damped",
-    "contact_force_lower",
-    "contact_force_upper",
-)
 SYSTEM_RECORD = {
-    "force": {"shaker": SHAKER_RECORD, "plate": _PLATE_COMMON},
+    "force": {"shaker": SHAKER_RECORD, "plate": PLATE_RECORD},
     "tlm": {
         "shaker": SHAKER_RECORD + ("tlm_wave_out", "tlm_transit", "tlm_line_loss"),
-        "plate": _PLATE_COMMON + ("tlm_wave_out", "tlm_transit", "tlm_line_loss"),
+        "plate": PLATE_RECORD + ("tlm_wave_out", "tlm_transit", "tlm_line_loss"),
     },
     "monolithic": {
-        "plate": _PLATE_COMMON + ("armature_energy", "armature_drive_work", "armature_damped", "armature_port_work")
+        "plate": PLATE_RECORD + ("armature_energy", "armature_drive_work", "armature_damped", "armature_port_work")
     },
 }
 
