@@ -12,6 +12,7 @@ from pathlib import Path
 
 import numpy as np
 
+from .fmufile import fmu_file
 from .scenes import AMPLITUDE, DT, FREQUENCY, RAMP
 
 # The sweep's parameters for the smooth-start scene (a constant 10 Hz with a 0.05 s ramp-in).
@@ -37,11 +38,12 @@ def run_libcosim(sweep_fmu, plate_fmu, h, stop):
     from libcosimpy.CosimLogging import CosimLogLevel, log_output_level
     from libcosimpy.CosimSlave import CosimLocalSlave
 
+    sweep_fmu, plate_fmu = fmu_file(sweep_fmu), fmu_file(plate_fmu)  # checked before any master sees them
     log_output_level(CosimLogLevel.ERROR)
     sv, pv = variables(sweep_fmu), variables(plate_fmu)
     execution = CosimExecution.from_step_size(round(h * 1e9))  # libcosim's time: integer ns
-    sweep = execution.add_local_slave(CosimLocalSlave(fmu_path=str(Path(sweep_fmu).resolve()), instance_name="sweep"))
-    plate = execution.add_local_slave(CosimLocalSlave(fmu_path=str(Path(plate_fmu).resolve()), instance_name="plate"))
+    sweep = execution.add_local_slave(CosimLocalSlave(fmu_path=str(sweep_fmu), instance_name="sweep"))
+    plate = execution.add_local_slave(CosimLocalSlave(fmu_path=str(plate_fmu), instance_name="plate"))
     for name, value in SWEEP.items():
         assert execution.real_initial_value(sweep, sv[name], value), name
     assert execution.real_initial_value(plate, pv["dt"], DT)
@@ -68,6 +70,7 @@ def step_and_observe(execution, plate, corner_vr, steps):
 def make_ssp(sweep_fmu, plate_fmu, target, ssd):
     """The system structure file `ssd` (examples/system_model.ssd) with the two built FMUs,
     zipped into an SSP file at `target`."""
+    sweep_fmu, plate_fmu = fmu_file(sweep_fmu), fmu_file(plate_fmu)
     with zipfile.ZipFile(target, "w", zipfile.ZIP_DEFLATED) as ssp:
         ssp.write(ssd, "SystemStructure.ssd")
         ssp.write(sweep_fmu, "resources/SineSweep.fmu")
@@ -183,7 +186,7 @@ def shaker_execution(fmus, values, h=None, ecco=None, coupled=True):
         algorithm = CosimAlgorithm.create_ecco_algorithm(EccoParams(**ecco))
         execution = CosimExecution.from_algorithm(algorithm)
     slaves = {
-        name: execution.add_local_slave(CosimLocalSlave(fmu_path=str(Path(path).resolve()), instance_name=name))
+        name: execution.add_local_slave(CosimLocalSlave(fmu_path=str(fmu_file(path)), instance_name=name))
         for name, path in fmus.items()
     }
     vrs = {name: variables(path) for name, path in fmus.items()}
@@ -340,6 +343,7 @@ def system_execution(fmus, values, coupling, h=None, ecco=None):
     from libcosimpy.CosimSlave import CosimLocalSlave
 
     plan, connections = system_plan(values, coupling)
+    fmus = {name: fmu_file(fmus[name]) for name in plan}  # every file checked before libcosim sees one
     if ecco is not None and coupling != "force":
         raise ValueError("ECCO runs the force coupling only (its power bond pairs a velocity with a force)")
     log_output_level(CosimLogLevel.ERROR)
@@ -350,8 +354,7 @@ def system_execution(fmus, values, coupling, h=None, ecco=None):
         algorithm = CosimAlgorithm.create_ecco_algorithm(EccoParams(**ecco))
         execution = CosimExecution.from_algorithm(algorithm)
     slaves = {
-        name: execution.add_local_slave(CosimLocalSlave(fmu_path=str(Path(fmus[name]).resolve()), instance_name=name))
-        for name in plan
+        name: execution.add_local_slave(CosimLocalSlave(fmu_path=str(fmus[name]), instance_name=name)) for name in plan
     }
     vrs = {name: variables(fmus[name]) for name in plan}
     observer = CosimObserver.create_last_value()
