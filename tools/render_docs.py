@@ -59,6 +59,7 @@ def environment(templates):
     )
     env.filters.update(g=g, f=f, cell=cell)
     env.globals.update(isfinite=lambda x: x is not None and math.isfinite(x))
+    env.tests.update(starting=lambda text, prefix: str(text).startswith(prefix))
     return env
 
 
