@@ -57,7 +57,8 @@ def speed_vs_error(d, path):
         if not d["quantities"][q]["converges"]:
             ax.text(0.5, 0.5, "does not converge: not used as an error", ha="center", transform=ax.transAxes)
         ax.set(xscale="log", yscale="log", title=title, xlabel="wall time per simulated second [s]")
-        ax.legend(fontsize=7)
+        if ax.get_legend_handles_labels()[0]:
+            ax.legend(fontsize=7)
     ax = axes[1, 0]
     wall = {r["config"]: r["wall_per_sim_s"] for r in d["free"]}
     groups = {}
