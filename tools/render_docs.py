@@ -1,6 +1,6 @@
 """The docs pages from the studies' JSON. Each docs/templates/<page>.md is a page a person wrote
 (Jinja2): prose, with its tables and quoted numbers as expressions over the JSON files named on
-its first line, `{# data: speed=speed_vs_error.json laws=impact_speed_error.json #}` (files in
+its first line, `{# data: speed=speed_vs_error.json laws=impact_speed_error.json #}` (JSON or CSV, files in
 --data, else the saved ones in docs/). It becomes docs/<page>.md; nothing here computes a number: a value the
 JSON lacks is an error (StrictUndefined), not an empty cell.
 
@@ -14,6 +14,7 @@ JSON lacks is an error (StrictUndefined), not an empty cell.
 from __future__ import annotations
 
 import argparse
+import csv
 import json
 import math
 import re
@@ -57,7 +58,7 @@ def environment(templates):
         trim_blocks=True,
         lstrip_blocks=True,
     )
-    env.filters.update(g=g, f=f, cell=cell)
+    env.filters.update(g=g, f=f, cell=cell, e1=lambda x: "—" if x is None else f(x, ".1e").replace("e-0", "e-"))
     env.globals.update(isfinite=lambda x: x is not None and math.isfinite(x))
     env.tests.update(starting=lambda text, prefix: str(text).startswith(prefix))
     return env
@@ -75,10 +76,18 @@ def find(file, data_dir):
     return path if path.exists() else DOCS / file
 
 
+def load(path):
+    """A JSON file, or a CSV file as a list of rows (numbers as floats, nan as None)."""
+    if path.suffix != ".csv":
+        return json.loads(path.read_text())
+    number = lambda v: None if v == "nan" else float(v) if re.fullmatch(r"[-+0-9.e]+", v) else v  # noqa: E731
+    return [{k: number(v) for k, v in row.items()} for row in csv.DictReader(path.open())]
+
+
 def render(page, data_dir=DOCS, templates=DOCS / "templates"):
     """The text of docs/<page> from its template and JSON."""
     source = (templates / page).read_text()
-    data = {name: json.loads(find(file, data_dir).read_text()) for name, file in data_files(source).items()}
+    data = {name: load(find(file, data_dir)) for name, file in data_files(source).items()}
     text = environment(templates).get_template(page).render(**data)
     names = ", ".join(data_files(source).values())
     head = f"<!-- written by tools/render_docs.py from docs/templates/{page} and {names or 'no data'}; edit those -->\n"
