@@ -140,6 +140,7 @@ enum PlateVr : fmi2ValueReference {
     kVrFreeEdgeMidAcceleration = 86,
     kVrMemoryLimit = 60,
     kVrTimeScheme = 65,
+    kVrContactSubsteps = 66,
     // The carried clamp (docs/theory.md §18–19).
     kVrArmatureMass = 100,
     kVrArmatureStiffness = 101,

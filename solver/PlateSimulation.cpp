@@ -110,7 +110,7 @@ PlateSimulation::PlateSimulation(const PlateParameters& p, double baseDisplaceme
         requireMasslessContact(couplingFree, *s.clamped,
                                p.mass == MassModel::SingularP0 ? "singular_p0" : "singular_p1dg");
     }
-    if (p.timeScheme == TimeScheme::Conserving) {
+    if (p.condensed()) {
         progress.phase("condensed singular plate (massive modes, massless Delassus operator)",
                        s.resources.spectrumSeconds + s.resources.factorSeconds);
         buildConserving(obstacles, baseDisplacement0, loadAtStart, freeRows(root, *s.clamped));
@@ -170,7 +170,10 @@ void PlateSimulation::buildConserving(const Obstacles& obstacles, double baseDis
         probeRows[2] = static_cast<int>(s.clamped->contactVertices.size());
     }
     auto condensed = std::make_shared<const CondensedPlate>(condense(*s.clamped, rootFree, extra, p.modes));
-    auto stepper = std::make_unique<ConservingStepper>(condensed, obstacles, p.dt, p.dampingMass, p.dampingStiffness);
+    // time_scheme = flow: exact modal flow between contacts, contact steps in sub-steps (§21).
+    const int substeps = p.timeScheme == TimeScheme::Flow ? p.contactSubsteps : 0;
+    auto stepper =
+        std::make_unique<ConservingStepper>(condensed, obstacles, p.dt, p.dampingMass, p.dampingStiffness, substeps);
     stepper->initialize(baseDisplacement0, p.initialLoad);
     stepper->setLoadAtStart(loadAtStart);
     s.engine = std::make_unique<ConservingEngine>(std::move(stepper), probeRows, std::move(vertexRows));
