@@ -38,8 +38,13 @@ LAWS = {
 # What a law's converged reference adds to it beyond the finer dt (the same model, finer contact
 # sub-steps for the flow scheme).
 REFERENCE_EXTRA = {"flow": ["substeps=32"], "flow m=40": ["substeps=32"]}
-# The scenes of the errors: §5.2's release, and the default (driven) scene of the FMU.
+# The scenes of the errors: §5.2's release, and the default (driven) scene of the FMU; each with
+# its run length and the window of the corner_1 error (s). The default scene's many impacts make
+# corner_1 chaotic after the first few (no law's error converges over 0.3 s there: measured 3-15 cm
+# at every dt for every law): its window is the first impacts, 0.0495-0.07 s.
 SCENES = {"§5.2": RELEASE, "default": []}
+SCENE_STOP = {"§5.2": 0.5, "default": 0.1}  # s (§5.2: STOP)
+SCENE_WINDOW = {"§5.2": 0.3, "default": 0.07}
 # The laws whose cost per step is timed on three scenes (each a key of LAWS; "paper" and
 # "conserving" are the columns' references). A new time scheme: one entry in LAWS (its rows of
 # errors and its verdict follow) and, for its cost, its key here.
@@ -55,7 +60,9 @@ def bench(repo: Path, *args: str) -> dict:
     return json.loads(out.stdout)
 
 
-def simulate(repo: Path, law: list[str], dt: float, mesh: list[str], scene: list[str] = RELEASE) -> dict:
+def simulate(
+    repo: Path, law: list[str], dt: float, mesh: list[str], scene: list[str] = RELEASE, stop: float = STOP
+) -> dict:
     """One run on a scene (default: the release scene); the series every max(dt, 2.5e-6) s."""
     comm = max(dt, 2.5e-6)
     with tempfile.NamedTemporaryFile(suffix=".csv") as series:
@@ -65,7 +72,7 @@ def simulate(repo: Path, law: list[str], dt: float, mesh: list[str], scene: list
             *scene,
             *law,
             f"dt={dt}",
-            f"steps={round(STOP / dt)}",
+            f"steps={round(stop / dt)}",
             f"comm={comm}",
             f"series={series.name}",
         )
@@ -88,10 +95,10 @@ def simulate(repo: Path, law: list[str], dt: float, mesh: list[str], scene: list
     }
 
 
-def compare(run: dict, ref: dict) -> dict:
-    window = np.arange(0.0, 0.3 + 1e-12, 1e-4)
+def compare(run: dict, ref: dict, window_end: float = 0.3) -> dict:
+    window = np.arange(0.0, window_end + 1e-12, 1e-4)
     corner = np.interp(window, run["t"], run["corner_1"]) - np.interp(window, ref["t"], ref["corner_1"])
-    e0 = run["energy"][0]
+    e0 = run["energy"][0] if run["energy"][0] != 0.0 else float("nan")  # a driven scene starts at 0 J
     impacts = [
         abs(a - b) if a is not None and b is not None else float("nan")
         for a, b in zip((run["episodes"] + [None, None])[:2], (ref["episodes"] + [None, None])[:2])
@@ -252,8 +259,9 @@ def main() -> None:
     for scene, scene_args in SCENES.items():
         for law, flags in laws.items():
             ref_flags = [*flags, *REFERENCE_EXTRA.get(law, [])]
-            ref = simulate(repo, ref_flags, REFERENCE_DT if not args.quick else 5e-6, mesh, scene_args)
-            runs = {dt: compare(simulate(repo, flags, dt, mesh, scene_args), ref) for dt in dts}
+            stop, window = SCENE_STOP[scene], SCENE_WINDOW[scene]
+            ref = simulate(repo, ref_flags, REFERENCE_DT if not args.quick else 5e-6, mesh, scene_args, stop)
+            runs = {dt: compare(simulate(repo, flags, dt, mesh, scene_args, stop), ref, window) for dt in dts}
             if scene == "§5.2":
                 errors[law] = runs
             for dt, e in runs.items():
