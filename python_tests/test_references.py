@@ -113,7 +113,7 @@ def test_validator_passes_every_experiment(fmu):
     )
     assert out.returncode == 0, out.stdout + out.stderr
     lines = out.stdout.splitlines()
-    for e in references.EXPERIMENTS:
+    for e in list(references.EXPERIMENTS) + list(references.STATES):
         assert any(line.startswith(f"PASS {e.name} (") and "fmpy" in line for line in lines), e.name
     # a deviation is reported for every output
     assert sum(" deviation " in line for line in lines) >= sum(len(e.outputs) for e in references.EXPERIMENTS)
@@ -193,7 +193,7 @@ def test_validator_says_what_is_wrong_with_a_missing_fmu_or_manifest(tmp_path):
 @pytest.mark.parametrize("fmu", [FMU2, FMU3], ids=["fmi2", "fmi3"])
 def test_validator_passes_every_experiment_through_fmusim(fmu):
     sums, skipped, results = validate.validate(fmu, masters=("fmusim",), log=lambda s: None)
-    assert len(results) == len(references.EXPERIMENTS)
+    assert len(results) == len(references.EXPERIMENTS) + len(references.STATES)
     assert all(r.passed for r in results), [validate.format_result(r) for r in results if not r.passed]
 
 
@@ -218,3 +218,37 @@ def test_documentation_explains_them():
 def test_schema_is_vendored_with_its_licence():
     for f in ("LICENSE-fmi-ls-ref.txt", "LICENSE-fmi-standard.txt"):
         assert "BSD" in (SCHEMA / f).read_text()
+
+
+@pytest.mark.parametrize("fmu", [FMU2, FMU3], ids=["fmi2", "fmi3"])
+def test_serialized_state_restored_in_a_new_process_continues_bit_for_bit_here(fmu, tmp_path):
+    """The state the FMU carries is what this FMU serializes (FMI 2.0 and 3.0 alike), is listed
+    for the platforms it was written on, and restored by fmpy in a new process (the validator's)
+    continues exactly as its reference on this platform; the reference itself continues the
+    uninterrupted run within that run's tolerances (checked at generation, reported in the file)."""
+    (st,) = references.STATES
+    base = next(e for e in references.EXPERIMENTS if e.name == st.base)
+    carried = zipfile.ZipFile(FMU2).read(f"{references.LS_DIR}/{st.name}.fmustate")
+    assert references.serialized_state(fmu, base, st.at) == carried
+    roles = {r.role for r in validate.read_manifest(fmu) if r.path.endswith(".fmustate")}
+    assert roles == {f"serialized-state/{p}" for p in st.platforms}
+    out = subprocess.run(
+        [sys.executable, "-m", "plateimpact.validate", str(fmu), "--master", "fmpy", "--experiment", st.name],
+        capture_output=True,
+        text=True,
+        timeout=300,
+    )
+    assert out.returncode == 0, out.stdout + out.stderr
+    deviations = [
+        float(line.split("deviation")[1].split()[0]) for line in out.stdout.splitlines() if "deviation" in line
+    ]
+    assert len(deviations) == len(base.outputs) and all(d == 0.0 for d in deviations), out.stdout
+    # within the tolerance of the uninterrupted run, and not trivially: the continuation moved
+    cont = references.read_csv(_member(FMU2, f"{references.LS_DIR}/{st.name}_ref.csv"))
+    whole = references.read_csv(_member(FMU2, f"{references.LS_DIR}/{st.base}_ref.csv"))
+    tail = references.uninterrupted_from(whole, st.at)
+    experiments, _ = validate.load_experiments(FMU2, validate.read_manifest(FMU2), tmp_path)
+    tol = next(e for e in experiments if e.name == st.base).tolerances
+    for name in base.outputs:
+        assert references.deviation(tail, cont, name) <= tol[name], name
+    assert np.ptp(cont["corner_1"]) > 0.05

@@ -170,6 +170,58 @@ EXPERIMENTS = (
 )
 
 
+# The serialized-state experiment: the state of `base` after its first STATE_AT seconds, serialized
+# (FMI 2.0 and 3.0 write the same bytes), restored in a new process and run on to base's stop.
+@dataclass(frozen=True)
+class StateExperiment:
+    name: str
+    base: str
+    at: float
+    platforms: tuple = ("linux64", "x86_64-linux")  # where the state was written (FMI 2.0, 3.0 names)
+
+
+STATES = (StateExperiment("forced_state", "forced", 0.05),)
+
+
+def serialized_state(fmu, exp: Experiment, at: float) -> bytes:
+    """The FMU's serialized state after `at` seconds of the experiment through fmpy."""
+    from fmpy import extract, instantiate_fmu, read_model_description
+
+    md = read_model_description(str(fmu))
+    unzipdir = str(fmu) if Path(fmu).is_dir() else extract(str(fmu))
+    inst = instantiate_fmu(unzipdir, md, "CoSimulation")
+    try:
+        import contextlib
+        import io
+
+        from fmpy import simulate_fmu
+
+        with contextlib.redirect_stdout(io.StringIO()):
+            simulate_fmu(
+                unzipdir,
+                start_time=0.0,
+                stop_time=at,
+                output_interval=exp.step,
+                start_values=dict(exp.parameters),
+                input=stimuli_table(exp),
+                output=list(exp.outputs),
+                fmu_instance=inst,
+                terminate=False,
+                model_description=md,
+            )
+        state = inst.getFMUState()
+        data = bytes(inst.serializeFMUState(state))
+        inst.freeFMUState(state)
+        inst.terminate()
+    finally:
+        inst.freeInstance()
+        if not Path(fmu).is_dir():
+            import shutil
+
+            shutil.rmtree(unzipdir, ignore_errors=True)
+    return data
+
+
 # --- files -----------------------------------------------------------------------------------
 
 
@@ -268,10 +320,14 @@ def typed(value_text: str, kind: str, variable) -> object:
     return float(value_text)
 
 
-def simulate(fmu, start, stop, step, parameters: dict, stimuli, outputs, remote_platform="auto") -> np.ndarray:
+def simulate(
+    fmu, start, stop, step, parameters: dict, stimuli, outputs, remote_platform="auto", fmu_state=None
+) -> np.ndarray:
     """The experiment through fmpy's simulate_fmu: a fixed communication step, the stimuli applied
     at every communication point; the outputs at every communication point. remote_platform:
-    fmpy's (win64: the Windows binary through fmpy's remoting server under Wine)."""
+    fmpy's (win64: the Windows binary through fmpy's remoting server under Wine). fmu_state: a
+    serialized FMU state set right after instantiation instead of initializing (the parameters
+    are the state's)."""
     import contextlib
     import io
 
@@ -289,6 +345,7 @@ def simulate(fmu, start, stop, step, parameters: dict, stimuli, outputs, remote_
             output=list(outputs),
             fmi_type="CoSimulation",
             remote_platform=remote_platform,
+            fmu_state=fmu_state,
         )
     for line in printed.getvalue().splitlines():
         if not line.startswith("Warning: missing input for variable"):
@@ -363,6 +420,8 @@ def generate(fmu2, fmu3, out_dir, log=print) -> dict:
 
         files = write_experiment(ls, exp, params, stim, ref, signals, variables)
         related += files
+    for st in STATES:
+        related += write_state_experiment(ls, st, fmu2, fmu3, report, log)
     write_documentation(out / DOCUMENT, report)
     related.append(
         (
@@ -421,6 +480,73 @@ def write_experiment(ls: Path, exp, params, stim, ref, signals, variables):
     (ls / f"{exp.name}.xml").write_text(text)
     files.insert(0, (f"{exp.name}.xml", f"experiment/{exp.role}", EXPERIMENT_TYPE, exp.description, exp.name))
     return files
+
+
+def write_state_experiment(ls: Path, st: StateExperiment, fmu2, fmu3, report, log):
+    """The state of experiment st.base at st.at (FMI 2.0 and 3.0 must write the same bytes), its
+    continuation restored through fmpy as the reference (bit for bit where it was written), and
+    the continuation's deviation from the uninterrupted run checked against st.base's tolerances."""
+    exp = next(e for e in EXPERIMENTS if e.name == st.base)
+    state = serialized_state(fmu2, exp, st.at)
+    if fmu3 and serialized_state(fmu3, exp, st.at) != state:
+        raise RuntimeError(f"{st.name}: the FMI 2.0 and FMI 3.0 FMUs serialize different states")
+    state_file = f"{st.name}.fmustate"
+    (ls / state_file).write_bytes(state)
+    stim = stimuli_table(exp)
+    cont = simulate(fmu2, st.at, exp.stop, exp.step, {}, stim, exp.outputs, fmu_state=state)
+    uninterrupted = read_csv(ls / f"{exp.name}_ref.csv")
+    signals = {}
+    for name in exp.outputs:
+        base = report[exp.name][name]
+        d = deviation(uninterrupted_from(uninterrupted, st.at), cont, name)
+        if not d <= base["tolerance"]:
+            raise RuntimeError(
+                f"{st.name}: {name} continues {d:.3e} from the uninterrupted run (tolerance {base['tolerance']:.3e})"
+            )
+        signals[name] = {"tolerance": base["tolerance"], "scale": base["scale"], "spread": {"uninterrupted": d}}
+    report[st.name] = signals
+    log(
+        f"{st.name}: continuation vs uninterrupted "
+        + ", ".join(f"{n} {s['spread']['uninterrupted']:.1e}" for n, s in signals.items())
+    )
+    cols = {"time": cont["time"]} | {n: cont[n] for n in exp.outputs}
+    write_csv(ls / f"{st.name}_ref.csv", np.rec.fromarrays(list(cols.values()), names=list(cols)))
+    sig = "\n".join(
+        f'    <Signal name="{n}" absoluteTolerance="{s["tolerance"]:.3e}" measuredSpread="{s["spread"]["uninterrupted"]:.3e}"/>'
+        for n, s in signals.items()
+    )
+    description = (
+        f"The state of experiment {exp.name} at t = {st.at:g} s, serialized ({state_file}, written on "
+        f"{' / '.join(st.platforms)}), restored in a new instance and run on to {exp.stop:g} s"
+    )
+    text = (
+        '<?xml version="1.0" encoding="UTF-8"?>\n'
+        f'<Experiment name="{st.name}" startTime="{fmt(st.at)}" stopTime="{fmt(exp.stop)}" stepSize="{fmt(exp.step)}"\n'
+        f"    description={quoteattr(description)}>\n"
+        f'  <InitialState source="{state_file}"/>\n'
+        f'  <Stimuli source="{exp.name}_in.csv"/>\n'
+        f'  <References source="{st.name}_ref.csv">\n{sig}\n  </References>\n'
+        "</Experiment>\n"
+    )
+    (ls / f"{st.name}.xml").write_text(text)
+    files = [(f"{st.name}.xml", "experiment/validation", EXPERIMENT_TYPE, description, st.name)]
+    for platform in st.platforms:
+        files.append(
+            (
+                state_file,
+                f"serialized-state/{platform}",
+                "application/octet-stream",
+                f"Serialized FMU state of {exp.name} at t = {st.at:g} s ({platform})",
+                st.name,
+            )
+        )
+    files.append((f"{st.name}_ref.csv", "result", "text/csv", f"Reference result of experiment {st.name}", st.name))
+    return files
+
+
+def uninterrupted_from(table, t0):
+    keep = np.asarray(table["time"]) >= t0 - 1e-12
+    return table[keep]
 
 
 def write_manifest(out: Path, related):
@@ -489,6 +615,9 @@ never bit for bit, on another master, platform or CPU.</p>
 python -m plateimpact.validate PlateImpact.fmu        # the plateimpact package of the repository</pre>
 <p>or with any master: set the SSV's parameters, feed the stimuli CSV, run from startTime to stopTime
 at stepSize and compare the outputs named in the experiment's References with the reference CSV.</p>
+<h2>The serialized state</h2>
+<p>{"".join(f"<code>{st.name}.fmustate</code> is the state of experiment {st.base} at t = {st.at:g} s, serialized through fmiXSerializeFMUState (FMI 2.0 and FMI 3.0 write the same bytes); experiment <code>{st.name}</code> restores it in a new instance (fmiXDeSerializeFMUState and fmiXSetFMUState right after instantiation, no initialization: the parameters are the state's) and runs on to {next(e for e in EXPERIMENTS if e.name == st.base).stop:g} s with the stimuli of {st.base}. Its reference is that continuation as restored where the state was written (so the replay there is bit for bit); at build time it was checked against the uninterrupted run of {st.base} within that experiment's tolerances (largest deviation {max(v['spread']['uninterrupted'] / v['tolerance'] for v in report[st.name].values()):.1e} of the tolerance). The manifest lists the file once per platform it was written on (role serialized-state/&lt;platform&gt;). " for st in STATES)}
+With fmusim: <code>fmusim --initial-fmu-state-file {STATES[0].name}.fmustate --start-time {STATES[0].at:g} ...</code>.</p>
 <h2>The experiments</h2>
 <table border="1" cellpadding="3">
 <tr><th>name</th><th>role</th><th>what</th><th>parameters</th><th>stimuli</th><th>tolerance per output</th></tr>

@@ -155,6 +155,7 @@ class Experiment:
     stimuli: Path | None
     reference: Path
     tolerances: dict  # output -> absolute tolerance
+    state: Path | None = None  # a serialized FMU state to start from instead of initializing
 
 
 def load_experiments(fmu: Path, related, workdir: Path):
@@ -182,6 +183,7 @@ def load_experiments(fmu: Path, related, workdir: Path):
             params.update(read_ssv(extract(p.get("source"))))
         stim = root.find("Stimuli")
         refs = root.find("References")
+        init = root.find("InitialState")
         runnable.append(
             Experiment(
                 root.get("name"),
@@ -193,6 +195,7 @@ def load_experiments(fmu: Path, related, workdir: Path):
                 extract(stim.get("source")) if stim is not None else None,
                 extract(refs.get("source")),
                 {s.get("name"): float(s.get("absoluteTolerance")) for s in refs.findall("Signal")},
+                extract(init.get("source")) if init is not None else None,
             )
         )
     return runnable, skipped
@@ -214,7 +217,10 @@ def run_fmpy(fmu: Path, exp: Experiment, variables, remote_platform="auto"):
 
     start_values = {k: typed(v, kind, variables.get(k)) for k, (kind, v) in exp.parameters.items()}
     stimuli = read_csv(exp.stimuli) if exp.stimuli else None
-    return simulate(fmu, exp.start, exp.stop, exp.step, start_values, stimuli, list(exp.tolerances), remote_platform)
+    state = exp.state.read_bytes() if exp.state else None
+    return simulate(
+        fmu, exp.start, exp.stop, exp.step, start_values, stimuli, list(exp.tolerances), remote_platform, state
+    )
 
 
 def run_fmusim(fmusim: str, fmu: Path, exp: Experiment, variables, workdir: Path, fmi_version: str):
@@ -228,6 +234,8 @@ def run_fmusim(fmusim: str, fmu: Path, exp: Experiment, variables, workdir: Path
         elif isinstance(value, float):
             value = repr(value)
         cmd += ["--start-value", k, str(value)]
+    if exp.state:
+        cmd += ["--initial-fmu-state-file", str(exp.state)]
     if exp.stimuli:
         cmd += ["--input-file", str(exp.stimuli)]
     for name in exp.tolerances:
