@@ -2,7 +2,7 @@
 (FMI-LS-REF), as a table of deviation / tolerance per experiment and output: the evidence the
 tolerances of python/plateimpact/references.py are checked against (issue 33).
 
-    python tools/reference_spreads.py build/PlateImpact.fmu [--master fmpy fmusim] [--remote-platform win64]
+    FMUSIM=path/to/fmusim python tools/reference_spreads.py build/PlateImpact.fmu [--master fmpy fmusim]
 
 Prints, per experiment and master, the largest deviation/tolerance ratio and the output it
 belongs to, and the largest deviation of every output, with its tolerance.
@@ -19,11 +19,8 @@ def main(argv=None):
     ap = argparse.ArgumentParser(description=__doc__)
     ap.add_argument("fmu")
     ap.add_argument("--master", nargs="*", default=["fmpy", "fmusim"])
-    ap.add_argument("--remote-platform", default="auto", help="fmpy's remoting (win64: under Wine)")
     args = ap.parse_args(argv)
-    sums, skipped, results = validate.validate(
-        args.fmu, tuple(args.master), log=lambda s: None, remote_platform=args.remote_platform
-    )
+    sums, skipped, results = validate.validate(args.fmu, tuple(args.master), log=lambda s: None)
     for what, why in skipped:
         print(f"skipped {what}: {why}")
     worst = 0.0

@@ -212,15 +212,13 @@ def find_fmusim():
     return None
 
 
-def run_fmpy(fmu: Path, exp: Experiment, variables, remote_platform="auto"):
+def run_fmpy(fmu: Path, exp: Experiment, variables):
     from .references import simulate
 
     start_values = {k: typed(v, kind, variables.get(k)) for k, (kind, v) in exp.parameters.items()}
     stimuli = read_csv(exp.stimuli) if exp.stimuli else None
     state = exp.state.read_bytes() if exp.state else None
-    return simulate(
-        fmu, exp.start, exp.stop, exp.step, start_values, stimuli, list(exp.tolerances), remote_platform, state
-    )
+    return simulate(fmu, exp.start, exp.stop, exp.step, start_values, stimuli, list(exp.tolerances), fmu_state=state)
 
 
 def run_fmusim(fmusim: str, fmu: Path, exp: Experiment, variables, workdir: Path, fmi_version: str):
@@ -247,9 +245,8 @@ def run_fmusim(fmusim: str, fmu: Path, exp: Experiment, variables, workdir: Path
     return read_csv(out)
 
 
-def validate(fmu, masters=("fmpy", "fmusim"), only=None, log=print, remote_platform="auto"):
-    """Checks and replays; returns (checksum results, skipped, [ExperimentResult]).
-    remote_platform: fmpy's remoting ("win64": the FMU's Windows binary under Wine)."""
+def validate(fmu, masters=("fmpy", "fmusim"), only=None, log=print):
+    """Checks and replays; returns (checksum results, skipped, [ExperimentResult])."""
     from fmpy import read_model_description
 
     fmu = Path(fmu)
@@ -270,7 +267,7 @@ def validate(fmu, masters=("fmpy", "fmusim"), only=None, log=print, remote_platf
             reference = read_csv(exp.reference)
             runners = []
             if "fmpy" in masters:
-                runners.append(("fmpy", lambda e=exp: run_fmpy(fmu, e, variables, remote_platform)))
+                runners.append(("fmpy", lambda e=exp: run_fmpy(fmu, e, variables)))
             if fmusim:
                 runners.append(("fmusim", lambda e=exp: run_fmusim(fmusim, fmu, e, variables, work, md.fmiVersion)))
             for master, run in runners:
@@ -305,15 +302,10 @@ def main(argv=None):
     ap.add_argument("fmu", help="the FMU (.fmu file or extracted directory)")
     ap.add_argument("--master", choices=("fmpy", "fmusim", "all"), default="all")
     ap.add_argument("--experiment", action="append", help="only this experiment (repeatable)")
-    ap.add_argument(
-        "--remote-platform",
-        default="auto",
-        help="fmpy's remoting: win64 replays the FMU's Windows binary under Wine (FMI 2.0 FMUs)",
-    )
     args = ap.parse_args(argv)
     masters = ("fmpy", "fmusim") if args.master == "all" else (args.master,)
     try:
-        sums, skipped, results = validate(args.fmu, masters, args.experiment, remote_platform=args.remote_platform)
+        sums, skipped, results = validate(args.fmu, masters, args.experiment)
     except ValidationError as e:
         print(f"plateimpact-validate: {e}", file=sys.stderr)
         return 2
