@@ -26,7 +26,7 @@ fi
 
 # x86_64-linux (modelDescription.xml, documentation/, the binary) from the normal build.
 cmake -S . -B build -DCMAKE_BUILD_TYPE=Release >/dev/null  # (re)configured: new targets appear
-cmake --build build -j"$(nproc)" --target PlateImpactFmu3 fmu3_driver -- --no-print-directory >/dev/null
+cmake --build build -j"$(nproc)" --target PlateImpactFmu3 PlateImpactReferences fmu3_driver -- --no-print-directory >/dev/null
 
 if [ ! -f build-aarch64/CMakeCache.txt ]; then
   cmake -S . -B build-aarch64 -DCMAKE_TOOLCHAIN_FILE=cmake/aarch64-linux-gnu.cmake -DPLATEIMPACT_TESTS=OFF \
@@ -47,6 +47,8 @@ if [ -f build-win64/fmu/fmi3/PlateImpact.dll ]; then
   cp /usr/share/doc/mingw-w64-common/copyright "$stage/documentation/licenses/mingw-w64-runtime-winpthreads.txt"
 fi
 rm -f build/dist/fmi3/PlateImpact.fmu
-(cd "$stage" && cmake -E tar cf ../PlateImpact.fmu --format=zip modelDescription.xml binaries documentation)
+# extra/: the reference experiments, terminalsAndIcons/: the terminals (both in the stage)
+(cd "$stage" && cmake -E tar cf ../PlateImpact.fmu --format=zip modelDescription.xml binaries documentation \
+  $(ls -d extra terminalsAndIcons 2>/dev/null))
 size=$(stat -c %s build/dist/fmi3/PlateImpact.fmu)
 echo "build-aarch64.sh: wrote build/dist/fmi3/PlateImpact.fmu ($(ls "$stage/binaries" | tr '\n' ' '), $((size / 1024)) KiB)"

@@ -27,7 +27,7 @@ fi
 
 # linux64 (modelDescription.xml, documentation/, binaries/linux64) from the normal build.
 [ -f build/CMakeCache.txt ] || cmake -S . -B build -DCMAKE_BUILD_TYPE=Release >/dev/null
-cmake --build build -j"$(nproc)" --target PlateImpactFmu PlateImpactFmu3 fmu_driver fmu3_driver -- --no-print-directory >/dev/null
+cmake --build build -j"$(nproc)" --target PlateImpactFmu PlateImpactFmu3 PlateImpactReferences fmu_driver fmu3_driver -- --no-print-directory >/dev/null
 
 # win64: the DLL and the C master as an .exe.
 if [ ! -f build-win64/CMakeCache.txt ]; then
@@ -46,7 +46,8 @@ cp build-win64/fmu/PlateImpact.dll "$stage/binaries/win64/PlateImpact.dll"
 cp /usr/share/doc/g++-mingw-w64-x86-64-posix/copyright "$stage/documentation/licenses/GCC-runtime-mingw-w64.txt"
 cp /usr/share/doc/mingw-w64-common/copyright "$stage/documentation/licenses/mingw-w64-runtime-winpthreads.txt"
 rm -f build/dist/PlateImpact.fmu
-(cd "$stage" && cmake -E tar cf ../PlateImpact.fmu --format=zip modelDescription.xml binaries documentation)
+# extra/: the reference experiments (PlateImpactReferences adds them to the stage)
+(cd "$stage" && cmake -E tar cf ../PlateImpact.fmu --format=zip modelDescription.xml binaries documentation $(ls -d extra 2>/dev/null))
 size=$(stat -c %s build/dist/PlateImpact.fmu)
 echo "build-win64.sh: wrote build/dist/PlateImpact.fmu (linux64 + win64, $((size / 1024)) KiB)"
 
@@ -59,6 +60,7 @@ cp build-win64/fmu/fmi3/PlateImpact.dll "$stage3/binaries/x86_64-windows/PlateIm
 cp "$stage/documentation/licenses/GCC-runtime-mingw-w64.txt" "$stage/documentation/licenses/mingw-w64-runtime-winpthreads.txt" \
   "$stage3/documentation/licenses/"
 rm -f build/dist/fmi3/PlateImpact.fmu
-(cd "$stage3" && cmake -E tar cf ../PlateImpact.fmu --format=zip modelDescription.xml binaries documentation)
+(cd "$stage3" && cmake -E tar cf ../PlateImpact.fmu --format=zip modelDescription.xml binaries documentation \
+  $(ls -d extra terminalsAndIcons 2>/dev/null))
 size=$(stat -c %s build/dist/fmi3/PlateImpact.fmu)
 echo "build-win64.sh: wrote build/dist/fmi3/PlateImpact.fmu (x86_64-linux + x86_64-windows, $((size / 1024)) KiB)"
