@@ -26,6 +26,13 @@ if [ "${PLATEIMPACT_AARCH64_STAGE:-1}" != 0 ]; then
   echo "test.sh: aarch64 stage: build/dist/fmi3/PlateImpact.fmu (+ aarch64-linux), run under qemu-aarch64 by test_aarch64.py"
   bash "$repo/scripts/build-aarch64.sh"
 fi
+# qemu-x86_64 (Debian's qemu-user): test_golden.py runs the golden under emulated CPUs
+# (Nehalem: no AVX, no FMA; Haswell: AVX2 and FMA) beside the native run.
+if ! command -v qemu-x86_64 >/dev/null; then
+  echo "test.sh: installing Debian packages: qemu-user (the golden on other CPUs)"
+  export DEBIAN_FRONTEND=noninteractive
+  apt-get update -qq && apt-get install -y -qq qemu-user >/dev/null
+fi
 "$repo/.venv/bin/python" -m pytest -q python_tests "$@"
 
 fuzz_stage() {

@@ -4,7 +4,7 @@ so that every contact onset and release is a frame of its own; vertex_displaceme
 deflection at every mesh vertex, [vertex_output = 1][vertices_x][vertices_y]) drawn as a surface, the vertices on
 an obstacle in red. Writes a GIF (Pillow) of the first impacts and a still PNG.
 
-    python examples/animate.py --fmu build/fmi3/PlateImpact.fmu --gif docs/figures/plate_impact.gif --png docs/figures/plate_impact.png
+    python examples/animate.py --fmu build/fmi3/PlateImpact.fmu --out docs/figures   # plate_impact.gif and .png
 """
 
 from __future__ import annotations
@@ -68,12 +68,15 @@ def draw(ax, row, p, tol=1e-9):
 def main(argv=None):
     ap = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
     ap.add_argument("--fmu", default="build/fmi3/PlateImpact.fmu")
-    ap.add_argument("--gif", default="docs/figures/plate_impact.gif")
-    ap.add_argument("--png", default="docs/figures/plate_impact.png")
+    ap.add_argument("--out", default="docs/figures", help="plate_impact.gif and plate_impact.png go here")
     ap.add_argument("--start", type=float, default=0.04)
     ap.add_argument("--stop", type=float, default=0.1)
     ap.add_argument("--interval", type=float, default=2e-3, help="regular frame interval, s")
+    ap.add_argument("--quick", action="store_true", help="smoke run: 0.04 to 0.06 s, a frame every 5 ms")
     args = ap.parse_args(argv)
+    if args.quick:
+        args.stop, args.interval = 0.06, 5e-3
+    args.gif, args.png = (str(Path(args.out) / f"plate_impact.{ext}") for ext in ("gif", "png"))
 
     import matplotlib
 

@@ -25,7 +25,10 @@ def main(argv=None):
     ap.add_argument("--step", type=float, default=1e-4, help="communication step, s")
     ap.add_argument("--dt", type=float, default=1e-5)
     ap.add_argument("--element", default="argyris", choices=("argyris", "fvs"))
+    ap.add_argument("--quick", action="store_true", help="smoke run: the first 0.1 s")
     args = ap.parse_args(argv)
+    if args.quick:
+        args.stop_time = 0.1
 
     out = Path(args.out)
     out.mkdir(parents=True, exist_ok=True)

@@ -23,6 +23,7 @@ Writes the PNGs and two CSVs to --out (default docs/figures):
   paper_scenes_elements.csv  Argyris against FVS for the same scene and Δt
 
     python examples/paper_scenes.py            # full run, a few minutes
+    python tools/render_docs.py paper-scenes.md   # docs/paper-scenes.md's tables from the CSVs
     python examples/paper_scenes.py --quick --out /tmp/ps   # smoke test, short horizons
 """
 

@@ -10,19 +10,20 @@ clamp, run three ways and measured against each other (issue 27; docs/system-mod
 
     bash run.sh                                        # builds build/{SineSweep,Shaker,PlateImpact}.fmu
     .venv/bin/python examples/shaker.py --quick        # the suite's version: 1 s, 20 kg, impacts (~15 s)
-    .venv/bin/python examples/shaker.py --mass 20 --duration 20 --step 1e-3 --coupling tlm --json out/run.json
+    .venv/bin/python examples/shaker.py --mass 20 --duration 20 --step 1e-3 --coupling tlm --out out/run
     .venv/bin/python examples/shaker.py --master fmpy-ssp --mass 20 100 --step 1e-4 1e-3 --duration 20 \\
-        --coupling tlm --json out/shaker_fmpy_ssp.json      # the line in fmpy's SSP master
-    .venv/bin/python examples/shaker.py --goals --json out/shaker_goals.json \\
-        --markdown docs/system-model.md --figure docs/figures/shaker.png   # the issue's goals, one run
+        --coupling tlm --out out/shaker_fmpy_ssp      # the line in fmpy's SSP master
+    .venv/bin/python examples/shaker.py --goals --out docs/figures   # the issue's goals, one run, then:
+    .venv/bin/python tools/render_docs.py system-model.md            # docs/system-model.md from shaker.json
 
 The sweep's signal (SineSweep.fmu's output base_displacement, unit m) is connected as the drive
 force (N): its `amplitude` is set in newtons; libcosim does not compare units.
 
---json PATH writes, per run: the coupling error (the energy the coupling created: drive work -
+--out DIR (default out/) gets shaker.json and shaker.png (the envelopes). The JSON has, per run: the coupling error (the energy the coupling created: drive work -
 stored - losses, a line's energy in transit counting as stored and its loss as a loss), the drive
 work, the largest clamp force, the impact count, and the deviations from the monolithic reference
-(largest clamp force ratio, base acceleration envelope before the first impact, impact count).
+(largest clamp force ratio, base acceleration envelope before the first impact, impact count);
+the goals as measured; the constants of the set-up the page quotes.
 """
 
 from __future__ import annotations
@@ -329,39 +330,6 @@ def public(row):
     return {k: v for k, v in row.items() if k != "run"}
 
 
-MARKER = "## Two-way: a shaker carries the plate"
-
-
-def num(r, key, fmt):
-    return format(r[key], fmt) if key in r else "–"
-
-
-def table(rows):
-    lines = [
-        "| coupling | armature | h (plate dt) | finished | drive work [J] | \\|coupling error\\| max [J] | relative | "
-        "line stored / lost [J] | max clamp force [N] | × monolithic | impacts (onsets) | vs monolithic | "
-        "envelope before 1st impact: clamp (armature) | wall [s] |",
-        "|---|---|---|---|---|---|---|---|---|---|---|---|---|---|",
-    ]
-    for r in rows:
-        h = "ECCO" if r["step"] is None else f"{r['step']:g} s" + (f" ({r['dt']:g} s)" if r["dt"] != r["step"] else "")
-        if not r["finished"]:
-            lines.append(
-                f"| {r['coupling']} | {r['mass']:g} kg | {h} | **no**: {r['failure'][:80]} | | | | | | | | | | "
-                f"{r['wall']:.0f} |"
-            )
-            continue
-        lines.append(
-            f"| {r['coupling']} | {r['mass']:g} kg | {h} | yes | {r['drive_work']:.5g} | "
-            f"{r['max_coupling_error']:.2e} | {r['relative_coupling_error']:.1e} | "
-            f"{r['line_energy']:.2e} / {r['line_loss']:.2e} | {r['clamp_force_max']:.4g} | "
-            f"{num(r, 'clamp_force_ratio', '.2f')} | {r['impacts']} ({r['contact_onsets']}) | "
-            f"{num(r, 'impact_count_deviation', '+.1%')} | {num(r, 'envelope_deviation', '.1%')} "
-            f"({num(r, 'armature_envelope_deviation', '.1%')}) | {r['wall']:.0f} |"
-        )
-    return lines
-
-
 def goals(rows):
     """The issue's goals, each as (goal, measured, met) from the matrix's rows."""
     out = []
@@ -430,180 +398,26 @@ def goals(rows):
     return out
 
 
-def markdown(rows, refinement, figure_path, command):
-    refs = {r["mass"]: r for r in rows if r["coupling"] == "monolithic" and r["finished"]}
-    force = [r for r in rows if r["coupling"].startswith("force")]
-    drop = [r for r in refs.values() if "drop_frequency" in r]
-    failed = sum(not r["finished"] for r in force)
-    blown = ", ".join(
-        f"{r['clamp_force_max']:.3g} N ({r['coupling']}, {r['mass']:g} kg; coupling error {r['max_coupling_error']:.3g} J)"
-        for r in force
-        if r["finished"]
+def document(rows, refinement, command):
+    """What docs/system-model.md's two-way section is filled from: the runs, the goals and the set-up."""
+    return dict(
+        command=command,
+        setup=dict(
+            sweep=SWEEP,
+            suspension_hz=SUSPENSION_HZ,
+            suspension_zeta=SUSPENSION_ZETA,
+            plate_dt=PLATE["dt"],
+            f1=F1,
+            plate_mass=PLATE_MASS,
+            gap=rows[0]["gap"],
+            ecco=ECCO,
+            episode_separation=EPISODE_SEPARATION,
+            impedances=[[m, impedance(m, 1e-4)] for m in sorted({r["mass"] for r in rows})],
+        ),
+        rows=[public(r) for r in rows],
+        refinement=[public(r) for r in refinement],
+        goals=[dict(goal=g, measured=m, met=bool(ok)) for g, m, ok in goals(rows)],
     )
-    lines = [
-        MARKER,
-        "",
-        f"Generated by `{command}` (one run; every number also in its `--json`). SineSweep.fmu (4 → 8 Hz over "
-        f"20 s, {SWEEP['amplitude']:g} N, 0.5 s ramp-in; its signal connected as a force) drives an armature on a "
-        f"{SUSPENSION_HZ:g} Hz suspension with {SUSPENSION_ZETA:.0%} damping, which carries the clamp of the default "
-        f"plate (14×5 Argyris, Δt = {PLATE['dt']:g} s, 2 % Rayleigh damping at its first mode {F1} Hz) between "
-        f"obstacles at ±{rows[0]['gap']:g} m. Three couplings, all under libcosimpy:",
-        "",
-        "- **monolithic** (`base_drive = force`, docs/theory.md §18): the armature inside PlateImpact, one "
-        "Newmark step for plate and armature with the contact QP on the bordered columns. Exact coupling: the "
-        "reference. The sweep drives `drive_force` directly.",
-        "- **tlm** (`base_drive = tlm` with Shaker.fmu's `coupling = 2`, §19): a transmission line between "
-        "Shaker.fmu and PlateImpact.fmu.",
-        "- **force**: today's port, armature velocity in, `clamp_force` out, held values, with the fixed step "
-        "and with ECCO.",
-        "",
-        "**Why held force and motion fail.** The clamp force contains the plate's rigid inertia m_p z̈ "
-        f"(m_p = {PLATE_MASS} kg) and, at impacts, the contact forces through a stiff path. Passed one step late "
-        "to an armature it acts as a negative added mass — the instability of staggered partitioned schemes "
-        "(Causin, Gerbeau & Nobile 2005; Förster, Wall & Ramm 2007), which smaller steps do not cure. Measured "
-        f"below: of {len(force)} force-coupled runs (fixed steps and ECCO) {failed} failed and "
-        f"{len(force) - failed} {'finished with clamp forces of ' + blown if blown else 'finished'}, while the "
-        "monolithic runs stay bounded. The port stays for masters that can only pass force and motion; "
-        "Shaker.fmu's `coupling` says when it is unstable.",
-        "",
-        "**The line.** Each end exchanges waves instead: side i and the line press on each other with "
-        "N = c + Z v (c the wave from the partner, held over the step, v the side's velocity into the line, Z "
-        "the characteristic impedance `tlm_impedance`), side i launches a = c + 2Z v, and its power into the line "
-        "is exactly (a² − c²)/(4Z) (T.20). Each FMU integrates that power inside its own scheme (the plate's end "
-        "is §18's carrier with no mass, no spring and the damper Z) and outputs the mean wave of the step; the "
-        "master delivers it to the partner one step later. What was launched is either in transit (`tlm_transit`, "
-        "h ā²/(4Z), stored) or lost because the mean cannot carry the wave's variation inside the step "
-        "(`tlm_line_loss` ≥ 0 by Cauchy–Schwarz): the line is passive, so the coupled system cannot gain energy "
-        "and stays stable for any h, impacts included, and its ledger closes to roundoff. Its cost is accuracy: "
-        "the line adds an inertia ≈ Z h and a compliance ≈ h/Z between the partners. Relative to a moving mass M "
-        "at angular frequency ω those are Zh/M and Mω²h/Z, whose product (ωh)² does not depend on Z; they are "
-        "equal for Z = Mω. The example takes Z = (M + m_p)·2πf₁, the impedance of the moving mass at the "
-        "plate's first mode where the coupling matters (Z "
-        + ", ".join(f"{impedance(m, 1e-4):.0f} N·s/m for {m:g} kg" for m in sorted(refs))
-        + "). Both errors then are of order ωh: 0.4 % at h = 1e-4 s, 4 % at 1e-3 s, so the line converges "
-        "to the monolithic system at first order in h.",
-        "",
-        "**ECCO.** libcosimpy's default EccoParams (max_change_rate 0.2) only let the step shrink; the example "
-        f"sets max_change_rate {ECCO['max_change_rate']}, tolerances {ECCO['abs_tolerance']:g} J absolute and "
-        f"{ECCO['rel_tolerance']:g} relative (the bond's energy per step is ~5e-3 J), steps "
-        f"{ECCO['min_step_size']:g}–{ECCO['max_step_size']:g} s. ECCO estimates the power residual of the bond "
-        "and shrinks the step, but it does not remove the added-mass instability: it only delays it.",
-        "",
-    ]
-    lines += table(rows)
-    lines += [
-        "",
-        "'impacts' are impact episodes: contact onsets (the FMU's `impacts_*`, steps whose contact force starts "
-        f"from zero) within {EPISODE_SEPARATION * 1e3:g} ms of the previous one belong to its impact; the "
-        "onsets themselves are not a converged count (a vertex chattering on the obstacle makes more of them at "
-        "a smaller Δt). The envelope is √2·RMS of the base acceleration over 0.25 s windows after the ramp-in, "
-        "compared window by window up to the first impact of either run, the acceleration being the second "
-        "difference of the position at the communication points (at h = Δt the scheme's own `clamp_acceleration`; "
-        "at h = 1e-3 s a point sample would catch the held wave's jump at each step at a fixed phase): at the "
-        "clamp and, in brackets, at the shaker's armature (its table).",
-        "",
-    ]
-    tlm = [r for r in rows if r["coupling"] == "tlm" and r["finished"]]
-    if tlm:
-        lines += [
-            "**What the line costs** (energy it loses, in % of the drive work; deviations from the monolithic "
-            "run): "
-            + "; ".join(
-                f"{r['mass']:g} kg at h = {r['step']:g} s: loss {r['line_loss'] / r['drive_work']:.2%}, clamp force "
-                f"×{num(r, 'clamp_force_ratio', '.2f')}, envelope {num(r, 'envelope_deviation', '.1%')} at the clamp "
-                f"and {num(r, 'armature_envelope_deviation', '.1%')} at the armature"
-                for r in tlm
-            )
-            + ". At h = 1e-4 s the line is close to the monolithic system before the impacts (after them the "
-            "clamp, behind the line's compliance, rings at impacts: the figure's solid curves above 7.6 Hz, while "
-            "the armature follows the monolithic run); at 1e-3 s it stays stable and keeps its energy, but its "
-            "inertia Z h and compliance h/Z (each ≈ ωh ≈ 4 % at the first mode) shift the resonances, and the "
-            "window-by-window deviation is that shift seen on the steep flanks of the drop-out; impacts, shorter "
-            "than a step, are resolved worse still. Where accuracy through impacts matters: the monolithic mode, "
-            "or the line with h ≤ 1e-4 s.",
-            "",
-        ]
-    if drop:
-        lines += [
-            "**Force drop-out at the first resonance** (monolithic; the figure, with the co-simulated curves). "
-            + "; ".join(
-                f"{r['mass']:g} kg: base acceleration minimum {r['drop_amplitude']:.3g} m/s² at "
-                f"{r['drop_frequency']:.2f} Hz, against {r['envelope_at_5hz']:.3g} m/s² at 5 Hz and "
-                f"{r['envelope_at_7hz']:.3g} m/s² at 7 Hz"
-                for r in drop
-            )
-            + ". The plate's apparent mass at the clamp grows at its fixed-base resonance and the same force moves "
-            "the base less; a prescribed base motion (one-way) cannot show this.",
-            "",
-        ]
-    if refinement:
-        mass = refinement[0]["mass"]
-        base = refs[mass]
-        coarse = next(
-            r for r in rows if r["coupling"] == "tlm" and r["mass"] == mass and r["step"] == 1e-4 and r["finished"]
-        )
-        pairs = [(base, coarse)] + [
-            (a, b) for a, b in zip(refinement[::2], refinement[1::2]) if a["finished"] and b["finished"]
-        ]
-        counts = [a["impacts"] for a, _ in pairs]
-        lines += [
-            f"**How converged the impact count is** ({mass:g} kg; the plate's Δt refined, the line kept at "
-            "h = 1e-4 s on the same Δt):",
-            "",
-            "| plate Δt | monolithic: impacts (onsets), first at | line h = 1e-4 s: impacts (onsets) | vs monolithic | "
-            "envelope |",
-            "|---|---|---|---|---|",
-        ]
-        for a, b in pairs:
-            lines.append(
-                f"| {a['dt']:g} s | {a['impacts']} ({a['contact_onsets']}), {a['first_impact']:.4f} s | "
-                f"{b['impacts']} ({b['contact_onsets']}) | {num(b, 'impact_count_deviation', '+.1%')} | "
-                f"{num(b, 'envelope_deviation', '.1%')} |"
-            )
-        lines += [
-            "",
-            f"The sweep's impacts come after t = {base['first_impact']:.2f} s, where the plate just reaches the "
-            f"obstacles: the reference's own count moves between {min(counts)} and {max(counts)} as its Δt is "
-            "halved, without a trend (whether a near-grazing swing touches is decided by micrometres), and one "
-            f"impact more or less is {1 / max(min(counts), 1):.0%}. The line stays within one impact of the "
-            "reference at every Δt; a 5 % criterion on this count asks for exact equality on a quantity the "
-            "reference does not settle.",
-            "",
-        ]
-    ssp = [r for r in rows if r.get("master") == "fmpy-ssp"]
-    if ssp:
-        lines += [
-            "**The same line in fmpy's SSP master.** `plateimpact.cosim.system_ssd` writes the system as an SSP "
-            "1.0 file (components, parameter bindings with the Integer switches, connections of the waves) and "
-            "`fmpy.ssp.simulation.simulate_ssp` runs it with its fixed step (held values, every slave stepped from "
-            "the last communication point, as libcosim): "
-            + "; ".join(
-                f"{r['mass']:g} kg at h = {r['step']:g} s: {'finished' if r['finished'] else 'failed'}"
-                + (
-                    f", |coupling error| {r['relative_coupling_error']:.1e} of the drive work, clamp force "
-                    f"×{num(r, 'clamp_force_ratio', '.2f')}, {r['impacts']} impacts"
-                    if r["finished"]
-                    else ""
-                )
-                for r in ssp
-            )
-            + ". The numbers are libcosim's to the last digits shown (python_tests/test_carrier.py compares the "
-            "two masters' runs: within 1e-8 of each quantity's scale).",
-            "",
-        ]
-    lines += ["**The goals, as measured in this run:**", ""]
-    for goal, measured, met in goals(rows):
-        lines.append(f"- {goal}: {measured} — **{'met' if met else 'not met'}**")
-    lines += ["", f"![base acceleration envelopes]({figure_path})", ""]
-    return "\n".join(lines)
-
-
-def write_section(path, text):
-    """Replaces the two-way section of `path` (from MARKER to the end), keeping what is before."""
-    path = Path(path)
-    old = path.read_text() if path.exists() else ""
-    head = old.split(MARKER)[0].rstrip("\n")
-    path.write_text((head + "\n\n" if head else "") + text)
 
 
 def main(argv=None):
@@ -628,9 +442,7 @@ def main(argv=None):
         choices=["libcosim", "fmpy-ssp"],
         help="libcosim's fixed step, or the system as an SSP file run by fmpy's SSP master (not ECCO)",
     )
-    ap.add_argument("--json", help="write the runs' numbers here")
-    ap.add_argument("--figure", help="the envelopes (default: no figure)")
-    ap.add_argument("--markdown", help="write the two-way section into this file (docs/system-model.md)")
+    ap.add_argument("--out", default="out", help="shaker.json and shaker.png go here (docs: docs/figures)")
     args = ap.parse_args(argv)
     masses, steps, duration, gap, ecco = args.mass, args.step, args.duration, args.gap, args.ecco
     if args.quick:
@@ -659,15 +471,12 @@ def main(argv=None):
     if args.goals:  # the line in fmpy's SSP master; the reference's own dt dependence, 20 kg
         rows += run_ssp_runs(paths, masses, steps, duration, gap, rows, log=lambda s: print(s, file=sys.stderr))
         refinement = run_refinement(paths, 20.0, LADDER, duration, gap, log=lambda s: print(s, file=sys.stderr))
-    if args.json:
-        Path(args.json).parent.mkdir(parents=True, exist_ok=True)
-        Path(args.json).write_text(json.dumps([public(r) for r in rows + refinement], indent=1))
-    if args.figure:
-        figure([r for r in rows if r.get("master") != "fmpy-ssp"], args.figure)  # libcosim's curves
-    if args.markdown:
-        command = "examples/shaker.py " + " ".join(argv if argv is not None else sys.argv[1:])
-        text = markdown(rows, refinement, "figures/" + Path(args.figure or "shaker.png").name, command)
-        write_section(args.markdown, text)
+    out = Path(args.out)
+    out.mkdir(parents=True, exist_ok=True)
+    command = "examples/shaker.py " + " ".join(argv if argv is not None else sys.argv[1:])
+    (out / "shaker.json").write_text(json.dumps(document(rows, refinement, command), indent=1, default=float))
+    figure([r for r in rows if r.get("master") != "fmpy-ssp"], out / "shaker.png")  # libcosim's curves
+    print(f"wrote {out / 'shaker.json'} and {out / 'shaker.png'}", file=sys.stderr)
     return rows + refinement
 
 

@@ -1,6 +1,6 @@
 #pragma once
 // What the FMI 3.0 front end (fmi3Functions.cpp) and the FMI 3.0 model description writer
-// (modelDescription/WriteModelDescription3.cpp) agree on beyond the model's table: the value
+// (modelDescription/WriteModelDescription.cpp, its FMI 3.0 emitter) agree on beyond the model's table: the value
 // reference of the independent variable, the FMI 3.0 type names of the table's types, and the
 // states of the FMI 3.0 co-simulation state machine as the generic Instance's bits.
 #include "Instance.h"
@@ -26,8 +26,8 @@ inline const char* fmi3TypeName(VariableType type) {
 // layer's StepComplete; Event Mode, Configuration Mode and the rest keep their names.
 constexpr State StepMode = StepComplete;
 namespace fmi3 {
-constexpr unsigned kGetStates =
-    Instantiated | InitializationMode | ConfigurationMode | EventMode | StepMode | Terminated | Error;
+constexpr unsigned kGetStates = Instantiated | InitializationMode | ConfigurationMode | EventMode | StepMode |
+                                IntermediateUpdateMode | Terminated | Error;
 constexpr unsigned kSetStates = Instantiated | ConfigurationMode | InitializationMode | EventMode | StepMode;
 constexpr unsigned kFMUStateStates = Instantiated | InitializationMode | EventMode | StepMode | Terminated | Error;
 constexpr unsigned kTerminateStates = EventMode | StepMode;

@@ -20,6 +20,9 @@ enum State : unsigned {
     Error = 1u << 10,
     Fatal = 1u << 11,
     ConfigurationMode = 1u << 12,  // FMI 3.0 only (fmi3EnterConfigurationMode)
+    // FMI 3.0 only: inside fmi3DoStep, while the master's intermediate update callback runs
+    // (outputs may be read, nothing set).
+    IntermediateUpdateMode = 1u << 13,
 };
 const char* stateName(State state);
 

@@ -59,6 +59,7 @@ const char* stateName(State state) {
         case Error: return "error";
         case Fatal: return "fatal";
         case ConfigurationMode: return "configurationMode";
+        case IntermediateUpdateMode: return "intermediateUpdateMode";
     }
     return "unknown";
 }
@@ -140,6 +141,28 @@ Instance::~Instance() = default;
 void Instance::attachTrace() {
     model_->trace = [this](const std::string& message) { log(fmi2OK, LogAll, "%s: %s", function_, message.c_str()); };
     model_->inform = [this](const std::string& message) { log(fmi2OK, LogInfo, "%s: %s", function_, message.c_str()); };
+    if (!intermediateUpdate_) {
+        model_->intermediateUpdate = nullptr;
+        return;
+    }
+    // The master's callback may call back into this instance (fmi3GetFloat64): it does so in
+    // IntermediateUpdateMode, and the running function's name is restored for the messages after.
+    model_->intermediateUpdate = [this](double time) {
+        const State running = state_;
+        const char* function = function_;
+        state_ = IntermediateUpdateMode;
+        const double at = intermediateUpdate_(startTime_ + time);
+        const bool failed = state_ & (Error | Fatal);
+        function_ = function;
+        if (failed) throw std::runtime_error("a call of the master inside its intermediate update callback failed");
+        state_ = running;
+        return at - startTime_;
+    };
+}
+
+void Instance::setIntermediateUpdate(std::function<double(double)> callback) {
+    intermediateUpdate_ = std::move(callback);
+    attachTrace();
 }
 
 void Instance::logFreeInstance() { log(fmi2OK, LogAll, "%sFreeInstance", api_); }
@@ -251,6 +274,11 @@ fmi2Status Instance::getValues(VariableType type, const fmi2ValueReference vr[],
     for (size_t i = 0; i < nvr; ++i) {
         const Variable* variable = variableFor(vr[i], type);
         if (!variable) return fmi2Error;
+        if (state_ == IntermediateUpdateMode && variable->causality != Causality::Output)
+            return fail(
+                "%s (vr %u) is not an intermediate update variable (allowed inside the intermediate update "
+                "callback: the outputs)",
+                variable->name, variable->vr);
         // An output read in initialization mode: build what the parameters describe now.
         if (variable->causality == Causality::Output && state_ == InitializationMode && !model_->built())
             model_->build();

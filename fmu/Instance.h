@@ -5,6 +5,7 @@
 // prefixes its messages with the function's name and keeps exceptions inside. Everything the
 // model does is behind fmu::Model (Model.h).
 #include <cstdarg>
+#include <functional>
 #include <memory>
 #include <string>
 
@@ -76,6 +77,10 @@ public:
     // model (Model::doStepUntilEvent); *endedAtEvent tells whether it ended at one.
     fmi2Status doStep(fmi2Real currentCommunicationPoint, fmi2Real communicationStepSize, bool stopAtEvent,
                       bool* endedAtEvent);
+    // FMI 3.0 intermediate update: `callback(time)` runs the master's callback at an internal
+    // grid point (the instance in IntermediateUpdateMode meanwhile) and returns the early return
+    // time it asked for (HUGE_VAL: none). Kept across fmi3Reset.
+    void setIntermediateUpdate(std::function<double(double)> callback);
     // FMI 3.0 arrays: the values of an array output of the model (n of them).
     fmi2Status getArray(const ArrayOutput& array, double value[], size_t n);
     // FMI 3.0 transitions without work of their own (configuration, event and step mode).
@@ -107,6 +112,7 @@ private:
     State state_ = Instantiated;
     double startTime_ = 0.0;
     std::unique_ptr<Model> model_;
+    std::function<double(double)> intermediateUpdate_;
 };
 
 template <class Body>

@@ -165,6 +165,8 @@ public:
         return false;
     }
     virtual bool hasEvents() const { return false; }  // mightReturnEarlyFromDoStep
+    // FMI 3.0 providesIntermediateUpdate: doStep calls intermediateUpdate at its grid points.
+    virtual bool providesIntermediateUpdate() const { return false; }
     // The internal step of the default configuration (fixedInternalStepSize); 0: none.
     virtual double fixedInternalStepSize() const { return 0.0; }
     // FMI 3.0 arrays: none by default. getArray writes the product of the extents' values
@@ -189,6 +191,11 @@ public:
     // Where the model's information for the user goes (the instance's logInfo category): what
     // an initialization will cost and how far it is.
     std::function<void(const std::string&)> inform = [](const std::string&) {};
+    // FMI 3.0 intermediate update, when the master gave the callback: the model calls it at each
+    // internal grid point inside a communication step, standing there (time() and the outputs
+    // of that point); it returns the time at which the master wants the step to end (HUGE_VAL:
+    // none), which a step that may return early honours at the first grid point not before it.
+    std::function<double(double time)> intermediateUpdate;
 
 private:
     std::vector<std::pair<fmi2ValueReference, double>> ownStructuralValues_;  // those set so far

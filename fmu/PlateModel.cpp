@@ -1,6 +1,7 @@
 // The PlateImpact model binding: plate::PlateSimulation behind fmu::Model. The FMI layer
 // (Instance.cpp) calls it; it knows the plate's variables (PlateVariables.cpp), builds the
 // simulation from them, and feeds it the inputs each communication step. No numerics here.
+#include <algorithm>
 #include <array>
 #include <cmath>
 #include <cstdio>
@@ -106,6 +107,7 @@ public:
         getPlateArray(*simulation_, a, out, n);
     }
     bool hasEvents() const override { return true; }
+    bool providesIntermediateUpdate() const override { return true; }
     double fixedInternalStepSize() const override { return plate::PlateParameters{}.dt; }
     bool doStepUntilEvent(double t, double h) override {
         stopAtContactChange_ = true;
@@ -170,10 +172,10 @@ public:
         } catch (const plate::StepError& e) {
             throw fmu::ModelError(e.what());
         }
-        // The communicated values at this point extend the histories; a master that set no
-        // derivatives gets the inputs reconstructed from them (docs/theory.md §8). The
-        // history's times are the model's own: a master's roundoff in t does not reach the
-        // divided differences.
+        // The values the master set since the last step extend the histories (a step it set
+        // nothing for continues the reconstruction); a master that set no derivatives gets the
+        // inputs reconstructed from them (docs/theory.md §8). The history's times are the
+        // model's own: a master's roundoff in t does not reach the divided differences.
         requireOneDrive();
         if (carried() && (!plan.endsOnGrid || plan.offset != 0.0))
             throw fmu::ModelError(format(
@@ -181,10 +183,10 @@ public:
                 "the clamp is carried inside the FMU, which takes communication steps on the grid of dt only",
                 h, values_.parameters.dt));
         const double now = simulation_->time();
-        for (InputPort* port : ports()) port->history.record(now, port->signal.value);
+        for (InputPort* port : ports()) port->beginStep(now);
         try {
-            const plate::InputSignal base = clampSignal(plan.span);
-            const plate::InputSignal load = values_.load.stepSignal(plan.span, -plate::kMaxLoad, plate::kMaxLoad);
+            const plate::InputSignal base = clampSignal(now, plan.span);
+            const plate::InputSignal load = values_.load.stepSignal(now, plan.span, -plate::kMaxLoad, plate::kMaxLoad);
             advanceClamp(base, communicate(plan, base, load));
         } catch (const plate::StepError& e) {
             refreshOutputs();  // the simulation stays at its last good step (for debugging)
@@ -195,11 +197,12 @@ public:
         trace(format("t = %.17g, h = %.17g, %g steps", t, h, double(plan.steps)));
     }
 
-    // The model's part of an FMU state: per input the derivatives, whether they were given and
-    // the history; then whether a simulation exists, the base it was built with and its state.
+    // The model's part of an FMU state: per input the derivatives, whether they were given,
+    // whether the value was set since the last step, the time its signal starts and the history; then whether a simulation exists, the base it was built with and its state.
     void saveState(std::vector<double>& out) const override {
         for (const InputPort* port : const_cast<PlateModel*>(this)->ports()) {
-            out.insert(out.end(), {port->signal.d1, port->signal.d2, port->derivativesGiven ? 1.0 : 0.0});
+            out.insert(out.end(), {port->signal.d1, port->signal.d2, port->derivativesGiven ? 1.0 : 0.0,
+                                   port->fresh ? 1.0 : 0.0, port->signalTime});
             port->history.serialize(out);
         }
         out.insert(out.end(), {clampPosition_, clampVelocity_});
@@ -220,14 +223,17 @@ public:
             return at;
         };
         for (InputPort* port : ports()) {
-            const double* x = take(3 + plate::InputHistory::kSerializedSize, "an input's derivatives and history");
-            if (!std::isfinite(x[0]) || !std::isfinite(x[1]) || (x[2] != 0.0 && x[2] != 1.0))
-                throw fmu::ModelError("an input's derivatives are not finite");
+            const double* x = take(5 + plate::InputHistory::kSerializedSize, "an input's derivatives and history");
+            if (!std::isfinite(x[0]) || !std::isfinite(x[1]) || (x[2] != 0.0 && x[2] != 1.0) ||
+                (x[3] != 0.0 && x[3] != 1.0) || !std::isfinite(x[4]))
+                throw fmu::ModelError("an input's derivatives, set flags or time are not finite or out of range");
             port->signal.d1 = x[0];
             port->signal.d2 = x[1];
             port->derivativesGiven = x[2] == 1.0;
+            port->fresh = x[3] == 1.0;
+            port->signalTime = x[4];
             try {
-                port->history = plate::InputHistory::deserialize(x + 3);
+                port->history = plate::InputHistory::deserialize(x + 5);
             } catch (const std::invalid_argument& e) {
                 throw fmu::ModelError(e.what());
             }
@@ -313,42 +319,57 @@ private:
         }
     }
 
-    // The clamp's path over a step of length span from the communication time (docs/theory.md
+    // The clamp's path over a step of length span from the communication time `now` (docs/theory.md
     // §16): the displacement input as it comes, or the exact integral of the velocity (once) or
     // the acceleration (twice) input from the clamp's position and velocity there. A
     // reconstructed clamp stays between the obstacles the master's values respect.
-    plate::InputSignal clampSignal(double span) {
+    plate::InputSignal clampSignal(double now, double span) {
         const plate::PlateParameters& p = simulation_->parameters();
         const double lower = p.obstacleLowerEnabled ? p.obstacleLower : -plate::kMaxDisplacement;
         const double upper = p.obstacleUpperEnabled ? p.obstacleUpper : plate::kMaxDisplacement;
         switch (values_.baseDrive) {
             case BaseDrive::Velocity:
-                return values_.baseVelocity.stepSignal(span, -kMaxBaseVelocity, kMaxBaseVelocity)
+                return values_.baseVelocity.stepSignal(now, span, -kMaxBaseVelocity, kMaxBaseVelocity)
                     .integral(clampPosition_);
             case BaseDrive::Acceleration:
-                return values_.baseAcceleration.stepSignal(span, -kMaxBaseAcceleration, kMaxBaseAcceleration)
+                return values_.baseAcceleration.stepSignal(now, span, -kMaxBaseAcceleration, kMaxBaseAcceleration)
                     .integral(clampVelocity_)
                     .integral(clampPosition_);
             case BaseDrive::Force:  // the drive force on the armature (§18)
-                return values_.driveForce.stepSignal(span, -plate::kMaxCarrierForce, plate::kMaxCarrierForce);
+                return values_.driveForce.stepSignal(now, span, -plate::kMaxCarrierForce, plate::kMaxCarrierForce);
             case BaseDrive::Tlm:  // the wave, held: what the partner launched is what arrives (§19)
                 values_.tlmWaveIn.history.reached(values_.tlmWaveIn.signal.value);
                 return plate::InputSignal{values_.tlmWaveIn.signal.value, 0.0, 0.0};
             case BaseDrive::Displacement:
-            default: return values_.baseDisplacement.stepSignal(span, lower, upper);
+            default: return values_.baseDisplacement.stepSignal(now, span, lower, upper);
         }
     }
     // simulation_->communicate, or with stopAtContactChange_ (FMI 3.0 early return) up to the
     // first contact onset or release on the grid. Returns the span of the step as taken; after
     // an early end, every input ends the step where its signal stands then.
     double communicate(const plate::StepPlan& plan, const plate::InputSignal& base, const plate::InputSignal& load) {
+        // FMI 3.0 intermediate update: the outputs at every grid point inside the step, and the
+        // master's wish to end the step early (honoured where early return is granted).
+        plate::PlateSimulation::GridPointObserver observer;
+        returnRequested_ = false;
+        if (intermediateUpdate) {
+            returnAt_ = HUGE_VAL;
+            observer = [this] {
+                refreshOutputs();
+                const double t = simulation_->time();
+                returnAt_ = std::min(returnAt_, intermediateUpdate(t));
+                returnRequested_ = t >= returnAt_ - 1e-9 * values_.parameters.dt;
+                return returnRequested_;
+            };
+        }
         if (!stopAtContactChange_ || carried()) {  // a carried clamp: no early return (§18)
-            simulation_->communicate(plan, base, load);
+            simulation_->communicate(plan, base, load, observer);
             return plan.span;
         }
         const double start = simulation_->time();
-        endedAtEvent_ = simulation_->communicateUntilContactChange(plan, base, load);
-        if (!endedAtEvent_) return plan.span;
+        const bool endedEarly = simulation_->communicateUntilContactChange(plan, base, load, observer);
+        endedAtEvent_ = endedEarly && !returnRequested_;
+        if (!endedEarly) return plan.span;
         const double span = simulation_->time() - start;
         if (simulation_->time() == plan.end) return plan.span;  // at the end anyway
         values_.load.history.reached(load.at(span));
@@ -378,6 +399,8 @@ private:
     double clampPosition_ = 0.0, clampVelocity_ = 0.0;
     bool stopAtContactChange_ = false;  // inside doStepUntilEvent
     bool endedAtEvent_ = false;  // the last step of doStepUntilEvent ended at a contact change
+    bool returnRequested_ = false;  // ... or where the master's intermediate update asked
+    double returnAt_ = HUGE_VAL;  // the earliest early return time the master asked for in this step
 };
 
 }  // namespace

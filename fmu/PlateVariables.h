@@ -11,11 +11,15 @@ namespace plateimpact {
 
 // One Real input as the master passes it (docs/theory.md §8): the value, the derivatives if
 // the master set them since the value, and the values at the last communication points for
-// masters that give none.
+// masters that give none. Only what the master set is a sample, at the time it set it: a step
+// it did not set the input for continues the reconstruction (after an early return, FMI 3.0
+// event mode), where recording the unchanged value again would bend the signal at that time.
 struct InputPort {
     plate::InputSignal signal;  // value (fmi2SetReal) + derivatives (fmi2SetRealInputDerivatives)
     bool derivativesGiven = false;  // the master set derivatives since the value: they win
-    plate::InputMode mode;  // otherwise the step follows history.continueStep(mode, h)
+    bool fresh = true;  // set since the last step began (the start value counts as set at t = 0)
+    double signalTime = 0.0;  // the model time `signal` starts at (its value's communication point)
+    plate::InputMode mode;  // otherwise the step follows history.continueStep(mode, now, h)
     plate::InputHistory history;
 
     explicit InputPort(plate::InputMode defaultMode) : mode(defaultMode) {}
@@ -23,13 +27,26 @@ struct InputPort {
     void setValue(double x) {
         signal = plate::InputSignal{x, 0.0, 0.0};
         derivativesGiven = false;
+        fresh = true;
     }
-    // The signal over the step of length h that starts now; a reconstruction stays inside
-    // [lower, upper] (the obstacles, for the clamp).
-    plate::InputSignal stepSignal(double h, double lower = -HUGE_VAL, double upper = HUGE_VAL) {
-        if (!derivativesGiven) return history.continueStep(mode, h, lower, upper);
-        history.reached(signal.at(h));
-        return signal;
+    // At the start of a step from model time `now`: a value set since the last step is a sample
+    // at `now`; without one the step continues the reconstruction, however long ago the last
+    // sample was (a master that sets an input only when it changes wants `hold`: docs/theory.md §8).
+    void beginStep(double now) {
+        if (fresh) {
+            history.record(now, signal.value);
+            signalTime = now;
+        }
+        fresh = false;
+    }
+    // The signal over the step of length h that starts at `now`; a reconstruction stays inside
+    // [lower, upper] (the obstacles, for the clamp). Given derivatives are a polynomial from
+    // their communication point on: a later start continues it.
+    plate::InputSignal stepSignal(double now, double h, double lower = -HUGE_VAL, double upper = HUGE_VAL) {
+        if (!derivativesGiven) return history.continueStep(mode, now, h, lower, upper);
+        const plate::InputSignal s = signal.shifted(now - signalTime);
+        history.reached(s.at(h));
+        return s;
     }
 };
 
@@ -123,6 +140,7 @@ enum PlateVr : fmi2ValueReference {
     kVrFreeEdgeMidAcceleration = 86,
     kVrMemoryLimit = 60,
     kVrTimeScheme = 65,
+    kVrContactSubsteps = 66,
     // The carried clamp (docs/theory.md §18–19).
     kVrArmatureMass = 100,
     kVrArmatureStiffness = 101,

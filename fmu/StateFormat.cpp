@@ -17,7 +17,9 @@ namespace {
 // damping energy and contact impulses (docs/theory.md §11–13). Older states are refused by name.
 // Version 5: the port (a third time level, contact sums, the clamp's motion inputs, the
 // communication time between grid points; docs/theory.md §14–16).
-constexpr std::uint32_t kFormatVersion = 5;
+// Version 6: per input whether its value was set since the last step and the time its signal
+// starts (inputs are samples at the times the master set them).
+constexpr std::uint32_t kFormatVersion = 6;
 constexpr std::size_t kGuidField = 48;
 constexpr std::size_t kChecksumOffset = 8 + 4 + 4 + kGuidField + 8;
 constexpr std::size_t kHeaderBytes = kChecksumOffset + 8;

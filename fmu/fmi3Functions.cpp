@@ -35,6 +35,7 @@ struct Fmi3Instance {
     fmi3LogMessageCallback logMessage = nullptr;
     bool eventModeUsed = false;
     bool earlyReturnAllowed = false;
+    fmi3IntermediateUpdateCallback intermediateUpdate = nullptr;
     std::unique_ptr<Instance> instance;
 };
 
@@ -289,10 +290,11 @@ fmi3Status fmi3SetDebugLogging(fmi3Instance c, fmi3Boolean loggingOn, size_t nCa
 
 fmi3Instance fmi3InstantiateCoSimulation(fmi3String instanceName, fmi3String instantiationToken, fmi3String,
                                          fmi3Boolean, fmi3Boolean loggingOn, fmi3Boolean eventModeUsed,
-                                         fmi3Boolean earlyReturnAllowed, const fmi3ValueReference[],
+                                         fmi3Boolean earlyReturnAllowed,
+                                         const fmi3ValueReference requiredIntermediateVariables[],
                                          size_t nRequiredIntermediateVariables,
                                          fmi3InstanceEnvironment instanceEnvironment, fmi3LogMessageCallback logMessage,
-                                         fmi3IntermediateUpdateCallback) {
+                                         fmi3IntermediateUpdateCallback intermediateUpdate) {
     try {
         auto self = std::make_unique<Fmi3Instance>();
         self->environment = instanceEnvironment;
@@ -312,14 +314,35 @@ fmi3Instance fmi3InstantiateCoSimulation(fmi3String instanceName, fmi3String ins
                                     f, instantiationToken ? instantiationToken : "(null)", fmu::modelGuid());
             return nullptr;
         }
-        if (nRequiredIntermediateVariables > 0) {
-            fmu::logWithoutInstance(&callbacks, instanceName,
-                                    "%s: %zu required intermediate variables, but this FMU has none "
-                                    "(providesIntermediateUpdate=\"false\")",
-                                    f, nRequiredIntermediateVariables);
-            return nullptr;
-        }
+        self->intermediateUpdate = intermediateUpdate;
         self->instance = std::make_unique<Instance>(instanceName, callbacks, loggingOn, "fmi3");
+        // Intermediate update (providesIntermediateUpdate): the outputs, the arrays and time may be
+        // read inside the callback; nothing may be set (intermediateVariableSetRequested = false).
+        for (size_t k = 0; k < nRequiredIntermediateVariables; ++k) {
+            const fmi3ValueReference vr = requiredIntermediateVariables ? requiredIntermediateVariables[k] : 0;
+            const fmu::Variable* v = self->instance->model().find(vr);
+            const bool readable = vr == fmu::kFmi3TimeValueReference || (v && v->causality == fmu::Causality::Output) ||
+                                  findArray(self->instance->model(), vr);
+            if (!requiredIntermediateVariables || !readable) {
+                fmu::logWithoutInstance(&callbacks, instanceName,
+                                        "%s: required intermediate variable (vr %u) is not an output of this FMU "
+                                        "(the intermediate update variables are the outputs, the arrays and time)",
+                                        f, vr);
+                return nullptr;
+            }
+        }
+        if (intermediateUpdate) {
+            Fmi3Instance* raw = self.get();
+            self->instance->setIntermediateUpdate([raw](double time) {
+                fmi3Boolean requested = fmi3False;
+                fmi3Float64 at = time;
+                raw->intermediateUpdate(raw->environment, time, /*intermediateVariableSetRequested=*/fmi3False,
+                                        /*intermediateVariableGetAllowed=*/fmi3True,
+                                        /*intermediateStepFinished=*/fmi3True, raw->earlyReturnAllowed, &requested,
+                                        &at);
+                return requested && raw->earlyReturnAllowed ? at : HUGE_VAL;
+            });
+        }
         return self.release();
     } catch (...) {
         if (logMessage)
@@ -617,12 +640,13 @@ fmi3Status fmi3DoStep(fmi3Instance c, fmi3Float64 t, fmi3Float64 h, fmi3Boolean,
         const fmi2Status status = i.doStep(t, h, self.earlyReturnAllowed, &atEvent);
         *lastSuccessfulTime = i.currentTime();
         if (status != fmi2OK) return status;
-        const bool early = atEvent && (t + h) - *lastSuccessfulTime > kEarlyTolerance * std::fabs(h);
+        // Early: at an event of the model, or where the master's intermediate update asked.
+        const bool early = (t + h) - *lastSuccessfulTime > kEarlyTolerance * std::fabs(h);
         *earlyReturn = early;
         *eventHandlingNeeded = atEvent && self.eventModeUsed;
         if (early)
-            i.log(fmi2OK, fmu::LogAll, "fmi3DoStep: early return at t = %.17g (an event; the step asked for %.17g)",
-                  *lastSuccessfulTime, t + h);
+            i.log(fmi2OK, fmu::LogAll, "fmi3DoStep: early return at t = %.17g (%s; the step asked for %.17g)",
+                  *lastSuccessfulTime, atEvent ? "an event" : "asked by the intermediate update", t + h);
         return fmi2OK;
     });
 }

@@ -142,6 +142,11 @@ std::string causalityAttributes(const Variable& v) {
     return "";
 }
 
+// FMI 3.0: the outputs can be read inside the intermediate update callback (and nothing else).
+const char* intermediate(const fmu::Model& model, Causality causality) {
+    return model.providesIntermediateUpdate() && causality == Causality::Output ? " intermediateUpdate=\"true\"" : "";
+}
+
 std::string rangeAndStart(const fmu::Model& model, const Variable& v) {
     std::string text;
     if (v.unit) text += " unit=\"" + escape(v.unit) + "\"";
@@ -208,8 +213,9 @@ public:
         if (model.fixedInternalStepSize() > 0)
             xml << "    fixedInternalStepSize=\"" << real(model.fixedInternalStepSize()) << "\"\n";
         xml << "    maxOutputDerivativeOrder=\"" << info.maxOutputDerivativeOrder << "\"\n"
-            << "    providesIntermediateUpdate=\"false\"\n    mightReturnEarlyFromDoStep=\""
-            << boolText(model.hasEvents()) << "\"\n    hasEventMode=\"true\"/>\n\n";
+            << "    providesIntermediateUpdate=\"" << boolText(model.providesIntermediateUpdate())
+            << "\"\n    mightReturnEarlyFromDoStep=\"" << boolText(model.hasEvents())
+            << "\"\n    hasEventMode=\"true\"/>\n\n";
     }
 
     void variables(std::ostream& xml, const fmu::Model& model) const override {
@@ -220,8 +226,8 @@ public:
         for (const Variable& v : model.variables()) {
             if (v.causality == Causality::Output) outputs.push_back(v.vr);
             xml << "    <" << typeName(v.type) << " name=\"" << v.name << "\" valueReference=\"" << v.vr << "\""
-                << causalityAttributes(v) << rangeAndStart(model, v) << " description=\""
-                << escape(describe(v, version)) << "\"/>\n";
+                << causalityAttributes(v) << intermediate(model, v.causality) << rangeAndStart(model, v)
+                << " description=\"" << escape(describe(v, version)) << "\"/>\n";
         }
         for (const fmu::StructuralParameter& s : model.structuralParameters()) {
             xml << "    <UInt64 name=\"" << s.name << "\" valueReference=\"" << s.vr
@@ -232,7 +238,8 @@ public:
         }
         for (const fmu::ArrayOutput& a : model.arrayOutputs()) {
             xml << "    <Float64 name=\"" << a.name << "\" valueReference=\"" << a.vr
-                << "\" causality=\"output\" variability=\"continuous\" initial=\"calculated\"";
+                << "\" causality=\"output\" variability=\"continuous\" initial=\"calculated\""
+                << intermediate(model, Causality::Output);
             if (a.unit) xml << " unit=\"" << escape(a.unit) << "\"";
             xml << " description=\"" << escape(forVersion(a.description, version)) << "\">\n";
             for (fmi2ValueReference extent : a.extents)

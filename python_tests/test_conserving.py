@@ -18,6 +18,8 @@ from plateimpact import PlateImpactFMU, default_base
 pytestmark = pytest.mark.sanitizer  # the conserving engine's code paths (test.sh's sanitizer stage)
 
 CONSERVING = {"mass": "singular_p0", "time_scheme": "conserving"}
+# time_scheme = flow (docs/theory.md §21): exact free flight, contact steps in sub-steps.
+FLOW = {"mass": "singular_p0", "time_scheme": "flow"}
 # §5.2: released from the static shape under 8600 Pa onto the lower obstacle alone.
 RELEASE = {"initial_load": 8600.0, "obstacle_upper_enabled": False}
 # The contact solve (docs/theory.md §17): each step's discrete gradient is iterated until its
@@ -243,6 +245,9 @@ def test_fmi3_early_return_stops_at_contact_events(fmu_path):
         ({**CONSERVING, "restitution": 0.5}, "restitution"),
         ({"mass": "singular_p0", "modes": 20}, "modes"),
         ({**CONSERVING, "base_drive": 4, "armature_mass": 20.0}, "base_drive"),
+        ({"time_scheme": "flow"}, "mass"),
+        ({**FLOW, "contact_substeps": 0}, "contact_substeps"),
+        ({**FLOW, "contact_substeps": 65}, "contact_substeps"),
     ],
 )
 def test_what_it_cannot_take_is_refused_with_a_message(fmu_path, parameters, named):
@@ -299,3 +304,37 @@ def test_velocity_drive_and_off_grid_steps(fmu_path):
         assert last[name] == pytest.approx(runs["displacement"][-1][name], rel=1e-9, abs=1e-12)
     e0 = runs["velocity"][0]["energy"]
     assert max(abs(ledger_residual(r, e0)) for r in runs["velocity"]) <= LEDGER_TOLERANCE * e0
+
+
+# time_scheme = flow through the FMU: the same energy identity at three dt with its sub-steps
+# (base, load and both obstacles), every reported point within the obstacles.
+@pytest.mark.parametrize("dt", [4e-5, 2e-5, 1e-5])
+def test_flow_scheme_closes_the_ledger_through_impacts(fmu_path, dt):
+    rows = run(
+        fmu_path,
+        0.2,
+        h=1e-4,
+        base=default_base,
+        load=lambda t: 300.0 * math.sin(2 * math.pi * 3 * t),
+        dt=dt,
+        damping_mass=1.0,
+        **FLOW,
+    )
+    e0 = rows[0]["energy"]
+    assert sum(r["contact_vertices"] > 0 for r in rows) > 10
+    assert max(abs(ledger_residual(r, e0)) for r in rows) <= LEDGER_TOLERANCE * max(r["energy"] for r in rows)
+    assert within_obstacles(rows, -0.1, 0.1) <= 1e-14
+
+
+def test_flow_scheme_free_flight_does_not_depend_on_dt(fmu_path):
+    """Before the first impact the flow is exact: §5.2's corner_1 over its first 0.06 s (the
+    first impact is at 0.0677 s) is the same at dt = 4e-5 and 1e-5 to roundoff (1e-12 m), where
+    the midpoint rule of time_scheme = conserving differs by its phase error."""
+
+    def corner(dt, law):
+        return np.array([r["corner_1"] for r in run(fmu_path, 0.06, h=2e-4, dt=dt, **RELEASE, **law)])
+
+    flow = np.abs(corner(4e-5, FLOW) - corner(1e-5, FLOW)).max()
+    midpoint = np.abs(corner(4e-5, CONSERVING) - corner(1e-5, CONSERVING)).max()
+    assert flow <= 1e-12
+    assert midpoint > 1e4 * flow

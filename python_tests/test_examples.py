@@ -233,3 +233,15 @@ def test_dask_map_equals_serial_loop(fmu):
     for s, p in zip(serial, parallel):
         for c in RESULT_COLUMNS:
             assert s[c] == p[c], (c, s, p)  # exact equality, not approximate
+
+
+# -- every example takes the options the README promises ----------------------------------------
+@pytest.mark.parametrize("script", sorted(p.name for p in EXAMPLES.glob("*.py")))
+def test_every_example_takes_fmu_out_and_quick(script):
+    """README.md: "every example takes `--fmu`, `--out DIR` (where it writes its files) and
+    `--quick` (a smoke run)" — each one's --help lists the three."""
+    r = subprocess.run([sys.executable, str(EXAMPLES / script), "--help"], capture_output=True, text=True, timeout=60)
+    assert r.returncode == 0, r.stderr[-2000:]
+    for option in ("--fmu", "--out", "--quick"):
+        assert option in r.stdout, f"{script} has no {option}"
+    assert "--fmu" in (REPO / "README.md").read_text() and "--quick" in (REPO / "README.md").read_text()

@@ -306,16 +306,16 @@ def test_animate_example_quick(fmu3, tmp_path):
     import sys
     from unittest import mock
 
-    argv = ["animate.py", "--fmu", str(fmu3), "--gif", str(tmp_path / "a.gif"), "--png", str(tmp_path / "a.png")]
+    argv = ["animate.py", "--fmu", str(fmu3), "--out", str(tmp_path)]
     argv += ["--start", "0.045", "--stop", "0.06", "--interval", "5e-3"]
     script = Path(__file__).resolve().parent.parent / "examples" / "animate.py"
     with mock.patch.object(sys, "argv", argv):
         runpy.run_path(str(script), run_name="__main__")
     from PIL import Image
 
-    gif = Image.open(tmp_path / "a.gif")
+    gif = Image.open(tmp_path / "plate_impact.gif")
     assert gif.n_frames > 4  # the regular frames and the contact events between them
-    assert (tmp_path / "a.png").stat().st_size > 10_000
+    assert (tmp_path / "plate_impact.png").stat().st_size > 10_000
 
 
 def fmi3_texts(fmu3):

@@ -56,6 +56,8 @@ CONFIGS = {
     "modal_restitution_damping": dict(SCENE, restitution=0.3, damping_mass=2.0),
     # the energy-conserving engine (docs/theory.md §17): its own state format and early return
     "conserving": dict(SCENE, mass=2, time_scheme=2),
+    # exact free flight and sub-stepped contact steps (docs/theory.md §21), damped and driven
+    "flow": dict(SCENE, mass=2, time_scheme=3, contact_substeps=8, damping_mass=2.0),
 }
 # The sanitizer stage runs reset and two threads on the configurations that reach their paths
 # cheaply: with the complete modal basis (argyris, modal_restitution_damping) or the reduced

@@ -3,7 +3,7 @@ summary of tools/speed_summary.py in speed_vs_error.json): every error it report
 convergence verdicts follow the documented rule from the differences it reports, an error is
 reported exactly for the quantities that converge, the Python/SciPy baseline agrees with the
 solver before the first impact, and the goal verdicts follow from the numbers beside them. No
-timing is asserted, and the report's prose and figures (tools/speed_report.py) are not tested."""
+timing is asserted, and the page is its template filled from the JSON (python_tests/test_render_docs.py)."""
 
 import json
 import math

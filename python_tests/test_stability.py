@@ -8,7 +8,7 @@ also bounds the infeasibility of every vertex, not only the probes: see
 stability.failures); a non-negative discrete energy; and contact actually happening.
 beta = 0 at 1.1x the stability bound must be refused at initialization with fmi2Error, the log
 naming dt and the bound. tools/stability_report.py runs the same table into
-docs/stability.md.
+docs/stability.json (docs/stability.md).
 """
 
 import pytest

@@ -8,6 +8,7 @@
 
 #include "Errors.h"
 #include "PlateParameters.h"
+#include "PortableMath.h"
 
 namespace plate {
 
@@ -27,27 +28,74 @@ std::unique_ptr<ContactColumns> denseColumns(const Eigen::MatrixXd& matrix) {
         [](const Eigen::VectorXd& z, Eigen::VectorXd& y) { y = z; });
 }
 
+// The exact flow over h of ü + c u̇ + ω² u = 0 (docs/theory.md §21): (u, u̇)(h) = Φ (u, u̇)(0).
+// Undamped, a rotation by ωh (the portable sine and cosine: the same bits on every CPU). Damped,
+// exp(A h) of A = [[0, ω], [−ω, −c]] in the balanced variables (u, u̇/ω), by scaling and squaring
+// (‖A h‖/2^j ≤ ½, Taylor to degree 20: below 2^-60, then j squarings) — IEEE operations only.
+void modalFlow(double omega2, double c, double h, double& f11, double& f12, double& f21, double& f22) {
+    const double omega = std::sqrt(omega2);
+    if (c == 0.0) {
+        double sn, cs;
+        portable::sinCos(omega * h, sn, cs);
+        f11 = cs, f12 = sn / omega, f21 = -omega * sn, f22 = cs;
+        return;
+    }
+    int exponent = 0;
+    std::frexp((omega + c) * h, &exponent);
+    const int squarings = std::max(0, exponent + 1);
+    const double scale = std::ldexp(h, -squarings);
+    const double x12 = omega * scale, x21 = -omega * scale, x22 = -c * scale;  // X = A h / 2^j
+    // Taylor: E = Σ X^k / k!, the power kept as T = X^k / k!.
+    double e11 = 1.0, e12 = 0.0, e21 = 0.0, e22 = 1.0, t11 = 1.0, t12 = 0.0, t21 = 0.0, t22 = 1.0;
+    for (int k = 1; k <= 20; ++k) {
+        const double n11 = (t12 * x21) / k, n12 = (t11 * x12 + t12 * x22) / k;
+        const double n21 = (t22 * x21) / k, n22 = (t21 * x12 + t22 * x22) / k;
+        t11 = n11, t12 = n12, t21 = n21, t22 = n22;
+        e11 += t11, e12 += t12, e21 += t21, e22 += t22;
+    }
+    for (int j = 0; j < squarings; ++j) {
+        const double a = e11 * e11 + e12 * e21, b = e11 * e12 + e12 * e22;
+        const double d = e21 * e11 + e22 * e21, g = e21 * e12 + e22 * e22;
+        e11 = a, e12 = b, e21 = d, e22 = g;
+    }
+    f11 = e11, f12 = e12 / omega, f21 = e21 * omega, f22 = e22;
+}
+
 }  // namespace
 
+void ConservingStepper::buildOperator(MidpointOperator& op, double h) const {
+    const CondensedPlate& c = *plate_;
+    op.h = h;
+    op.inverseH = (1.0 + 0.5 * h * damping_.array() + 0.25 * h * h * c.omega2.array()).inverse().matrix();
+    // W₂ = ½h² G H⁻¹ Gᵀ: how the rows move in one step per unit of Λ (T.17c).
+    op.w2 = (0.5 * h * h) * (c.rowModesT.transpose() * op.inverseH.asDiagonal() * c.rowModesT);
+    op.midpointMatrix = 0.5 * op.w2 + c.delassus;
+    op.midColumns = denseColumns(op.midpointMatrix);
+    op.midQP = std::make_unique<BoxQP>(*op.midColumns);
+}
+
 ConservingStepper::ConservingStepper(std::shared_ptr<const CondensedPlate> plate, Obstacles obstacles, double dt,
-                                     double dampingMass, double dampingStiffness)
-    : plate_(std::move(plate)), obstacles_(obstacles), dt_(dt) {
+                                     double dampingMass, double dampingStiffness, int contactSubsteps)
+    : plate_(std::move(plate)), obstacles_(obstacles), dt_(dt), substeps_(contactSubsteps) {
     const CondensedPlate& c = *plate_;
     const Eigen::Index m = c.modes(), rows = c.rows();
     damping_ = (dampingMass + dampingStiffness * c.omega2.array()).matrix();
-    inverseH_ = (1.0 + 0.5 * dt * damping_.array() + 0.25 * dt * dt * c.omega2.array()).inverse().matrix();
-    // W₂ = ½Δt² G H⁻¹ Gᵀ: how the rows move in one step per unit of Λ (T.17c).
-    w2_ = (0.5 * dt * dt) * (c.rowModesT.transpose() * inverseH_.asDiagonal() * c.rowModesT);
-    midpointMatrix_ = 0.5 * w2_ + c.delassus;
+    buildOperator(full_, dt);
+    if (substeps_ > 0) {
+        buildOperator(sub_, dt / substeps_);
+        for (Eigen::VectorXd* v : {&flow11_, &flow12_, &flow21_, &flow22_}) v->resize(m);
+        for (Eigen::Index k = 0; k < m; ++k)
+            modalFlow(c.omega2[k], damping_[k], dt, flow11_[k], flow12_[k], flow21_[k], flow22_[k]);
+    }
     endMatrix_ = c.delassus;
-    midColumns_ = denseColumns(midpointMatrix_);
     endColumns_ = denseColumns(endMatrix_);
-    midQP_ = std::make_unique<BoxQP>(*midColumns_);
     endQP_ = std::make_unique<BoxQP>(*endColumns_);
-    for (Eigen::VectorXd* v : {&rhs_, &dq_, &qNext_, &momentumNext_, &modalForce_, &qCheck_, &modalScratch_})
+    for (Eigen::VectorXd* v : {&rhs_, &dq_, &qNext_, &momentumNext_, &modalForce_, &qCheck_, &modalScratch_,
+                               &qIntegral_, &qAtStart_, &qBeforeStart_})
         v->resize(m);
     w2v_.resize(rows);
-    for (Eigen::VectorXd* v : {&forceNext_, &multiplier_, &r0_, &r1_, &drFree_, &dr_, &base_, &e_, &y_})
+    for (Eigen::VectorXd* v :
+         {&forceNext_, &multiplier_, &r0_, &r1_, &drFree_, &dr_, &base_, &e_, &y_, &forceAtStart_, &forceBeforeStart_})
         v->resize(rows);
     midForce_ = endForce_ = Eigen::VectorXd::Zero(rows);
     lower_ = Eigen::VectorXd::Constant(rows, obstacles_.lower);
@@ -59,12 +107,13 @@ ConservingStepper::ConservingStepper(std::shared_ptr<const CondensedPlate> plate
 // model: 2·rows·m operations instead of rows²).
 void ConservingStepper::applyW2(const Eigen::VectorXd& v, Eigen::VectorXd& out) {
     const CondensedPlate& c = *plate_;
+    const double h = op_->h;
     if (2 * c.modes() >= c.rows()) {
-        out.noalias() = w2_ * v;
+        out.noalias() = op_->w2 * v;
         return;
     }
     modalScratch_.noalias() = c.rowModesT * v;
-    modalScratch_.array() *= (0.5 * dt_ * dt_) * inverseH_.array();
+    modalScratch_.array() *= (0.5 * h * h) * op_->inverseH.array();
     out.noalias() = c.rowModesT.transpose() * modalScratch_;
 }
 
@@ -81,7 +130,7 @@ void ConservingStepper::solveContact(BoxQP& qp, const Eigen::VectorXd& free, std
     kkt_ = std::max(kkt_, r.kktResidual);
     if (!r.converged || !(r.kktResidual <= kKktTolerance)) {
         std::ostringstream msg;
-        msg << "contact solve did not converge at t = " << double(state_.step + 1) * dt_ << " (" << r.iterations
+        msg << "contact solve did not converge at t = " << double(state_.step + 1) * op_->h << " (" << r.iterations
             << " iterations, relative KKT residual " << r.kktResidual << ")";
         throw StepError(msg.str());
     }
@@ -180,14 +229,21 @@ bool ConservingStepper::farFromObstacles(double zNext, double pNext) {
 }
 
 void ConservingStepper::step(double zNext, double pNext) {
+    if (substeps_ > 0)
+        flowStep(zNext, pNext);
+    else
+        midpointStep(zNext, pNext);
+}
+
+void ConservingStepper::midpointStep(double zNext, double pNext) {
     const CondensedPlate& c = *plate_;
     const ConservingState& s = state_;
     checkInputs(zNext, pNext);
-    const double dt = dt_, dz = zNext - s.z, dp = pNext - s.p, pMid = 0.5 * (s.p + pNext);
+    const double dt = op_->h, dz = zNext - s.z, dp = pNext - s.p, pMid = 0.5 * (s.p + pNext);
     // The free midpoint step (T.17b with Λ = 0): H Δq = Δt P − b_m Δz + ½Δt²(p̄ F_m − Ω² q).
     rhs_.noalias() = dt * s.momentum - dz * c.modalBaseInertia;
     rhs_.noalias() += (0.5 * dt * dt) * (pMid * c.modalLoad - c.omega2.cwiseProduct(s.q));
-    dq_.noalias() = inverseH_.cwiseProduct(rhs_);
+    dq_.noalias() = op_->inverseH.cwiseProduct(rhs_);
     qNext_.noalias() = s.q + dq_;
     iterations_ = solves_ = 0;
     kkt_ = 0.0;
@@ -216,7 +272,7 @@ void ConservingStepper::step(double zNext, double pNext) {
         discreteGradient(s.boundary);
         // Δq = Δq_free + ½Δt² H⁻¹ Gᵀ Λ.
         modalForce_.noalias() = c.rowModesT * multiplier_;
-        dq_.noalias() += (0.5 * dt * dt) * inverseH_.cwiseProduct(modalForce_);
+        dq_.noalias() += (0.5 * dt * dt) * op_->inverseH.cwiseProduct(modalForce_);
         qNext_.noalias() = s.q + dq_;
     } else {
         modalForce_.setZero();
@@ -259,6 +315,135 @@ void ConservingStepper::step(double zNext, double pNext) {
     commit(zNext, pNext, work, damped, iterations_);
 }
 
+// time_scheme = flow (docs/theory.md §21). Over a step the base moves linearly (ż = v = Δz/Δt, the
+// input the midpoint step assumes too) and the load linearly; in relative coordinates each mode
+// then obeys q̈ + c q̇ + ω² q = F (p + ṗ s) with q̇ = P − b v, whose solution is a particular
+// polynomial q_p = A + B s (ω²B = Fṗ, ω²A + cB = F p) plus the free flow of u = q − q_p. The
+// integral ∫u = −(Δu̇ + c Δu)/ω² (the equation integrated) gives the work exactly:
+//   load  Σ F ([p q] − ṗ ∫q),   base  Δz · bᵀ(F p̄ − Ω² ∫q/Δt − c Δq/Δt),
+//   damped  Σ (−Δe + F([p q] − ṗ ∫q)),  e = ½ q̇² + ½ ω² q²  (per damped mode),
+// so that the ledger (T.17d) closes as in a midpoint step. A row past an obstacle at the end: the
+// step is taken again as m discrete-gradient sub-steps instead.
+void ConservingStepper::flowStep(double zNext, double pNext) {
+    const CondensedPlate& c = *plate_;
+    const ConservingState& s = state_;
+    checkInputs(zNext, pNext);
+    const double h = dt_, dz = zNext - s.z, v = dz / h, pDot = (pNext - s.p) / h, pMid = 0.5 * (s.p + pNext);
+    bool damped = false;
+    for (Eigen::Index k = 0; k < c.omega2.size(); ++k) {
+        const double w2 = c.omega2[k], ck = damping_[k], f = c.modalLoad[k];
+        const double slope = f * pDot / w2, offset = (f * s.p - ck * slope) / w2;  // q_p = offset + slope·s
+        const double u0 = s.q[k] - offset, ud0 = s.momentum[k] - c.modalBaseInertia[k] * v - slope;
+        const double u1 = flow11_[k] * u0 + flow12_[k] * ud0, ud1 = flow21_[k] * u0 + flow22_[k] * ud0;
+        qNext_[k] = u1 + offset + slope * h;
+        momentumNext_[k] = ud1 + slope + c.modalBaseInertia[k] * v;
+        qIntegral_[k] = -((ud1 - ud0) + ck * (u1 - u0)) / w2 + (offset + 0.5 * slope * h) * h;
+        damped = damped || ck != 0.0;
+    }
+    iterations_ = solves_ = 0;
+    kkt_ = 0.0;
+    // The contact check of the midpoint step (its free-flight bound included).
+    if (obstacles_.any() && c.rows() > 0 && (s.contactRows > 0 || !farFromObstacles(zNext, pNext))) {
+        gatherRows(qNext_, pNext, zNext, r1_);
+        double margin = std::numeric_limits<double>::infinity();
+        for (Eigen::Index i = 0; i < r1_.size(); ++i)
+            margin = std::min(margin, std::min(r1_[i] - obstacles_.lower, obstacles_.upper - r1_[i]));
+        margin_ = -1.0;
+        if (s.contactRows > 0 || margin < 0.0) {
+            substeps(zNext, pNext);
+            return;
+        }
+        qCheck_ = qNext_;
+        zCheck_ = zNext;
+        pCheck_ = pNext;
+        margin_ = margin;
+    }
+    if (!std::isfinite(momentumNext_.sum()) || !std::isfinite(qNext_.sum())) {
+        std::ostringstream msg;
+        msg << "the step to t = " << double(s.step + 1) * h << " produced a non-finite displacement";
+        throw StepError(msg.str());
+    }
+    if (multiplierUsed_) multiplier_.setZero();
+    multiplierUsed_ = false;
+    if (!forceNextZero_) forceNext_.setZero();
+    dq_.noalias() = qNext_ - s.q;
+    // The step's mean forces on the massive modes: F p̄ − Ω² ∫q/Δt − c Δq/Δt.
+    rhs_.noalias() = pMid * c.modalLoad - c.omega2.cwiseProduct(qIntegral_) / h - damping_.cwiseProduct(dq_) / h;
+    const double loadWork =
+        pNext * c.modalLoad.dot(qNext_) - s.p * c.modalLoad.dot(s.q) - pDot * c.modalLoad.dot(qIntegral_);
+    const double onRigid = c.modalBaseInertia.dot(rhs_);  // clamp + load on the plate (no contact)
+    double dampedWork = 0.0;
+    if (damped) {
+        for (Eigen::Index k = 0; k < c.omega2.size(); ++k) {
+            if (damping_[k] == 0.0) continue;
+            const double b = c.modalBaseInertia[k], f = c.modalLoad[k], w2 = c.omega2[k];
+            const double qd0 = s.momentum[k] - b * v, qd1 = momentumNext_[k] - b * v;
+            const double de = 0.5 * (qd1 * qd1 - qd0 * qd0) + 0.5 * w2 * (qNext_[k] * qNext_[k] - s.q[k] * s.q[k]);
+            dampedWork += -de + f * (pNext * qNext_[k] - s.p * s.q[k] - pDot * qIntegral_[k]);
+        }
+    }
+    ConservingState& st = state_;
+    st.clampForce = onRigid - pMid * c.loadResultant;
+    st.clampMoment = c.modalRotationInertia.dot(rhs_) - pMid * c.loadMoment;
+    st.stepContactMoment = 0.0;
+    st.stepContactForce[0] = st.stepContactForce[1] = 0.0;
+    commit(zNext, pNext, loadWork + dz * onRigid, dampedWork, 0);
+}
+
+// The step from t_n as m midpoint sub-steps of Δt/m, the base and the load linear in between (as
+// the exact step assumes). Each sub-step keeps its energy identity; the levels t_n, t_{n−1} and the
+// port's values over the step are those of one step of Δt afterwards.
+void ConservingStepper::substeps(double zNext, double pNext) {
+    ConservingState& s = state_;
+    const int m = substeps_;
+    qAtStart_ = s.q;
+    qBeforeStart_ = s.qPrev;
+    forceAtStart_ = s.force;
+    forceBeforeStart_ = s.forcePrev;
+    const double z0 = s.z, zBefore = s.zPrev, p0 = s.p, pBefore = s.pPrev;
+    const long long step0 = s.step;
+    // ż at t_n as one step of Δt had it (the clamp-carried mass's terms in commit).
+    s.zPrev = z0 - (z0 - zBefore) / m;
+    double force = 0.0, moment = 0.0, contact[2] = {0.0, 0.0}, contactMoment = 0.0;
+    int iterationsMax = 0;
+    op_ = &sub_;
+    try {
+        for (int j = 1; j <= m; ++j) {
+            const double z = j == m ? zNext : z0 + (zNext - z0) * (double(j) / m);
+            const double p = j == m ? pNext : p0 + (pNext - p0) * (double(j) / m);
+            midpointStep(z, p);
+            force += s.clampForce;
+            moment += s.clampMoment;
+            contact[0] += s.stepContactForce[0];
+            contact[1] += s.stepContactForce[1];
+            contactMoment += s.stepContactMoment;
+            iterationsMax = std::max(iterationsMax, iterations_);
+        }
+    } catch (...) {
+        op_ = &full_;
+        throw;
+    }
+    op_ = &full_;
+    s.qPrev2 = qBeforeStart_;
+    s.qPrev = qAtStart_;
+    s.forcePrev2 = forceBeforeStart_;
+    s.forcePrev = forceAtStart_;
+    s.zPrev2 = zBefore;
+    s.zPrev = z0;
+    s.pPrev2 = pBefore;
+    s.pPrev = p0;
+    s.step = step0 + 1;
+    s.clampForce = force / m;
+    s.clampMoment = moment / m;
+    s.stepContactForce[0] = contact[0] / m;
+    s.stepContactForce[1] = contact[1] / m;
+    s.stepContactMoment = contactMoment / m;
+    s.gradientIterationsLast = iterationsMax;
+    forceZero_ = {s.force.isZero(0.0), s.forcePrev.isZero(0.0), s.forcePrev2.isZero(0.0)};
+    forceNextZero_ = false;
+    margin_ = -1.0;
+}
+
 // Λ = λ*(r_mid) + c_g Δr with c_g = (ψ0 − ψ1 − λ*(r_mid)·Δr)/|Δr|² (T.17c), so that Λ·Δr = ψ0 − ψ1.
 // With e = c_g Δr held from the last iterate, λ*(r_mid) solves the contact problem with the
 // constant matrix ½W₂ + D at r0 + ½Δr_free + ½W₂e; then Δr = Δr_free + W₂(λ + e), ψ1 = ψ(r0 + Δr)
@@ -279,7 +464,7 @@ void ConservingStepper::discreteGradient(double psi0) {
             applyW2(e_, w2v_);
             base_.noalias() += 0.5 * w2v_;
         }
-        solveContact(*midQP_, base_, midTrial_, midForce_, y_, solves_);
+        solveContact(*op_->midQP, base_, midTrial_, midForce_, y_, solves_);
         lambda = midForce_ + e_;  // Λ
         applyW2(lambda, w2v_);
         dr_.noalias() = drFree_ + w2v_;
@@ -295,7 +480,7 @@ void ConservingStepper::discreteGradient(double psi0) {
         if (std::abs(residual) <= kGradientTolerance * scale || norm2 == 0.0) return;
         if (it == kGradientIterations) {
             std::ostringstream msg;
-            msg << "the discrete gradient of the contact step to t = " << double(s.step + 1) * dt_
+            msg << "the discrete gradient of the contact step to t = " << double(s.step + 1) * op_->h
                 << " did not converge in " << it << " iterations (energy residual " << residual << " J)";
             throw StepError(msg.str());
         }
@@ -307,7 +492,7 @@ void ConservingStepper::discreteGradient(double psi0) {
 void ConservingStepper::commit(double zNext, double pNext, double work, double damped, int iterations) {
     const CondensedPlate& c = *plate_;
     ConservingState& s = state_;
-    const double dt = dt_;
+    const double dt = op_->h;
     // The mass moving with the clamp (discarded modes) and the massless part's load terms enter
     // the energy (T.17a); their changes are booked as the inputs' work (T.17d).
     const double zDot = (s.z - s.zPrev) / dt, zDotNext = (zNext - s.z) / dt;

@@ -14,6 +14,12 @@
 // r = G q + p c_p + z·𝟙. In free flight (every row inside the obstacles at both ends) Λ = 0 and the
 // step is the diagonal midpoint step; a bound on how far the rows can have moved since they were
 // last looked at skips even the look (as the modal engine's free-flight bound does).
+//
+// With contactSubsteps = m > 0 (time_scheme = flow, §21) a step without contact advances every
+// massive mode by its exact flow instead (the base linear and the load linear over the step, the
+// damping exact), and a step in which a row is or becomes active is taken as m midpoint sub-steps
+// of Δt/m, each with its discrete gradient: free flight has no phase error, the contact phases are
+// resolved, and the energy identity (T.17d) holds step by step as before.
 #include <Eigen/Core>
 #include <array>
 #include <memory>
@@ -52,7 +58,7 @@ struct ConservingState {
 class ConservingStepper {
 public:
     ConservingStepper(std::shared_ptr<const CondensedPlate> plate, Obstacles obstacles, double dt,
-                      double dampingMass = 0.0, double dampingStiffness = 0.0);
+                      double dampingMass = 0.0, double dampingStiffness = 0.0, int contactSubsteps = 0);
 
     // At rest in static equilibrium under the pressure p0 with the clamp at z0 (the plate's own
     // static problem, reduced or not: it starts without vibrating). Throws ParameterError if the
@@ -82,6 +88,19 @@ public:
     ConservingState deserialize(const std::vector<double>& data) const;
 
 private:
+    // What the midpoint step (T.17b–c) of length h needs: H⁻¹, W₂ and the midpoint contact
+    // problem's matrix ½W₂ + D with its solver.
+    struct MidpointOperator {
+        double h = 0.0;
+        Eigen::VectorXd inverseH;  // 1 / (1 + ½h c + ¼h²Ω²)
+        Eigen::MatrixXd w2, midpointMatrix;  // W₂ = ½h² G H⁻¹ Gᵀ and ½W₂ + D
+        std::unique_ptr<ContactColumns> midColumns;
+        std::unique_ptr<BoxQP> midQP;
+    };
+    void buildOperator(MidpointOperator& op, double h) const;
+    void midpointStep(double zNext, double pNext);  // one step of op_->h (T.17b–c)
+    void flowStep(double zNext, double pNext);  // exact free flight, or the sub-steps on contact (§21)
+    void substeps(double zNext, double pNext);
     void checkInputs(double zNext, double pNext) const;
     bool farFromObstacles(double zNext, double pNext);
     void gatherRows(const Eigen::VectorXd& q, double p, double z, Eigen::VectorXd& r) const;
@@ -96,15 +115,21 @@ private:
     Obstacles obstacles_;
     double dt_;
     Eigen::VectorXd damping_;  // c_k = a + b ω_k² (Rayleigh on the massive modes, §17)
-    Eigen::VectorXd inverseH_;  // 1 / (1 + ½Δt c + ¼Δt²Ω²)
-    Eigen::MatrixXd midpointMatrix_, endMatrix_;  // ½W₂ + D and D (W₂ = ½Δt² G H⁻¹ Gᵀ)
-    Eigen::MatrixXd w2_;
-    std::unique_ptr<ContactColumns> midColumns_, endColumns_;
-    std::unique_ptr<BoxQP> midQP_, endQP_;
+    MidpointOperator full_, sub_;  // steps of Δt; sub-steps of Δt/m (time_scheme = flow)
+    const MidpointOperator* op_ = &full_;  // the one the midpoint step takes
+    int substeps_ = 0;  // m; 0: every step is a midpoint step (time_scheme = conserving)
+    // The exact flow over Δt of each mode's u = q − q_particular (§21): (u, u̇)⁺ = Φ (u, u̇).
+    Eigen::VectorXd flow11_, flow12_, flow21_, flow22_;
+    Eigen::MatrixXd endMatrix_;  // D
+    std::unique_ptr<ContactColumns> endColumns_;
+    std::unique_ptr<BoxQP> endQP_;
     ConservingState state_;
     // Step buffers, allocated once.
     Eigen::VectorXd rhs_, dq_, qNext_, momentumNext_, forceNext_, multiplier_, modalForce_;
     Eigen::VectorXd modalScratch_, w2v_;
+    Eigen::VectorXd qIntegral_;  // ∫ q over the exact step
+    // The levels t_n, t_{n−1} kept across the sub-steps of one step.
+    Eigen::VectorXd qAtStart_, qBeforeStart_, forceAtStart_, forceBeforeStart_;
     Eigen::VectorXd r0_, r1_, drFree_, dr_, base_, e_, y_, lower_, upper_;
     // Each contact solve's own multipliers (BoxQP keeps them zero off its active set).
     Eigen::VectorXd midForce_, endForce_;

@@ -54,10 +54,11 @@ bool staysWithin(const InputSignal& s, double h, double lower, double upper) {
 
 }  // namespace
 
-InputSignal InputHistory::continueStep(InputMode mode, double h, double lower, double upper) {
+InputSignal InputHistory::continueStep(InputMode mode, double now, double h, double lower, double upper) {
+    const double since = count_ > 0 ? now - t_[0] : 0.0;  // how far the step starts after the newest point
     for (int order = static_cast<int>(mode);; --order) {
         const InputMode m = static_cast<InputMode>(order);
-        InputSignal s = extrapolate(m);
+        InputSignal s = extrapolate(m).shifted(since);
         if (m != InputMode::Hold && hasReached_) {
             s.d1 += (s.value - reached_) / h;  // start where the input is, end on the extrapolation
             s.value = reached_;

@@ -20,6 +20,14 @@ struct InputSignal {
     }
     // The integral from 0 to s, starting at `start`: the signal of the integrated quantity.
     InputSignal integral(double start) const { return {start, value, d1, d2, d3}; }
+    // The same polynomial seen from s0 on (its Taylor coefficients at s0): a step that starts
+    // s0 after the signal's own start continues it (an early return, a step without a fresh
+    // set). s0 = 0 gives the signal itself, bit for bit.
+    InputSignal shifted(double s0) const {
+        if (s0 == 0.0) return *this;
+        return {at(s0), d1 + s0 * (d2 + s0 * (0.5 * d3 + s0 * d4 / 6.0)), d2 + s0 * (d3 + 0.5 * s0 * d4), d3 + s0 * d4,
+                d4};
+    }
 };
 
 // How an input held by the master over a communication step is continued inside it.
@@ -41,20 +49,21 @@ public:
     // newest one replaces it (the master set the input again before stepping).
     void record(double t, double value);
     int count() const { return count_; }
-
     // The polynomial of degree min(order(mode), count-1) through the newest points, from the
     // newest point on.
     InputSignal extrapolate(InputMode mode) const;
 
-    // The signal for the step of length h that starts at the newest point (docs/theory.md,
-    // "Inputs between communication points"). Hold: the newest value. Linear, Quadratic:
+    // The signal for the step of length h that starts at `now`, at or after the newest point
+    // (docs/theory.md, "Inputs between communication points": the samples the master set, at
+    // the times it set them; a step that starts after the newest point continues the same
+    // polynomial). Hold: the newest value. Linear, Quadratic:
     // the extrapolation, made continuous — the step starts where the input ended the last
     // step and the miss (newest value − that end) is spread over the step as a slope miss/h,
     // so the input never jumps (a jump Δz of the clamp is a velocity kick Δz/Δt on one
     // internal step). Where that signal would leave [lower, upper] inside the step (an
     // extrapolated clamp past an obstacle the master's values never passed), the order drops
     // (quadratic → linear → hold) until it stays. Remembers where this step ends.
-    InputSignal continueStep(InputMode mode, double h, double lower = -HUGE_VAL, double upper = HUGE_VAL);
+    InputSignal continueStep(InputMode mode, double now, double h, double lower = -HUGE_VAL, double upper = HUGE_VAL);
     // Where the input ended the last step taken through continueStep (no step yet: none).
     bool hasReached() const { return hasReached_; }
     // Records where the input ended a step that the master's derivatives drove.

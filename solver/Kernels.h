@@ -36,8 +36,10 @@ inline void multiplySymmetricUpper(const Eigen::SparseMatrix<double, Eigen::RowM
 // transposed so each dot product reads contiguous memory. Compiled for x86-64-v3 (AVX2 + FMA)
 // and for the baseline, chosen at load time: the FMU stays portable and uses the wide units
 // where the host has them. ELF builds let GCC's target_clones choose (an ifunc); the win64
-// build (PE has no ifuncs) chooses the same way by hand, so both platforms compute the same
-// bits on the same CPU.
+// build (PE has no ifuncs) chooses the same way by hand. Both bodies compute the same bits: the
+// eight partial sums are independent lanes (vectorizing does not reorder a sum) and the build
+// forbids contracting a product and a sum into an FMA (-ffp-contract=off), so the wide units
+// change the speed, never the result, on any CPU.
 __attribute__((always_inline)) inline void multiplyTransposedBody(const Eigen::MatrixXd& rows, const Eigen::VectorXd& x,
                                                                   Eigen::VectorXd& y) {
     const Eigen::Index n = rows.rows(), m = rows.cols();

@@ -53,13 +53,15 @@ void validate(const PlateParameters& p) {
     requireRange("modes", p.modes, kModes, "(0 = full space)");
     if (p.mass != MassModel::Consistent && p.mass != MassModel::SingularP0 && p.mass != MassModel::SingularP1dg)
         reject("mass", static_cast<int>(p.mass), "1 (consistent), 2 (singular_p0) or 3 (singular_p1dg)");
-    if (p.timeScheme != TimeScheme::Newmark && p.timeScheme != TimeScheme::Conserving)
-        reject("time_scheme", static_cast<int>(p.timeScheme), "1 (newmark) or 2 (conserving)");
-    const bool conserving = p.timeScheme == TimeScheme::Conserving;
+    if (p.timeScheme != TimeScheme::Newmark && p.timeScheme != TimeScheme::Conserving &&
+        p.timeScheme != TimeScheme::Flow)
+        reject("time_scheme", static_cast<int>(p.timeScheme), "1 (newmark), 2 (conserving) or 3 (flow)");
+    const bool conserving = p.condensed();
     if (conserving && !p.singularMass())
         reject("mass", "consistent",
-               "mass = singular_p0 (2) or singular_p1dg (3) with time_scheme = conserving: the scheme steps the "
-               "massive modes of a singular mass and keeps its massless part static");
+               "mass = singular_p0 (2) or singular_p1dg (3) with time_scheme = conserving or flow: the scheme steps "
+               "the massive modes of a singular mass and keeps its massless part static");
+    requireRange("contact_substeps", p.contactSubsteps, kContactSubsteps);
     if (p.singularMass() && p.modes != 0 && !conserving)
         reject("modes", p.modes,
                "modes = 0 with a singular mass and time_scheme = newmark (the reduced singular model is "
@@ -81,7 +83,7 @@ void validate(const PlateParameters& p) {
     }
     if (p.carrier == PlateParameters::Carrier::Line)
         requireRange("tlm_impedance", p.tlmImpedance, kTlmImpedance, "when base_drive = tlm");
-    if (p.carrier != PlateParameters::Carrier::None && p.timeScheme == TimeScheme::Conserving)
+    if (p.carrier != PlateParameters::Carrier::None && p.condensed())
         reject("base_drive", p.carrier == PlateParameters::Carrier::Armature ? "force" : "tlm",
                "displacement, velocity or acceleration with time_scheme = conserving (the carried clamp is built on "
                "time_scheme = newmark)");

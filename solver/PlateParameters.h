@@ -16,8 +16,10 @@ enum class MassModel { Consistent = 1, SingularP0 = 2, SingularP1dg = 3 };
 // The time scheme (docs/theory.md §17): the paper's three-level Newmark scheme (3.3)/(3.6) with
 // its impact laws, or the conserving engine — the singular plate as massive modes and a static
 // massless boundary, stepped by the midpoint rule with a discrete gradient of the boundary
-// potential: the energy balance closes exactly through impacts, at any Δt.
-enum class TimeScheme { Newmark = 1, Conserving = 2 };
+// potential: the energy balance closes exactly through impacts, at any Δt. Flow (§21): the same
+// condensed plate with every massive mode advanced by its exact flow between contacts and each
+// contact step taken as `contactSubsteps` discrete-gradient midpoint sub-steps.
+enum class TimeScheme { Newmark = 1, Conserving = 2, Flow = 3 };
 
 struct PlateParameters {
     double length = 1.2;  // m
@@ -39,6 +41,10 @@ struct PlateParameters {
     int modes = 0;  // 0 = full space (exact)
     MassModel mass = MassModel::Consistent;
     TimeScheme timeScheme = TimeScheme::Newmark;
+    // time_scheme = flow: the midpoint sub-steps of a step in which a constraint row is or
+    // becomes active (docs/theory.md §21).
+    int contactSubsteps = 16;
+    bool condensed() const { return timeScheme == TimeScheme::Conserving || timeScheme == TimeScheme::Flow; }
     // Impact law (docs/theory.md §12): the contact constraint holds on (u⁺ + e u⁻)/(1 + e);
     // e = 0 is the paper's scheme.
     double restitution = 0.0;
@@ -94,6 +100,7 @@ constexpr Range kCells{1, 400};  // nx, ny
 constexpr Range kObstacleLower{-kMaxDisplacement, 0.0, false, true}, kObstacleUpper{0.0, kMaxDisplacement, true};
 constexpr Range kDt{1e-12, 1.0}, kBeta{0.0, 0.5}, kInitialLoad{-kMaxLoad, kMaxLoad};
 constexpr Range kModes{0, 2147483647.0}, kRestitution{0.0, 1.0};
+constexpr Range kContactSubsteps{1, 64};
 constexpr Range kDampingMass{0.0, 1e6}, kDampingStiffness{0.0, 1.0};
 constexpr Range kMemoryLimit{0.0, 1e9};  // MB; 0 = no limit
 // The carrier (§18–19): a mass > 0 (a massless armature is a line end or no carrier at all).

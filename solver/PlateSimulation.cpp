@@ -14,6 +14,7 @@
 #include "ModalPlate.h"
 #include "NewmarkContactStepper.h"
 #include "NewmarkEngine.h"
+#include "PortableMath.h"
 #include "SingularMass.h"
 #include "Spectrum.h"
 #include "StaticEquilibrium.h"
@@ -79,6 +80,7 @@ struct PlateSimulation::Impl {
 PlateSimulation::PlateSimulation(const PlateParameters& p, double baseDisplacement0, double loadAtStart,
                                  const ProgressLog& log)
     : impl_(std::make_unique<Impl>()) {
+    portable::fixDenseBlocking();  // the same bits on every CPU (docs/theory.md §20)
     validate(p);
     const Obstacles obstacles = obstaclesOf(p);
     requireBaseBetween(obstacles, baseDisplacement0);
@@ -108,7 +110,7 @@ PlateSimulation::PlateSimulation(const PlateParameters& p, double baseDisplaceme
         requireMasslessContact(couplingFree, *s.clamped,
                                p.mass == MassModel::SingularP0 ? "singular_p0" : "singular_p1dg");
     }
-    if (p.timeScheme == TimeScheme::Conserving) {
+    if (p.condensed()) {
         progress.phase("condensed singular plate (massive modes, massless Delassus operator)",
                        s.resources.spectrumSeconds + s.resources.factorSeconds);
         buildConserving(obstacles, baseDisplacement0, loadAtStart, freeRows(root, *s.clamped));
@@ -168,7 +170,10 @@ void PlateSimulation::buildConserving(const Obstacles& obstacles, double baseDis
         probeRows[2] = static_cast<int>(s.clamped->contactVertices.size());
     }
     auto condensed = std::make_shared<const CondensedPlate>(condense(*s.clamped, rootFree, extra, p.modes));
-    auto stepper = std::make_unique<ConservingStepper>(condensed, obstacles, p.dt, p.dampingMass, p.dampingStiffness);
+    // time_scheme = flow: exact modal flow between contacts, contact steps in sub-steps (§21).
+    const int substeps = p.timeScheme == TimeScheme::Flow ? p.contactSubsteps : 0;
+    auto stepper =
+        std::make_unique<ConservingStepper>(condensed, obstacles, p.dt, p.dampingMass, p.dampingStiffness, substeps);
     stepper->initialize(baseDisplacement0, p.initialLoad);
     stepper->setLoadAtStart(loadAtStart);
     s.engine = std::make_unique<ConservingEngine>(std::move(stepper), probeRows, std::move(vertexRows));
@@ -300,7 +305,14 @@ StepPlan PlateSimulation::plan(double h) const {
     return p;
 }
 
-void PlateSimulation::communicate(const StepPlan& plan, const InputSignal& base, const InputSignal& load) {
+// The one loop of a communication step (docs/theory.md §15): the plan's internal steps with
+// the inputs at s = offset + k Δt; `stopAfter(k, last)` is asked after each step that ends on a
+// grid point (every one but the last of a step that ends between grid points), with the
+// simulation standing there (time() and outputs() of that grid point); true ends the
+// communication step on that grid point. Returns whether it ended early that way.
+template <class StopAfter>
+bool PlateSimulation::stepThrough(const StepPlan& plan, const InputSignal& base, const InputSignal& load,
+                                  StopAfter&& stopAfter) {
     Impl& s = *impl_;
     const double dt = s.parameters.dt;
     if (!std::isfinite(load.value)) throw StepError("non-finite load input at the step start");
@@ -312,39 +324,73 @@ void PlateSimulation::communicate(const StepPlan& plan, const InputSignal& base,
         if (k == plan.steps && !plan.endsOnGrid) s.before = gridOutputs(true);
         const double t = plan.offset + k * dt;
         s.engine->step(base.at(t), load.at(t));
+        if (k == plan.steps && !plan.endsOnGrid) break;
+        if (!stopAfter.wanted) continue;
+        const double commTime = s.commTime;
+        const bool onGrid = s.onGrid;
+        s.commTime = double(s.engine->stepCount()) * dt;
+        s.onGrid = true;
+        if (stopAfter(k == plan.steps)) return true;  // (a carried clamp never stops early: §18)
+        s.commTime = commTime;
+        s.onGrid = onGrid;
     }
     if (carrier) carrier->endCommunication(plan.steps);
     s.commTime = plan.end;
     s.onGrid = plan.endsOnGrid;
+    return false;
+}
+
+namespace {
+
+// stepThrough's stop conditions: none; the contact set changed; and/or an observer's wish.
+struct NeverStop {
+    static constexpr bool wanted = false;
+    bool operator()(bool) const { return false; }
+};
+
+template <class Condition>
+struct StopWhen {
+    static constexpr bool wanted = true;
+    Condition condition;
+    bool operator()(bool last) { return condition(last); }
+};
+template <class Condition>
+StopWhen<Condition> stopWhen(Condition c) {
+    return {std::move(c)};
+}
+
+}  // namespace
+
+void PlateSimulation::communicate(const StepPlan& plan, const InputSignal& base, const InputSignal& load,
+                                  const GridPointObserver& observer) {
+    if (!observer) {
+        stepThrough(plan, base, load, NeverStop{});
+        return;
+    }
+    stepThrough(plan, base, load, stopWhen([&observer](bool last) {
+                    if (!last) observer();
+                    return false;
+                }));
 }
 
 bool PlateSimulation::communicateUntilContactChange(const StepPlan& plan, const InputSignal& base,
-                                                    const InputSignal& load) {
+                                                    const InputSignal& load, const GridPointObserver& observer) {
     Impl& s = *impl_;
     const double dt = s.parameters.dt;
     if (!std::isfinite(load.value)) throw StepError("non-finite load input at the step start");
     const auto inContact = [&s] { return s.engine->contactVertices() > 0; };
-    const auto stopOnGrid = [&s, dt] {
+    // The last step ended between grid points and the grid point ahead changed the contact set:
+    // the event is that grid point, if this step reaches it.
+    if (!s.onGrid && (s.before.contactVertices > 0) != inContact() && double(s.engine->stepCount()) * dt <= plan.end) {
         s.commTime = double(s.engine->stepCount()) * dt;
         s.onGrid = true;
         return true;
-    };
-    // The last step ended between grid points and the grid point ahead changed the contact set:
-    // the event is that grid point, if this step reaches it.
-    if (!s.onGrid && (s.before.contactVertices > 0) != inContact() && double(s.engine->stepCount()) * dt <= plan.end)
-        return stopOnGrid();
-    s.engine->setLoadAtStart(load.value);
-    const bool contactBefore = inContact();
-    for (long long k = 1; k <= plan.steps; ++k) {
-        // As communicate(), step for step.
-        if (k == plan.steps && !plan.endsOnGrid) s.before = gridOutputs(true);
-        const double t = plan.offset + k * dt;
-        s.engine->step(base.at(t), load.at(t));
-        if (inContact() != contactBefore && (k < plan.steps || plan.endsOnGrid)) return stopOnGrid();
     }
-    s.commTime = plan.end;
-    s.onGrid = plan.endsOnGrid;
-    return false;
+    const bool contactBefore = inContact();
+    return stepThrough(plan, base, load, stopWhen([&](bool last) {
+                           if (inContact() != contactBefore) return true;
+                           return !last && observer && observer();
+                       }));
 }
 
 PlateOutputs PlateSimulation::outputs(bool port) const {

@@ -4,6 +4,7 @@
 #include <Eigen/Core>
 #include <Eigen/Sparse>
 #include <array>
+#include <functional>
 #include <memory>
 #include <string>
 #include <vector>
@@ -65,11 +66,18 @@ public:
     // shorter than the smallest the grid can resolve), and the step itself with the inputs over
     // [t_c, t_c + h] as signals from t_c.
     StepPlan plan(double h) const;
-    void communicate(const StepPlan& plan, const InputSignal& base, const InputSignal& load);
+    // Called at each grid point inside a communication step (not at its end), the simulation
+    // standing there: time() that grid point, outputs() its values (FMI 3.0 intermediate
+    // update). communicateUntilContactChange ends the step there when it returns true.
+    using GridPointObserver = std::function<bool()>;
+    void communicate(const StepPlan& plan, const InputSignal& base, const InputSignal& load,
+                     const GridPointObserver& observer = {});
     // As communicate (the same steps, bit for bit), but the step ends early, on the grid point at
     // which the contact set becomes non-empty (an impact) or empty (a release), if the step
-    // reaches it (FMI 3.0 early return); returns whether the step ended at such a grid point.
-    bool communicateUntilContactChange(const StepPlan& plan, const InputSignal& base, const InputSignal& load);
+    // reaches it (FMI 3.0 early return), or where the observer asks; returns whether the step
+    // ended early.
+    bool communicateUntilContactChange(const StepPlan& plan, const InputSignal& base, const InputSignal& load,
+                                       const GridPointObserver& observer = {});
 
     // At the communication time: on the grid the scheme's values; between grid points the linear
     // interpolation of the two neighbours (counts: the earlier one). `port` adds the port's fields.
@@ -108,6 +116,8 @@ private:
     void setInitialReaction(const Eigen::VectorXd& contactForce);
     PlateOutputs gridOutputs(bool port) const;
     struct Impl;
+    template <class StopAfter>
+    bool stepThrough(const StepPlan& plan, const InputSignal& base, const InputSignal& load, StopAfter&& stopAfter);
     std::unique_ptr<Impl> impl_;
 };
 

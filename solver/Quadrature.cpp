@@ -2,6 +2,8 @@
 
 #include <cmath>
 
+#include "PortableMath.h"
+
 namespace plate {
 
 namespace {
@@ -24,9 +26,10 @@ void gaussLegendre01(int n, std::vector<double>& nodes, std::vector<double>& wei
     nodes.assign(n, 0.0);
     weights.assign(n, 0.0);
     // Newton on P_n from the Chebyshev-like initial guess; converges to machine precision
-    // in a handful of iterations for the small n used here.
+    // in a handful of iterations for the small n used here. The guess's cosine is the portable
+    // one: the C library's differs by CPU in the last bit, and so could the converged node.
     for (int k = 0; k < n; ++k) {
-        double x = std::cos(M_PI * (k + 0.75) / (n + 0.5)), p, dp;
+        double x = portable::cos(M_PI * (k + 0.75) / (n + 0.5)), p, dp;
         for (int it = 0; it < 100; ++it) {
             legendre(n, x, p, dp);
             const double dx = p / dp;

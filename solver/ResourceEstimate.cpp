@@ -169,7 +169,7 @@ bool completeModalPays(long long n, long long m, long long stiffnessNonZeros) {
 
 EngineKind engineFor(const PlateParameters& p, const ProblemSize& size) {
     using Engine = PlateParameters::Engine;
-    if (p.timeScheme == TimeScheme::Conserving) return EngineKind::Conserving;
+    if (p.condensed()) return EngineKind::Conserving;
     const bool modal =
         !p.singularMass() &&
         (p.modes > 0 || p.engine == Engine::CompleteModal ||

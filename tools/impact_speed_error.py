@@ -2,8 +2,8 @@
 per-step cost of the conserving engine against the paper's scheme, measured in one run with the
 C++ benchmark (solver/bench/plate_bench; no FMI layer in the timings).
 
-    python tools/impact_speed_error.py [--repo .] [--quick] [--markdown docs/performance.md]
-                                       [--figure docs/figures/impact_pareto.png] [--json out.json]
+    python tools/impact_speed_error.py [--repo .] [--quick] [--json docs/impact_speed_error.json]
+    python tools/render_docs.py --figures performance.md   # the page's "After impact" and the figure
 
 Laws: the paper's scheme (consistent mass), singular_p0 (the three-level scheme with a singular
 mass), conserving (time_scheme = conserving, docs/theory.md §17) and its reduced models (modes = m).
@@ -32,6 +32,10 @@ LAWS = {
     "conserving m=40": ["mass=singular_p0", "scheme=conserving", "modes=40"],
     "conserving m=20": ["mass=singular_p0", "scheme=conserving", "modes=20"],
 }
+# The laws whose cost per step is timed on three scenes (each a key of LAWS; "paper" and
+# "conserving" are the columns' references). A new time scheme: one entry in LAWS (its rows of
+# errors and its verdict follow) and, for its cost, its key here.
+COSTED = ("paper", "conserving", "conserving m=40", "conserving m=20")
 DTS = [4e-5, 2e-5, 1e-5, 5e-6, 2.5e-6]
 REFERENCE_DT = 1.25e-6
 STOP = 0.5
@@ -101,12 +105,7 @@ def per_step_costs(repo: Path, repeats: int) -> list[dict]:
         ("default scene, 14 x 5", ["nx=14", "ny=5", "steps=50000"]),
         ("§5.2, 28 x 10", ["nx=28", "ny=10", *RELEASE, "steps=50000"]),
     ]
-    variants = {
-        "paper": [],
-        "conserving": LAWS["conserving"],
-        "conserving m=40": LAWS["conserving m=40"],
-        "conserving m=20": LAWS["conserving m=20"],
-    }
+    variants = {name: LAWS[name] for name in COSTED}
     best: dict = {}
     for _ in range(repeats):
         for scene, args in cases:
@@ -131,73 +130,20 @@ def per_step_costs(repo: Path, repeats: int) -> list[dict]:
     return rows
 
 
-def markdown(costs: list[dict], errors: dict, verdicts: dict, reduced: list[dict]) -> str:
-    lines = [
-        "<!-- impact-speed-error: written by tools/impact_speed_error.py; do not edit by hand -->",
-        "",
-        "Per-step CPU time (best of the runs, interleaved in one invocation of the script), the "
-        "default communication step 1e-4 s, outputs read every communication step:",
-        "",
-        "| scene | law | µs per step | × the paper's scheme | speed-up over the full conserving engine |",
-        "|---|---|---:|---:|---:|",
-    ]
-    for r in costs:
-        lines.append(
-            f"| {r['scene']} | {r['law']} | {r['step_us']:.3f} | {r['over_paper']:.2f} | "
-            f"{r['speedup_over_conserving']:.1f} |"
-        )
-    lines += [
-        "",
-        "After impact, §5.2 (14 × 5 Argyris, 0.5 s), each law against its own reference at "
-        f"dt = {REFERENCE_DT:g} s (same mesh); energy loss = (E0 − E(0.5 s))/E0:",
-        "",
-        "| law | dt (s) | CPU s per simulated s | energy loss | impact 1 error (s) | impact 2 error (s) | "
-        "corner_1 error over 0.3 s (m) |",
-        "|---|---:|---:|---:|---:|---:|---:|",
-    ]
-    for law, runs in errors.items():
-        for dt, e in runs.items():
-            lines.append(
-                f"| {law} | {dt:g} | {e['cpu_per_second']:.3g} | {e['energy_loss']:.3g} | "
-                f"{e['impact_1_error']:.2g} | {e['impact_2_error']:.2g} | {e['corner_error']:.2g} |"
-            )
-    if reduced:
-        full = reduced[0]["full_impacts"]
-        lines += [
-            "",
-            f"The reduced model against the full conserving engine (140 massive modes) at dt = 1e-5 s: §5.2 "
-            f"impacts 1–2 (full: {full[0]:.5f} s, {full[1]:.5f} s), corner_1 over 0.3 s, and the contact "
-            f"onsets of the default (driven) scene over 1 s (full: {reduced[0]['driven_impacts_full']:.0f}):",
-            "",
-            "| modes | impact 1 (s) | impact 2 (s) | impact 2 − full (s) | corner_1 − full, max over 0.3 s (m) | "
-            "onsets, default scene, 1 s |",
-            "|---:|---:|---:|---:|---:|---:|",
-        ]
-        for r in reduced:
-            lines.append(
-                f"| {r['modes']} | {r['impact_1']:.5f} | {r['impact_2']:.5f} | {r['impact_2_error']:.1e} | "
-                f"{r['corner_error']:.2g} | {r['driven_impacts']:.0f} |"
-            )
-    lines += ["", "Verdicts (does the quantity converge as dt → 0?):", ""]
-    lines += [f"- **{law}**: {text}" for law, text in verdicts.items()]
-    lines += ["", "<!-- impact-speed-error: end -->"]
-    return "\n".join(lines)
-
-
-def verdict(runs: dict) -> str:
+def verdict(law: str, runs: dict) -> dict:
     """Over the last two halvings of dt a quantity that tends to zero at first order or better
     drops by at least 4 (we ask 2.8, a margin for impact problems' uneven convergence)."""
     dts = sorted(runs, reverse=True)
     loss = [runs[dt]["energy_loss"] for dt in dts]
     corner = [runs[dt]["corner_error"] for dt in dts]
-    if max(abs(x) for x in loss) <= 1e-9:
-        energy = "energy conserved at every dt (|loss| ≤ 1e-9 of E0)"
-    elif abs(loss[-1]) < abs(loss[-3]) / 2.8:
-        energy = f"the energy loss tends to zero ({loss[-3]:.2%} → {loss[-1]:.2%} over two halvings)"
-    else:
-        energy = f"the energy loss does not tend to zero ({loss[-3]:.2%} → {loss[-1]:.2%} over two halvings)"
-    trend = "converges" if corner[-1] < corner[-3] / 2.8 else "does not converge"
-    return f"{energy}; corner_1 over 0.3 s {trend} ({corner[-3]:.2g} → {corner[-1]:.2g} m over two halvings)"
+    return {
+        "law": law,
+        "conserved": bool(max(abs(x) for x in loss) <= 1e-9),
+        "loss": [loss[-3], loss[-1]],
+        "loss_tends_to_zero": bool(abs(loss[-1]) < abs(loss[-3]) / 2.8),
+        "corner": [corner[-3], corner[-1]],
+        "corner_converges": bool(corner[-1] < corner[-3] / 2.8),
+    }
 
 
 def reduced_against_full(repo: Path, modes: list[int]) -> list[dict]:
@@ -227,50 +173,14 @@ def reduced_against_full(repo: Path, modes: list[int]) -> list[dict]:
     return rows
 
 
-def figure(errors: dict, path: Path) -> None:
-    import matplotlib
-
-    matplotlib.use("Agg")
-    import matplotlib.pyplot as plt
-
-    fig, axes = plt.subplots(1, 2, figsize=(11, 4.2))
-    for law, runs in errors.items():
-        cpu = [e["cpu_per_second"] for e in runs.values()]
-        axes[0].loglog(cpu, [max(e["corner_error"], 1e-9) for e in runs.values()], "o-", label=law)
-        axes[1].loglog(cpu, [max(abs(e["energy_loss"]), 1e-13) for e in runs.values()], "o-", label=law)
-    axes[0].set_ylabel("corner_1 error over 0.3 s (m)")
-    axes[1].set_ylabel("|energy lost| after 0.5 s / E0")
-    for ax in axes:
-        ax.set_xlabel("CPU s per simulated s")
-        ax.grid(True, which="both", alpha=0.3)
-    axes[0].legend(fontsize=8)
-    fig.suptitle("§5.2 after impact: error against cost, each law against its own finest-dt reference")
-    fig.tight_layout()
-    fig.savefig(path, dpi=110)
-
-
-def replace_section(path: Path, text: str) -> None:
-    start, end = "<!-- impact-speed-error: written", "<!-- impact-speed-error: end -->"
-    doc = path.read_text()
-    if start in doc:
-        a = doc.index(start)
-        b = doc.index(end) + len(end)
-        doc = doc[:a] + text + doc[b:]
-    else:
-        doc = doc.rstrip() + "\n\n## After impact: speed against error per law\n\n" + text + "\n"
-    path.write_text(doc)
-
-
 def main() -> None:
     parser = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
     parser.add_argument("--repo", type=Path, default=Path("."))
-    parser.add_argument("--quick", action="store_true", help="two dt, one repeat: a smoke run")
-    parser.add_argument("--markdown", type=Path)
-    parser.add_argument("--figure", type=Path)
-    parser.add_argument("--json", type=Path)
+    parser.add_argument("--quick", action="store_true", help="three dt, one repeat: a smoke run")
+    parser.add_argument("--json", type=Path, help="default: <repo>/docs/impact_speed_error.json")
     args = parser.parse_args()
     repo = args.repo.resolve()
-    dts = DTS[1:3] if args.quick else DTS
+    dts = DTS[:3] if args.quick else DTS  # three: the verdicts look at two halvings
     laws = {k: v for k, v in LAWS.items() if not args.quick or k in ("paper", "conserving")}
     costs = per_step_costs(repo, 1 if args.quick else 3)
     for r in costs:
@@ -287,25 +197,22 @@ def main() -> None:
                 f"{law:18s} dt={dt:<8g} loss={e['energy_loss']:+.3e} impacts={e['impacts']} "
                 f"corner={e['corner_error']:.2e} cpu/s={e['cpu_per_second']:.3g}"
             )
-    verdicts = {law: verdict(runs) for law, runs in errors.items()}
+    verdicts = [verdict(law, runs) for law, runs in errors.items()]
     reduced = reduced_against_full(repo, [10, 20, 40, 80, 120] if not args.quick else [20])
     for r in reduced:
         print(
             f"modes={r['modes']:<4d} impacts {r['impact_1']:.5f} {r['impact_2']:.5f} (full {r['full_impacts']}) "
             f"corner {r['corner_error']:.2e}  driven onsets {r['driven_impacts']:.0f} (full {r['driven_impacts_full']:.0f})"
         )
-    for law, text in verdicts.items():
-        print(f"verdict {law}: {text}")
-    if args.markdown:
-        replace_section(args.markdown, markdown(costs, errors, verdicts, reduced))
-    if args.figure:
-        figure(errors, args.figure)
-    if args.json:
-        args.json.write_text(
-            json.dumps(
-                {"costs": costs, "errors": {k: {str(d): v for d, v in r.items()} for k, r in errors.items()}}, indent=1
-            )
-        )
+    for v in verdicts:
+        print(f"verdict {v}")
+    path = args.json or repo / "docs" / "impact_speed_error.json"
+    rows = [dict(law=law, dt=dt, **e) for law, runs in errors.items() for dt, e in runs.items()]
+    data = dict(
+        reference_dt=5e-6 if args.quick else REFERENCE_DT, costs=costs, errors=rows, reduced=reduced, verdicts=verdicts
+    )
+    path.write_text(json.dumps(data, indent=1))
+    print(f"wrote {path}; render it: python tools/render_docs.py --figures performance.md")
 
 
 if __name__ == "__main__":

@@ -1,5 +1,5 @@
 """Measuring speed against error (tools/speed_vs_error.py is the command line, speed_summary
-computes the summary and speed_report writes the report): runs of plate_bench (the solver without FMI, one
+computes the summary; tools/render_docs.py fills docs/performance.md from it): runs of plate_bench (the solver without FMI, one
 JSON line per run, the floor = one solve with the sparse factor of A = M + βΔt²K measured in the
 same run), the FMU's wall time through fmpy, the plain Python/SciPy baseline, the refinement
 studies and the rule that decides whether a sequence converges (`converges()`)."""

@@ -14,9 +14,9 @@ run) and, for the default scene's wall time, with the FMU through fmpy.
 Errors are used only for quantities shown to converge (successive differences of a refinement
 sequence shrinking, rule in `converges()`); a quantity that does not is reported and flagged,
 never used as an error. speed_summary computes the summary from the measurements (errors,
-verdicts, goals), speed_report renders it. Writes <out>/speed_vs_error.json (the summary: all
-numbers, for checks) and, unless --no-report, <out>/performance.md, <out>/figures/speed_vs_error.png
-and <out>/figures/scaling.png.
+verdicts, goals, every table's rows) and writes nothing else. Writes <out>/speed_vs_error.json
+(all numbers) and, unless --no-report, renders <out>/performance.md from
+docs/templates/performance.md and its figures (tools/render_docs.py).
 """
 
 from __future__ import annotations
@@ -31,8 +31,8 @@ from dataclasses import replace
 from pathlib import Path
 
 import numpy as np
+import render_docs
 from checkout import add_checkout_arguments, fmu_path
-from speed_report import plot_scaling, plot_speed_vs_error, write_report
 from speed_study import (
     SINE,
     Bench,
@@ -70,8 +70,6 @@ def main(argv=None):
 
     out = Path(args.out) if args.out else args.repo / "docs"
     out.mkdir(parents=True, exist_ok=True)
-    if not args.no_report:
-        (out / "figures").mkdir(exist_ok=True)
     plan = make_plan(args.quick)
     started = time.perf_counter()
     load_before = os.getloadavg()
@@ -193,21 +191,11 @@ def main(argv=None):
         args=args,
     )
     summary = summarize(ctx)
-    written = []
-    if not args.no_report:
-        md, fig_error, fig_scaling = (
-            out / "performance.md",
-            out / "figures" / "speed_vs_error.png",
-            out / "figures" / "scaling.png",
-        )
-        plot_speed_vs_error(short, free, fig_error)
-        plot_scaling(scaling, fig_scaling)
-        write_report(summary, ctx, md)
-        written += [md, fig_error, fig_scaling]
     summary["runs"] = bench.log  # every plate_bench run: wall and CPU step times, floors, engine
     (out / "speed_vs_error.json").write_text(json.dumps(summary, indent=1, default=float))
-    written.append(out / "speed_vs_error.json")
-    print(f"== wrote {', '.join(str(p) for p in written)} in {elapsed:.0f} s ({bench.count} plate_bench runs)")
+    print(f"== wrote {out / 'speed_vs_error.json'} in {elapsed:.0f} s ({bench.count} plate_bench runs)")
+    if not args.no_report:  # the page and its figures, from the JSON just written
+        render_docs.main(["--data", str(out), "--out", str(out), "--figures", "performance.md"])
     for line in summary["headline_lines"]:
         print("  " + line)
     return 0

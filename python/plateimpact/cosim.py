@@ -12,6 +12,7 @@ from pathlib import Path
 
 import numpy as np
 
+from .fmufile import fmu_file
 from .scenes import AMPLITUDE, DT, FREQUENCY, RAMP
 
 # The sweep's parameters for the smooth-start scene (a constant 10 Hz with a 0.05 s ramp-in).
@@ -37,11 +38,12 @@ def run_libcosim(sweep_fmu, plate_fmu, h, stop):
     from libcosimpy.CosimLogging import CosimLogLevel, log_output_level
     from libcosimpy.CosimSlave import CosimLocalSlave
 
+    sweep_fmu, plate_fmu = fmu_file(sweep_fmu), fmu_file(plate_fmu)  # checked before any master sees them
     log_output_level(CosimLogLevel.ERROR)
     sv, pv = variables(sweep_fmu), variables(plate_fmu)
     execution = CosimExecution.from_step_size(round(h * 1e9))  # libcosim's time: integer ns
-    sweep = execution.add_local_slave(CosimLocalSlave(fmu_path=str(Path(sweep_fmu).resolve()), instance_name="sweep"))
-    plate = execution.add_local_slave(CosimLocalSlave(fmu_path=str(Path(plate_fmu).resolve()), instance_name="plate"))
+    sweep = execution.add_local_slave(CosimLocalSlave(fmu_path=str(sweep_fmu), instance_name="sweep"))
+    plate = execution.add_local_slave(CosimLocalSlave(fmu_path=str(plate_fmu), instance_name="plate"))
     for name, value in SWEEP.items():
         assert execution.real_initial_value(sweep, sv[name], value), name
     assert execution.real_initial_value(plate, pv["dt"], DT)
@@ -68,6 +70,7 @@ def step_and_observe(execution, plate, corner_vr, steps):
 def make_ssp(sweep_fmu, plate_fmu, target, ssd):
     """The system structure file `ssd` (examples/system_model.ssd) with the two built FMUs,
     zipped into an SSP file at `target`."""
+    sweep_fmu, plate_fmu = fmu_file(sweep_fmu), fmu_file(plate_fmu)
     with zipfile.ZipFile(target, "w", zipfile.ZIP_DEFLATED) as ssp:
         ssp.write(ssd, "SystemStructure.ssd")
         ssp.write(sweep_fmu, "resources/SineSweep.fmu")
@@ -161,83 +164,6 @@ def _set_initial_values(execution, slave, vrs, values):
 def _connect(execution, source, source_vr, target, target_vr, what):
     if execution.connect_real_variables(source, source_vr, target, target_vr) != 0:  # the C status: 0 on success
         raise RuntimeError(f"libcosim could not connect {what}")
-
-
-def shaker_execution(fmus, values, h=None, ecco=None, coupled=True):
-    """A libcosim execution of sweep -> shaker <-> plate. `fmus` and `values` map "sweep",
-    "shaker", "plate" to the FMU path and its initial values; fixed step `h` (s) or ECCO with
-    the EccoParams fields in `ecco` (power bond armature_velocity / plate_force <-> clamp_force /
-    base_velocity). coupled=False leaves plate_force at 0: the one-way run. Returns ((execution,
-    algorithm or None), observer, slaves, value references)."""
-    from libcosimpy.CosimAlgorithm import CosimAlgorithm, EccoParams
-    from libcosimpy.CosimExecution import CosimExecution
-    from libcosimpy.CosimLogging import CosimLogLevel, log_output_level
-    from libcosimpy.CosimObserver import CosimObserver
-    from libcosimpy.CosimSlave import CosimLocalSlave
-
-    log_output_level(CosimLogLevel.ERROR)
-    algorithm = None
-    if ecco is None:
-        execution = CosimExecution.from_step_size(round(h * 1e9))  # libcosim's time: integer ns
-    else:
-        algorithm = CosimAlgorithm.create_ecco_algorithm(EccoParams(**ecco))
-        execution = CosimExecution.from_algorithm(algorithm)
-    slaves = {
-        name: execution.add_local_slave(CosimLocalSlave(fmu_path=str(Path(path).resolve()), instance_name=name))
-        for name, path in fmus.items()
-    }
-    vrs = {name: variables(path) for name, path in fmus.items()}
-    # The observer exposes every variable for reading: ECCO reads the bond's inputs too.
-    observer = CosimObserver.create_last_value()
-    execution.add_observer(observer)
-    for name in fmus:
-        _set_initial_values(execution, slaves[name], vrs[name], values.get(name, {}))
-    sweep, shaker, plate = slaves["sweep"], slaves["shaker"], slaves["plate"]
-    s, p = vrs["shaker"], vrs["plate"]
-    _connect(execution, sweep, vrs["sweep"]["base_displacement"], shaker, s["drive_force"], "sweep -> drive_force")
-    _connect(execution, shaker, s["armature_velocity"], plate, p["base_velocity"], "armature -> base_velocity")
-    if coupled:
-        _connect(execution, plate, p["clamp_force"], shaker, s["plate_force"], "clamp_force -> plate_force")
-    if algorithm is not None:
-        bond = algorithm.add_power_bond(
-            shaker, s["armature_velocity"], s["plate_force"], plate, p["clamp_force"], p["base_velocity"]
-        )
-        if bond != 0:
-            raise RuntimeError("libcosim could not add the power bond")
-    # The execution holds a pointer to the algorithm: the caller keeps both alive together.
-    return (execution, algorithm), observer, slaves, vrs
-
-
-def run_shaker_system(fmus, values, stop, h=None, ecco=None, coupled=True):
-    """Runs sweep -> shaker <-> plate to `stop` (s); returns a dict of arrays over the
-    communication points: "time", "shaker.<name>" for SHAKER_RECORD, "plate.<name>" for
-    PLATE_RECORD and PLATE_COUNTERS. The plate's base_drive (an Integer switch) is set like any
-    other initial value."""
-    return _step_shaker_system(fmus, values, stop, h, ecco, coupled)
-
-
-def _step_shaker_system(fmus, values, stop, h, ecco, coupled):
-    (execution, _algorithm), observer, slaves, vrs = shaker_execution(fmus, values, h, ecco, coupled)
-    shaker_vrs = [vrs["shaker"][n] for n in SHAKER_RECORD]
-    plate_vrs = [vrs["plate"][n] for n in PLATE_RECORD]
-    counter_vrs = [vrs["plate"][n] for n in PLATE_COUNTERS]
-    rows = []
-    stop_ns = round(stop * 1e9)
-    while True:
-        now = execution.status().current_time
-        if now >= stop_ns - (round(h * 1e9) // 2 if h else 0):
-            break
-        if not execution.step():
-            raise RuntimeError(f"libcosim step at t = {now * 1e-9} s failed: {execution.status()}")
-        rows.append(
-            [execution.status().current_time * 1e-9]
-            + list(observer.last_real_values(slaves["shaker"], shaker_vrs))
-            + list(observer.last_real_values(slaves["plate"], plate_vrs))
-            + list(observer.last_integer_values(slaves["plate"], counter_vrs))
-        )
-    data = np.array(rows)
-    names = ["time"] + [f"shaker.{n}" for n in SHAKER_RECORD] + [f"plate.{n}" for n in PLATE_RECORD + PLATE_COUNTERS]
-    return {name: data[:, i] for i, name in enumerate(names)}
 
 
 def energy_closure(run):
@@ -340,6 +266,7 @@ def system_execution(fmus, values, coupling, h=None, ecco=None):
     from libcosimpy.CosimSlave import CosimLocalSlave
 
     plan, connections = system_plan(values, coupling)
+    fmus = {name: fmu_file(fmus[name]) for name in plan}  # every file checked before libcosim sees one
     if ecco is not None and coupling != "force":
         raise ValueError("ECCO runs the force coupling only (its power bond pairs a velocity with a force)")
     log_output_level(CosimLogLevel.ERROR)
@@ -350,8 +277,7 @@ def system_execution(fmus, values, coupling, h=None, ecco=None):
         algorithm = CosimAlgorithm.create_ecco_algorithm(EccoParams(**ecco))
         execution = CosimExecution.from_algorithm(algorithm)
     slaves = {
-        name: execution.add_local_slave(CosimLocalSlave(fmu_path=str(Path(fmus[name]).resolve()), instance_name=name))
-        for name in plan
+        name: execution.add_local_slave(CosimLocalSlave(fmu_path=str(fmus[name]), instance_name=name)) for name in plan
     }
     vrs = {name: variables(fmus[name]) for name in plan}
     observer = CosimObserver.create_last_value()

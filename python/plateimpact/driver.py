@@ -19,7 +19,6 @@ from __future__ import annotations
 import atexit
 import re
 import shutil
-from pathlib import Path
 
 from fmpy import calloc, extract, free, read_model_description
 from fmpy.fmi2 import (
@@ -29,6 +28,8 @@ from fmpy.fmi2 import (
     fmi2CallbackFunctions,
     fmi2CallbackLoggerTYPE,
 )
+
+from .fmufile import fmu_file
 
 ITEMS = re.compile(r"\((\d+ = \w+(?:, \d+ = \w+)*)\)$")
 
@@ -49,9 +50,7 @@ _extracted = {}  # (resolved path, mtime) -> (unzip directory, model description
 def unzipped(fmu_path):
     """(unzip directory, model description) of an FMU file, extracted once per process (and file
     version) and removed at exit, or of a directory holding an extracted FMU."""
-    path = Path(fmu_path).resolve()
-    if not path.exists():
-        raise FileNotFoundError(f"FMU not found: {path} (build it, or set PLATEIMPACT_FMU)")
+    path = fmu_file(fmu_path)
     key = (str(path), path.stat().st_mtime_ns)
     if key not in _extracted:
         _extracted[key] = (str(path) if path.is_dir() else _extract(path), read_model_description(str(path)))

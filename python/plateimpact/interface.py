@@ -1,8 +1,8 @@
-"""The FMU's interface as a user reads it: the README's table of variables, written from the
-model description (which the build writes from the FMU's own table of variables), so that the
-README cannot drift from the binary. python_tests/test_readme.py checks the README against it.
+"""The FMU's interface as a user reads it: the table of variables of docs/variables.md, written
+from the model description (which the build writes from the FMU's own table of variables), so
+that the page cannot drift from the binary. python_tests/test_readme.py checks the page against it.
 
-    python -m plateimpact.interface build/PlateImpact.fmu README.md   # rewrite the table in place
+    python -m plateimpact.interface build/PlateImpact.fmu docs/variables.md   # rewrite the table in place
 """
 
 from __future__ import annotations
@@ -19,7 +19,7 @@ END = "<!-- variables: end -->"
 
 
 def start_text(v):
-    """A variable's start value as the README shows it (a switch's item by name and number)."""
+    """A variable's start value as docs/variables.md shows it (a switch's item by name and number)."""
     if v.causality == "output" or v.start is None:
         return ""
     names = {value: name for name, value in switch_items(v).items()}
@@ -31,7 +31,7 @@ def start_text(v):
 
 
 def range_text(v):
-    """The allowed range the model description declares (min/max), as the README shows it."""
+    """The allowed range the model description declares (min/max), as docs/variables.md shows it."""
     low, high = getattr(v, "min", None), getattr(v, "max", None)
     if low is None and high is None:
         return ""
@@ -59,7 +59,7 @@ def block(fmu) -> str:
 
 
 def current_block(text: str) -> str:
-    """The table block of a README's text (between the markers)."""
+    """The table block of a page's text (between the markers)."""
     begin, end = text.index(BEGIN), text.index(END)
     return text[begin : end + len(END)]
 
@@ -69,8 +69,8 @@ def main(argv=None):
     if len(argv) != 2:
         print(__doc__, file=sys.stderr)
         return 2
-    fmu, readme = argv
-    path = Path(readme)
+    fmu, page = argv
+    path = Path(page)
     text = path.read_text()
     path.write_text(text.replace(current_block(text), block(fmu)))
     return 0

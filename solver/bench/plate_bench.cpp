@@ -5,7 +5,8 @@
 //                                 frequency gap (both obstacles at ±gap; gap=0 disables them)
 //                                 modes initial_load lower_only=0|1
 //                                 mass=consistent|singular_p0|singular_p1dg
-//                                 scheme=newmark|conserving (time_scheme, docs/theory.md §17)
+//                                 scheme=newmark|conserving|flow (time_scheme, docs/theory.md §17, §21)
+//                                 substeps=N (contact_substeps of scheme=flow)
 //                                 engine=auto|sparse|modal (how exact mode runs)
 //                                 port=1 (read the port's outputs too, every communication step)
 //                                 series=FILE (CSV of the outputs every communication step;
@@ -192,6 +193,8 @@ int main(int argc, char** argv) {
                  : args["mass"] == "singular_p1dg" ? plate::MassModel::SingularP1dg
                                                    : plate::MassModel::Consistent;
     if (args.count("scheme") && args["scheme"] == "conserving") p.timeScheme = plate::TimeScheme::Conserving;
+    if (args.count("scheme") && args["scheme"] == "flow") p.timeScheme = plate::TimeScheme::Flow;
+    p.contactSubsteps = static_cast<int>(num("substeps", p.contactSubsteps));
     p.memoryLimit = num("memory_limit", 0.0);
     if (args.count("export")) return exportMatrices(p, args["export"]);
     if (num("estimate_only", 0) != 0) return printEstimate(p);

@@ -140,3 +140,145 @@ TEST(ConservingStepper, LedgerClosesEveryStepThroughImpacts) {
     // 1e-13 of the step's energies per step (the gradient's tolerance), E0 ~ 100 J.
     EXPECT_LE(worst, 1e-10 * e0);
 }
+
+// time_scheme = flow (docs/theory.md §21): a step without contact is each mode's exact flow.
+namespace {
+
+// Height of row i from the modal coordinates (no contact force: free flight).
+double rowOf(const CondensedPlate& c, const Eigen::VectorXd& q, double p, double z, int i) {
+    return c.rowModesT.col(i).dot(q) + p * c.rowLoad[i] + z;
+}
+
+}  // namespace
+
+// Released from the static shape under 8600 Pa (no obstacles, no input): q_k(t) = q_k(0) cos ω_k t.
+// The corner's height over 2000 steps within 1e-12 m of that sum (amplitude ~0.2 m).
+TEST(FlowStepper, FreeFlightIsTheClosedFormModalSolution) {
+    const Condensed s(ElementType::Argyris, 8, 3, MassProjection::P0);
+    auto plate = std::make_shared<const CondensedPlate>(s.c);
+    const double dt = 2e-5;
+    ConservingStepper stepper(plate, Obstacles{}, dt, 0.0, 0.0, 8);
+    stepper.initialize(0.0, 8600.0);
+    stepper.setLoadAtStart(0.0);
+    const Eigen::VectorXd q0 = stepper.state().q;
+    int corner = 0;  // the row that moves most: a free corner
+    for (int i = 1; i < plate->rows(); ++i)
+        if (std::abs(rowOf(*plate, q0, 0.0, 0.0, i)) > std::abs(rowOf(*plate, q0, 0.0, 0.0, corner))) corner = i;
+    double worst = 0.0, amplitude = 0.0;
+    for (int n = 1; n <= 2000; ++n) {
+        stepper.step(0.0, 0.0);
+        const double t = n * dt;
+        Eigen::VectorXd exact(q0.size());
+        for (Eigen::Index k = 0; k < q0.size(); ++k) exact[k] = q0[k] * std::cos(std::sqrt(plate->omega2[k]) * t);
+        const double got = rowOf(*plate, stepper.state().q, 0.0, 0.0, corner);
+        const double want = rowOf(*plate, exact, 0.0, 0.0, corner);
+        worst = std::max(worst, std::abs(got - want));
+        amplitude = std::max(amplitude, std::abs(want));
+    }
+    EXPECT_GT(amplitude, 0.05);
+    EXPECT_LE(worst, 1e-12);
+}
+
+// Forced: the base at constant velocity v and the load a ramp from rest in the static shape under
+// p0: q = A + B t + (u̇0/ω) sin ωt with B = F ṗ/ω², A = F p0/ω², u̇0 = −b v − B (the clamp's velocity
+// kick at t = 0 seen from the moving clamp). Rayleigh mass damping a: the same with the damped
+// oscillator's free part.
+TEST(FlowStepper, ForcedAndDampedStepsAreTheClosedFormModalSolution) {
+    const Condensed s(ElementType::Argyris, 8, 3, MassProjection::P0);
+    auto plate = std::make_shared<const CondensedPlate>(s.c);
+    const CondensedPlate& c = *plate;
+    const double dt = 2e-5, v = 0.05, p0 = 1000.0, pDot = -20000.0;
+    for (const double a : {0.0, 5.0}) {
+        ConservingStepper stepper(plate, Obstacles{}, dt, a, 0.0, 8);
+        stepper.initialize(0.0, p0);
+        double worst = 0.0, amplitude = 0.0;
+        for (int n = 1; n <= 1500; ++n) {
+            const double t = n * dt;
+            stepper.step(v * t, p0 + pDot * t);
+            Eigen::VectorXd exact(c.modes());
+            for (Eigen::Index k = 0; k < c.modes(); ++k) {
+                const double w2 = c.omega2[k], f = c.modalLoad[k];
+                const double slope = f * pDot / w2, offset = (f * p0 - a * slope) / w2;
+                const double u0 = f * p0 / w2 - offset, ud0 = -c.modalBaseInertia[k] * v - slope;
+                const double wd = std::sqrt(w2 - 0.25 * a * a), decay = std::exp(-0.5 * a * t);
+                const double u = decay * (u0 * std::cos(wd * t) + (ud0 + 0.5 * a * u0) / wd * std::sin(wd * t));
+                exact[k] = offset + slope * t + u;
+            }
+            const double got = rowOf(c, stepper.state().q, p0 + pDot * t, v * t, c.rows() - 1);
+            const double want = rowOf(c, exact, p0 + pDot * t, v * t, c.rows() - 1);
+            worst = std::max(worst, std::abs(got - want));
+            amplitude = std::max(amplitude, std::abs(want - v * t));
+        }
+        EXPECT_GT(amplitude, 1e-4) << "a = " << a;
+        EXPECT_LE(worst, 1e-12) << "a = " << a;
+    }
+}
+
+// The energy identity (T.17d) step by step through impacts with sub-steps, at three dt, with
+// forcing and Rayleigh damping (the flow's exact damping and the sub-steps' midpoint damping).
+TEST(FlowStepper, LedgerClosesEveryStepThroughImpactsAtThreeDt) {
+    const Condensed s(ElementType::Argyris, 14, 5, MassProjection::P0);
+    auto plate = std::make_shared<const CondensedPlate>(s.c);
+    Obstacles obstacles;
+    obstacles.lower = -0.08;
+    for (const double dt : {4e-5, 2e-5, 1e-5}) {
+        ConservingStepper stepper(plate, obstacles, dt, 1.0, 1e-5, 8);
+        stepper.initialize(0.0, 8600.0);
+        stepper.setLoadAtStart(0.0);
+        const double e0 = stepper.energy();
+        double previous = e0, worst = 0.0;
+        int contactSteps = 0;
+        for (int n = 1; n <= static_cast<int>(0.2 / dt); ++n) {
+            const double t = n * dt;
+            const ConservingState before = stepper.state();
+            stepper.step(0.01 * std::sin(2 * M_PI * 5 * t), 100.0 * std::sin(2 * M_PI * 3 * t));
+            const ConservingState& after = stepper.state();
+            const double e = stepper.energy();
+            const double balance =
+                (e - previous) - (after.energyInput - before.energyInput) + (after.energyDamped - before.energyDamped);
+            worst = std::max(worst, std::abs(balance));
+            contactSteps += after.contactRows > 0;
+            previous = e;
+            for (int i = 0; i < plate->rows(); ++i) ASSERT_GE(stepper.rowHeight(i), obstacles.lower - 1e-14);
+        }
+        EXPECT_GT(contactSteps, 20) << "dt = " << dt;
+        EXPECT_LE(worst, 1e-10 * e0) << "dt = " << dt;
+    }
+}
+
+// After impact the error is made in the contact steps (docs/theory.md §21): with the free flight
+// exact, corner_1 over 0.15 s (two impacts on the lower obstacle) converges in the contact
+// sub-step Δt/m at second order — each halving of Δt/m divides the error by about 4 (at least 3
+// asserted), measured against m = 64.
+TEST(FlowStepper, CornerAfterImpactConvergesAtSecondOrderInTheSubstep) {
+    const Condensed s(ElementType::Argyris, 8, 3, MassProjection::P0);
+    auto plate = std::make_shared<const CondensedPlate>(s.c);
+    Obstacles obstacles;
+    obstacles.lower = -0.08;
+    const double dt = 2e-5;
+    const auto run = [&](int m) {
+        ConservingStepper stepper(plate, obstacles, dt, 0.0, 0.0, m);
+        stepper.initialize(0.0, 8600.0);
+        stepper.setLoadAtStart(0.0);
+        std::vector<double> corner;
+        int contacts = 0;
+        for (int n = 1; n <= 7500; ++n) {
+            stepper.step(0.0, 0.0);
+            contacts += stepper.state().contactRows > 0;
+            if (n % 5 == 0) corner.push_back(stepper.rowHeight(0));
+        }
+        EXPECT_GT(contacts, 0);
+        return corner;
+    };
+    const std::vector<double> reference = run(64);
+    const auto error = [&](int m) {
+        const std::vector<double> c = run(m);
+        double worst = 0.0;
+        for (std::size_t i = 0; i < c.size(); ++i) worst = std::max(worst, std::abs(c[i] - reference[i]));
+        return worst;
+    };
+    const double e4 = error(4), e8 = error(8), e16 = error(16);
+    EXPECT_GT(e4 / e8, 3.0) << e4 << " " << e8;
+    EXPECT_GT(e8 / e16, 3.0) << e8 << " " << e16;
+    EXPECT_LT(e16, 1e-4);
+}

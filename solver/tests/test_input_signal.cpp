@@ -54,7 +54,7 @@ TEST(InputHistory, ContinuedStepsAreContinuous) {
     for (int k = 0; k < 20; ++k) {
         const double t = k * step;
         h.record(t, std::sin(5.0 * t));
-        const plate::InputSignal s = h.continueStep(InputMode::Quadratic, step);
+        const plate::InputSignal s = h.continueStep(InputMode::Quadratic, t, step);
         if (k > 0) EXPECT_EQ(s.value, end) << "jump at step " << k;
         const plate::InputSignal target = h.extrapolate(InputMode::Quadratic);
         EXPECT_NEAR(s.at(step), target.at(step), 1e-15);
@@ -62,16 +62,16 @@ TEST(InputHistory, ContinuedStepsAreContinuous) {
     }
     InputHistory held;
     held.record(0.0, 1.0);
-    held.continueStep(InputMode::Hold, step);
+    held.continueStep(InputMode::Hold, 0.0, step);
     held.record(step, 4.0);
-    EXPECT_EQ(held.continueStep(InputMode::Hold, step).value, 4.0);
+    EXPECT_EQ(held.continueStep(InputMode::Hold, step, step).value, 4.0);
 }
 
 TEST(InputHistory, SerializationRoundTripAndDamagedData) {
     InputHistory h;
     for (int k = 0; k < 5; ++k) {
         h.record(0.1 * k, 0.7 * k * k);
-        h.continueStep(InputMode::Quadratic, 0.1);
+        h.continueStep(InputMode::Quadratic, 0.1 * k, 0.1);
     }
     std::vector<double> data;
     h.serialize(data);
@@ -80,7 +80,7 @@ TEST(InputHistory, SerializationRoundTripAndDamagedData) {
     std::vector<double> again;
     back.serialize(again);
     EXPECT_EQ(data, again);
-    EXPECT_EQ(back.continueStep(InputMode::Quadratic, 0.1).d1, h.continueStep(InputMode::Quadratic, 0.1).d1);
+    EXPECT_EQ(back.continueStep(InputMode::Quadratic, 0.4, 0.1).d1, h.continueStep(InputMode::Quadratic, 0.4, 0.1).d1);
 
     std::vector<double> bad = data;
     bad[0] = 4.0;  // more points than kept
@@ -94,6 +94,33 @@ TEST(InputHistory, SerializationRoundTripAndDamagedData) {
     bad = data;
     bad[InputHistory::kSerializedSize - 2] = 0.5;  // the reached flag is 0 or 1
     EXPECT_THROW(InputHistory::deserialize(bad.data()), std::invalid_argument);
+}
+
+// A step that starts after the newest point without a fresh one (an early return, then a step
+// the master did not set the input for): the reconstruction continues the same polynomial — the
+// pieces join into the single step's signal (no kink), where a held value recorded as a new
+// sample would bend the parabola at the restart.
+TEST(InputHistory, AStepWithoutAFreshValueContinuesThePolynomial) {
+    InputHistory whole, split;
+    const double step = 1e-2;
+    const auto z = [](double t) { return 0.09 * std::sin(2.0 * M_PI * 10.0 * t); };
+    for (int k = 0; k < 3; ++k) {
+        whole.record(k * step, z(k * step));
+        split.record(k * step, z(k * step));
+        whole.continueStep(InputMode::Quadratic, k * step, step);
+        split.continueStep(InputMode::Quadratic, k * step, step);
+    }
+    const double t0 = 3 * step, early = 0.37 * step;
+    whole.record(t0, z(t0));
+    split.record(t0, z(t0));
+    const plate::InputSignal one = whole.continueStep(InputMode::Quadratic, t0, step);
+    const plate::InputSignal first = split.continueStep(InputMode::Quadratic, t0, step);
+    split.reached(first.at(early));  // the step ended early
+    const plate::InputSignal rest = split.continueStep(InputMode::Quadratic, t0 + early, step - early);
+    EXPECT_NEAR(rest.value, one.at(early), 1e-16);
+    EXPECT_NEAR(rest.d1, one.d1 + early * one.d2, 1e-12);  // the slope goes on: no kink
+    EXPECT_NEAR(rest.d2, one.d2, 1e-9);
+    EXPECT_NEAR(rest.at(step - early), one.at(step), 1e-16);
 }
 
 }  // namespace
@@ -110,7 +137,7 @@ TEST(InputHistory, ReconstructionStaysBetweenTheBounds) {
     plate::InputSignal s;
     for (int k = 0; k < 3; ++k) {
         h.record(k * step, values[k]);
-        s = h.continueStep(InputMode::Quadratic, step, lower, upper);
+        s = h.continueStep(InputMode::Quadratic, k * step, step, lower, upper);
     }
     for (int i = 0; i <= 100; ++i) {
         const double x = s.at(step * i / 100.0);

@@ -1,0 +1,34 @@
+"""The check every runner makes before a master sees an FMU: the file exists, is readable and
+is an FMU (a zip archive with a modelDescription.xml). A master handed a missing or broken file
+fails far from the cause (libcosim crashed in add_local_slave), so the message comes first, here."""
+
+from __future__ import annotations
+
+import os
+import zipfile
+from pathlib import Path
+
+
+class FMUFileError(FileNotFoundError):
+    """The FMU named is missing, unreadable or not an FMU; the message says which and what to do."""
+
+
+def fmu_file(path) -> Path:
+    """The resolved path of an FMU file (or of a folder holding one extracted), checked."""
+    p = Path(path).resolve()
+    hint = "build it with `bash run.sh` (or scripts/setup.sh), or set PLATEIMPACT_FMU"
+    if not p.exists():
+        raise FMUFileError(f"FMU not found: {p} ({hint})")
+    if p.is_dir():
+        if not (p / "modelDescription.xml").is_file():
+            raise FMUFileError(f"{p} is a folder without modelDescription.xml: not an extracted FMU ({hint})")
+        return p
+    if not os.access(p, os.R_OK):
+        raise FMUFileError(f"FMU not readable: {p} (permissions)")
+    try:
+        with zipfile.ZipFile(p) as archive:
+            if "modelDescription.xml" not in archive.namelist():
+                raise FMUFileError(f"{p} is a zip archive without modelDescription.xml: not an FMU ({hint})")
+    except zipfile.BadZipFile as e:
+        raise FMUFileError(f"{p} is not an FMU (not a zip archive: {e}; {hint})") from None
+    return p

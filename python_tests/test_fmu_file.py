@@ -1,0 +1,42 @@
+"""A missing, unreadable or broken FMU is a clear Python error before any master sees it (a
+fresh machine once handed libcosim a missing file and died in add_local_slave)."""
+
+from __future__ import annotations
+
+import pytest
+
+from plateimpact import PlateImpactFMU
+from plateimpact.cosim import run_libcosim, system_execution
+from plateimpact.fmufile import FMUFileError, fmu_file
+
+
+def test_missing_fmu_is_named_before_any_master(tmp_path, fmu_path):
+    missing = tmp_path / "nowhere" / "PlateImpact.fmu"
+    for call in (
+        lambda: PlateImpactFMU(missing),
+        lambda: run_libcosim(missing, fmu_path, 1e-4, 1e-3),
+        lambda: run_libcosim(fmu_path, missing, 1e-4, 1e-3),
+        lambda: system_execution({"sweep": fmu_path, "shaker": missing, "plate": fmu_path}, {}, "tlm", h=1e-4),
+    ):
+        with pytest.raises(FMUFileError, match="FMU not found: .*nowhere"):
+            call()
+
+
+def test_broken_fmu_files_are_refused_with_the_reason(tmp_path):
+    not_zip = tmp_path / "text.fmu"
+    not_zip.write_text("not an archive")
+    with pytest.raises(FMUFileError, match="not a zip archive"):
+        fmu_file(not_zip)
+    import zipfile
+
+    empty = tmp_path / "empty.fmu"
+    with zipfile.ZipFile(empty, "w") as z:
+        z.writestr("binaries/readme.txt", "x")
+    with pytest.raises(FMUFileError, match="without modelDescription.xml"):
+        fmu_file(empty)
+    with pytest.raises(FMUFileError, match="not an extracted FMU"):
+        fmu_file(tmp_path)
+
+
+def test_a_built_fmu_passes(fmu_path):
+    assert fmu_file(fmu_path) == fmu_path.resolve()
