@@ -283,3 +283,19 @@ def test_tolerances_cover_the_platform_spread_the_suite_accepts(tmp_path):
     for name in ("corner_1", "energy"):
         scale = float(np.max(np.abs(ref[name])))
         assert smoke.tolerances[name] >= 10 * 1e-7 * scale * (1 - 1e-3), name  # the XML keeps 4 digits
+
+
+def test_parameter_sets_are_valid_ssp_and_name_variables_of_the_fmu(tmp_path):
+    """Every SSV validates against SSP 1.0's schema (fmpy's read_ssv) and names parameters the
+    FMU has, with the SSV type the variable's type takes."""
+    from fmpy import read_model_description
+    from fmpy.ssp.ssd import read_ssv
+
+    variables = {v.name: v for v in read_model_description(str(FMU2)).modelVariables}
+    ssvs = [r for r in validate.read_manifest(FMU2) if r.role == "parameter"]
+    assert len(ssvs) == len(references.EXPERIMENTS)
+    for r in ssvs:
+        for p in read_ssv(str(_member(FMU2, r.path)), validate=True).parameters:
+            v = variables[p.name]
+            assert v.causality == "parameter", p.name
+            assert {"Real": "Real", "Integer": "Integer", "Boolean": "Boolean"}[v.type] == p.type, p.name
