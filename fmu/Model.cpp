@@ -72,6 +72,11 @@ const std::vector<ArrayOutput>& Model::arrayOutputs() const {
     return none;
 }
 
+const std::vector<Terminal>& Model::terminals() const {
+    static const std::vector<Terminal> none;
+    return none;
+}
+
 void Model::getArray(const ArrayOutput& a, double*, std::size_t) const {
     throw ModelError(std::string(a.name) + " is not an array output of this model");
 }

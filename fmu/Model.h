@@ -109,6 +109,22 @@ struct ArrayOutput {
     std::vector<fmi2ValueReference> extents;  // value references of StructuralParameters
 };
 
+// FMI 3.0 terminals (terminalsAndIcons/terminalsAndIcons.xml, FMI 3.0 section 2.4.9): a named
+// group of the table's variables that a system tool connects as one. The description writer
+// checks that every member names a variable of the table.
+struct TerminalMember {
+    const char* variableName;  // a variable of the table
+    const char* memberName;  // matched against the partner's (plug, bus)
+    const char* variableKind;  // signal, inflow, outflow or a reverse-DNS kind
+};
+struct Terminal {
+    const char* name;
+    const char* matchingRule;  // plug, bus, sequence, none or a reverse-DNS rule
+    const char* terminalKind;  // reverse-DNS; what it means is the model's documentation
+    const char* description;
+    std::vector<TerminalMember> members;
+};
+
 // A value or call the model rejects; the message names what, the value and what is allowed.
 // The generic layer logs it after the name of the fmi2 function.
 class ModelError : public std::runtime_error {
@@ -158,6 +174,8 @@ public:
     virtual const std::vector<StructuralParameter>& structuralParameters() const;
     virtual const std::vector<ArrayOutput>& arrayOutputs() const;
     virtual void getArray(const ArrayOutput& a, double* out, std::size_t n) const;
+    // FMI 3.0 terminals: none by default.
+    virtual const std::vector<Terminal>& terminals() const;
     // The value of a structural parameter with a value of its own (its start until set; the
     // caller has checked the range). A new instance (fmi3Reset) starts again from the starts.
     double ownStructuralValue(const StructuralParameter& s) const;

@@ -53,9 +53,19 @@ release as an event, exactly on the internal grid (lastSuccessfulTime), the impa
 <li>The array output vertex_displacement holds the deflection at every mesh vertex
 ([vertex_output][vertices_x][vertices_y]); vertices_x = nx + 1 and vertices_y = ny + 1 are views of nx and ny;
 vertex_output = 0 (before initialization) leaves the array empty.</li>
+<li>Terminals (terminalsAndIcons/terminalsAndIcons.xml): <code>clamp</code> (kind
+org.plateimpact.TranslationalFlange, matchingRule bus: base_displacement s, base_velocity v, base_acceleration a
+in, clamp_force f out), <code>armature</code> (the same kind, plug: drive_force f in, clamp_displacement s,
+clamp_velocity v, clamp_acceleration a out) and <code>line</code> (kind org.plateimpact.TransmissionLineEnd,
+matchingRule org.plateimpact.crossed: tlm_wave_in wave_in, tlm_wave_out wave_out, tlm_impedance impedance; one
+end's wave_out feeds the other's wave_in, the impedances are equal). A TranslationalFlange's members connect by
+memberName, each output to the partner's input of the same memberName (all are signals: the connection is
+causal).</li>
 }<li>Outputs are absolute displacements; the energy ledger energy = E0 + energy_input &minus; energy_dissipated
 &minus; energy_damped holds to roundoff.</li>
 </ul>
+<p>Reference experiments to validate this FMU on your platform and master (FMI-LS-REF):
+<a href="fmi-ls-ref.html">fmi-ls-ref.html</a>.</p>
 <h2>Limits: what the FMU refuses</h2>
 <p>Each refusal returns fmiXError and logs what was wrong and the allowed range (category logStatusError).
 Parameters outside the min/max of the table below (poisson_ratio and the obstacles' heights exclude their ends:
@@ -91,6 +101,7 @@ public:
         return plateStructuralParameters();
     }
     const std::vector<fmu::ArrayOutput>& arrayOutputs() const override { return plateArrayOutputs(); }
+    const std::vector<fmu::Terminal>& terminals() const override { return plateTerminals(); }
     void getArray(const fmu::ArrayOutput& a, double* out, std::size_t n) const override {
         if (!simulation_) throw fmu::ModelError("internal error: no simulation to read an array from");
         getPlateArray(*simulation_, a, out, n);

@@ -163,6 +163,10 @@ constexpr double kMaxBaseVelocity = 1e3;  // m/s
 constexpr double kMaxBaseAcceleration = 1e7;  // m/s^2
 
 const std::vector<fmu::Variable>& plateVariables();
+// FMI 3.0 terminals over the table's variables (terminalsAndIcons.xml): the clamp as a vertical
+// translational flange, driven by motion (clamp) or by force (armature), and the transmission
+// line's end (line). The kinds are documented in the model's page (PlateModel.cpp).
+const std::vector<fmu::Terminal>& plateTerminals();
 double getValue(const PlateValues& values, const fmu::Variable& v);
 void setValue(PlateValues& values, const fmu::Variable& v, double x);
 

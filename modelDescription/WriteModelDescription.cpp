@@ -3,8 +3,10 @@
 // interface, so the XML, the binary and the FMU states cannot disagree. Linked with one model
 // binding; the GUID (FMI 3.0: instantiationToken) is the one compiled into it.
 //
-//   write_<Model>_description <2|3> <modelDescription.xml> <index.html> [<name>:<SPDX>:<path> ...]
+//   write_<Model>_description <2|3> <modelDescription.xml> <index.html> [--terminals=<path>]
+//                             [<name>:<SPDX>:<path> ...]
 //
+// --terminals=<path> (FMI 3.0): also terminalsAndIcons.xml from the binding's terminals.
 // The trailing arguments are the licence entries the FMU ships in documentation/licenses/
 // (fmu/CMakeLists.txt): the `license` attribute and the page name them. What the two versions
 // share (metadata, units, log categories, the page) is written once; what differs is an Emitter:
@@ -16,6 +18,7 @@
 // "fmi3" (forVersion), so that neither version names the other's functions.
 #include <algorithm>
 #include <cmath>
+#include <cstdio>
 #include <cstdlib>
 #include <ctime>
 #include <fstream>
@@ -383,18 +386,49 @@ void writeDocumentation(std::ostream& html, const fmu::Model& model, const Emitt
     html << "</ul>\n</body>\n</html>\n";
 }
 
+// terminalsAndIcons/terminalsAndIcons.xml (FMI 3.0 section 2.4.9): the model's terminals, each
+// member checked against the table (a terminal cannot name a variable the FMU does not have).
+void writeTerminals(std::ostream& xml, const fmu::Model& model) {
+    xml << "<?xml version=\"1.0\" encoding=\"UTF-8\"?>\n"
+        << "<!-- Generated at build time from the model binding's terminals\n"
+        << "     (modelDescription/WriteModelDescription.cpp): do not edit. -->\n"
+        << "<fmiTerminalsAndIcons fmiVersion=\"3.0\">\n  <Terminals>\n";
+    for (const fmu::Terminal& t : model.terminals()) {
+        xml << "    <Terminal name=\"" << escape(t.name) << "\" matchingRule=\"" << escape(t.matchingRule)
+            << "\" terminalKind=\"" << escape(t.terminalKind) << "\" description=\"" << escape(t.description)
+            << "\">\n";
+        for (const fmu::TerminalMember& m : t.members) {
+            const bool known = std::any_of(model.variables().begin(), model.variables().end(),
+                                           [&](const Variable& v) { return std::string(v.name) == m.variableName; });
+            if (!known) throw std::runtime_error(std::string("terminal ") + t.name + ": no variable " + m.variableName);
+            xml << "      <TerminalMemberVariable variableName=\"" << escape(m.variableName) << "\" memberName=\""
+                << escape(m.memberName) << "\" variableKind=\"" << escape(m.variableKind) << "\"/>\n";
+        }
+        xml << "    </Terminal>\n";
+    }
+    xml << "  </Terminals>\n</fmiTerminalsAndIcons>\n";
+}
+
 }  // namespace
 
 int main(int argc, char** argv) {
     const std::string versionArg = argc > 1 ? argv[1] : "";
     if (argc < 4 || (versionArg != "2" && versionArg != "3")) {
         std::cerr << "usage: " << argv[0]
-                  << " <2|3> <modelDescription.xml> <documentation/index.html> [<name>:<SPDX>:<path> ...]\n";
+                  << " <2|3> <modelDescription.xml> <documentation/index.html> [--terminals=<terminalsAndIcons.xml>] "
+                     "[<name>:<SPDX>:<path> ...]\n";
         return 2;
     }
     try {
         std::vector<License> licenses;
-        for (int k = 4; k < argc; ++k) licenses.push_back(parseLicense(argv[k]));
+        std::string terminals;  // --terminals=<path>: FMI 3.0 terminalsAndIcons.xml
+        for (int k = 4; k < argc; ++k) {
+            const std::string arg = argv[k];
+            if (arg.rfind("--terminals=", 0) == 0)
+                terminals = arg.substr(12);
+            else
+                licenses.push_back(parseLicense(arg));
+        }
         std::unique_ptr<Emitter> emitter;
         if (versionArg == "2")
             emitter = std::make_unique<Fmi2Emitter>();
@@ -407,6 +441,14 @@ int main(int argc, char** argv) {
         std::ofstream html(argv[3]);
         writeDocumentation(html, *model, *emitter, licenses);
         if (!html) throw std::runtime_error(std::string("cannot write ") + argv[3]);
+        if (!terminals.empty()) {
+            if (versionArg != "3") throw std::runtime_error("terminals are FMI 3.0 only");
+            std::remove(terminals.c_str());  // a model without terminals writes none
+            if (model->terminals().empty()) return 0;
+            std::ofstream out(terminals);
+            writeTerminals(out, *model);
+            if (!out) throw std::runtime_error("cannot write " + terminals);
+        }
     } catch (const std::exception& e) {
         std::cerr << argv[0] << ": " << e.what() << "\n";
         return 1;

@@ -64,9 +64,9 @@ def test_archive_holds_only_the_fmu_files(fmu_path):
         files = [n for n in archive.namelist() if not n.endswith("/")]
     assert "modelDescription.xml" in files
     assert "binaries/linux64/PlateImpact.so" in files
-    assert all(f == "modelDescription.xml" or f.startswith(("binaries/linux64/", "documentation/")) for f in files), (
-        files
-    )
+    # extra/org.fmi-standard.fmi-ls-ref/: the reference experiments (python_tests/test_references.py)
+    allowed = ("binaries/linux64/", "documentation/", "extra/org.fmi-standard.fmi-ls-ref/")
+    assert all(f == "modelDescription.xml" or f.startswith(allowed) for f in files), files
     # FMI 2.0 §2.4: documentation/index.html; the licences of what the binary links statically
     assert "documentation/index.html" in files
     assert "documentation/licenses/CHOLMOD-Core-Cholesky.txt" in files

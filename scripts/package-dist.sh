@@ -47,7 +47,9 @@ package() {
     shift 3
   done
   rm -f "$out"
-  (cd "$stage" && cmake -E tar cf "$out" --format=zip modelDescription.xml binaries documentation)
+  # extra/: the reference experiments; terminalsAndIcons/: FMI 3.0 terminals (both staged by the build)
+  (cd "$stage" && cmake -E tar cf "$out" --format=zip modelDescription.xml binaries documentation \
+    $(ls -d extra terminalsAndIcons 2>/dev/null))
   echo "package-dist.sh: wrote ${out#"$repo"/} ($(ls "$stage/binaries" | tr '\n' ' ')$(($(stat -c %s "$out") / 1024)) KiB)"
 }
 

@@ -47,9 +47,13 @@ function(add_fmu3 model)
   set(licenses ${${model}_LICENSES})
   set(model_description "${out_dir}/${model}.modelDescription.xml")
   set(documentation "${out_dir}/${model}.index.html")
+  # terminalsAndIcons.xml: written only by a model with terminals (fmu::Model::terminals).
+  set(terminals "${out_dir}/${model}.terminalsAndIcons.xml")
   add_custom_command(
     OUTPUT "${model_description}" "${documentation}"
-    COMMAND write_${model}_description 3 "${model_description}" "${documentation}" ${licenses}
+    BYPRODUCTS "${terminals}"
+    COMMAND write_${model}_description 3 "${model_description}" "${documentation}" "--terminals=${terminals}"
+            ${licenses}
     DEPENDS write_${model}_description
     COMMENT "Writing the ${model} FMI 3.0 modelDescription.xml from its table of variables"
     VERBATIM)
@@ -60,7 +64,7 @@ function(add_fmu3 model)
     COMMAND "${CMAKE_COMMAND}" "-DLIBRARY=$<TARGET_FILE:${model}3>" "-DMODEL_IDENTIFIER=${model}"
             "-DMODEL_DESCRIPTION=${model_description}" "-DSTAGING_DIR=${out_dir}/${model}.fmu.d"
             "-DFMU_FILE=${fmu_file}" "-DDOCUMENTATION=${documentation}" "-DLICENSES=${licenses}"
-            "-DPLATFORM=x86_64-linux" -P "${CMAKE_CURRENT_SOURCE_DIR}/cmake/PackageFmu.cmake"
+            "-DPLATFORM=x86_64-linux" "-DTERMINALS=${terminals}" -P "${CMAKE_CURRENT_SOURCE_DIR}/cmake/PackageFmu.cmake"
     DEPENDS ${model}3 "${model_description}" "${documentation}" "${CMAKE_CURRENT_SOURCE_DIR}/cmake/PackageFmu.cmake"
     COMMENT "Packaging ${fmu_file}"
     VERBATIM)

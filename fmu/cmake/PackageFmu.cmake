@@ -79,6 +79,12 @@ if(DEFINED DOCUMENTATION AND EXISTS "${DOCUMENTATION}")
   list(APPEND contents documentation)
 endif()
 
+# TERMINALS (FMI 3.0): terminalsAndIcons/terminalsAndIcons.xml when the model wrote one.
+if(DEFINED TERMINALS AND EXISTS "${TERMINALS}")
+  configure_file("${TERMINALS}" "${STAGING_DIR}/terminalsAndIcons/terminalsAndIcons.xml" COPYONLY)
+  list(APPEND contents terminalsAndIcons)
+endif()
+
 file(REMOVE "${FMU_FILE}")
 execute_process(COMMAND "${CMAKE_COMMAND}" -E tar cf "${FMU_FILE}" --format=zip ${contents}
                 WORKING_DIRECTORY "${STAGING_DIR}" RESULT_VARIABLE zip_result)

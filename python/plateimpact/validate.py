@@ -1,0 +1,330 @@
+"""Validate an FMU against the reference experiments it carries (FMI-LS-REF).
+
+    python -m plateimpact.validate PlateImpact.fmu [--master fmpy|fmusim|all] [--experiment NAME]
+    plateimpact-validate PlateImpact.fmu
+
+Reads extra/org.fmi-standard.fmi-ls-ref/fmi-ls-manifest.xml of any FMU (FMI 2.0 or 3.0),
+checks each listed file's SHA3-256 checksum where the manifest gives one, and replays every
+experiment it can run (role experiment..., type application/x-plateimpact-experiment+xml: see
+documentation/fmi-ls-ref.html of the FMU) through fmpy, and through fmusim when it is found
+(on the PATH, at $FMUSIM, or at .deps/fmusim/bin/fmusim of the repository). Prints pass/fail per
+output with its deviation and tolerance; exit status 0 when everything passed, 1 when something
+failed, 2 when the FMU is missing or carries no manifest.
+"""
+
+from __future__ import annotations
+
+import argparse
+import hashlib
+import os
+import shutil
+import subprocess
+import sys
+import tempfile
+import zipfile
+from dataclasses import dataclass, field
+from pathlib import Path, PurePosixPath
+
+import numpy as np
+
+from .references import CHECKSUM_ANNOTATION, EXPERIMENT_TYPE, MANIFEST, deviation, read_csv, read_ssv, typed
+
+
+class ValidationError(Exception):
+    """The FMU cannot be validated at all (missing, not an FMU, no manifest, broken manifest)."""
+
+
+@dataclass
+class Related:
+    source: str  # as written in the manifest
+    path: str  # inside the FMU archive
+    role: str
+    type: str
+    description: str
+    checksum: str | None  # SHA3-256, hex
+
+
+@dataclass
+class SignalResult:
+    name: str
+    deviation: float
+    tolerance: float
+
+    @property
+    def passed(self):
+        return bool(np.isfinite(self.deviation) and self.deviation <= self.tolerance)
+
+
+@dataclass
+class ExperimentResult:
+    experiment: str
+    master: str
+    role: str
+    signals: list = field(default_factory=list)
+    error: str | None = None
+
+    @property
+    def passed(self):
+        return self.error is None and all(s.passed for s in self.signals)
+
+
+def read_manifest(fmu: Path):
+    """The manifest's Related entries of an FMU (a .fmu file or an extracted directory)."""
+    from lxml import etree
+
+    if not fmu.exists():
+        raise ValidationError(f"FMU not found: {fmu}")
+    try:
+        text = _read(fmu, MANIFEST)
+    except KeyError:
+        raise ValidationError(f"{fmu} carries no FMI-LS-REF manifest ({MANIFEST})") from None
+    except zipfile.BadZipFile:
+        raise ValidationError(f"{fmu} is not an FMU (not a ZIP archive)") from None
+    try:
+        root = etree.fromstring(text)
+    except etree.XMLSyntaxError as e:
+        raise ValidationError(f"{MANIFEST} of {fmu} is not well-formed XML: {e}") from None
+    base = PurePosixPath(MANIFEST).parent
+    out = []
+    for r in root.findall("Related"):
+        source = r.get("source")
+        checksum = None
+        for a in r.findall("Annotations/Annotation"):
+            if a.get("type") == CHECKSUM_ANNOTATION:
+                c = a.find("Checksum")
+                if c is not None and c.get("algorithm", "").upper() == "SHA3-256":
+                    checksum = c.get("value")
+        out.append(
+            Related(
+                source,
+                _normalize(base / source) if "://" not in source else source,
+                r.get("role"),
+                r.get("type", "application/octet-stream"),
+                r.get("description", ""),
+                checksum,
+            )
+        )
+    return out
+
+
+def _normalize(p: PurePosixPath) -> str:
+    parts = []
+    for part in p.parts:
+        if part == "..":
+            if parts:
+                parts.pop()
+        elif part != ".":
+            parts.append(part)
+    return "/".join(parts)
+
+
+def _read(fmu: Path, member: str) -> bytes:
+    if fmu.is_dir():
+        path = fmu / member
+        if not path.is_file():
+            raise KeyError(member)
+        return path.read_bytes()
+    with zipfile.ZipFile(fmu) as z:
+        return z.read(member)
+
+
+def check_checksums(fmu: Path, related):
+    """[(path, ok, message)] for every entry with a checksum."""
+    out = []
+    for r in related:
+        if r.checksum is None:
+            continue
+        try:
+            digest = hashlib.sha3_256(_read(fmu, r.path)).hexdigest()
+        except KeyError:
+            out.append((r.path, False, "listed in the manifest but missing from the FMU"))
+            continue
+        ok = digest == r.checksum.lower()
+        out.append((r.path, ok, "SHA3-256 ok" if ok else f"SHA3-256 {digest} != manifest's {r.checksum}"))
+    return out
+
+
+@dataclass
+class Experiment:
+    name: str
+    role: str
+    start: float
+    stop: float
+    step: float
+    parameters: dict  # name -> (ssv type, text)
+    stimuli: Path | None
+    reference: Path
+    tolerances: dict  # output -> absolute tolerance
+    state: Path | None = None  # a serialized FMU state to start from instead of initializing
+
+
+def load_experiments(fmu: Path, related, workdir: Path):
+    """The runnable experiments (their files extracted to workdir) and the skipped entries."""
+    from lxml import etree
+
+    runnable, skipped = [], []
+    for r in related:
+        if not (r.role or "").startswith("experiment"):
+            continue
+        if r.type != EXPERIMENT_TYPE:
+            skipped.append((r.path, f"experiment of type {r.type}: not a format this validator runs"))
+            continue
+        root = etree.fromstring(_read(fmu, r.path))
+        base = PurePosixPath(r.path).parent
+
+        def extract(source):
+            member = _normalize(base / source)
+            target = workdir / member.replace("/", "__")
+            target.write_bytes(_read(fmu, member))
+            return target
+
+        params = {}
+        for p in root.findall("Parameters"):
+            params.update(read_ssv(extract(p.get("source"))))
+        stim = root.find("Stimuli")
+        refs = root.find("References")
+        init = root.find("InitialState")
+        runnable.append(
+            Experiment(
+                root.get("name"),
+                r.role,
+                float(root.get("startTime", "0")),
+                float(root.get("stopTime")),
+                float(root.get("stepSize")),
+                params,
+                extract(stim.get("source")) if stim is not None else None,
+                extract(refs.get("source")),
+                {s.get("name"): float(s.get("absoluteTolerance")) for s in refs.findall("Signal")},
+                extract(init.get("source")) if init is not None else None,
+            )
+        )
+    return runnable, skipped
+
+
+def find_fmusim():
+    for candidate in (
+        os.environ.get("FMUSIM"),
+        shutil.which("fmusim"),
+        str(Path(__file__).resolve().parents[2] / ".deps/fmusim/bin/fmusim"),
+    ):
+        if candidate and Path(candidate).is_file() and os.access(candidate, os.X_OK):
+            return candidate
+    return None
+
+
+def run_fmpy(fmu: Path, exp: Experiment, variables):
+    from .references import simulate
+
+    start_values = {k: typed(v, kind, variables.get(k)) for k, (kind, v) in exp.parameters.items()}
+    stimuli = read_csv(exp.stimuli) if exp.stimuli else None
+    state = exp.state.read_bytes() if exp.state else None
+    return simulate(fmu, exp.start, exp.stop, exp.step, start_values, stimuli, list(exp.tolerances), fmu_state=state)
+
+
+def run_fmusim(fmusim: str, fmu: Path, exp: Experiment, variables, workdir: Path, fmi_version: str):
+    out = workdir / f"{exp.name}_fmusim.csv"
+    cmd = [fmusim, "--interface-type", "cs", "--start-time", repr(exp.start), "--stop-time", repr(exp.stop)]
+    cmd += ["--output-interval", repr(exp.step), "--output-file", str(out)]
+    for k, (kind, v) in exp.parameters.items():
+        value = typed(v, kind, variables.get(k))
+        if isinstance(value, bool):
+            value = "true" if value else "false"
+        elif isinstance(value, float):
+            value = repr(value)
+        cmd += ["--start-value", k, str(value)]
+    if exp.state:
+        cmd += ["--initial-fmu-state-file", str(exp.state)]
+    if exp.stimuli:
+        cmd += ["--input-file", str(exp.stimuli)]
+    for name in exp.tolerances:
+        cmd += ["--output-variable", name]
+    cmd.append(str(fmu))
+    proc = subprocess.run(cmd, capture_output=True, text=True, timeout=600)
+    if proc.returncode != 0:
+        raise RuntimeError(f"fmusim exited with {proc.returncode}: {(proc.stderr or proc.stdout).strip()[-400:]}")
+    return read_csv(out)
+
+
+def validate(fmu, masters=("fmpy", "fmusim"), only=None, log=print):
+    """Checks and replays; returns (checksum results, skipped, [ExperimentResult])."""
+    from fmpy import read_model_description
+
+    fmu = Path(fmu)
+    related = read_manifest(fmu)
+    sums = check_checksums(fmu, related)
+    md = read_model_description(str(fmu))
+    variables = {v.name: v for v in md.modelVariables}
+    fmusim = find_fmusim() if "fmusim" in masters else None
+    results = []
+    with tempfile.TemporaryDirectory(prefix="plateimpact-validate-") as tmp:
+        work = Path(tmp)
+        experiments, skipped = load_experiments(fmu, related, work)
+        if "fmusim" in masters and fmusim is None:
+            skipped.append(("fmusim", "not found (PATH, $FMUSIM, .deps/fmusim/bin/fmusim): replayed through fmpy only"))
+        for exp in experiments:
+            if only and exp.name not in only:
+                continue
+            reference = read_csv(exp.reference)
+            runners = []
+            if "fmpy" in masters:
+                runners.append(("fmpy", lambda e=exp: run_fmpy(fmu, e, variables)))
+            if fmusim:
+                runners.append(("fmusim", lambda e=exp: run_fmusim(fmusim, fmu, e, variables, work, md.fmiVersion)))
+            for master, run in runners:
+                res = ExperimentResult(exp.name, master, exp.role)
+                try:
+                    result = run()
+                    for name, tol in exp.tolerances.items():
+                        res.signals.append(SignalResult(name, deviation(result, reference, name), tol))
+                except Exception as e:  # a crash of the FMU or the master fails this experiment
+                    res.error = f"{type(e).__name__}: {e}"
+                results.append(res)
+                log(format_result(res))
+    return sums, skipped, results
+
+
+def format_result(res: ExperimentResult) -> str:
+    head = f"{'PASS' if res.passed else 'FAIL'} {res.experiment} ({res.role}, {res.master})"
+    if res.error:
+        return f"{head}: {res.error}"
+    lines = [head]
+    for s in res.signals:
+        lines.append(
+            f"  {'ok  ' if s.passed else 'FAIL'} {s.name:<24} deviation {s.deviation:.3e}  tolerance {s.tolerance:.3e}"
+        )
+    return "\n".join(lines)
+
+
+def main(argv=None):
+    ap = argparse.ArgumentParser(
+        prog="plateimpact-validate", description="Replay the reference experiments an FMU carries (FMI-LS-REF)"
+    )
+    ap.add_argument("fmu", help="the FMU (.fmu file or extracted directory)")
+    ap.add_argument("--master", choices=("fmpy", "fmusim", "all"), default="all")
+    ap.add_argument("--experiment", action="append", help="only this experiment (repeatable)")
+    args = ap.parse_args(argv)
+    masters = ("fmpy", "fmusim") if args.master == "all" else (args.master,)
+    try:
+        sums, skipped, results = validate(args.fmu, masters, args.experiment)
+    except ValidationError as e:
+        print(f"plateimpact-validate: {e}", file=sys.stderr)
+        return 2
+    for path, ok, message in sums:
+        if not ok:
+            print(f"FAIL checksum {path}: {message}")
+    for what, why in skipped:
+        print(f"skipped {what}: {why}")
+    if args.master == "fmusim" and not any(r.master == "fmusim" for r in results):
+        print("plateimpact-validate: fmusim not found", file=sys.stderr)
+        return 2
+    bad_sums = sum(1 for _, ok, _ in sums if not ok)
+    failed = sum(1 for r in results if not r.passed)
+    print(
+        f"{len(results) - failed} passed, {failed} failed ({len(sums) - bad_sums} of {len(sums)} checksums ok, "
+        f"{len(results)} experiment runs)"
+    )
+    return 0 if failed == 0 and bad_sums == 0 and results else 1
+
+
+if __name__ == "__main__":
+    sys.exit(main())
