@@ -371,7 +371,7 @@ def test_fmi3_description_and_page_are_its_own(fmu3):
     [
         ("element", "(1 = argyris, 2 = fvs)"),
         ("base_drive", "(1 = displacement, 2 = velocity, 3 = acceleration, 4 = force, 5 = tlm)"),
-        ("time_scheme", "(1 = newmark, 2 = conserving)"),
+        ("time_scheme", "(1 = newmark, 2 = conserving, 3 = flow)"),
     ],
 )
 def test_switches_are_int32_with_their_items(fmu3, switch, items):

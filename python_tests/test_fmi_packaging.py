@@ -116,3 +116,43 @@ def test_ldd_resolves_everything_into_the_fmu_or_glibc(binaries):
         if GLIBC.match(name):
             continue
         assert Path(path).resolve().parent == folder, f"{name} resolves to {path}, outside the FMU"
+
+
+REPO = Path(__file__).resolve().parent.parent
+
+
+def platforms(fmu):
+    with zipfile.ZipFile(fmu) as z:
+        return {n.split("/")[1] for n in z.namelist() if n.startswith("binaries/") and n.count("/") >= 2}
+
+
+def test_one_packaging_step_ships_every_platform_built_in_either_order():
+    """scripts/package-dist.sh (the end of both cross scripts) assembles the distributed FMUs from
+    every platform binary that exists: run again last (as the win64 script does when it runs after
+    the aarch64 one), the FMI 3.0 FMU keeps aarch64-linux beside x86_64-windows, and the licence
+    texts of the GCC runtime are the native compiler's, never a cross toolchain's."""
+    cross = {
+        "x86_64-windows": REPO / "build-win64" / "fmu" / "fmi3" / "PlateImpact.dll",
+        "aarch64-linux": REPO / "build-aarch64" / "fmu" / "fmi3" / "PlateImpact.so",
+    }
+    built = {name for name, path in cross.items() if path.is_file()}
+    if not built:
+        pytest.skip("no cross build here (test.sh's win64 and aarch64 stages make them)")
+    subprocess.run(["bash", str(REPO / "scripts" / "package-dist.sh")], check=True, capture_output=True)
+    fmi3 = platforms(REPO / "build" / "dist" / "fmi3" / "PlateImpact.fmu")
+    assert fmi3 == {"x86_64-linux"} | built
+    if "x86_64-windows" in built:
+        assert platforms(REPO / "build" / "dist" / "PlateImpact.fmu") == {"linux64", "win64"}
+
+
+def test_gcc_runtime_licence_is_that_of_the_linked_libstdcxx(fmu_path):
+    """The GCC runtime's licence text is the copyright file of the Debian package that owns the
+    libstdc++ g++ links (whatever cross toolchains were installed, and when)."""
+    library = subprocess.run(["g++", "-print-file-name=libstdc++.a"], capture_output=True, text=True, check=True)
+    owner = subprocess.run(
+        ["dpkg-query", "--search", os.path.realpath(library.stdout.strip())], capture_output=True, text=True, check=True
+    )
+    package = re.match(r"([^:,]+)", owner.stdout).group(1)
+    want = Path(f"/usr/share/doc/{package}/copyright").read_bytes()
+    with zipfile.ZipFile(fmu_path) as z:
+        assert z.read("documentation/licenses/GCC-runtime.txt") == want

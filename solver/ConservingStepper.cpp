@@ -83,6 +83,9 @@ ConservingStepper::ConservingStepper(std::shared_ptr<const CondensedPlate> plate
     buildOperator(full_, dt);
     if (substeps_ > 0) {
         buildOperator(sub_, dt / substeps_);
+        inverseOmega2_ = c.omega2.cwiseInverse();
+        dampedModes_ = (damping_.array() != 0.0).any();
+        for (Eigen::VectorXd* v : {&slope_, &offset_, &u0_, &ud0_, &u1_, &ud1_}) v->resize(m);
         for (Eigen::VectorXd* v : {&flow11_, &flow12_, &flow21_, &flow22_}) v->resize(m);
         for (Eigen::Index k = 0; k < m; ++k)
             modalFlow(c.omega2[k], damping_[k], dt, flow11_[k], flow12_[k], flow21_[k], flow22_[k]);
@@ -247,8 +250,9 @@ void ConservingStepper::midpointStep(double zNext, double pNext) {
     qNext_.noalias() = s.q + dq_;
     iterations_ = solves_ = 0;
     kkt_ = 0.0;
-    bool contact = false;
+    bool contact = false, rowsLooked = false;
     if (obstacles_.any() && c.rows() > 0 && (s.contactRows > 0 || !farFromObstacles(zNext, pNext))) {
+        rowsLooked = true;
         gatherRows(qNext_, pNext, zNext, r1_);
         double margin = std::numeric_limits<double>::infinity();
         for (Eigen::Index i = 0; i < r1_.size(); ++i)
@@ -267,7 +271,11 @@ void ConservingStepper::midpointStep(double zNext, double pNext) {
     multiplierUsed_ = contact;
     if (!forceNextZero_) forceNext_.setZero();
     if (contact) {
-        gatherRows(s.q, s.p, s.z, r0_);
+        // The rows at the start: those the last sub-step ended with (time_scheme = flow), else G q.
+        if (rowsCachedValid_)
+            r0_ = rowsCached_;
+        else
+            gatherRows(s.q, s.p, s.z, r0_);
         drFree_ = r1_ - r0_;
         discreteGradient(s.boundary);
         // Δq = Δq_free + ½Δt² H⁻¹ Gᵀ Λ.
@@ -313,6 +321,11 @@ void ConservingStepper::midpointStep(double zNext, double pNext) {
         st.contactImpulseSum[k] += sums[k] * dt;
     }
     commit(zNext, pNext, work, damped, iterations_);
+    // time_scheme = flow: the rows at this step's end for the next sub-step's start (r1 is G q⁺ + …
+    // when the rows were looked at, r0 + Δr after a contact solve); the conserving scheme always
+    // recomputes them (its results stay what they were).
+    rowsCachedValid_ = substeps_ > 0 && rowsLooked;
+    if (rowsCachedValid_) rowsCached_ = r1_;
 }
 
 // time_scheme = flow (docs/theory.md §21). Over a step the base moves linearly (ż = v = Δz/Δt, the
@@ -329,17 +342,32 @@ void ConservingStepper::flowStep(double zNext, double pNext) {
     const ConservingState& s = state_;
     checkInputs(zNext, pNext);
     const double h = dt_, dz = zNext - s.z, v = dz / h, pDot = (pNext - s.p) / h, pMid = 0.5 * (s.p + pNext);
-    bool damped = false;
-    for (Eigen::Index k = 0; k < c.omega2.size(); ++k) {
-        const double w2 = c.omega2[k], ck = damping_[k], f = c.modalLoad[k];
-        const double slope = f * pDot / w2, offset = (f * s.p - ck * slope) / w2;  // q_p = offset + slope·s
-        const double u0 = s.q[k] - offset, ud0 = s.momentum[k] - c.modalBaseInertia[k] * v - slope;
-        const double u1 = flow11_[k] * u0 + flow12_[k] * ud0, ud1 = flow21_[k] * u0 + flow22_[k] * ud0;
-        qNext_[k] = u1 + offset + slope * h;
-        momentumNext_[k] = ud1 + slope + c.modalBaseInertia[k] * v;
-        qIntegral_[k] = -((ud1 - ud0) + ck * (u1 - u0)) / w2 + (offset + 0.5 * slope * h) * h;
-        damped = damped || ck != 0.0;
+    // (F.1) for every mode at once: q_p = offset + slope·s, u = q − q_p flows by Φ.
+    const auto F = c.modalLoad.array();
+    const auto b = c.modalBaseInertia.array();
+    const auto invW2 = inverseOmega2_.array();
+    const auto damping = damping_.array();
+    auto slope = slope_.array();
+    auto offset = offset_.array();
+    auto u0 = u0_.array();
+    auto ud0 = ud0_.array();
+    auto u1 = u1_.array();
+    auto ud1 = ud1_.array();
+    if (pDot == 0.0) {
+        slope.setZero();
+        offset = (s.p * F) * invW2;
+    } else {
+        slope = (pDot * F) * invW2;
+        offset = (s.p * F - damping * slope) * invW2;
     }
+    u0 = s.q.array() - offset;
+    ud0 = s.momentum.array() - v * b - slope;
+    u1 = flow11_.array() * u0 + flow12_.array() * ud0;
+    ud1 = flow21_.array() * u0 + flow22_.array() * ud0;
+    qNext_.array() = u1 + offset + h * slope;
+    momentumNext_.array() = ud1 + slope + v * b;
+    qIntegral_.array() = -((ud1 - ud0) + damping * (u1 - u0)) * invW2 + h * (offset + (0.5 * h) * slope);
+    const bool damped = dampedModes_;
     iterations_ = solves_ = 0;
     kkt_ = 0.0;
     // The contact check of the midpoint step (its free-flight bound included).
@@ -357,6 +385,10 @@ void ConservingStepper::flowStep(double zNext, double pNext) {
         zCheck_ = zNext;
         pCheck_ = pNext;
         margin_ = margin;
+        rowsCached_ = r1_;
+        rowsCachedValid_ = true;
+    } else {
+        rowsCachedValid_ = false;
     }
     if (!std::isfinite(momentumNext_.sum()) || !std::isfinite(qNext_.sum())) {
         std::ostringstream msg;
@@ -368,7 +400,8 @@ void ConservingStepper::flowStep(double zNext, double pNext) {
     if (!forceNextZero_) forceNext_.setZero();
     dq_.noalias() = qNext_ - s.q;
     // The step's mean forces on the massive modes: F p̄ − Ω² ∫q/Δt − c Δq/Δt.
-    rhs_.noalias() = pMid * c.modalLoad - c.omega2.cwiseProduct(qIntegral_) / h - damping_.cwiseProduct(dq_) / h;
+    const double perStep = 1.0 / h;
+    rhs_.array() = pMid * F - perStep * (c.omega2.array() * qIntegral_.array() + damping * dq_.array());
     const double loadWork =
         pNext * c.modalLoad.dot(qNext_) - s.p * c.modalLoad.dot(s.q) - pDot * c.modalLoad.dot(qIntegral_);
     const double onRigid = c.modalBaseInertia.dot(rhs_);  // clamp + load on the plate (no contact)
@@ -585,6 +618,7 @@ void ConservingStepper::refreshDerived() {
     forceNextZero_ = true;
     multiplier_.setZero();
     multiplierUsed_ = false;
+    rowsCachedValid_ = false;
 }
 
 // The flat form for FMU states: a format tag, the sizes, then every member in one order, written

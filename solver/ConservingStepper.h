@@ -120,6 +120,12 @@ private:
     int substeps_ = 0;  // m; 0: every step is a midpoint step (time_scheme = conserving)
     // The exact flow over Δt of each mode's u = q − q_particular (§21): (u, u̇)⁺ = Φ (u, u̇).
     Eigen::VectorXd flow11_, flow12_, flow21_, flow22_;
+    Eigen::VectorXd inverseOmega2_;  // 1/ω²
+    bool dampedModes_ = false;  // some c_k ≠ 0
+    Eigen::VectorXd slope_, offset_, u0_, ud0_, u1_, ud1_;  // the exact step's buffers
+    Eigen::VectorXd rowsCached_;  // time_scheme = flow: the rows at the end of the last (sub-)step
+    bool rowsCachedValid_ = false;
+
     Eigen::MatrixXd endMatrix_;  // D
     std::unique_ptr<ContactColumns> endColumns_;
     std::unique_ptr<BoxQP> endQP_;
