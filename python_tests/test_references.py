@@ -274,15 +274,15 @@ def test_distributed_fmus_carry_the_same_references(dist):
 
 
 def test_tolerances_cover_the_platform_spread_the_suite_accepts(tmp_path):
-    """test_aarch64 accepts aarch64 within 1e-7 of the scale of corner_1 and energy on the default
+    """test_aarch64 accepts aarch64 within 1e-6 of the scale of corner_1 and energy on the default
     scene (measured 4.5e-8 and 1.1e-7): the smoke test's tolerances on the same scene are at
-    least 10 times that bound, so an aarch64 replay near that bound passes here too."""
+    least 10 times that bound, so an aarch64 replay that test accepts passes here too."""
     experiments, _ = validate.load_experiments(FMU2, validate.read_manifest(FMU2), tmp_path)
     smoke = next(e for e in experiments if e.name == "smoke")
     ref = references.read_csv(smoke.reference)
     for name in ("corner_1", "energy"):
         scale = float(np.max(np.abs(ref[name])))
-        assert smoke.tolerances[name] >= 10 * 1e-7 * scale * (1 - 1e-3), name  # the XML keeps 4 digits
+        assert smoke.tolerances[name] >= 10 * 1e-6 * scale * (1 - 1e-3), name  # the XML keeps 4 digits
 
 
 def test_parameter_sets_are_valid_ssp_and_name_variables_of_the_fmu(tmp_path):

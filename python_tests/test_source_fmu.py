@@ -27,6 +27,9 @@ def test_sources_build_description_and_licences():
     assert not any(n.startswith("binaries/") for n in names)
     assert {"modelDescription.xml", "sources/buildDescription.xml", "sources/CMakeLists.txt"} <= names
     assert 'fmiVersion="3.0"' in z.read("modelDescription.xml").decode()
+    from fmpy.validation import validate_fmu
+
+    assert validate_fmu(str(SOURCE_FMU)) == []
     schema = etree.XMLSchema(file=str(Path(fmpy.__file__).parent / "schema" / "fmi3" / "fmi3BuildDescription.xsd"))
     root = etree.fromstring(z.read("sources/buildDescription.xml"))
     assert schema.validate(root), schema.error_log

@@ -24,11 +24,11 @@ How a reference and its tolerances are made (`generate`):
      reference, at least FLOOR x the output's scale (max |reference|) and never below TINY.
 What FLOOR covers, measured (never bit-identity):
   - masters: fmusim against fmpy on these experiments, at most 4e-16 of an output's scale (its
-    CSV's last digit) and 5e-3 of the tolerance (tools/reference_spreads.py);
+    CSV's last digit) and 7.3e-7 of a tolerance (tools/reference_spreads.py);
   - platforms: win64 against linux64 bit for bit on the same input bits (python_tests/
     test_win64.py); aarch64 against x86-64 on the default scene for 0.1 s at most 4.5e-8
     (corner_1) and 1.1e-7 (energy) of the output's scale (the C masters of python_tests/
-    test_aarch64.py, main of 2026-11-25; 1.3e-8 and 3.0e-8 before its portable sine), which the
+    test_aarch64.py, main of 2026-11-25; 1.3e-8 and 3.0e-8 before issue 31; the cause: Eigen's NEON FMA), which the
     rounding-level noise of (b) does not reach (3e-10 on the smoke test): FLOOR = 1e-5 is 88 x
     that largest platform spread;
   - CPUs: the one CPU-dependent path (the modal kernel's x86-64-v3 clone, solver/Kernels.h) runs
