@@ -231,6 +231,26 @@ bool ConservingStepper::farFromObstacles(double zNext, double pNext) {
     return moved + 1e-12 < margin_;
 }
 
+// After a trial step to (qNext_, zNext, pNext): Skipped while the free-flight bound holds; else the
+// rows r1_ at the trial's end are looked at — Contact when a row is held at the start or past an
+// obstacle at the end, Free otherwise (the bound restarts from this look).
+ConservingStepper::Look ConservingStepper::lookAtRows(double zNext, double pNext) {
+    const ConservingState& s = state_;
+    if (!obstacles_.any() || plate_->rows() == 0 || (s.contactRows == 0 && farFromObstacles(zNext, pNext)))
+        return Look::Skipped;
+    gatherRows(qNext_, pNext, zNext, r1_);
+    double margin = std::numeric_limits<double>::infinity();
+    for (Eigen::Index i = 0; i < r1_.size(); ++i)
+        margin = std::min(margin, std::min(r1_[i] - obstacles_.lower, obstacles_.upper - r1_[i]));
+    margin_ = -1.0;
+    if (s.contactRows > 0 || margin < 0.0) return Look::Contact;
+    qCheck_ = qNext_;
+    zCheck_ = zNext;
+    pCheck_ = pNext;
+    margin_ = margin;
+    return Look::Free;
+}
+
 void ConservingStepper::step(double zNext, double pNext) {
     if (substeps_ > 0)
         flowStep(zNext, pNext);
@@ -250,22 +270,8 @@ void ConservingStepper::midpointStep(double zNext, double pNext) {
     qNext_.noalias() = s.q + dq_;
     iterations_ = solves_ = 0;
     kkt_ = 0.0;
-    bool contact = false, rowsLooked = false;
-    if (obstacles_.any() && c.rows() > 0 && (s.contactRows > 0 || !farFromObstacles(zNext, pNext))) {
-        rowsLooked = true;
-        gatherRows(qNext_, pNext, zNext, r1_);
-        double margin = std::numeric_limits<double>::infinity();
-        for (Eigen::Index i = 0; i < r1_.size(); ++i)
-            margin = std::min(margin, std::min(r1_[i] - obstacles_.lower, obstacles_.upper - r1_[i]));
-        contact = s.contactRows > 0 || margin < 0.0;
-        margin_ = -1.0;
-        if (!contact) {
-            qCheck_ = qNext_;
-            zCheck_ = zNext;
-            pCheck_ = pNext;
-            margin_ = margin;
-        }
-    }
+    const Look look = lookAtRows(zNext, pNext);
+    const bool contact = look == Look::Contact, rowsLooked = look != Look::Skipped;
     // The contact buffers are zero in free flight: cleared only when the last use left them not.
     if (multiplierUsed_) multiplier_.setZero();
     multiplierUsed_ = contact;
@@ -371,25 +377,13 @@ void ConservingStepper::flowStep(double zNext, double pNext) {
     iterations_ = solves_ = 0;
     kkt_ = 0.0;
     // The contact check of the midpoint step (its free-flight bound included).
-    if (obstacles_.any() && c.rows() > 0 && (s.contactRows > 0 || !farFromObstacles(zNext, pNext))) {
-        gatherRows(qNext_, pNext, zNext, r1_);
-        double margin = std::numeric_limits<double>::infinity();
-        for (Eigen::Index i = 0; i < r1_.size(); ++i)
-            margin = std::min(margin, std::min(r1_[i] - obstacles_.lower, obstacles_.upper - r1_[i]));
-        margin_ = -1.0;
-        if (s.contactRows > 0 || margin < 0.0) {
-            substeps(zNext, pNext);
-            return;
-        }
-        qCheck_ = qNext_;
-        zCheck_ = zNext;
-        pCheck_ = pNext;
-        margin_ = margin;
-        rowsCached_ = r1_;
-        rowsCachedValid_ = true;
-    } else {
-        rowsCachedValid_ = false;
+    const Look look = lookAtRows(zNext, pNext);
+    if (look == Look::Contact) {
+        substeps(zNext, pNext);
+        return;
     }
+    rowsCachedValid_ = look == Look::Free;
+    if (rowsCachedValid_) rowsCached_ = r1_;
     if (!std::isfinite(momentumNext_.sum()) || !std::isfinite(qNext_.sum())) {
         std::ostringstream msg;
         msg << "the step to t = " << double(s.step + 1) * h << " produced a non-finite displacement";

@@ -103,6 +103,8 @@ private:
     void substeps(double zNext, double pNext);
     void checkInputs(double zNext, double pNext) const;
     bool farFromObstacles(double zNext, double pNext);
+    enum class Look { Skipped, Free, Contact };
+    Look lookAtRows(double zNext, double pNext);  // the contact check after a trial step
     void gatherRows(const Eigen::VectorXd& q, double p, double z, Eigen::VectorXd& r) const;
     void applyW2(const Eigen::VectorXd& v, Eigen::VectorXd& out);
     void discreteGradient(double psi0);  // Λ into multiplier_, from r0_, drFree_
