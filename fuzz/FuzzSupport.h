@@ -8,8 +8,8 @@
 #include <cstdint>
 #include <limits>
 
-#include "Model.h"
-#include "PlateVariables.h"
+#include "core/Model.h"
+#include "binding/PlateVariables.h"
 #include "fmi2Functions.h"
 
 namespace fuzz {

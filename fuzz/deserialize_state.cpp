@@ -9,13 +9,13 @@
 
 #include "FuzzSupport.h"
 
-// xxHash, as fmu/StateFormat.cpp uses it (the checksum the harness repairs).
+// xxHash, as fmu/core/StateFormat.cpp uses it (the checksum the harness repairs).
 #define XXH_INLINE_ALL
 #include <xxhash.h>
 
 namespace {
 
-constexpr std::size_t kChecksumOffset = 72, kHeaderBytes = 80;  // fmu/StateFormat.h
+constexpr std::size_t kChecksumOffset = 72, kHeaderBytes = 80;  // fmu/core/StateFormat.h
 
 // A valid header (this build's) around `values`, with the checksum the decoder expects.
 std::vector<fmi2Byte> withHeader(const std::uint8_t* values, std::size_t size, std::vector<fmi2Byte> header) {

@@ -1,5 +1,5 @@
 // Writes a model's modelDescription.xml and documentation/index.html, FMI 2.0 or FMI 3.0, from
-// its table of variables (fmu/Model.h), at build time: the table is the one source of the
+// its table of variables (fmu/core/Model.h), at build time: the table is the one source of the
 // interface, so the XML, the binary and the FMU states cannot disagree. Linked with one model
 // binding; the GUID (FMI 3.0: instantiationToken) is the one compiled into it.
 //
@@ -27,8 +27,8 @@
 #include <string>
 #include <vector>
 
-#include "Fmi3Interface.h"
-#include "Model.h"
+#include "fmi3/Fmi3Interface.h"
+#include "core/Model.h"
 #include "XmlText.h"
 
 #if !defined(PLATEIMPACT_VERSION) || !defined(PLATEIMPACT_AUTHOR) || !defined(PLATEIMPACT_LICENSE) || \
@@ -324,7 +324,7 @@ void writeDescription(std::ostream& xml, const fmu::Model& model, const Emitter&
         xml << "  </UnitDefinitions>\n\n";
     }
 
-    // Every category fmu::Instance logs under (fmu/Instance.h, LogCategory).
+    // Every category fmu::Instance logs under (fmu/core/Instance.h, LogCategory).
     const std::string v = std::to_string(emitter.version);
     xml << "  <LogCategories>\n"
         << "    <Category name=\"logStatusError\" description=\"Messages explaining an fmi" << v << "Error or fmi" << v

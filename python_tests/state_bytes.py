@@ -1,4 +1,4 @@
-"""The serialized FMU-state layout the tests patch (fmu/StateFormat.h): an 80-byte header
+"""The serialized FMU-state layout the tests patch (fmu/core/StateFormat.h): an 80-byte header
 whose bytes 72..79 hold the XXH64 checksum of all other bytes, then the values as doubles."""
 
 import struct

@@ -6,7 +6,7 @@ force) and its transmission-line end (base_drive = tlm) with Shaker.fmu's (coupl
 - FMU states continue bit for bit with the armature;
 - the co-simulated system through the line keeps its energy through impacts in libcosim's fixed
   step: |coupling error| <= 1e-3 of the drive work on the 1 s impacting run with a 20 kg armature
-  (examples/shaker.py --quick), the line's energy in transit counted as stored;
+  (demos/shaker.py --quick), the line's energy in transit counted as stored;
 - bad input is refused with the parameter named.
 """
 
@@ -89,7 +89,7 @@ def test_armature_state_continues_bit_for_bit(fmu_path):
 @pytest.fixture(scope="module")
 def example():
     pytest.importorskip("libcosimpy.CosimExecution")
-    spec = importlib.util.spec_from_file_location("shaker_example", REPO / "examples" / "shaker.py")
+    spec = importlib.util.spec_from_file_location("shaker_example", REPO / "demos" / "shaker.py")
     module = importlib.util.module_from_spec(spec)
     spec.loader.exec_module(module)
     return module
@@ -112,14 +112,14 @@ def test_line_coupling_keeps_the_energy_through_impacts(fmu_path, example):
 
 
 def test_line_coupling_in_fmpy_ssp_master(fmu_path, example):
-    """The same system written as an SSP file (plateimpact.cosim.system_ssd) and run by fmpy's
+    """The same system written as an SSP file (demos/cosim.py) and run by fmpy's
     SSP master, the other fixed-step master of issue 27: the energy closes as in libcosim, and
     the two masters give the same run. Not bit for bit: fmpy adds h to its time at every step
     where libcosim counts integer nanoseconds, so the sweep's signal differs in the last bits.
     Over the first 0.5 s (two impacts) measured 2.3e-12 (corner_1), 1.9e-10 (clamp force, through
     the impacts), 2.1e-12 (armature) of each quantity's scale; bounded at 1e-8, far below the
     line's own deviation from the reference (percent)."""
-    from plateimpact.cosim import run_system, run_system_fmpy_ssp
+    from cosim import run_system, run_system_fmpy_ssp
 
     q = example.QUICK
     paths = example.fmus(fmu_path)

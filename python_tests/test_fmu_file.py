@@ -4,9 +4,9 @@ fresh machine once handed libcosim a missing file and died in add_local_slave)."
 from __future__ import annotations
 
 import pytest
+from cosim import run_libcosim, system_execution
 
 from plateimpact import PlateImpactFMU
-from plateimpact.cosim import run_libcosim, system_execution
 from plateimpact.fmufile import FMUFileError, fmu_file
 
 

@@ -179,4 +179,4 @@ def test_bad_forces_and_steps_are_refused(shaker_fmu):
     shaker.fmu.freeInstance()  # after fmi2Error: only free, reset or set a state
 
 
-# -- the two-way system through libcosimpy: python_tests/test_carrier.py (examples/shaker.py) ------
+# -- the two-way system through libcosimpy: python_tests/test_carrier.py (demos/shaker.py) ------

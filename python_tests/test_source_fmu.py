@@ -36,8 +36,8 @@ def test_sources_build_description_and_licences():
     listed = [f.get("name") for f in root.iter("SourceFile")]
     assert listed and all(f"sources/{f}" in names for f in listed)
     assert (
-        "sources/plateimpact/fmu/fmi3Functions.cpp" in names
-        and "sources/plateimpact/fmu/fmi2Functions.cpp" not in names
+        "sources/plateimpact/fmu/fmi3/fmi3Functions.cpp" in names
+        and "sources/plateimpact/fmu/fmi2/fmi2Functions.cpp" not in names
     )
     for include in (i.get("name") for i in root.iter("IncludeDirectory")):
         assert any(n.startswith(f"sources/{include}/") for n in names), include

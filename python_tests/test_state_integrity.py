@@ -1,5 +1,5 @@
 """Integrity of saved FMU states: a serialized state carries an XXH64 checksum of its bytes
-(fmu/StateFormat.h), verified before anything is decoded. Every single-bit flip of a small
+(fmu/core/StateFormat.h), verified before anything is decoded. Every single-bit flip of a small
 state, and 10 000 random single-bit flips of the default plate's state, must be refused with a
 message naming what failed; the instance stays usable (a good state restores it and the run
 continues bit-identically)."""

@@ -12,6 +12,7 @@
 
 from pathlib import Path
 
+import cosim
 import numpy as np
 import pytest
 from fmpy import extract, read_model_description
@@ -19,7 +20,6 @@ from fmpy.fmi1 import FMICallException
 from fmpy.fmi2 import FMU2Slave
 from fmpy.validation import validate_fmu
 
-from plateimpact import cosim
 from plateimpact.scenes import AMPLITUDE, DT, errors, run_derivatives
 
 REPO = Path(__file__).resolve().parent.parent
@@ -95,9 +95,7 @@ def test_coupled_system_reaches_the_held_input_accuracy(sweep_fmu, fmu_path, mas
     if master == "libcosimpy (API)":
         run = cosim.run_libcosim(sweep_fmu, fmu_path, h, stop)
     else:
-        ssp = cosim.make_ssp(
-            sweep_fmu, fmu_path, tmp_path / "SineSweepPlate.ssp", REPO / "examples" / "system_model.ssd"
-        )
+        ssp = cosim.make_ssp(sweep_fmu, fmu_path, tmp_path / "SineSweepPlate.ssp", REPO / "demos" / "system_model.ssd")
         run = (cosim.run_libcosim_ssp if "libcosim" in master else cosim.run_fmpy_ssp)(ssp, h, stop)
     reference = run_derivatives(fmu_path, "smooth", DT, stop)
     before, _ = errors(run, reference, h, "smooth")

@@ -132,7 +132,7 @@ def test_instance_lifecycle_is_clean_under_memcheck(valgrind, driver, unzipped_f
 def test_unloading_the_fmu_is_clean_under_memcheck(valgrind, driver, unzipped_fmu):
     """The same, and the driver unloads PlateImpact.so at the end (dlclose, as fmpy's
     freeInstance does): memory the library allocated at load time must be freed at unload —
-    including the statically linked libstdc++'s emergency EH pool (fmu/RuntimeRelease.cpp)."""
+    including the statically linked libstdc++'s emergency EH pool (fmu/core/RuntimeRelease.cpp)."""
     proc = memcheck(valgrind, driver, unzipped_fmu)
     report = proc.stderr
     assert "fmu_driver: all checks passed" in proc.stdout, proc.stdout + report[-4000:]

@@ -1,10 +1,10 @@
 #!/usr/bin/env bash
 # The code style, checked (test.sh runs it; fix with --fix): clang-format (.clang-format) on the
-# C++ and C sources but the vendored FMI headers (fmu/fmi2/, fmu/fmi3/), ruff (ruff.toml) on the Python.
+# C++ and C sources but the vendored FMI headers (fmu/headers/), ruff (ruff.toml) on the Python.
 set -euo pipefail
 repo="$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)"
 cd "$repo"
-mapfile -t sources < <(git ls-files '*.cpp' '*.h' '*.c' | grep -v -e '^fmu/fmi2/' -e '^fmu/fmi3/')
+mapfile -t sources < <(git ls-files '*.cpp' '*.h' '*.c' | grep -v -e '^fmu/headers/')
 if [ "${1:-}" = "--fix" ]; then
   clang-format -i "${sources[@]}"
   .venv/bin/ruff check --fix --quiet .

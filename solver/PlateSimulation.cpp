@@ -6,18 +6,18 @@
 #include <cmath>
 #include <sstream>
 
-#include "Assembly.h"
-#include "BoxQP.h"
-#include "SparseCholesky.h"
-#include "ConservingEngine.h"
-#include "FullOrderPlate.h"
-#include "ModalPlate.h"
-#include "NewmarkContactStepper.h"
-#include "NewmarkEngine.h"
-#include "PortableMath.h"
-#include "SingularMass.h"
-#include "Spectrum.h"
-#include "StaticEquilibrium.h"
+#include "fe/Assembly.h"
+#include "plate/BoxQP.h"
+#include "plate/SparseCholesky.h"
+#include "schemes/ConservingEngine.h"
+#include "plate/FullOrderPlate.h"
+#include "plate/ModalPlate.h"
+#include "schemes/NewmarkContactStepper.h"
+#include "schemes/NewmarkEngine.h"
+#include "base/PortableMath.h"
+#include "fe/SingularMass.h"
+#include "plate/Spectrum.h"
+#include "plate/StaticEquilibrium.h"
 
 namespace plate {
 

@@ -10,10 +10,10 @@
 #include <vector>
 
 #include "InputSignal.h"
-#include "PlateOutputs.h"
-#include "Obstacles.h"
-#include "PlateParameters.h"
-#include "ResourceEstimate.h"
+#include "schemes/PlateOutputs.h"
+#include "plate/Obstacles.h"
+#include "plate/PlateParameters.h"
+#include "plate/ResourceEstimate.h"
 
 namespace plate {
 

@@ -7,9 +7,9 @@
 # Cross builds (win64, aarch64) make only the shared object (target <Model>3); the scripts
 # add it to the FMU (scripts/build-win64.sh, scripts/build-aarch64.sh).
 
-add_library(fmu_layer3 OBJECT Instance.cpp StateFormat.cpp Model.cpp fmi3Functions.cpp)
-target_include_directories(fmu_layer3 PUBLIC "${CMAKE_CURRENT_SOURCE_DIR}" "${CMAKE_CURRENT_SOURCE_DIR}/fmi2"
-                                             "${CMAKE_CURRENT_SOURCE_DIR}/fmi3")
+add_library(fmu_layer3 OBJECT core/Instance.cpp core/StateFormat.cpp core/Model.cpp fmi3/fmi3Functions.cpp)
+target_include_directories(fmu_layer3 PUBLIC "${CMAKE_CURRENT_SOURCE_DIR}" "${CMAKE_CURRENT_SOURCE_DIR}/headers/fmi2"
+                                             "${CMAKE_CURRENT_SOURCE_DIR}/headers/fmi3")
 target_compile_options(fmu_layer3 PRIVATE -Wall -Wextra)
 if(CMAKE_CROSSCOMPILING)
   # xxHash is header-only: the host's (Debian's libxxhash-dev) serves the cross build.
@@ -33,10 +33,10 @@ function(add_fmu3 model)
     return()
   endif()
   set_target_properties(${model}3 PROPERTIES BUILD_WITH_INSTALL_RPATH ON INSTALL_RPATH "$ORIGIN"
-    LINK_DEPENDS "${CMAKE_CURRENT_SOURCE_DIR}/exports3.map")
+    LINK_DEPENDS "${PLATEIMPACT_FMU_DIR}/fmi3/exports.map")
   target_link_options(${model}3 PRIVATE -static-libstdc++ -static-libgcc -Wl,--disable-new-dtags
-    -Wl,--exclude-libs,ALL "-Wl,--version-script=${CMAKE_CURRENT_SOURCE_DIR}/exports3.map" -Wl,-z,defs)
-  target_sources(${model}3 PRIVATE RuntimeRelease.cpp)
+    -Wl,--exclude-libs,ALL "-Wl,--version-script=${PLATEIMPACT_FMU_DIR}/fmi3/exports.map" -Wl,-z,defs)
+  target_sources(${model}3 PRIVATE "${PLATEIMPACT_FMU_DIR}/core/RuntimeRelease.cpp")
   if(CMAKE_CROSSCOMPILING)
     return()
   endif()
@@ -64,12 +64,11 @@ function(add_fmu3 model)
     COMMAND "${CMAKE_COMMAND}" "-DLIBRARY=$<TARGET_FILE:${model}3>" "-DMODEL_IDENTIFIER=${model}"
             "-DMODEL_DESCRIPTION=${model_description}" "-DSTAGING_DIR=${out_dir}/${model}.fmu.d"
             "-DFMU_FILE=${fmu_file}" "-DDOCUMENTATION=${documentation}" "-DLICENSES=${licenses}"
-            "-DPLATFORM=x86_64-linux" "-DTERMINALS=${terminals}" -P "${CMAKE_CURRENT_SOURCE_DIR}/cmake/PackageFmu.cmake"
-    DEPENDS ${model}3 "${model_description}" "${documentation}" "${CMAKE_CURRENT_SOURCE_DIR}/cmake/PackageFmu.cmake"
+            "-DPLATFORM=x86_64-linux" "-DTERMINALS=${terminals}" -P "${PLATEIMPACT_FMU_DIR}/cmake/PackageFmu.cmake"
+    DEPENDS ${model}3 "${model_description}" "${documentation}" "${PLATEIMPACT_FMU_DIR}/cmake/PackageFmu.cmake"
     COMMENT "Packaging ${fmu_file}"
     VERBATIM)
   add_custom_target(${model}Fmu3 ALL DEPENDS "${fmu_file}")
 endfunction()
 
-add_fmu3(PlateImpact LIBRARIES plate_solver)
-add_fmu3(SineSweep)
+

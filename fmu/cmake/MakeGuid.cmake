@@ -4,16 +4,17 @@
 #
 # Inputs (-D): MODEL (the model's name, part of the UUID's name), SOLVER_DIR, FMU_DIR,
 # DESCRIPTION_DIR, HEADER_OUT.
-# Hashed: SOLVER_DIR/*.cpp|*.h, everything under FMU_DIR and DESCRIPTION_DIR; each file enters
+# Hashed: SOLVER_DIR/**.cpp|*.h (not its tests/ and bench/), everything under FMU_DIR and DESCRIPTION_DIR; each file enters
 # as "<relative path> <sha256 of its content>", sorted, so the GUID does not depend on where
 # the checkout lives.
 foreach(var MODEL SOLVER_DIR FMU_DIR DESCRIPTION_DIR HEADER_OUT)
-  if(NOT DEFINED ${var})
+  if(NOT DEFINED ${var} OR "${${var}}" STREQUAL "")
     message(FATAL_ERROR "MakeGuid.cmake: ${var} is not set")
   endif()
 endforeach()
 
-file(GLOB solver_files LIST_DIRECTORIES false "${SOLVER_DIR}/*.cpp" "${SOLVER_DIR}/*.h")
+file(GLOB_RECURSE solver_files LIST_DIRECTORIES false "${SOLVER_DIR}/*.cpp" "${SOLVER_DIR}/*.h")
+list(FILTER solver_files EXCLUDE REGEX "/(tests|bench)/")
 file(GLOB_RECURSE fmu_files LIST_DIRECTORIES false "${FMU_DIR}/*")
 file(GLOB_RECURSE description_files LIST_DIRECTORIES false "${DESCRIPTION_DIR}/*")
 
@@ -26,6 +27,14 @@ foreach(f IN LISTS fmu_files)
   file(RELATIVE_PATH rel "${FMU_DIR}" "${f}")
   list(APPEND entries "fmu/${rel}|${f}")
 endforeach()
+# MODEL_DIR (optional): a model's own folder outside FMU_DIR (demos/).
+if(DEFINED MODEL_DIR AND NOT MODEL_DIR STREQUAL FMU_DIR AND NOT MODEL_DIR MATCHES "^${FMU_DIR}/")
+  file(GLOB_RECURSE model_files LIST_DIRECTORIES false "${MODEL_DIR}/*")
+  foreach(f IN LISTS model_files)
+    file(RELATIVE_PATH rel "${MODEL_DIR}" "${f}")
+    list(APPEND entries "model/${rel}|${f}")
+  endforeach()
+endif()
 foreach(f IN LISTS description_files)
   file(RELATIVE_PATH rel "${DESCRIPTION_DIR}" "${f}")
   list(APPEND entries "modelDescription/${rel}|${f}")

@@ -4,8 +4,8 @@
 # stage ${STAGE}, no binaries, and sources/:
 #   sources/buildDescription.xml       FMI 3.0 build description (one configuration)
 #   sources/CMakeLists.txt             fmu/source/CMakeLists.txt: a plain CMake build into binaries/
-#   sources/plateimpact/solver/        the solver's sources (solver/*.cpp, *.h)
-#   sources/plateimpact/fmu/           the FMI 3.0 layer and the PlateImpact binding, fmi2/ and fmi3/ headers
+#   sources/plateimpact/solver/        the solver's sources (solver/ without its tests and bench)
+#   sources/plateimpact/fmu/           core/, fmi3/ (the FMI 3.0 front end), binding/, headers/
 #   sources/plateimpact/generated/     PlateImpactGuid.h (the instantiation token of this build)
 #   sources/suitesparse/               CHOLMOD Core + Cholesky, AMD, COLAMD, SuiteSparse_config (pinned 5.12.0)
 #   sources/eigen3/Eigen/              Eigen's headers (MPL-2.0), sources/xxhash/xxhash.h (BSD-2-Clause)
@@ -30,15 +30,16 @@ endforeach()
 
 set(src "${dir}/sources")
 configure_file("${REPO}/fmu/source/CMakeLists.txt" "${src}/CMakeLists.txt" COPYONLY)
-file(GLOB solver "${REPO}/solver/*.cpp" "${REPO}/solver/*.h")
-file(COPY ${solver} DESTINATION "${src}/plateimpact/solver")
-set(layer Instance.cpp Instance.h StateFormat.cpp StateFormat.h Model.cpp Model.h FmiState.h Fmi3Interface.h
-          fmi3Functions.cpp PlateModel.cpp PlateVariables.cpp PlateVariables.h PlateArrays.cpp PlateArrays.h)
-foreach(f IN LISTS layer)
-  configure_file("${REPO}/fmu/${f}" "${src}/plateimpact/fmu/${f}" COPYONLY)
+# The solver's folders as they are (includes name them from solver/), and of fmu/ the
+# version-neutral core, the FMI 3.0 front end, the binding and the vendored FMI headers.
+foreach(part base fe plate schemes PlateSimulation.h PlateSimulation.cpp InputSignal.h InputSignal.cpp)
+  file(COPY "${REPO}/solver/${part}" DESTINATION "${src}/plateimpact/solver")
 endforeach()
-configure_file("${REPO}/fmu/RuntimeRelease.cpp" "${src}/plateimpact/fmu/gcc/RuntimeRelease.cpp" COPYONLY)
-file(COPY "${REPO}/fmu/fmi2" "${REPO}/fmu/fmi3" DESTINATION "${src}/plateimpact/fmu")
+foreach(part core fmi3 binding headers)
+  file(COPY "${REPO}/fmu/${part}" DESTINATION "${src}/plateimpact/fmu")
+endforeach()
+file(REMOVE "${src}/plateimpact/fmu/core/RuntimeRelease.cpp" "${src}/plateimpact/fmu/fmi3/exports.map")
+configure_file("${REPO}/fmu/core/RuntimeRelease.cpp" "${src}/plateimpact/fmu/gcc/RuntimeRelease.cpp" COPYONLY)
 configure_file("${GUID_HEADER}" "${src}/plateimpact/generated/PlateImpactGuid.h" COPYONLY)
 foreach(part CHOLMOD/Core CHOLMOD/Cholesky CHOLMOD/Include AMD/Source AMD/Include AMD/Doc/License.txt
              COLAMD/Source COLAMD/Include COLAMD/Doc/License.txt SuiteSparse_config/SuiteSparse_config.c
@@ -75,7 +76,7 @@ endforeach()
 foreach(d NGPL NPARTITION NCHECK NDEBUG)
   string(APPEND xml "      <PreprocessorDefinition name=\"${d}\"/>\n")
 endforeach()
-foreach(i plateimpact/solver plateimpact/fmu plateimpact/fmu/fmi2 plateimpact/fmu/fmi3 plateimpact/generated
+foreach(i plateimpact/solver plateimpact/fmu plateimpact/fmu/headers/fmi2 plateimpact/fmu/headers/fmi3 plateimpact/generated
           eigen3 xxhash suitesparse/CHOLMOD/Include suitesparse/SuiteSparse_config)
   string(APPEND xml "      <IncludeDirectory name=\"${i}\"/>\n")
 endforeach()

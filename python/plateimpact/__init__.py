@@ -6,7 +6,6 @@
   reports and the exact-base reference run.
 - `plateimpact.sweep`: the sine-sweep controller and its master loop.
 - `plateimpact.response_map`: frequency × gap response maps, serial or on Dask.
-- `plateimpact.cosim`: the two-FMU system model run by libcosim and by SSP masters.
 - `plateimpact.interface`: the table of variables of docs/variables.md, written from the model description.
 
 The studies and report writers of docs/ are not part of it: they are in the repository's tools/.

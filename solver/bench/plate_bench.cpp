@@ -38,8 +38,8 @@
 
 #include <unsupported/Eigen/SparseExtra>
 
-#include "Assembly.h"
-#include "SparseCholesky.h"
+#include "fe/Assembly.h"
+#include "plate/SparseCholesky.h"
 #include "PlateSimulation.h"
 
 namespace {

@@ -11,7 +11,7 @@
 #include <set>
 #include <vector>
 
-#include "ArgyrisTriangle.h"
+#include "fe/ArgyrisTriangle.h"
 
 namespace plate {
 namespace {

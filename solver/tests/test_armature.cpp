@@ -7,11 +7,11 @@
 #include <cmath>
 #include <memory>
 
-#include "Armature.h"
-#include "Assembly.h"
-#include "FullOrderPlate.h"
-#include "NewmarkContactStepper.h"
-#include "PlateParameters.h"
+#include "schemes/Armature.h"
+#include "fe/Assembly.h"
+#include "plate/FullOrderPlate.h"
+#include "schemes/NewmarkContactStepper.h"
+#include "plate/PlateParameters.h"
 
 using namespace plate;
 

@@ -11,8 +11,8 @@
 #include <memory>
 #include <stdexcept>
 
-#include "DiscretePlate.h"
-#include "NewmarkContactStepper.h"
+#include "plate/DiscretePlate.h"
+#include "schemes/NewmarkContactStepper.h"
 
 using namespace plate;
 

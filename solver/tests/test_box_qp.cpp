@@ -9,7 +9,7 @@
 #include <limits>
 #include <random>
 
-#include "BoxQP.h"
+#include "plate/BoxQP.h"
 
 namespace {
 

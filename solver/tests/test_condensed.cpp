@@ -8,11 +8,11 @@
 #include <cmath>
 #include <memory>
 
-#include "Assembly.h"
-#include "CondensedPlate.h"
-#include "ConservingStepper.h"
-#include "PlateParameters.h"
-#include "SingularMass.h"
+#include "fe/Assembly.h"
+#include "plate/CondensedPlate.h"
+#include "schemes/ConservingStepper.h"
+#include "plate/PlateParameters.h"
+#include "fe/SingularMass.h"
 
 using namespace plate;
 

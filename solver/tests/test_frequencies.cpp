@@ -37,8 +37,8 @@
 #include <iostream>
 #include <vector>
 
-#include "Assembly.h"
-#include "SparseCholesky.h"
+#include "fe/Assembly.h"
+#include "plate/SparseCholesky.h"
 
 namespace plate {
 namespace {

@@ -8,7 +8,7 @@
 #include <functional>
 #include <random>
 
-#include "FvsQuadrilateral.h"
+#include "fe/FvsQuadrilateral.h"
 
 namespace plate {
 namespace {

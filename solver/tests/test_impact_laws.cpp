@@ -9,13 +9,13 @@
 #include <cstdio>
 #include <memory>
 
-#include "Assembly.h"
-#include "FullOrderPlate.h"
-#include "NewmarkContactStepper.h"
+#include "fe/Assembly.h"
+#include "plate/FullOrderPlate.h"
+#include "schemes/NewmarkContactStepper.h"
 #include "PlateSimulation.h"
-#include "SingularMass.h"
-#include "Spectrum.h"
-#include "StaticEquilibrium.h"
+#include "fe/SingularMass.h"
+#include "plate/Spectrum.h"
+#include "plate/StaticEquilibrium.h"
 
 using namespace plate;
 

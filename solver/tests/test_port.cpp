@@ -9,10 +9,10 @@
 #include <cmath>
 #include <memory>
 
-#include "Assembly.h"
-#include "FullOrderPlate.h"
-#include "NewmarkContactStepper.h"
-#include "PlateParameters.h"
+#include "fe/Assembly.h"
+#include "plate/FullOrderPlate.h"
+#include "schemes/NewmarkContactStepper.h"
+#include "plate/PlateParameters.h"
 
 using namespace plate;
 

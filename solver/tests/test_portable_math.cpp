@@ -9,7 +9,7 @@
 #include <cstdint>
 #include <cstring>
 
-#include "PortableMath.h"
+#include "base/PortableMath.h"
 
 namespace {
 

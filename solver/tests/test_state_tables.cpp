@@ -10,9 +10,9 @@
 #include <string>
 #include <vector>
 
-#include "Armature.h"
-#include "NewmarkState.h"
-#include "PlateOutputs.h"
+#include "schemes/Armature.h"
+#include "schemes/NewmarkState.h"
+#include "schemes/PlateOutputs.h"
 
 namespace {
 

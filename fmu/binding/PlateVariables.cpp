@@ -1,0 +1,412 @@
+#include "binding/PlateVariables.h"
+
+#include <array>
+#include <climits>
+#include <cmath>
+#include <cstdio>
+
+namespace plateimpact {
+
+namespace {
+
+using fmu::Causality;
+using fmu::VariableType;
+using plate::ElementType;
+using plate::InputMode;
+using plate::MassModel;
+using plate::TimeScheme;
+
+const fmu::EnumerationType kElementType{
+    "ElementType",
+    "C1 plate element",
+    {{"argyris", 1, "Argyris triangle (P5, 21 dofs); each cell split into two triangles"},
+     {"fvs", 2, "Reduced Fraeijs de Veubeke-Sander quadrilateral (12 dofs); one per cell"}}};
+
+const fmu::EnumerationType kInputMode{
+    "InputMode",
+    "How an input is continued inside a communication step from its communicated values",
+    {{"hold", 1, "Held constant over the step"},
+     {"linear", 2, "Extrapolated along the line through the last two communicated values"},
+     {"quadratic", 3, "Extrapolated along the parabola through the last three communicated values"}}};
+
+const fmu::EnumerationType kMassModel{
+    "MassModel",
+    "Mass matrix of the plate",
+    {{"consistent", 1, "Consistent mass of the finite element space (the paper's scheme)"},
+     {"singular_p0", 2,
+      "Singular mass projected on element-wise constants: no inertia at the contact vertices, energy-consistent "
+      "impacts as dt -> 0"},
+     {"singular_p1dg", 3, "Singular mass projected on element-wise linear functions (Argyris only)"}}};
+
+const fmu::EnumerationType kTimeScheme{
+    "TimeScheme",
+    "Time scheme",
+    {{"newmark", 1, "The paper's three-level Newmark scheme with the impact law set by mass and restitution"},
+     {"conserving", 2,
+      "Condensed singular plate (needs mass = singular_p0 or singular_p1dg): massive modes stepped by the midpoint "
+      "rule, the massless boundary static, impacts through a discrete gradient; conserves energy through impacts "
+      "at any dt"},
+     {"flow", 3,
+      "The conserving scheme with every massive mode advanced by its exact flow between contacts (no phase error "
+      "in free flight) and each step with a constraint row active taken as contact_substeps discrete-gradient "
+      "sub-steps; conserves energy through impacts at any dt"}}};
+
+const fmu::EnumerationType kBaseDrive{
+    "BaseDrive",
+    "Which input moves the clamped edge",
+    {{"displacement", 1, "base_displacement (the clamp position)"},
+     {"velocity", 2, "base_velocity, integrated exactly over each communication step from the position at its start"},
+     {"acceleration", 3, "base_acceleration, integrated twice exactly over each communication step"},
+     {"force", 4,
+      "drive_force on an armature that carries the clamp inside the FMU (armature_mass, _stiffness, _damping)"},
+     {"tlm", 5,
+      "tlm_wave_in: the clamp is the end of a transmission line of impedance tlm_impedance to a partner FMU"}}};
+
+using Get = double (*)(const PlateValues&);
+using Set = void (*)(PlateValues&, double);
+
+// A row: the variable as modelDescription.xml declares it, and how its value is read and set.
+struct Row {
+    fmu::Variable variable;
+    Get get;
+    Set set;  // nullptr for outputs
+};
+
+// The variable; a parameter's new value invalidates what was built from the old one.
+fmu::Variable declared(fmi2ValueReference vr, const char* name, VariableType type, Causality causality,
+                       const char* unit, const char* description, double min = NAN, double max = NAN) {
+    fmu::Variable v{vr, name, type, causality, description, unit, nullptr, causality == Causality::Parameter, false};
+    v.min = min;
+    v.max = max;
+    return v;
+}
+
+// The rows' makers, one per kind of variable, each with the description last so that a row of
+// the table below keeps its data on its first line. Ranges are solver/PlateParameters.h's (the one
+// place they are written); an Integer or a Boolean here has no unit.
+Row parameter(fmi2ValueReference vr, const char* name, const char* unit, const plate::Range& range, Get get, Set set,
+              const char* description) {
+    return {declared(vr, name, VariableType::Real, Causality::Parameter, unit, description, range.min, range.max), get,
+            set};
+}
+Row integerParameter(fmi2ValueReference vr, const char* name, const plate::Range& range, Get get, Set set,
+                     const char* description) {
+    return {declared(vr, name, VariableType::Integer, Causality::Parameter, nullptr, description, range.min, range.max),
+            get, set};
+}
+Row booleanParameter(fmi2ValueReference vr, const char* name, Get get, Set set, const char* description) {
+    return {declared(vr, name, VariableType::Boolean, Causality::Parameter, nullptr, description), get, set};
+}
+// A parameter that switches between named items (fmu::integerSwitch).
+Row choice(fmi2ValueReference vr, const char* name, const fmu::EnumerationType& items, Get get, Set set,
+           const char* description) {
+    return {fmu::integerSwitch(vr, name, description, items), get, set};
+}
+// A Real input in [-bound, bound] with derivatives; shapesInitialState: its value at
+// initialization places the initial state.
+Row input(fmi2ValueReference vr, const char* name, const char* unit, bool shapesInitialState, double bound, Get get,
+          Set set, const char* description) {
+    fmu::Variable v = declared(vr, name, VariableType::Real, Causality::Input, unit, description, -bound, bound);
+    v.shapesInitialState = shapesInitialState;
+    v.hasDerivatives = true;
+    return {v, get, set};
+}
+Row output(fmi2ValueReference vr, const char* name, const char* unit, Get get, const char* description) {
+    return {declared(vr, name, VariableType::Real, Causality::Output, unit, description), get, nullptr};
+}
+Row integerOutput(fmi2ValueReference vr, const char* name, Get get, const char* description) {
+    return {declared(vr, name, VariableType::Integer, Causality::Output, nullptr, description), get, nullptr};
+}
+
+// The switches' accessors (Integer values of the items above).
+double getElement(const PlateValues& v) { return v.parameters.element == ElementType::Fvs ? 2.0 : 1.0; }
+void setElement(PlateValues& v, double x) { v.parameters.element = x == 2.0 ? ElementType::Fvs : ElementType::Argyris; }
+double getBaseInputMode(const PlateValues& v) { return double(static_cast<int>(v.baseDisplacement.mode)); }
+void setBaseInputMode(PlateValues& v, double x) {
+    // One mode for every input of the clamp's motion.
+    for (InputPort* port : {&v.baseDisplacement, &v.baseVelocity, &v.baseAcceleration, &v.driveForce})
+        port->mode = static_cast<InputMode>(int(x));
+}
+double getLoadInputMode(const PlateValues& v) { return double(static_cast<int>(v.load.mode)); }
+void setLoadInputMode(PlateValues& v, double x) { v.load.mode = static_cast<InputMode>(int(x)); }
+double getMass(const PlateValues& v) { return double(static_cast<int>(v.parameters.mass)); }
+void setMass(PlateValues& v, double x) { v.parameters.mass = static_cast<MassModel>(int(x)); }
+double getTimeScheme(const PlateValues& v) { return double(static_cast<int>(v.parameters.timeScheme)); }
+void setTimeScheme(PlateValues& v, double x) { v.parameters.timeScheme = static_cast<TimeScheme>(int(x)); }
+double getBaseDrive(const PlateValues& v) { return double(static_cast<int>(v.baseDrive)); }
+void setBaseDrive(PlateValues& v, double x) {
+    v.baseDrive = static_cast<BaseDrive>(int(x));
+    using Carrier = plate::PlateParameters::Carrier;  // §18–19
+    v.parameters.carrier = x == 4.0 ? Carrier::Armature : x == 5.0 ? Carrier::Line : Carrier::None;
+}
+
+double saturate(double n) { return n > INT_MAX ? double(INT_MAX) : n; }  // counts are >= 0
+double getQpIterationsTotal(const PlateValues& v) { return saturate(v.outputs.qpIterationsTotal); }
+
+// The accessors of the rows that read (and set) a field: of the parameters, of an input port, of
+// the cheap outputs, of the port's outputs (computed on the first read), of the carrier's.
+#define PARAMETER(field)                                             \
+    [](const PlateValues& v) { return double(v.parameters.field); }, \
+        [](PlateValues& v, double x) { v.parameters.field = decltype(v.parameters.field)(x); }
+#define INPUT(member) \
+    [](const PlateValues& v) { return v.member.signal.value; }, [](PlateValues& v, double x) { v.member.setValue(x); }
+#define OUTPUT(field) [](const PlateValues& v) { return double(v.outputs.field); }
+#define PORT(field) [](const PlateValues& v) { return v.port().field; }
+#define CARRIER(field) [](const PlateValues& v) { return v.simulation ? v.simulation->carrierOutputs().field : 0.0; }
+
+using namespace plate::ranges;  // the parameters' ranges: kLength, kCells, ...
+
+// The table: one row per variable, in the order of modelDescription.xml. A new variable is one
+// row here (and its value reference in PlateVariables.h); nothing else lists the variables.
+// Each row: its maker's data on one line (value reference, name, then as the maker says), the
+// description after it.
+// clang-format off
+const Row kRows[] = {
+    parameter(kVrLength,            "length",             "m",     kLength,            PARAMETER(length),
+        "Plate length along x (clamped edge at x = 0)"),
+    parameter(kVrWidth,             "width",              "m",     kWidth,             PARAMETER(width),
+        "Plate width along y"),
+    parameter(kVrThickness,         "thickness",          "m",     kThickness,         PARAMETER(thickness),
+        "Plate thickness"),
+    parameter(kVrYoungsModulus,     "youngs_modulus",     "Pa",    kYoungsModulus,     PARAMETER(youngsModulus),
+        "Young's modulus E"),
+    parameter(kVrPoissonRatio,      "poisson_ratio",      "1",     kPoissonRatio,      PARAMETER(poissonRatio),
+        "Poisson's ratio, in (0, 0.5)"),
+    parameter(kVrDensity,           "density",            "kg/m3", kDensity,           PARAMETER(density),
+        "Mass density of the plate material"),
+    integerParameter(kVrNx,    "nx",    kCells, PARAMETER(nx),
+        "Number of mesh cells along x (at least 1)"),
+    integerParameter(kVrNy,    "ny",    kCells, PARAMETER(ny),
+        "Number of mesh cells along y (at least 1)"),
+    choice(kVrElement,       "element",         kElementType, getElement,       setElement,
+        "Finite element"),
+    parameter(kVrObstacleLower,     "obstacle_lower",     "m",     kObstacleLower,     PARAMETER(obstacleLower),
+        "Height of the lower obstacle (negative; used when obstacle_lower_enabled)"),
+    parameter(kVrObstacleUpper,     "obstacle_upper",     "m",     kObstacleUpper,     PARAMETER(obstacleUpper),
+        "Height of the upper obstacle (positive; used when obstacle_upper_enabled)"),
+    booleanParameter(kVrObstacleLowerEnabled, "obstacle_lower_enabled", PARAMETER(obstacleLowerEnabled),
+        "Whether the lower obstacle is present"),
+    booleanParameter(kVrObstacleUpperEnabled, "obstacle_upper_enabled", PARAMETER(obstacleUpperEnabled),
+        "Whether the upper obstacle is present"),
+    parameter(kVrDt,                "dt",                 "s",     kDt,                PARAMETER(dt),
+        "Internal time step of the scheme's fixed grid; a communication step of any length is taken on it, the "
+        "outputs interpolated between grid points"),
+    parameter(kVrBeta,              "beta",               "1",     kBeta,              PARAMETER(beta),
+        "Newmark parameter beta in [0, 0.5] (gamma = 1/2); unconditionally stable for beta >= 1/4"),
+    parameter(kVrInitialLoad,       "initial_load",       "Pa",    kInitialLoad,       PARAMETER(initialLoad),
+        "Uniform pressure (positive upward) whose static equilibrium is the initial shape; the plate starts at rest"),
+    integerParameter(kVrModes, "modes", kModes, PARAMETER(modes),
+        "0: full finite element space (exact scheme); m > 0: reduced model on m modes"),
+    choice(kVrBaseInputMode, "base_input_mode", kInputMode,   getBaseInputMode, setBaseInputMode,
+        "How base_displacement (and base_velocity, base_acceleration) moves inside a communication step{fmi2: when "
+        "the master gives no input derivatives}: held, or extrapolated from the communicated values{fmi2: "
+        "(derivatives set by the master always win)}"),
+    choice(kVrLoadInputMode, "load_input_mode", kInputMode,   getLoadInputMode, setLoadInputMode,
+        "How load moves inside a communication step{fmi2: when the master gives no input derivatives}: held (a load "
+        "may step; extrapolating a step overshoots) or extrapolated"),
+    choice(kVrMass,          "mass",            kMassModel,   getMass,          setMass,
+        "Mass matrix: consistent (the paper's scheme; impacts lose energy at every mesh vertex), singular_p0 "
+        "(energy-consistent impacts, results converge after impact) or singular_p1dg"),
+    choice(kVrTimeScheme,    "time_scheme",     kTimeScheme,  getTimeScheme,    setTimeScheme,
+        "Time scheme: newmark (the paper's scheme, default), conserving (needs a singular mass: the energy balance "
+        "closes exactly through impacts at any dt and every reported displacement stays within the obstacles; modes "
+        "= m keeps the m lowest massive modes, damping acts on them; beta and restitution do not apply) or flow (the "
+        "conserving scheme with exact free flight and sub-stepped contact steps: accurate after impact)"),
+    integerParameter(kVrContactSubsteps, "contact_substeps", kContactSubsteps, PARAMETER(contactSubsteps),
+        "time_scheme = flow: midpoint sub-steps of each internal step in which a constraint row is or becomes "
+        "active (1..64; the free steps take the exact modal flow whatever this is)"),
+    parameter(kVrRestitution,       "restitution",        "1",     kRestitution,       PARAMETER(restitution),
+        "Restitution coefficient e in [0, 1] of the impact law on (u+ + e u-)/(1 + e); 0 is the paper's scheme"),
+    parameter(kVrDampingMass,       "damping_mass",       "1/s",   kDampingMass,       PARAMETER(dampingMass),
+        "Rayleigh damping, mass-proportional coefficient a (C = a M + b K; damping ratio a/(2 omega) + b omega/2), "
+        ">= 0"),
+    parameter(kVrDampingStiffness,  "damping_stiffness",  "s",     kDampingStiffness,  PARAMETER(dampingStiffness),
+        "Rayleigh damping, stiffness-proportional coefficient b (C = a M + b K), >= 0"),
+    parameter(kVrMemoryLimit,       "memory_limit",       "MB",    kMemoryLimit,       PARAMETER(memoryLimit),
+        "Memory budget of the instance: one whose estimated peak exceeds it is refused at fmiXExitInitializationMode "
+        "before allocating (the estimate is logged, category logInfo); 0 = no limit"),
+    input(kVrBaseDisplacement, "base_displacement", "m",    true,  plate::kMaxDisplacement, INPUT(baseDisplacement),
+        "Vertical displacement z of the clamped edge (base motion); its value at initialization places the clamp at "
+        "t = 0"),
+    input(kVrLoad,             "load",              "Pa",   false, plate::kMaxLoad,         INPUT(load),
+        "Uniform pressure on the plate, positive upward, acting from t = 0 on"),
+    choice(kVrBaseDrive,     "base_drive",      kBaseDrive,   getBaseDrive,     setBaseDrive,
+        "Which input moves the clamped edge: displacement (base_displacement), velocity (base_velocity, integrated "
+        "from the initial base_displacement), acceleration (base_acceleration, integrated twice, the clamp at rest "
+        "at t = 0), force (drive_force on an armature inside the FMU that carries the clamp) or tlm (a transmission "
+        "line to a partner: tlm_wave_in, tlm_wave_out)"),
+    input(kVrBaseVelocity,     "base_velocity",     "m/s",  false, kMaxBaseVelocity,        INPUT(baseVelocity),
+        "Vertical velocity of the clamped edge (used when base_drive = velocity)"),
+    input(kVrBaseAcceleration, "base_acceleration", "m/s2", false, kMaxBaseAcceleration,    INPUT(baseAcceleration),
+        "Vertical acceleration of the clamped edge (used when base_drive = acceleration)"),
+    output(kVrCorner1,                 "corner_1",                   "m",    OUTPUT(corner1),
+        "Absolute displacement w at the free corner (length, 0)"),
+    output(kVrCorner2,                 "corner_2",                   "m",    OUTPUT(corner2),
+        "Absolute displacement w at the free corner (length, width)"),
+    output(kVrFreeEdgeMid,             "free_edge_mid",              "m",    OUTPUT(freeEdgeMid),
+        "Absolute displacement w at the middle of the free edge (length, width/2)"),
+    output(kVrEnergy,                  "energy",                     "J",    OUTPUT(energy),
+        "Discrete energy of the scheme (kinetic + bending)"),
+    output(kVrEnergyDissipated,        "energy_dissipated",          "J",    OUTPUT(energyDissipated),
+        "Energy lost in impacts since t = 0 (cumulative; non-negative with the paper's scheme, a net amount with "
+        "restitution > 0 or a singular mass)"),
+    output(kVrEnergyInput,             "energy_input",               "J",    OUTPUT(energyInput),
+        "Work done by base motion and load since t = 0 (cumulative)"),
+    output(kVrEnergyDamped,            "energy_damped",              "J",    OUTPUT(energyDamped),
+        "Energy dissipated by the Rayleigh damping since t = 0 (cumulative)"),
+    integerOutput(kVrContactVertices,   "contact_vertices",    OUTPUT(contactVertices),
+        "Number of mesh vertices on an obstacle after the last step"),
+    output(kVrQpKktResidualMax,        "qp_kkt_residual_max",        "1",    OUTPUT(maxKktResidual),
+        "Largest relative KKT residual of the per-step contact QPs so far"),
+    integerOutput(kVrQpIterationsTotal, "qp_iterations_total", getQpIterationsTotal,
+        "Active-set iterations of all per-step QPs so far (saturates at 2147483647)"),
+    integerOutput(kVrQpIterationsMax,   "qp_iterations_max",   OUTPUT(qpIterationsMax),
+        "Largest number of active-set iterations of one per-step QP so far"),
+    output(kVrClampForce,              "clamp_force",                "N",    PORT(clampForce),
+        "Vertical force the plate exerts on the clamp (positive upward): what a shaker carrying the clamp feels; the "
+        "scheme's value at the last internal step's centre t - dt (t - dt/2 with time_scheme = conserving). Fed back "
+        "with held values to a partner that moves the clamp (base_velocity) the loop is unstable: it carries the "
+        "plate's rigid inertia one step late (an added mass), and impacts make it worse; base_drive = tlm couples "
+        "stably, base_drive = force puts the armature inside"),
+    output(kVrClampMoment,             "clamp_moment",               "N.m",  PORT(clampMoment),
+        "Moment about the clamp line x = 0 of the forces the plate exerts on the clamp (positive when they lift the "
+        "plate side), at t - dt"),
+    output(kVrClampDisplacement,       "clamp_displacement",         "m",    PORT(clampDisplacement),
+        "Position z of the clamped edge as the scheme took it (the integrated input for base_drive = velocity or "
+        "acceleration)"),
+    output(kVrClampVelocity,           "clamp_velocity",             "m/s",  PORT(clampVelocity),
+        "Velocity of the clamped edge (second-order backward difference of the scheme's positions)"),
+    output(kVrClampAcceleration,       "clamp_acceleration",         "m/s2", PORT(clampAcceleration),
+        "Acceleration of the clamped edge at t - dt (the scheme's central difference): the control accelerometer"),
+    output(kVrContactForceLower,       "contact_force_lower",        "N",    PORT(contactForce[0]),
+        "Force of the lower obstacle on the plate over the last internal step (>= 0, upward)"),
+    output(kVrContactForceUpper,       "contact_force_upper",        "N",    PORT(contactForce[1]),
+        "Force of the upper obstacle on the plate over the last internal step (<= 0, downward)"),
+    output(kVrContactImpulseLower,     "contact_impulse_lower",      "N.s",  PORT(contactImpulse[0]),
+        "Impulse of the lower obstacle on the plate since t = 0 (cumulative)"),
+    output(kVrContactImpulseUpper,     "contact_impulse_upper",      "N.s",  PORT(contactImpulse[1]),
+        "Impulse of the upper obstacle on the plate since t = 0 (cumulative, <= 0)"),
+    integerOutput(kVrImpactsLower,      "impacts_lower",       PORT(impacts[0]),
+        "Contact onsets on the lower obstacle since t = 0 (steps whose contact force starts from zero)"),
+    integerOutput(kVrImpactsUpper,      "impacts_upper",       PORT(impacts[1]),
+        "Contact onsets on the upper obstacle since t = 0"),
+    output(kVrCorner1Velocity,         "corner_1_velocity",          "m/s",  PORT(velocity[0]),
+        "Absolute velocity at corner_1 (second-order backward difference)"),
+    output(kVrCorner2Velocity,         "corner_2_velocity",          "m/s",  PORT(velocity[1]),
+        "Absolute velocity at corner_2"),
+    output(kVrFreeEdgeMidVelocity,     "free_edge_mid_velocity",     "m/s",  PORT(velocity[2]),
+        "Absolute velocity at free_edge_mid"),
+    output(kVrCorner1Acceleration,     "corner_1_acceleration",      "m/s2", PORT(acceleration[0]),
+        "Absolute acceleration at corner_1 at t - dt (the scheme's central difference)"),
+    output(kVrCorner2Acceleration,     "corner_2_acceleration",      "m/s2", PORT(acceleration[1]),
+        "Absolute acceleration at corner_2 at t - dt"),
+    output(kVrFreeEdgeMidAcceleration, "free_edge_mid_acceleration", "m/s2", PORT(acceleration[2]),
+        "Absolute acceleration at free_edge_mid at t - dt"),
+    // The carried clamp (docs/theory.md §18–19): its motion is clamp_displacement, _velocity, _acceleration.
+    parameter(kVrArmatureMass,      "armature_mass",      "kg",    kArmatureMass,      PARAMETER(armatureMass),
+        "Mass of the armature carrying the clamp (base_drive = force; > 0)"),
+    parameter(kVrArmatureStiffness, "armature_stiffness", "N/m",   kArmatureStiffness, PARAMETER(armatureStiffness),
+        "Suspension stiffness of the armature (base_drive = force), relaxed at the initial clamp position"),
+    parameter(kVrArmatureDamping,   "armature_damping",   "N.s/m", kArmatureDamping,   PARAMETER(armatureDamping),
+        "Suspension damping of the armature (base_drive = force)"),
+    parameter(kVrTlmImpedance,      "tlm_impedance",      "N.s/m", kTlmImpedance,      PARAMETER(tlmImpedance),
+        "Characteristic impedance Z of the transmission line to the partner (base_drive = tlm; > 0)"),
+    input(kVrDriveForce,       "drive_force",       "N",    false, plate::kMaxCarrierForce, INPUT(driveForce),
+        "Drive force on the armature, positive upward (base_drive = force)"),
+    input(kVrTlmWaveIn,        "tlm_wave_in",       "N",    false, plate::kMaxCarrierForce, INPUT(tlmWaveIn),
+        "Wave arriving from the partner (base_drive = tlm): connect the partner's tlm_wave_out; held over the step"),
+    output(kVrArmatureEnergy,          "armature_energy",            "J",    CARRIER(energy),
+        "Discrete energy of the armature (kinetic + suspension spring); 0 for a line end"),
+    output(kVrArmatureDriveWork,       "armature_drive_work",        "J",    CARRIER(driveWork),
+        "Work of drive_force (or of tlm_wave_in) on the carrier since t = 0"),
+    output(kVrArmatureDamped,          "armature_damped",            "J",    CARRIER(damperWork),
+        "Energy dissipated in the carrier's damper (the suspension, or the line's impedance) since t = 0"),
+    output(kVrArmaturePortWork,        "armature_port_work",         "J",    CARRIER(portWork),
+        "Work of the plate on the carrier since t = 0 (= -energy_input with load 0)"),
+    output(kVrTlmWaveOut,              "tlm_wave_out",               "N",    CARRIER(waveOut),
+        "Mean wave launched into the line over the last communication step (base_drive = tlm): connect to the "
+        "partner's tlm_wave_in"),
+    output(kVrTlmTransit,              "tlm_transit",                "J",    CARRIER(transit),
+        "Energy of the wave this end launched in the last step, stored in the line until the partner receives it"),
+    output(kVrTlmLineLoss,             "tlm_line_loss",              "J",    CARRIER(lineLoss),
+        "Energy this end launched that the mean wave does not carry, since t = 0 (>= 0: the line is passive)"),
+};
+// clang-format on
+
+#undef PARAMETER
+#undef INPUT
+#undef OUTPUT
+#undef PORT
+#undef CARRIER
+
+const Row& rowOf(const fmu::Variable& v) {
+    // `v` is an element of plateVariables(), which lists the rows' variables in the same order.
+    return kRows[static_cast<std::size_t>(&v - plateVariables().data())];
+}
+
+}  // namespace
+
+const std::vector<fmu::Variable>& plateVariables() {
+    static const std::vector<fmu::Variable> variables = [] {
+        std::vector<fmu::Variable> out;
+        for (const Row& row : kRows) out.push_back(row.variable);
+        return out;
+    }();
+    return variables;
+}
+
+// The terminal kinds (documented on the model's page, PlateModel.cpp):
+//   org.plateimpact.TranslationalFlange  a vertical translational flange: s [m], v [m/s],
+//       a [m/s2] the flange's motion, f [N] the force on it; members of equal memberName
+//       connect (a causal connection: one side's output feeds the other's input).
+//   org.plateimpact.TransmissionLineEnd  one end of a transmission line (TLM): wave_out feeds
+//       the partner's wave_in and the other way round (matchingRule org.plateimpact.crossed),
+//       impedance is equal at both ends.
+const std::vector<fmu::Terminal>& plateTerminals() {
+    static const std::vector<fmu::Terminal> terminals = {
+        {"clamp",
+         "bus",
+         "org.plateimpact.TranslationalFlange",
+         "The clamped edge moved by a partner (base_drive = displacement, velocity or acceleration: the partner "
+         "gives the one the drive uses) and the force the plate exerts on it",
+         {{"base_displacement", "s", "signal"},
+          {"base_velocity", "v", "signal"},
+          {"base_acceleration", "a", "signal"},
+          {"clamp_force", "f", "signal"}}},
+        {"armature",
+         "plug",
+         "org.plateimpact.TranslationalFlange",
+         "The clamp carried by the armature inside the FMU (base_drive = force): the partner's force in, the "
+         "clamp's motion out",
+         {{"drive_force", "f", "signal"},
+          {"clamp_displacement", "s", "signal"},
+          {"clamp_velocity", "v", "signal"},
+          {"clamp_acceleration", "a", "signal"}}},
+        {"line",
+         "org.plateimpact.crossed",
+         "org.plateimpact.TransmissionLineEnd",
+         "The clamp as the end of a transmission line to a partner (base_drive = tlm)",
+         {{"tlm_wave_in", "wave_in", "signal"},
+          {"tlm_wave_out", "wave_out", "signal"},
+          {"tlm_impedance", "impedance", "signal"}}},
+    };
+    return terminals;
+}
+
+InputPort* PlateValues::inputPort(fmi2ValueReference vr) {
+    switch (vr) {
+        case kVrBaseDisplacement: return &baseDisplacement;
+        case kVrBaseVelocity: return &baseVelocity;
+        case kVrBaseAcceleration: return &baseAcceleration;
+        case kVrLoad: return &load;
+        case kVrDriveForce: return &driveForce;
+        case kVrTlmWaveIn: return &tlmWaveIn;
+        default: return nullptr;
+    }
+}
+
+double getValue(const PlateValues& values, const fmu::Variable& v) { return rowOf(v).get(values); }
+
+void setValue(PlateValues& values, const fmu::Variable& v, double x) { rowOf(v).set(values, x); }
+
+}  // namespace plateimpact

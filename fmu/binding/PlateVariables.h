@@ -1,0 +1,173 @@
+#pragma once
+// The plate's values as the importer sets and reads them, and the one table of its variables
+// (PlateVariables.cpp): name, value reference, type, causality, unit, description and the
+// accessors. modelDescription.xml, FMU states and the README's table all come from it.
+#include <vector>
+
+#include "core/Model.h"
+#include "PlateSimulation.h"
+
+namespace plateimpact {
+
+// One Real input as the master passes it (docs/theory.md §8): the value, the derivatives if
+// the master set them since the value, and the values at the last communication points for
+// masters that give none. Only what the master set is a sample, at the time it set it: a step
+// it did not set the input for continues the reconstruction (after an early return, FMI 3.0
+// event mode), where recording the unchanged value again would bend the signal at that time.
+struct InputPort {
+    plate::InputSignal signal;  // value (fmi2SetReal) + derivatives (fmi2SetRealInputDerivatives)
+    bool derivativesGiven = false;  // the master set derivatives since the value: they win
+    bool fresh = true;  // set since the last step began (the start value counts as set at t = 0)
+    double signalTime = 0.0;  // the model time `signal` starts at (its value's communication point)
+    plate::InputMode mode;  // otherwise the step follows history.continueStep(mode, now, h)
+    plate::InputHistory history;
+
+    explicit InputPort(plate::InputMode defaultMode) : mode(defaultMode) {}
+    // A new value: its derivatives are zero and not given until the master sets them again.
+    void setValue(double x) {
+        signal = plate::InputSignal{x, 0.0, 0.0};
+        derivativesGiven = false;
+        fresh = true;
+    }
+    // At the start of a step from model time `now`: a value set since the last step is a sample
+    // at `now`; without one the step continues the reconstruction, however long ago the last
+    // sample was (a master that sets an input only when it changes wants `hold`: docs/theory.md §8).
+    void beginStep(double now) {
+        if (fresh) {
+            history.record(now, signal.value);
+            signalTime = now;
+        }
+        fresh = false;
+    }
+    // The signal over the step of length h that starts at `now`; a reconstruction stays inside
+    // [lower, upper] (the obstacles, for the clamp). Given derivatives are a polynomial from
+    // their communication point on: a later start continues it.
+    plate::InputSignal stepSignal(double now, double h, double lower = -HUGE_VAL, double upper = HUGE_VAL) {
+        if (!derivativesGiven) return history.continueStep(mode, now, h, lower, upper);
+        const plate::InputSignal s = signal.shifted(now - signalTime);
+        history.reached(s.at(h));
+        return s;
+    }
+};
+
+// Which input moves the clamp (docs/theory.md §16): the others are ignored.
+// Force and Tlm: the clamp is carried inside the step (docs/theory.md §18–19).
+enum class BaseDrive { Displacement = 1, Velocity = 2, Acceleration = 3, Force = 4, Tlm = 5 };
+
+// Everything an importer can set or read, as plain values.
+struct PlateValues {
+    plate::PlateParameters parameters;  // defaults = the start values of modelDescription.xml
+    // Default modes, chosen by measurement (docs/input-accuracy.md): a clamp motion is smooth
+    // (quadratic extrapolation); a load may step, and extrapolating a step overshoots.
+    InputPort baseDisplacement{plate::InputMode::Quadratic};
+    InputPort baseVelocity{plate::InputMode::Quadratic};
+    InputPort baseAcceleration{plate::InputMode::Quadratic};
+    InputPort load{plate::InputMode::Hold};
+    InputPort driveForce{plate::InputMode::Quadratic};  // base_drive = force (§18)
+    InputPort tlmWaveIn{plate::InputMode::Hold};  // base_drive = tlm: always held (§19)
+    BaseDrive baseDrive = BaseDrive::Displacement;
+    // The outputs after each change; the port's fields only once one of them is read (they cost
+    // probe and rotation products nobody else needs): port() fills them in.
+    plate::PlateOutputs outputs;
+    const plate::PlateSimulation* simulation = nullptr;
+    mutable plate::PlateOutputs portOutputs;
+    mutable bool portValid = false;
+    const plate::PlateOutputs& port() const {
+        if (!portValid && simulation) portOutputs = simulation->outputs(true);
+        portValid = simulation != nullptr;
+        return simulation ? portOutputs : outputs;
+    }
+    InputPort* inputPort(fmi2ValueReference vr);  // nullptr: not an input
+};
+
+// The value references: part of the interface, never renumbered (a gap leaves room to group).
+enum PlateVr : fmi2ValueReference {
+    kVrLength = 0,
+    kVrWidth = 1,
+    kVrThickness = 2,
+    kVrYoungsModulus = 3,
+    kVrPoissonRatio = 4,
+    kVrDensity = 5,
+    kVrNx = 6,
+    kVrNy = 7,
+    kVrElement = 8,
+    kVrObstacleLower = 9,
+    kVrObstacleUpper = 10,
+    kVrObstacleLowerEnabled = 11,
+    kVrObstacleUpperEnabled = 12,
+    kVrDt = 13,
+    kVrBeta = 14,
+    kVrInitialLoad = 15,
+    kVrModes = 16,
+    kVrBaseInputMode = 17,
+    kVrLoadInputMode = 18,
+    kVrBaseDisplacement = 20,
+    kVrLoad = 21,
+    kVrCorner1 = 30,
+    kVrCorner2 = 31,
+    kVrFreeEdgeMid = 32,
+    kVrEnergy = 33,
+    kVrEnergyDissipated = 34,
+    kVrEnergyInput = 35,
+    kVrContactVertices = 36,
+    kVrQpKktResidualMax = 37,
+    kVrQpIterationsTotal = 38,
+    kVrQpIterationsMax = 39,
+    kVrEnergyDamped = 40,
+    kVrMass = 50,
+    kVrRestitution = 51,
+    kVrDampingMass = 52,
+    kVrDampingStiffness = 53,
+    kVrBaseDrive = 54,
+    kVrBaseVelocity = 22,
+    kVrBaseAcceleration = 23,
+    kVrClampForce = 70,
+    kVrClampMoment = 71,
+    kVrClampDisplacement = 72,
+    kVrClampVelocity = 73,
+    kVrClampAcceleration = 74,
+    kVrContactForceLower = 75,
+    kVrContactForceUpper = 76,
+    kVrContactImpulseLower = 77,
+    kVrContactImpulseUpper = 78,
+    kVrImpactsLower = 79,
+    kVrImpactsUpper = 80,
+    kVrCorner1Velocity = 81,
+    kVrCorner2Velocity = 82,
+    kVrFreeEdgeMidVelocity = 83,
+    kVrCorner1Acceleration = 84,
+    kVrCorner2Acceleration = 85,
+    kVrFreeEdgeMidAcceleration = 86,
+    kVrMemoryLimit = 60,
+    kVrTimeScheme = 65,
+    kVrContactSubsteps = 66,
+    // The carried clamp (docs/theory.md §18–19).
+    kVrArmatureMass = 100,
+    kVrArmatureStiffness = 101,
+    kVrArmatureDamping = 102,
+    kVrTlmImpedance = 103,
+    kVrDriveForce = 104,
+    kVrTlmWaveIn = 105,
+    kVrArmatureEnergy = 106,
+    kVrArmatureDriveWork = 107,
+    kVrArmatureDamped = 108,
+    kVrArmaturePortWork = 109,
+    kVrTlmWaveOut = 110,
+    kVrTlmTransit = 111,
+    kVrTlmLineLoss = 112,
+};
+
+// Bounds of the clamp's velocity and acceleration inputs: far beyond any shaker (1 km/s,
+// 10^6 g), inside what keeps the integrated clamp position's arithmetic finite.
+constexpr double kMaxBaseVelocity = 1e3;  // m/s
+constexpr double kMaxBaseAcceleration = 1e7;  // m/s^2
+
+const std::vector<fmu::Variable>& plateVariables();
+// FMI 3.0 terminals over the table's variables (terminalsAndIcons.xml): the clamp as a vertical
+// translational flange, driven by motion (clamp) or by force (armature), and the transmission
+// line's end (line). The kinds are documented in the model's page (PlateModel.cpp).
+const std::vector<fmu::Terminal>& plateTerminals();
+double getValue(const PlateValues& values, const fmu::Variable& v);
+void setValue(PlateValues& values, const fmu::Variable& v, double x);
+
+}  // namespace plateimpact

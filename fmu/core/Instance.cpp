@@ -1,0 +1,503 @@
+#include "core/Instance.h"
+
+#include <algorithm>
+#include <cmath>
+#include <cstdio>
+#include <cstring>
+#include <exception>
+#include <vector>
+
+#include "core/StateFormat.h"
+
+namespace fmu {
+
+namespace {
+
+// Tolerance of fmi2DoStep's communication point (importers' times wobble in the last digits).
+constexpr double kTimeTolerance = 1e-9;
+
+std::string formatMessage(const char* format, va_list args) {
+    va_list copy;
+    va_copy(copy, args);
+    const int length = std::vsnprintf(nullptr, 0, format, copy);
+    va_end(copy);
+    if (length < 0) return format;
+    std::string text(static_cast<std::size_t>(length) + 1, '\0');
+    std::vsnprintf(&text[0], text.size(), format, args);
+    text.resize(static_cast<std::size_t>(length));
+    return text;
+}
+
+// The importer may treat the message as a printf format (FMI 2.0, fmi2CallbackLogger).
+std::string escapePercent(const std::string& text) {
+    std::string out;
+    out.reserve(text.size());
+    for (char ch : text) {
+        out += ch;
+        if (ch == '%') out += '%';
+    }
+    return out;
+}
+
+}  // namespace
+
+// ---------------------------------------------------------------------------------------------
+// Names and logging
+
+const char* stateName(State state) {
+    switch (state) {
+        case StartAndEnd: return "startAndEnd";
+        case Instantiated: return "instantiated";
+        case InitializationMode: return "initializationMode";
+        case EventMode: return "eventMode";
+        case ContinuousTimeMode: return "continuousTimeMode";
+        case StepComplete: return "stepComplete";
+        case StepInProgress: return "stepInProgress";
+        case StepFailed: return "stepFailed";
+        case StepCanceled: return "stepCanceled";
+        case Terminated: return "terminated";
+        case Error: return "error";
+        case Fatal: return "fatal";
+        case ConfigurationMode: return "configurationMode";
+        case IntermediateUpdateMode: return "intermediateUpdateMode";
+    }
+    return "unknown";
+}
+
+const char* logCategoryName(LogCategory category) {
+    switch (category) {
+        case LogStatusError: return "logStatusError";
+        case LogStatusWarning: return "logStatusWarning";
+        case LogAll: return "logAll";
+        case LogInfo: return "logInfo";
+        case LogCategoryCount: break;
+    }
+    return "logAll";
+}
+
+void logWithoutInstance(const fmi2CallbackFunctions* functions, fmi2String instanceName, const char* format, ...) {
+    if (!functions || !functions->logger) return;
+    try {
+        va_list args;
+        va_start(args, format);
+        const std::string message = escapePercent(formatMessage(format, args));
+        va_end(args);
+        functions->logger(functions->componentEnvironment, instanceName ? instanceName : "", fmi2Error,
+                          logCategoryName(LogStatusError), message.c_str());
+    } catch (...) {
+        // nothing sensible is left to do: the caller returns NULL
+    }
+}
+
+void Instance::vlog(fmi2Status status, LogCategory category, const char* format, va_list args) {
+    if (!callbacks_.logger || !logCategories_[category]) return;
+    try {
+        const std::string message = escapePercent(formatMessage(format, args));
+        callbacks_.logger(callbacks_.componentEnvironment, instanceName_.c_str(), status, logCategoryName(category),
+                          message.c_str());
+    } catch (...) {
+        // out of memory while logging: drop the message, never throw into the importer
+    }
+}
+
+void Instance::log(fmi2Status status, LogCategory category, const char* format, ...) {
+    va_list args;
+    va_start(args, format);
+    vlog(status, category, format, args);
+    va_end(args);
+}
+
+fmi2Status Instance::fail(const char* format, ...) {
+    va_list args;
+    va_start(args, format);
+    std::string message;
+    try {
+        message = std::string(function_) + ": " + formatMessage(format, args);
+    } catch (...) {}
+    va_end(args);
+    log(fmi2Error, LogStatusError, "%s", message.c_str());
+    return fmi2Error;
+}
+
+// ---------------------------------------------------------------------------------------------
+// Life cycle
+
+Instance::Instance(std::string instanceName, const fmi2CallbackFunctions& callbacks, bool loggingOn, const char* api)
+    : instanceName_(std::move(instanceName)), callbacks_(callbacks), api_(api), model_(createModel()) {
+    // As the Reference FMUs: errors are logged unless switched off with fmi2SetDebugLogging;
+    // warnings and the call trace follow loggingOn.
+    logCategories_[LogStatusError] = true;
+    logCategories_[LogStatusWarning] = loggingOn;
+    logCategories_[LogAll] = loggingOn;
+    logCategories_[LogInfo] = loggingOn;
+    attachTrace();
+    const bool fmi3 = std::strcmp(api_, "fmi3") == 0;
+    log(fmi2OK, LogAll, "%s: instance \"%s\" of %s (%s %s)", fmi3 ? "fmi3InstantiateCoSimulation" : "fmi2Instantiate",
+        instanceName_.c_str(), model_->info().modelName, fmi3 ? "instantiationToken" : "GUID", modelGuid());
+}
+
+Instance::~Instance() = default;
+
+void Instance::attachTrace() {
+    model_->trace = [this](const std::string& message) { log(fmi2OK, LogAll, "%s: %s", function_, message.c_str()); };
+    model_->inform = [this](const std::string& message) { log(fmi2OK, LogInfo, "%s: %s", function_, message.c_str()); };
+    if (!intermediateUpdate_) {
+        model_->intermediateUpdate = nullptr;
+        return;
+    }
+    // The master's callback may call back into this instance (fmi3GetFloat64): it does so in
+    // IntermediateUpdateMode, and the running function's name is restored for the messages after.
+    model_->intermediateUpdate = [this](double time) {
+        const State running = state_;
+        const char* function = function_;
+        state_ = IntermediateUpdateMode;
+        const double at = intermediateUpdate_(startTime_ + time);
+        const bool failed = state_ & (Error | Fatal);
+        function_ = function;
+        if (failed) throw std::runtime_error("a call of the master inside its intermediate update callback failed");
+        state_ = running;
+        return at - startTime_;
+    };
+}
+
+void Instance::setIntermediateUpdate(std::function<double(double)> callback) {
+    intermediateUpdate_ = std::move(callback);
+    attachTrace();
+}
+
+void Instance::logFreeInstance() { log(fmi2OK, LogAll, "%sFreeInstance", api_); }
+
+fmi2Status Instance::setDebugLogging(fmi2Boolean loggingOn, size_t nCategories, const fmi2String categories[]) {
+    const bool on = loggingOn != fmi2False;
+    bool next[LogCategoryCount];
+    std::copy(logCategories_, logCategories_ + LogCategoryCount, next);
+    if (nCategories == 0) {
+        std::fill(next, next + LogCategoryCount, on);
+    } else {
+        if (!categories) return fail("argument categories[] must not be NULL");
+        for (size_t i = 0; i < nCategories; ++i) {
+            const char* name = categories[i];
+            if (!name) return fail("categories[%zu] must not be NULL", i);
+            if (std::strcmp(name, "logStatusError") == 0) {
+                next[LogStatusError] = on;
+            } else if (std::strcmp(name, "logStatusWarning") == 0) {
+                next[LogStatusWarning] = on;
+            } else if (std::strcmp(name, "logInfo") == 0) {
+                next[LogInfo] = on;
+            } else if (std::strcmp(name, "logAll") == 0) {
+                std::fill(next, next + LogCategoryCount, on);  // "all" switches every category
+            } else {
+                return fail(
+                    "unknown log category \"%s\"; the categories of this FMU are logStatusError, "
+                    "logStatusWarning, logInfo and logAll",
+                    name);
+            }
+        }
+    }
+    std::copy(next, next + LogCategoryCount, logCategories_);
+    return fmi2OK;
+}
+
+fmi2Status Instance::setupExperiment(fmi2Real startTime, fmi2Boolean toleranceDefined, fmi2Real tolerance,
+                                     fmi2Boolean stopTimeDefined, fmi2Real stopTime) {
+    if (!std::isfinite(startTime)) return fail("startTime = %g is not a finite number", startTime);
+    startTime_ = startTime;
+    // function_: fmi2SetupExperiment, or fmi3EnterInitializationMode, which takes these arguments.
+    if (toleranceDefined) log(fmi2OK, LogAll, "%s: tolerance %g ignored (fixed time step)", function_, tolerance);
+    if (stopTimeDefined) log(fmi2OK, LogAll, "%s: stopTime %g", function_, stopTime);
+    return fmi2OK;
+}
+
+fmi2Status Instance::enterInitializationMode() {
+    state_ = InitializationMode;
+    return fmi2OK;
+}
+
+fmi2Status Instance::exitInitializationMode() {
+    if (!model_->built()) model_->build();  // throws ModelError naming a bad parameter
+    state_ = StepComplete;
+    return fmi2OK;
+}
+
+fmi2Status Instance::terminate() {
+    state_ = Terminated;
+    return fmi2OK;
+}
+
+fmi2Status Instance::reset() {
+    // The same as after fmi2Instantiate: a fresh model with its default values.
+    model_ = createModel();
+    attachTrace();
+    startTime_ = 0.0;
+    state_ = Instantiated;
+    return fmi2OK;
+}
+
+double Instance::currentTime() const { return startTime_ + model_->time(); }
+
+// ---------------------------------------------------------------------------------------------
+// Variables
+
+const Variable* Instance::variableFor(fmi2ValueReference vr, VariableType type) {
+    const Variable* variable = model_->find(vr);
+    if (!variable) {
+        fail("unknown value reference %u", vr);
+        return nullptr;
+    }
+    if (variable->type != type) {
+        fail("value reference %u (%s) is a %s variable, not %s", vr, variable->name, typeName(variable->type),
+             typeName(type));
+        return nullptr;
+    }
+    return variable;
+}
+
+bool Instance::settable(const Variable& variable) {
+    if (variable.causality == Causality::Output) {
+        fail("%s (vr %u) is an output and cannot be set", variable.name, variable.vr);
+        return false;
+    }
+    if (variable.causality == Causality::Parameter &&
+        !(state_ & (Instantiated | ConfigurationMode | InitializationMode))) {
+        log(fmi2Error, LogStatusError,
+            "illegal call sequence: %s of fixed parameter %s (vr %u) in state %s; fixed parameters can only be set "
+            "before %sExitInitializationMode",
+            function_, variable.name, variable.vr, stateName(state_), api_);
+        return false;
+    }
+    return true;
+}
+
+fmi2Status Instance::getValues(VariableType type, const fmi2ValueReference vr[], size_t nvr, double value[]) {
+    if (nvr == 0) return fmi2OK;
+    if (!vr || !value) return fail("arguments vr[] and value[] must not be NULL");
+    for (size_t i = 0; i < nvr; ++i) {
+        const Variable* variable = variableFor(vr[i], type);
+        if (!variable) return fmi2Error;
+        if (state_ == IntermediateUpdateMode && variable->causality != Causality::Output)
+            return fail(
+                "%s (vr %u) is not an intermediate update variable (allowed inside the intermediate update "
+                "callback: the outputs)",
+                variable->name, variable->vr);
+        // An output read in initialization mode: build what the parameters describe now.
+        if (variable->causality == Causality::Output && state_ == InitializationMode && !model_->built())
+            model_->build();
+        value[i] = model_->get(*variable);
+    }
+    return fmi2OK;
+}
+
+fmi2Status Instance::setValues(VariableType type, const fmi2ValueReference vr[], size_t nvr, const double value[]) {
+    if (nvr == 0) return fmi2OK;
+    if (!vr || !value) return fail("arguments vr[] and value[] must not be NULL");
+    for (size_t i = 0; i < nvr; ++i) {
+        const Variable* variable = variableFor(vr[i], type);
+        if (!variable || !settable(*variable)) return fmi2Error;
+        if (!std::isfinite(value[i]))
+            return fail("%s (vr %u) = %g rejected: NaN and Inf are not allowed", variable->name, variable->vr,
+                        value[i]);
+        if (variable->causality == Causality::Input && variable->hasRange() &&
+            !(value[i] >= variable->min && value[i] <= variable->max))
+            return fail("%s = %.17g out of range (allowed: %.17g <= %s <= %.17g)", variable->name, value[i],
+                        variable->min, variable->name, variable->max);
+        if (variable->enumeration &&
+            !(std::floor(value[i]) == value[i] && variable->enumeration->contains(int(value[i]))))
+            return fail("%s = %.17g is none of its items (%s)", variable->name, value[i],
+                        variable->enumeration->itemList().c_str());
+        model_->set(*variable, value[i]);
+        // Before initialization ends, what was built (an output was read) came from the old value.
+        if (variable->shapesInitialState && (state_ & (Instantiated | ConfigurationMode | InitializationMode)) &&
+            model_->built())
+            model_->drop();
+    }
+    return fmi2OK;
+}
+
+// ---------------------------------------------------------------------------------------------
+// FMU states
+
+void Instance::capture(Snapshot& snapshot) const {
+    snapshot.state = state_;
+    snapshot.startTime = startTime_;
+    snapshot.values.clear();
+    for (const Variable& v : model_->variables())
+        if (isSettable(v)) snapshot.values.push_back(model_->get(v));
+    snapshot.modelState.clear();
+    model_->saveState(snapshot.modelState);
+}
+
+void Instance::restore(const Snapshot& snapshot) {
+    const auto apply = [this](const Snapshot& s) {
+        std::size_t next = 0;
+        for (const Variable& v : model_->variables())
+            if (isSettable(v)) model_->set(v, s.values.at(next++));
+        const double* in = s.modelState.data();
+        model_->restoreState(in, in + s.modelState.size());
+        state_ = s.state;
+        startTime_ = s.startTime;
+    };
+    // All or nothing: a state the model refuses (its part is checked only here) leaves the
+    // instance as it was.
+    Snapshot before;
+    capture(before);
+    try {
+        apply(snapshot);
+    } catch (...) {
+        apply(before);
+        throw;
+    }
+}
+
+fmi2Status Instance::getFMUstate(fmi2FMUstate* state) {
+    if (!state) return fail("argument FMUstate must not be NULL");
+    if (*state) {  // reuse a state this FMU handed out before
+        Snapshot* previous = asSnapshot(*state);
+        if (!previous) return fail("*FMUstate is not an FMU state of %s", model_->info().modelName);
+        capture(*previous);
+        return fmi2OK;
+    }
+    auto snapshot = std::make_unique<Snapshot>();
+    capture(*snapshot);
+    *state = snapshot.release();  // owned by the importer until fmi2FreeFMUstate
+    return fmi2OK;
+}
+
+fmi2Status Instance::setFMUstate(fmi2FMUstate state) {
+    const Snapshot* snapshot = asSnapshot(state);
+    if (!snapshot) return fail("FMUstate is NULL or not an FMU state of %s", model_->info().modelName);
+    restore(*snapshot);
+    return fmi2OK;
+}
+
+fmi2Status Instance::freeFMUstate(fmi2FMUstate* state) {
+    if (!state) return fail("argument FMUstate must not be NULL");
+    if (!*state) return fmi2OK;
+    Snapshot* snapshot = asSnapshot(*state);
+    if (!snapshot) return fail("*FMUstate is not an FMU state of %s", model_->info().modelName);
+    std::unique_ptr<Snapshot> owned(snapshot);  // takes ownership back and frees it
+    *state = nullptr;
+    return fmi2OK;
+}
+
+fmi2Status Instance::serializedFMUstateSize(fmi2FMUstate state, size_t* size) {
+    const Snapshot* snapshot = asSnapshot(state);
+    if (!snapshot) return fail("FMUstate is NULL or not an FMU state of %s", model_->info().modelName);
+    if (!size) return fail("argument size must not be NULL");
+    *size = serializedSize(*snapshot);
+    return fmi2OK;
+}
+
+fmi2Status Instance::serializeFMUstate(fmi2FMUstate state, fmi2Byte serialized[], size_t size) {
+    const Snapshot* snapshot = asSnapshot(state);
+    if (!snapshot) return fail("FMUstate is NULL or not an FMU state of %s", model_->info().modelName);
+    if (!serialized) return fail("argument serializedState must not be NULL");
+    const std::size_t expected = serializedSize(*snapshot);
+    if (size != expected)
+        return fail("size = %zu, but the state needs %zu bytes (fmi2SerializedFMUstateSize)", size, expected);
+    serialize(*snapshot, *model_, modelGuid(), serialized, size);
+    return fmi2OK;
+}
+
+fmi2Status Instance::deSerializeFMUstate(const fmi2Byte serialized[], size_t size, fmi2FMUstate* state) {
+    if (!state) return fail("argument FMUstate must not be NULL");
+    if (!serialized && size > 0) return fail("argument serializedState must not be NULL");
+    if (*state && !asSnapshot(*state)) return fail("*FMUstate is not an FMU state of %s", model_->info().modelName);
+    Snapshot decoded;
+    try {
+        decoded = deserialize(serialized, size, modelGuid(), *model_);
+    } catch (const CorruptState& e) {
+        return fail("corrupt serialized state: %s", e.what());
+    }
+    if (*state) {
+        *asSnapshot(*state) = std::move(decoded);
+        return fmi2OK;
+    }
+    *state = std::make_unique<Snapshot>(std::move(decoded)).release();  // the importer's until fmi2FreeFMUstate
+    return fmi2OK;
+}
+
+// ---------------------------------------------------------------------------------------------
+// Co-simulation
+
+fmi2Status Instance::setRealInputDerivatives(const fmi2ValueReference vr[], size_t nvr, const fmi2Integer order[],
+                                             const fmi2Real value[]) {
+    if (nvr == 0) return fmi2OK;
+    if (!vr || !order || !value) return fail("arguments vr[], order[] and value[] must not be NULL");
+    for (size_t i = 0; i < nvr; ++i) {
+        const Variable* variable = model_->find(vr[i]);
+        if (!variable || variable->causality != Causality::Input || !variable->hasDerivatives) {
+            std::string inputs;
+            for (const Variable& v : model_->variables())
+                if (v.causality == Causality::Input && v.hasDerivatives)
+                    inputs += (inputs.empty() ? "" : ", ") + std::string(v.name) + " (vr " + std::to_string(v.vr) + ")";
+            return fail("value reference %u is not a Real input; input derivatives exist for %s", vr[i],
+                        inputs.empty() ? "no variable" : inputs.c_str());
+        }
+        if (order[i] != 1 && order[i] != 2)
+            return fail("derivative order %d of %s is not supported; orders 1 and 2 are", order[i], variable->name);
+        if (!std::isfinite(value[i]))
+            return fail("derivative of order %d of %s = %g rejected: NaN and Inf are not allowed", order[i],
+                        variable->name, value[i]);
+        model_->setInputDerivative(*variable, order[i], value[i]);
+    }
+    return fmi2OK;
+}
+
+fmi2Status Instance::getRealOutputDerivatives(const fmi2ValueReference vr[], size_t nvr, const fmi2Integer order[],
+                                              fmi2Real value[]) {
+    const int maxOrder = model_->info().maxOutputDerivativeOrder;
+    if (maxOrder == 0) return fail("not supported (maxOutputDerivativeOrder=\"0\")");
+    if (nvr == 0) return fmi2OK;
+    if (!vr || !order || !value) return fail("arguments vr[], order[] and value[] must not be NULL");
+    for (size_t i = 0; i < nvr; ++i) {
+        const Variable* variable = model_->find(vr[i]);
+        if (!variable || variable->causality != Causality::Output || !variable->hasDerivatives)
+            return fail("value reference %u is not a Real output with derivatives", vr[i]);
+        if (order[i] < 1 || order[i] > maxOrder)
+            return fail("derivative order %d of %s is not supported (1 to %d)", order[i], variable->name, maxOrder);
+        value[i] = model_->getOutputDerivative(*variable, order[i]);
+    }
+    return fmi2OK;
+}
+
+fmi2Status Instance::doStep(fmi2Real t, fmi2Real h) { return doStep(t, h, false, nullptr); }
+
+fmi2Status Instance::doStep(fmi2Real t, fmi2Real h, bool stopAtEvent, bool* endedAtEvent) {
+    if (endedAtEvent) *endedAtEvent = false;
+    const double now = currentTime();
+    if (!std::isfinite(t) || std::fabs(t - now) > kTimeTolerance * std::max(1.0, std::fabs(t)))
+        return fail(
+            "currentCommunicationPoint = %.17g differs from the FMU's time %.17g; each step must start where "
+            "the previous one ended (relative tolerance %g)",
+            t, now, kTimeTolerance);
+    if (!std::isfinite(h) || !(h > 0)) return fail("communicationStepSize h = %.17g rejected: it must be > 0", h);
+    if (stopAtEvent) {
+        const bool atEvent = model_->doStepUntilEvent(t, h);
+        if (endedAtEvent) *endedAtEvent = atEvent;
+    } else {
+        model_->doStep(t, h);
+    }
+    return fmi2OK;
+}
+
+fmi2Status Instance::getArray(const ArrayOutput& array, double value[], size_t n) {
+    if (n > 0 && !value) return fail("argument values[] must not be NULL");
+    // As getValues: an output read in initialization mode builds what the parameters describe.
+    if (state_ == InitializationMode && !model_->built()) model_->build();
+    if (!model_->built()) return fail("%s is not available before initialization", array.name);
+    model_->getArray(array, value, n);
+    return fmi2OK;
+}
+
+fmi2Status Instance::statusNotAvailable(fmi2StatusKind kind) {
+    static constexpr const char* kKinds[] = {"fmi2DoStepStatus", "fmi2PendingStatus", "fmi2LastSuccessfulTime",
+                                             "fmi2Terminated"};
+    const char* name = (kind >= 0 && kind <= 3) ? kKinds[kind] : "an unknown status kind";
+    log(fmi2Discard, LogStatusError,
+        "%s: %s is not available from this function (fmi2DoStep never returns "
+        "fmi2Pending or fmi2Discard); returning fmi2Discard",
+        function_, name);
+    return fmi2Discard;
+}
+
+}  // namespace fmu

@@ -1,0 +1,99 @@
+#include "core/Model.h"
+
+#include <algorithm>
+#include <string>
+
+namespace fmu {
+
+const char* typeName(VariableType type) {
+    switch (type) {
+        case VariableType::Real: return "Real";
+        case VariableType::Integer: return "Integer";
+        case VariableType::Boolean: return "Boolean";
+    }
+    return "?";
+}
+
+bool EnumerationType::contains(int value) const {
+    for (const EnumerationItem& item : items)
+        if (item.value == value) return true;
+    return false;
+}
+
+std::string EnumerationType::itemList() const {
+    std::string text;
+    for (const EnumerationItem& item : items) {
+        if (!text.empty()) text += ", ";
+        text += std::to_string(item.value) + " = " + item.name;
+    }
+    return text;
+}
+
+int EnumerationType::lowest() const {
+    int low = items.front().value;
+    for (const EnumerationItem& item : items) low = std::min(low, item.value);
+    return low;
+}
+
+int EnumerationType::highest() const {
+    int high = items.front().value;
+    for (const EnumerationItem& item : items) high = std::max(high, item.value);
+    return high;
+}
+
+Variable integerSwitch(fmi2ValueReference vr, const char* name, const char* description, const EnumerationType& items) {
+    Variable v{vr, name, VariableType::Integer, Causality::Parameter, description, nullptr, &items, true, false};
+    v.min = items.lowest();
+    v.max = items.highest();
+    return v;
+}
+
+const Variable* Model::find(fmi2ValueReference vr) const {
+    for (const Variable& v : variables())
+        if (v.vr == vr) return &v;
+    return nullptr;
+}
+
+void Model::setInputDerivative(const Variable& v, int, double) {
+    throw ModelError(std::string(v.name) + " takes no input derivatives");
+}
+
+double Model::getOutputDerivative(const Variable& v, int) const {
+    throw ModelError(std::string(v.name) + " has no output derivatives");
+}
+
+const std::vector<StructuralParameter>& Model::structuralParameters() const {
+    static const std::vector<StructuralParameter> none;
+    return none;
+}
+
+const std::vector<ArrayOutput>& Model::arrayOutputs() const {
+    static const std::vector<ArrayOutput> none;
+    return none;
+}
+
+const std::vector<Terminal>& Model::terminals() const {
+    static const std::vector<Terminal> none;
+    return none;
+}
+
+void Model::getArray(const ArrayOutput& a, double*, std::size_t) const {
+    throw ModelError(std::string(a.name) + " is not an array output of this model");
+}
+
+double Model::ownStructuralValue(const StructuralParameter& s) const {
+    for (const auto& [vr, value] : ownStructuralValues_)
+        if (vr == s.vr) return value;
+    return s.offset;
+}
+
+void Model::setOwnStructuralValue(const StructuralParameter& s, double value) {
+    for (auto& [vr, stored] : ownStructuralValues_)
+        if (vr == s.vr) {
+            stored = value;
+            return;
+        }
+    ownStructuralValues_.emplace_back(s.vr, value);
+}
+
+}  // namespace fmu

@@ -1,0 +1,50 @@
+#pragma once
+// FMU states: what fmi2GetFMUstate captures, and the byte format of fmi2SerializeFMUstate.
+// Model-independent: the values of the settable variables are written by walking the model's
+// table, the rest is the model's own saveState().
+#include <cstdint>
+#include <stdexcept>
+#include <vector>
+
+#include "core/FmiState.h"
+#include "core/Model.h"
+
+namespace fmu {
+
+struct Snapshot {
+    static constexpr std::uint64_t kTag = 0x46'4d'55'53'6e'61'70'00ULL;  // "FMUSnap": guards the cast
+    std::uint64_t tag = kTag;
+    State state = Instantiated;
+    double startTime = 0.0;
+    std::vector<double> values;  // parameters and inputs, in table order
+    std::vector<double> modelState;  // Model::saveState
+};
+
+// The snapshot behind an fmi2FMUstate handed out by this layer, or nullptr.
+Snapshot* asSnapshot(fmi2FMUstate state);
+
+// Parameters and inputs: the variables an FMU state carries, in table order.
+bool isSettable(const Variable& v);
+
+class CorruptState : public std::runtime_error {
+public:
+    using std::runtime_error::runtime_error;
+};
+
+// Serialized form (native byte order, this FMU's own platform only):
+//   bytes  0..7   magic: the model's ModelInfo::stateMagic (8 characters)
+//   bytes  8..11  uint32 format version
+//   bytes 12..15  uint32 length of the GUID
+//   bytes 16..63  GUID of the FMU build that wrote it (NUL padded)
+//   bytes 64..71  uint64 number n of doubles that follow
+//   bytes 72..79  uint64 XXH64 checksum of all the other bytes (verified before any value is
+//                 decoded)
+//   bytes 80..    n doubles: the state-machine state, the start time, the values of the
+//                 settable variables in table order, then the model's state.
+std::size_t serializedSize(const Snapshot& snapshot);
+void serialize(const Snapshot& snapshot, const Model& model, const char* guid, fmi2Byte* out, std::size_t size);
+// Throws CorruptState naming what is wrong (magic, version, GUID, size, checksum, a value out
+// of range), in that order.
+Snapshot deserialize(const fmi2Byte* bytes, std::size_t size, const char* guid, const Model& model);
+
+}  // namespace fmu

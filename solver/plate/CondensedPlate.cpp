@@ -1,0 +1,130 @@
+#include "plate/CondensedPlate.h"
+
+#include <Eigen/Cholesky>
+#include <Eigen/Eigenvalues>
+#include <algorithm>
+#include <cmath>
+#include <sstream>
+
+#include "base/Errors.h"
+#include "plate/SparseCholesky.h"
+
+namespace plate {
+
+namespace {
+
+// y = C x over the constraint rows: the contact vertices' values, then the extra functionals.
+void gatherRows(const ClampedPlate& plate, const std::vector<ConstraintRow>& extra, const Eigen::VectorXd& x,
+                double* y) {
+    const std::size_t m = plate.contactDofs.size();
+    for (std::size_t i = 0; i < m; ++i) y[i] = x[plate.contactDofs[i]];
+    for (std::size_t k = 0; k < extra.size(); ++k) y[m + k] = extra[k].functional(x);
+}
+
+// Cᵀ e_i as a dense vector over the free dofs.
+void rowDirection(const ClampedPlate& plate, const std::vector<ConstraintRow>& extra, std::size_t i,
+                  Eigen::VectorXd& v) {
+    v.setZero();
+    const std::size_t m = plate.contactDofs.size();
+    if (i < m) {
+        v[plate.contactDofs[i]] = 1.0;
+        return;
+    }
+    const PointProbe& f = extra[i - m].functional;
+    for (std::size_t k = 0; k < f.dofs.size(); ++k) v[f.dofs[k]] += f.coefficients[k];
+}
+
+}  // namespace
+
+CondensedPlate condense(const ClampedPlate& plate, const Eigen::SparseMatrix<double>& root,
+                        const std::vector<ConstraintRow>& extraRows, int modes) {
+    const Eigen::Index n = plate.stiffness.rows(), nq = root.cols();
+    const auto m = static_cast<Eigen::Index>(plate.contactDofs.size());
+    const Eigen::Index rows = m + static_cast<Eigen::Index>(extraRows.size());
+    const SparseCholesky stiffness(plate.stiffness);  // K, for the columns below only
+    Eigen::VectorXd b(n), x(n);
+
+    // T = Rᵀ K⁻¹ R (massive flexibility) and C K⁻¹ R, one solve per column of R.
+    Eigen::MatrixXd flexibility(nq, nq), rowsOfMassive(rows, nq);
+    for (Eigen::Index j = 0; j < nq; ++j) {
+        b = root.col(j);
+        stiffness.solve(b, x);
+        flexibility.col(j).noalias() = root.transpose() * x;
+        gatherRows(plate, extraRows, x, rowsOfMassive.col(j).data());
+    }
+    // C K⁻¹ Cᵀ, one solve per row.
+    Eigen::MatrixXd rowFlexibility(rows, rows);
+    for (Eigen::Index i = 0; i < rows; ++i) {
+        rowDirection(plate, extraRows, static_cast<std::size_t>(i), b);
+        stiffness.solve(b, x);
+        gatherRows(plate, extraRows, x, rowFlexibility.col(i).data());
+    }
+    // The massive stiffness T⁻¹ = Φ Ω² Φᵀ: T's eigenvalues are 1/ω², largest first = lowest mode.
+    flexibility = 0.5 * (flexibility + flexibility.transpose()).eval();
+    const Eigen::SelfAdjointEigenSolver<Eigen::MatrixXd> eigen(flexibility);
+    if (eigen.info() != Eigen::Success || nq == 0 || !(eigen.eigenvalues()[0] > 1e-13 * eigen.eigenvalues()[nq - 1])) {
+        std::ostringstream msg;
+        msg << "the singular mass's massive space is degenerate on this mesh (the massive flexibility Rᵀ K⁻¹ R is "
+               "singular; allowed: a projection space whose functions the clamped plate can all move)";
+        throw ParameterError(msg.str());
+    }
+    const Eigen::VectorXd mu = eigen.eigenvalues().reverse();
+    const Eigen::MatrixXd phi = eigen.eigenvectors().rowwise().reverse();
+    const Eigen::VectorXd omega2All = mu.cwiseInverse();
+    const Eigen::Index kept = (modes <= 0 || modes >= nq) ? nq : modes;
+
+    CondensedPlate c;
+    c.massiveCount = static_cast<int>(nq);
+    c.contactRows = static_cast<int>(m);
+    c.omega2 = omega2All.head(kept);
+    // (C K⁻¹ R) Φ: the rows' response to each massive mode's flexibility; G = that · Ω².
+    const Eigen::MatrixXd rowsPhi = rowsOfMassive * phi;
+    c.rowModesT = (rowsPhi.leftCols(kept) * c.omega2.asDiagonal()).transpose();
+    // D = C K⁻¹ Cᵀ − (C K⁻¹ R) T⁻¹ (C K⁻¹ R)ᵀ with every massive mode (the massless space is exact
+    // whatever the reduction), symmetrized.
+    c.delassus = rowFlexibility - rowsPhi * omega2All.asDiagonal() * rowsPhi.transpose();
+    c.delassus = 0.5 * (c.delassus + c.delassus.transpose()).eval();
+    const Eigen::LLT<Eigen::MatrixXd> check(c.delassus);
+    if (check.info() != Eigen::Success) {
+        std::ostringstream msg;
+        msg << "the massless space of the singular mass cannot move each of the " << rows
+            << " constraint rows independently on this mesh (the massless Delassus operator is not positive "
+               "definite); allowed: mass = singular_p0, or another mesh";
+        throw ParameterError(msg.str());
+    }
+
+    // Loads through the same flexibilities: K⁻¹ v gives the rows' response C K⁻¹ v and the
+    // massive part Rᵀ K⁻¹ v, whose modal coordinates are Ω² Φᵀ Rᵀ K⁻¹ v (= Vᵀ v).
+    const auto modal = [&](const Eigen::VectorXd& v, Eigen::VectorXd& massive, double* rowResponse) {
+        b = v;
+        stiffness.solve(b, x);
+        massive = phi.transpose() * (root.transpose() * x);  // Φᵀ Rᵀ K⁻¹ v
+        if (rowResponse) gatherRows(plate, extraRows, x, rowResponse);
+        return v.dot(x);
+    };
+    Eigen::VectorXd massive;
+    c.rowLoad.resize(rows);
+    const double loadFlexibilityFull = modal(plate.pressureLoad, massive, c.rowLoad.data());
+    c.rowLoad.noalias() -= rowsPhi * omega2All.cwiseProduct(massive);
+    c.loadFlexibility = loadFlexibilityFull - massive.dot(omega2All.cwiseProduct(massive));
+    c.modalLoad = omega2All.head(kept).cwiseProduct(massive.head(kept));
+    modal(plate.baseInertia, massive, nullptr);
+    c.modalBaseInertia = omega2All.head(kept).cwiseProduct(massive.head(kept));
+    modal(plate.rotationInertia, massive, nullptr);
+    c.modalRotationInertia = omega2All.head(kept).cwiseProduct(massive.head(kept));
+
+    c.totalMass = plate.totalMass;
+    c.totalMassMoment = plate.totalMassMoment;
+    c.loadResultant = plate.loadResultant;
+    c.loadMoment = plate.loadMoment;
+    if (kept < nq) {  // the discarded modes move with the clamp (§17)
+        c.clampMass = std::max(0.0, plate.totalMass - c.modalBaseInertia.squaredNorm());
+        c.clampMassMoment = plate.totalMassMoment - c.modalRotationInertia.dot(c.modalBaseInertia);
+    }
+    c.rowAbscissae = plate.contactAbscissae;
+    for (const ConstraintRow& r : extraRows) c.rowAbscissae.push_back(r.x);
+    if (rows > 0) c.rowModeNormMax = c.rowModesT.colwise().norm().maxCoeff();
+    return c;
+}
+
+}  // namespace plate

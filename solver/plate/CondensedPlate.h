@@ -1,0 +1,58 @@
+#pragma once
+// The clamped plate with a singular mass, condensed (docs/theory.md §17): the massive space in
+// mass-normalized modes with their static completion, the massless space static at every
+// instant. What the conserving engine (ConservingStepper) steps:
+//
+//   q̈ + Ω² q = p F_m − b_m z̈ + Gᵀλ,      y = G q + p c_p + z·𝟙 + D λ   (constraint rows),
+//
+// q the massive modal coordinates, y the absolute heights of the constraint rows (the contact
+// vertices, then the output points that are not vertices), λ their contact forces and
+// D = C Q0 S⁻¹ Q0ᵀ Cᵀ the massless Delassus operator (constant, SPD). Everything is computed once
+// from the sparse factor of K: the massive flexibility T = Rᵀ K⁻¹ R (R the root of M_s,
+// SingularMass.h) gives the massive stiffness T⁻¹ = Φ Ω² Φᵀ, the modes V = K⁻¹ R Φ Ω², and
+// Q0 S⁻¹ Q0ᵀ = K⁻¹ − K⁻¹ R T⁻¹ Rᵀ K⁻¹ (§17). No dense matrix of the plate's size is formed.
+#include <Eigen/Core>
+#include <Eigen/Sparse>
+#include <vector>
+
+#include "fe/Assembly.h"
+
+namespace plate {
+
+struct CondensedPlate {
+    // The retained massive modes (all of them, or the `modes` lowest), ascending.
+    Eigen::VectorXd omega2;  // Ω²
+    Eigen::MatrixXd rowModesT;  // Gᵀ = (C V)ᵀ: column i = the modes at constraint row i
+    Eigen::MatrixXd delassus;  // D (rows × rows), symmetric positive definite
+    Eigen::VectorXd rowLoad;  // c_p = C Q0 S⁻¹ Q0ᵀ F: the massless part's response to a unit pressure
+    double loadFlexibility = 0.0;  // Fᵀ Q0 S⁻¹ Q0ᵀ F (its strain energy is ½ p² times this)
+    Eigen::VectorXd modalLoad;  // F_m = Vᵀ F
+    Eigen::VectorXd modalBaseInertia;  // b_m = Vᵀ (M_s·1)_free
+    Eigen::VectorXd modalRotationInertia;  // Vᵀ (M_s·X)_free
+    // Mass and first moment that move rigidly with the clamp: those of the discarded massive
+    // modes (zero with every mode retained, §17).
+    double clampMass = 0.0, clampMassMoment = 0.0;
+    double totalMass = 0.0, totalMassMoment = 0.0, loadResultant = 0.0, loadMoment = 0.0;
+    int massiveCount = 0;  // dimension of the massive space (retained: omega2.size())
+    int contactRows = 0;  // the first rows: the contact vertices of ClampedPlate, in its order
+    std::vector<double> rowAbscissae;  // x of each row (its lever arm about the clamp line)
+    double rowModeNormMax = 0.0;  // max_i ‖G_i‖₂ (the free-flight bound)
+
+    int rows() const { return static_cast<int>(rowLoad.size()); }
+    int modes() const { return static_cast<int>(omega2.size()); }
+};
+
+// An output point as a constraint row: a point evaluation over the free dofs and its abscissa.
+struct ConstraintRow {
+    PointProbe functional;
+    double x = 0.0;
+};
+
+// Builds the condensed plate. `root` is R over the free dofs (M_s = R Rᵀ), `extraRows` the output
+// points added as constraint rows after the contact vertices, `modes` the massive modes kept
+// (≤ 0 or ≥ the massive dimension: all). Throws ParameterError when the massless space cannot
+// move every row independently (D not positive definite) or the massive flexibility is singular.
+CondensedPlate condense(const ClampedPlate& plate, const Eigen::SparseMatrix<double>& root,
+                        const std::vector<ConstraintRow>& extraRows, int modes);
+
+}  // namespace plate

@@ -1,0 +1,96 @@
+#include "plate/PlateParameters.h"
+
+#include <cmath>
+#include <sstream>
+
+namespace plate {
+
+namespace {
+
+template <class T>
+[[noreturn]] void reject(const char* name, T value, const char* allowed) {
+    std::ostringstream msg;
+    msg.precision(15);  // round-trips what users type (0.7, not 0.69999999999999996)
+    msg << "invalid parameter " << name << " = " << value << " (allowed: " << allowed << ")";
+    throw ParameterError(msg.str());
+}
+
+// "lo <= name <= hi" (with < at an open end), as the message states the range.
+std::string rangeText(const char* name, const Range& r) {
+    std::ostringstream text;
+    text << r.min << (r.minOpen ? " < " : " <= ") << name << (r.maxOpen ? " < " : " <= ") << r.max;
+    return text.str();
+}
+
+void requireRange(const char* name, double value, const Range& r, const char* why = nullptr) {
+    if (!r.contains(value)) {
+        const std::string allowed = rangeText(name, r) + (why ? std::string(" ") + why : "");
+        reject(name, value, allowed.c_str());
+    }
+}
+
+}  // namespace
+
+void validate(const PlateParameters& p) {
+    using namespace ranges;
+    requireRange("length", p.length, kLength);
+    requireRange("width", p.width, kWidth);
+    requireRange("thickness", p.thickness, kThickness);
+    requireRange("youngs_modulus", p.youngsModulus, kYoungsModulus);
+    requireRange("poisson_ratio", p.poissonRatio, kPoissonRatio);
+    requireRange("density", p.density, kDensity);
+    requireRange("nx", p.nx, kCells);
+    requireRange("ny", p.ny, kCells);
+    if (p.obstacleLowerEnabled)
+        requireRange("obstacle_lower", p.obstacleLower, kObstacleLower,
+                     "when obstacle_lower_enabled (the plate starts at w = 0)");
+    if (p.obstacleUpperEnabled)
+        requireRange("obstacle_upper", p.obstacleUpper, kObstacleUpper,
+                     "when obstacle_upper_enabled (the plate starts at w = 0)");
+    requireRange("dt", p.dt, kDt);
+    requireRange("beta", p.beta, kBeta);
+    requireRange("initial_load", p.initialLoad, kInitialLoad);
+    requireRange("modes", p.modes, kModes, "(0 = full space)");
+    if (p.mass != MassModel::Consistent && p.mass != MassModel::SingularP0 && p.mass != MassModel::SingularP1dg)
+        reject("mass", static_cast<int>(p.mass), "1 (consistent), 2 (singular_p0) or 3 (singular_p1dg)");
+    if (p.timeScheme != TimeScheme::Newmark && p.timeScheme != TimeScheme::Conserving &&
+        p.timeScheme != TimeScheme::Flow)
+        reject("time_scheme", static_cast<int>(p.timeScheme), "1 (newmark), 2 (conserving) or 3 (flow)");
+    const bool conserving = p.condensed();
+    if (conserving && !p.singularMass())
+        reject("mass", "consistent",
+               "mass = singular_p0 (2) or singular_p1dg (3) with time_scheme = conserving or flow: the scheme steps "
+               "the massive modes of a singular mass and keeps its massless part static");
+    requireRange("contact_substeps", p.contactSubsteps, kContactSubsteps);
+    if (p.singularMass() && p.modes != 0 && !conserving)
+        reject("modes", p.modes,
+               "modes = 0 with a singular mass and time_scheme = newmark (the reduced singular model is "
+               "time_scheme = conserving)");
+    if (p.singularMass() && p.beta < 0.25 && !conserving)
+        reject("beta", p.beta,
+               "0.25 <= beta <= 0.5 with a singular mass (massless dofs have no explicit stability bound)");
+    requireRange("restitution", p.restitution, kRestitution);
+    if (conserving && p.restitution != 0.0)
+        reject("restitution", p.restitution,
+               "restitution = 0 with time_scheme = conserving (its impacts conserve energy by construction)");
+    requireRange("damping_mass", p.dampingMass, kDampingMass);
+    requireRange("damping_stiffness", p.dampingStiffness, kDampingStiffness);
+    requireRange("memory_limit", p.memoryLimit, kMemoryLimit);  // MB; 0 = no limit
+    if (p.carrier == PlateParameters::Carrier::Armature) {
+        requireRange("armature_mass", p.armatureMass, kArmatureMass, "when base_drive = force");
+        requireRange("armature_stiffness", p.armatureStiffness, kArmatureStiffness, "when base_drive = force");
+        requireRange("armature_damping", p.armatureDamping, kArmatureDamping, "when base_drive = force");
+    }
+    if (p.carrier == PlateParameters::Carrier::Line)
+        requireRange("tlm_impedance", p.tlmImpedance, kTlmImpedance, "when base_drive = tlm");
+    if (p.carrier != PlateParameters::Carrier::None && p.condensed())
+        reject("base_drive", p.carrier == PlateParameters::Carrier::Armature ? "force" : "tlm",
+               "displacement, velocity or acceleration with time_scheme = conserving (the carried clamp is built on "
+               "time_scheme = newmark)");
+    if (p.carrier != PlateParameters::Carrier::None && p.singularMass())
+        reject("mass", static_cast<int>(p.mass),
+               "1 (consistent) when base_drive = force or tlm (a carried clamp with a singular mass is not "
+               "implemented)");
+}
+
+}  // namespace plate

@@ -1,0 +1,281 @@
+#include "schemes/NewmarkContactStepper.h"
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+#include <sstream>
+
+#include "plate/PlateParameters.h"
+
+namespace plate {
+
+NewmarkContactStepper::NewmarkContactStepper(std::shared_ptr<const DiscretePlate> plate, Obstacles obstacles,
+                                             SchemeOptions options)
+    : plate_(std::move(plate)), obstacles_(obstacles), options_(options) {
+    const auto n = plate_->size();
+    const int m = plate_->contactCount();
+    rhs_.resize(n);
+    d_.resize(n);
+    wNext_.resize(n);
+    kwNext_.resize(n);
+    if (options_.dampingMass > 0.0 || options_.dampingStiffness > 0.0) {
+        dampingBuffer_.resize(n);
+        massVelocity_.resize(n);
+        massVelocityNext_.resize(n);
+    }
+    if (options_.carried) armature_ = std::make_unique<Armature>(*plate_, options_.carrier);
+    if (obstacles_.any()) {
+        const DiscretePlate* p = plate_.get();
+        columns_ = std::make_unique<ContactColumns>(
+            m, [p](int j, Eigen::VectorXd& z) { p->stepMatrixContactColumn(j, z); },
+            [p](const Eigen::VectorXd& z, Eigen::VectorXd& y) { p->gatherContact(z, y); });
+        if (armature_) columns_ = armature_->contactColumns();  // the bordered matrix's (T.19)
+        qp_ = std::make_unique<BoxQP>(*columns_);
+        law_ = makeImpactLaw(*plate_, obstacles_, options_.restitution, options_.singularMass);
+        for (Eigen::VectorXd* v : {&contact_.yFree, &contact_.y, &contact_.yPrev, &contact_.lower, &contact_.upper})
+            v->resize(m);
+        contact_.mu = Eigen::VectorXd::Zero(m);
+        contact_.active = &qp_->active();
+        trialState_.assign(m, 0);
+    }
+}
+
+void NewmarkContactStepper::initialize(const Eigen::VectorXd& w0, double z0, double p0) {
+    NewmarkState& s = state_;
+    s = NewmarkState{};
+    massVelocityValid_ = false;
+    s.w = w0;
+    s.wPrev = w0;
+    s.wPrev2 = w0;
+    plate_->applyStiffness(w0, s.kw);
+    s.kwPrev = s.kw;
+    s.z = s.zPrev = s.zPrev2 = z0;
+    s.p = s.pPrev = s.pPrev2 = p0;
+    s.pressureWork = s.pressureWorkPrev = plate_->pressureLoad().dot(w0);
+    s.baseCoupling = s.baseCouplingPrev = s.baseCouplingPrev2 = plate_->baseInertia().dot(w0);
+    s.contactState.assign(obstacles_.any() ? plate_->contactCount() : 0, 0);
+    if (law_) {
+        law_->initialize(s);  // its part of the state (e.g. the carried impulses, zero)
+        law_->reset();
+    }
+    if (armature_) armature_->reset();
+    if (obstacles_.any()) {
+        Eigen::VectorXd& y = contact_.y;
+        plate_->gatherContact(w0, y);
+        for (int i = 0; i < y.size(); ++i) {
+            const double u = y[i] + z0;
+            if (u <= obstacles_.lower) s.contactState[i] = -1;
+            if (u >= obstacles_.upper) s.contactState[i] = +1;
+            s.contactVertices += s.contactState[i] != 0;
+        }
+    }
+}
+
+void NewmarkContactStepper::setInitialContactForce(const Eigen::VectorXd& force) {
+    if (law_ && state_.step == 0) law_->setInitialContactForce(state_, force);
+}
+
+void NewmarkContactStepper::setLoadAtStart(double p0) {
+    // The law may keep the load the initial state was made with (a singular mass: its massless
+    // part is in equilibrium with it, docs/theory.md §11).
+    if (state_.step == 0 && !(law_ && law_->keepsLoadBeforeStart())) state_.p = state_.pPrev = state_.pPrev2 = p0;
+}
+
+NewmarkContactStepper::SolvedStep NewmarkContactStepper::finishSolve() {
+    plate_->applyStiffness(wNext_, kwNext_);
+    const double damped = dampingWork();
+    const double sNext = plate_->pressureLoad().dot(wNext_);
+    const double tNext = plate_->baseInertia().dot(wNext_);
+    if (!std::isfinite(sNext) || !std::isfinite(tNext)) {
+        std::ostringstream msg;
+        msg << "the step to t = " << (state_.step + 1) * dt() << " produced a non-finite displacement";
+        throw StepError(msg.str());
+    }
+    return {damped, sNext, tNext};
+}
+
+// The step of (3.6) = docs/theory.md (T.1) in w = u − z·1 (§3–4): the free solution, the law's
+// contact phase, then the ledger (§6) of what the step did.
+void NewmarkContactStepper::step(double zNext, double pNext) {
+    if (armature_) return stepCarried(zNext, pNext);  // zNext is the drive force (§18)
+    const NewmarkState& s = state_;
+    checkInputs(zNext, pNext);
+    const double baseJump = zNext - 2.0 * s.z + s.zPrev;  // Δt² z̈_n
+    const double pBeta = beta() * pNext + (1.0 - 2.0 * beta()) * s.p + beta() * s.pPrev;  // f^{nβ}
+    assembleRightHandSide(baseJump, pBeta);
+    plate_->solveStepMatrix(rhs_, d_);
+    wNext_.noalias() = 2.0 * s.w - s.wPrev + d_;
+    ContactWork contact;
+    int iterations = 0, contactCount = 0;
+    double kkt = 0.0;
+    if (law_) contact = resolveContact(zNext, iterations, kkt, contactCount);
+    const auto [damped, sNext, tNext] = finishSolve();
+    const double work = inputWork(zNext, baseJump, pBeta, sNext, tNext, contact);
+    commit(zNext, pNext, sNext, tNext, contact, damped, work, iterations, kkt, contactCount);
+}
+
+void NewmarkContactStepper::checkInputs(double zNext, double pNext) const {
+    const NewmarkState& s = state_;
+    if (!std::isfinite(zNext) || !std::isfinite(pNext)) {
+        std::ostringstream msg;
+        msg << "non-finite input at t = " << (s.step + 1) * dt() << ": base_displacement = " << zNext
+            << ", load = " << pNext;
+        throw StepError(msg.str());
+    }
+    if (!(std::fabs(zNext) <= kMaxDisplacement && std::fabs(pNext) <= kMaxLoad)) {
+        std::ostringstream msg;
+        msg << "input out of range at t = " << (s.step + 1) * dt() << ": base_displacement = " << zNext
+            << ", load = " << pNext << " (allowed: |base_displacement| <= " << kMaxDisplacement
+            << " m, |load| <= " << kMaxLoad << " Pa)";
+        throw StepError(msg.str());
+    }
+    if (zNext < obstacles_.lower || zNext > obstacles_.upper) {
+        std::ostringstream msg;
+        msg.precision(15);  // round-trips what users type (0.7, not 0.69999999999999996)
+        msg << "base_displacement = " << zNext << " at t = " << (s.step + 1) * dt() << " puts the clamped edge past "
+            << (zNext < obstacles_.lower ? "obstacle_lower = " : "obstacle_upper = ")
+            << (zNext < obstacles_.lower ? obstacles_.lower : obstacles_.upper)
+            << " (allowed: obstacle_lower <= base_displacement <= obstacle_upper)";
+        throw StepError(msg.str());
+    }
+}
+
+// (3.6) as A d = Δt²(f^{nβ} − K w) − (M·1) Δt² z̈ (+ damping, + what the law carries) for
+// d = w⁺ − 2w + w⁻.
+void NewmarkContactStepper::assembleRightHandSide(double baseJump, double pBeta) {
+    const NewmarkState& s = state_;
+    const double dt = this->dt(), dt2 = dt * dt;
+    rhs_.noalias() = (dt2 * pBeta) * plate_->pressureLoad() - dt2 * s.kw;
+    rhs_.noalias() -= baseJump * plate_->baseInertia();
+    if (dampingBuffer_.size() > 0) {
+        // (T.5): centered damping C(w⁺ − w⁻)/(2Δt) with w⁺ − w⁻ = d + 2(w − w⁻): A carries C d Δt/2, the
+        // rest is −Δt C(w − w⁻) (§13); K w and K w⁻ are kept, so the stiffness part is free.
+        if (options_.dampingStiffness > 0.0) rhs_.noalias() -= (dt * options_.dampingStiffness) * (s.kw - s.kwPrev);
+        if (options_.dampingMass > 0.0) {
+            if (!massVelocityValid_) {
+                dampingBuffer_.noalias() = s.w - s.wPrev;
+                plate_->applyMass(dampingBuffer_, massVelocity_);
+                massVelocityValid_ = true;
+            }
+            rhs_.noalias() -= (dt * options_.dampingMass) * massVelocity_;
+        }
+    }
+    if (law_) law_->addCarried(s, rhs_);
+}
+
+ContactWork NewmarkContactStepper::resolveContact(double zNext, int& iterations, double& kkt, int& contactCount) {
+    const NewmarkState& s = state_;
+    const bool violated = law_->bounds(s, wNext_, zNext, contact_);
+    if (violated) {
+        trialState_ = s.contactState;
+        const QPResult r =
+            qp_->solve(contact_.yFree, contact_.lower, contact_.upper, trialState_, contact_.mu, contact_.y);
+        iterations = r.iterations;
+        kkt = r.kktResidual;
+        if (!r.converged || !(kkt <= 1e-10)) {
+            std::ostringstream msg;
+            msg << "contact QP did not converge at t = " << (s.step + 1) * dt() << " (" << r.iterations
+                << " iterations, relative KKT residual " << kkt << ")";
+            throw StepError(msg.str());
+        }
+        if (armature_)
+            carrierShift_ = armature_->correct(*columns_, qp_->active(), contact_.mu, wNext_, contact_.y);
+        else
+            for (int i : qp_->active()) wNext_.noalias() += contact_.mu[i] * columns_->column(i);
+        contactCount = static_cast<int>(qp_->active().size());
+    } else {
+        std::fill(trialState_.begin(), trialState_.end(), 0);
+    }
+    return law_->work(s, violated, zNext + carrierShift_, contact_);
+}
+
+double NewmarkContactStepper::dampingWork() {
+    if (dampingBuffer_.size() == 0) return 0.0;
+    const NewmarkState& s = state_;
+    // (w⁺ − w⁻)ᵀ C (w⁺ − w⁻) / (4Δt): the damping term of the step times (w⁺ − w⁻)/2 (§13).
+    double damped = 0.0;
+    if (options_.dampingMass > 0.0) {
+        // M(w⁺ − w⁻) = M(w⁺ − w) + M(w − w⁻): one product per step, the first part kept
+        // for the next step's right-hand side.
+        dampingBuffer_.noalias() = wNext_ - s.w;
+        plate_->applyMass(dampingBuffer_, massVelocityNext_);
+    }
+    dampingBuffer_.noalias() = wNext_ - s.wPrev;
+    if (options_.dampingStiffness > 0.0) damped += options_.dampingStiffness * dampingBuffer_.dot(kwNext_ - s.kwPrev);
+    if (options_.dampingMass > 0.0)
+        damped += options_.dampingMass * dampingBuffer_.dot(massVelocityNext_ + massVelocity_);
+    return damped / (4.0 * dt());
+}
+
+// Discrete work of the inputs in this step, from the scheme (see energy()): pressure and base
+// inertia on w⁺ − w⁻, the contact force on the moving frame, and the change of the cross term
+// ż vᵀ(M·1) + ½ ż² 1ᵀM1 that turns the relative energy into the absolute one.
+double NewmarkContactStepper::inputWork(double zNext, double baseJump, double pBeta, double sNext, double tNext,
+                                        const ContactWork& contact) const {
+    const NewmarkState& s = state_;
+    const double dt = this->dt(), dt2 = dt * dt;
+    const double zDotNext = (zNext - s.z) / dt, zDot = (s.z - s.zPrev) / dt;
+    const double mass = plate_->totalMass();
+    const double crossNext = zDotNext * (tNext - s.baseCoupling) / dt + 0.5 * zDotNext * zDotNext * mass;
+    const double cross = zDot * (s.baseCoupling - s.baseCouplingPrev) / dt + 0.5 * zDot * zDot * mass;
+    return 0.5 * pBeta * (sNext - s.pressureWorkPrev) - 0.5 * (baseJump / dt2) * (tNext - s.baseCouplingPrev) +
+           contact.onBase + crossNext - cross;
+}
+
+void NewmarkContactStepper::commit(double zNext, double pNext, double sNext, double tNext, const ContactWork& contact,
+                                   double damped, double work, int iterations, double kkt, int contactCount) {
+    NewmarkState& s = state_;
+    const double dt = this->dt(), dt2 = dt * dt;
+    s.wPrev2.swap(s.wPrev);  // three levels rotate by swaps: no copy
+    s.wPrev.swap(s.w);
+    s.w.swap(wNext_);
+    s.kwPrev.swap(s.kw);
+    s.kw.swap(kwNext_);
+    s.zPrev2 = s.zPrev;
+    s.zPrev = s.z;
+    s.z = zNext;
+    s.pPrev2 = s.pPrev;
+    s.pPrev = s.p;
+    s.p = pNext;
+    s.pressureWorkPrev = s.pressureWork;
+    s.pressureWork = sNext;
+    s.baseCouplingPrev2 = s.baseCouplingPrev;
+    s.baseCouplingPrev = s.baseCoupling;
+    s.baseCoupling = tNext;
+    for (int k = 0; k < 2; ++k) {  // the port (§14)
+        const double force = contact.sum[k] / dt2;
+        s.impactCount[k] += force != 0.0 && s.stepContactForce[k] == 0.0;  // a contact onset
+        s.stepContactForce[k] = force;
+        s.contactImpulseSum[k] += force * dt;
+    }
+    s.stepContactMoment = contact.moment / dt2;
+    ++s.step;
+    s.energyInput += work;  // the ledger (T.6): energy = E0 + input − dissipated − damped
+    s.energyDissipated += contact.dissipated;
+    s.energyDamped += damped;
+    if (options_.dampingMass > 0.0) massVelocity_.swap(massVelocityNext_);
+    if (law_) law_->commit(s);
+    if (qp_) s.contactState.swap(trialState_);
+    s.contactVertices = contactCount;
+    s.qpIterationsLast = iterations;
+    s.qpIterationsTotal += iterations;
+    s.qpIterationsMax = std::max(s.qpIterationsMax, iterations);
+    s.maxKktResidual = std::max(s.maxKktResidual, kkt);
+}
+
+double NewmarkContactStepper::energy() const {
+    // (T.2): E = ½ vᵀ(M + (β−¼)Δt²K) v + ½ ūᵀKū with v the absolute velocity (w − w⁻)/Δt + ż·1 and
+    // ū = (w + w⁻)/2; K·1 = 0, so only the mass sees the base (docs/theory.md).
+    const NewmarkState& s = state_;
+    dwScratch_ = s.w - s.wPrev;  // read once per communication step: reuse the buffers
+    const Eigen::VectorXd& dw = dwScratch_;
+    plate_->applyMass(dw, scratch_);
+    const double dt = this->dt(), dt2 = dt * dt;
+    const double zDot = (s.z - s.zPrev) / dt;
+    const double kinetic = 0.5 * dw.dot(scratch_) / dt2 + 0.5 * (beta() - 0.25) * dw.dot(s.kw - s.kwPrev) +
+                           zDot * (s.baseCoupling - s.baseCouplingPrev) / dt + 0.5 * zDot * zDot * plate_->totalMass();
+    const double potential = 0.125 * (s.w + s.wPrev).dot(s.kw + s.kwPrev);
+    return kinetic + potential;
+}
+
+}  // namespace plate

@@ -1,0 +1,40 @@
+#pragma once
+// One time-stepping engine of the plate behind PlateSimulation: the Newmark scheme of the paper
+// and its impact laws (NewmarkEngine), or the conserving condensed singular scheme
+// (ConservingEngine, docs/theory.md §17). PlateSimulation owns the communication grid, the
+// inputs and the interpolation between grid points; an engine owns its state, its outputs at
+// the grid point it stands on, and that state's flat form.
+#include <string>
+#include <vector>
+
+#include "schemes/PlateOutputs.h"
+
+namespace plate {
+
+class PlateEngine {
+public:
+    virtual ~PlateEngine() = default;
+
+    // The load input at t = 0, known only when the master starts stepping (before the first step).
+    virtual void setLoadAtStart(double p0) = 0;
+    // One internal step to t_{n+1} with the base at zNext and the pressure pNext there. Throws
+    // StepError without changing the state if the step cannot be taken.
+    virtual void step(double zNext, double pNext) = 0;
+
+    virtual long long stepCount() const = 0;
+    virtual double baseDisplacement() const = 0;  // z(t_n)
+    virtual int contactVertices() const = 0;  // points held by an obstacle at t_n
+    // The outputs at t_n; `port` adds the port's fields (docs/theory.md §14).
+    virtual PlateOutputs outputs(bool port) const = 0;
+    // Absolute height of every mesh vertex at t_n.
+    virtual std::vector<double> vertexDisplacements() const = 0;
+
+    virtual std::vector<double> saveState() const = 0;
+    virtual void restoreState(const std::vector<double>& state) = 0;  // throws std::invalid_argument
+
+    virtual std::string name() const = 0;  // "sparse", "modal-complete", "modal-<m>", "conserving-…"
+    virtual double firstFrequency() const = 0;  // Hz, lowest mode of the plate as stepped
+    virtual double kappa() const = 0;  // largest ω² of the plate as stepped, s⁻²
+};
+
+}  // namespace plate

@@ -1,0 +1,82 @@
+#pragma once
+// What the plate reports at a communication point, whatever engine computed it.
+#include <iterator>
+
+#include "base/FieldTable.h"
+
+namespace plate {
+
+// What the plate reports at a communication point. Counts are whole numbers stored as doubles
+// (exact below 2^53), so that the struct is one list of doubles (kOutputFields below) for
+// blending and states.
+struct PlateOutputs {
+    double corner1 = 0, corner2 = 0, freeEdgeMid = 0;  // w at (L,0), (L,W), (L,W/2), m
+    double energy = 0;  // discrete energy E^{n-1/2} (docs/theory.md), J
+    double energyDissipated = 0;  // cumulative contact loss, J
+    double energyInput = 0;  // cumulative work of base motion and load, J
+    double energyDamped = 0;  // cumulative work of the Rayleigh damping, J
+    double maxKktResidual = 0;  // largest relative KKT residual of all QPs so far
+    double contactVertices = 0;  // count: vertices on an obstacle after the last step
+    double qpIterationsTotal = 0, qpIterationsMax = 0;  // counts
+    // The port (docs/theory.md §14), computed only when asked for (outputs(true)).
+    double clampForce = 0, clampMoment = 0;  // what the plate exerts on the clamp, N, N·m
+    double clampDisplacement = 0, clampVelocity = 0, clampAcceleration = 0;  // z, ż, z̈
+    double contactForce[2] = {0, 0}, contactImpulse[2] = {0, 0};  // lower, upper: N, N·s
+    double impacts[2] = {0, 0};  // counts: contact onsets per obstacle
+    double velocity[3] = {0, 0, 0}, acceleration[3] = {0, 0, 0};  // corner1, corner2, freeEdgeMid
+};
+
+// How an output passes between grid points (PlateSimulation::outputs).
+enum class Between {
+    Interpolated,  // a quantity: linear interpolation between the grid points around t
+    Held,  // a count: its value at the grid point before t
+};
+
+// A row of the outputs' table: the field, its name for messages and how it is blended.
+struct OutputField {
+    const char* name;
+    Between between;
+    double& (*field)(PlateOutputs&);
+    double value(const PlateOutputs& o) const { return field(const_cast<PlateOutputs&>(o)); }  // reads only
+};
+
+// Every output once (checked below), in the order of the FMU states (PlateSimulation::saveState).
+// A new output is its field above and its row here: blending and states walk this table, and
+// nothing else lists the outputs but the FMU's table of variables (fmu/binding/PlateVariables.cpp).
+// clang-format off
+inline constexpr OutputField kOutputFields[] = {
+    {"corner1",           Between::Interpolated, fieldOf<&PlateOutputs::corner1>},
+    {"corner2",           Between::Interpolated, fieldOf<&PlateOutputs::corner2>},
+    {"freeEdgeMid",       Between::Interpolated, fieldOf<&PlateOutputs::freeEdgeMid>},
+    {"energy",            Between::Interpolated, fieldOf<&PlateOutputs::energy>},
+    {"energyDissipated",  Between::Interpolated, fieldOf<&PlateOutputs::energyDissipated>},
+    {"energyInput",       Between::Interpolated, fieldOf<&PlateOutputs::energyInput>},
+    {"energyDamped",      Between::Interpolated, fieldOf<&PlateOutputs::energyDamped>},
+    {"maxKktResidual",    Between::Interpolated, fieldOf<&PlateOutputs::maxKktResidual>},
+    {"clampForce",        Between::Interpolated, fieldOf<&PlateOutputs::clampForce>},
+    {"clampMoment",       Between::Interpolated, fieldOf<&PlateOutputs::clampMoment>},
+    {"clampDisplacement", Between::Interpolated, fieldOf<&PlateOutputs::clampDisplacement>},
+    {"clampVelocity",     Between::Interpolated, fieldOf<&PlateOutputs::clampVelocity>},
+    {"clampAcceleration", Between::Interpolated, fieldOf<&PlateOutputs::clampAcceleration>},
+    {"contactForce[0]",   Between::Interpolated, fieldOf<&PlateOutputs::contactForce, 0>},
+    {"contactForce[1]",   Between::Interpolated, fieldOf<&PlateOutputs::contactForce, 1>},
+    {"contactImpulse[0]", Between::Interpolated, fieldOf<&PlateOutputs::contactImpulse, 0>},
+    {"contactImpulse[1]", Between::Interpolated, fieldOf<&PlateOutputs::contactImpulse, 1>},
+    {"velocity[0]",       Between::Interpolated, fieldOf<&PlateOutputs::velocity, 0>},
+    {"velocity[1]",       Between::Interpolated, fieldOf<&PlateOutputs::velocity, 1>},
+    {"velocity[2]",       Between::Interpolated, fieldOf<&PlateOutputs::velocity, 2>},
+    {"acceleration[0]",   Between::Interpolated, fieldOf<&PlateOutputs::acceleration, 0>},
+    {"acceleration[1]",   Between::Interpolated, fieldOf<&PlateOutputs::acceleration, 1>},
+    {"acceleration[2]",   Between::Interpolated, fieldOf<&PlateOutputs::acceleration, 2>},
+    {"contactVertices",   Between::Held,         fieldOf<&PlateOutputs::contactVertices>},
+    {"qpIterationsTotal", Between::Held,         fieldOf<&PlateOutputs::qpIterationsTotal>},
+    {"qpIterationsMax",   Between::Held,         fieldOf<&PlateOutputs::qpIterationsMax>},
+    {"impacts[0]",        Between::Held,         fieldOf<&PlateOutputs::impacts, 0>},
+    {"impacts[1]",        Between::Held,         fieldOf<&PlateOutputs::impacts, 1>},
+};
+// clang-format on
+constexpr std::size_t kOutputCount = std::size(kOutputFields);
+static_assert(coversEachFieldOnce<PlateOutputs>(kOutputFields),
+              "kOutputFields must list every double of PlateOutputs exactly once");
+
+}  // namespace plate
