@@ -9,11 +9,11 @@
 #include "fe/Assembly.h"
 #include "plate/BoxQP.h"
 #include "plate/SparseCholesky.h"
-#include "schemes/ConservingEngine.h"
 #include "plate/FullOrderPlate.h"
 #include "plate/ModalPlate.h"
-#include "schemes/NewmarkContactStepper.h"
-#include "schemes/NewmarkEngine.h"
+#include "schemes/FlowScheme.h"
+#include "schemes/MidpointScheme.h"
+#include "schemes/NewmarkScheme.h"
 #include "base/PortableMath.h"
 #include "fe/SingularMass.h"
 #include "plate/Spectrum.h"
@@ -67,8 +67,7 @@ struct PlateSimulation::Impl {
     std::shared_ptr<const ClampedPlate> clamped;
     std::shared_ptr<const DiscretePlate> discrete;
     mutable std::unique_ptr<SparseCholesky> floorFactor;  // sparse A, for the floor measurement
-    std::unique_ptr<PlateEngine> engine;
-    NewmarkContactStepper* stepper = nullptr;  // the Newmark engine's (its carrier's hooks); none for conserving
+    std::unique_ptr<Scheme> scheme;
     // Between grid points (docs/theory.md §15): the communication time, and the outputs at the
     // grid point before it (the one after it is the scheme's state).
     double commTime = 0.0;
@@ -110,13 +109,44 @@ PlateSimulation::PlateSimulation(const PlateParameters& p, double baseDisplaceme
         requireMasslessContact(couplingFree, *s.clamped,
                                p.mass == MassModel::SingularP0 ? "singular_p0" : "singular_p1dg");
     }
-    if (p.condensed()) {
-        progress.phase("condensed singular plate (massive modes, massless Delassus operator)",
-                       s.resources.spectrumSeconds + s.resources.factorSeconds);
-        buildConserving(obstacles, baseDisplacement0, loadAtStart, freeRows(root, *s.clamped));
-        progress.done(s.resources.peakMB);
-        return;
-    }
+    const Eigen::SparseMatrix<double> rootFree =
+        p.condensed() ? freeRows(root, *s.clamped) : Eigen::SparseMatrix<double>();
+    s.scheme = makeScheme(obstacles, baseDisplacement0, loadAtStart, couplingFree, rootFree, progress);
+    progress.done(s.resources.peakMB);
+}
+
+// The one place a scheme is made: time_scheme chooses (docs/architecture.md).
+std::unique_ptr<Scheme> PlateSimulation::makeScheme(const Obstacles& obstacles, double baseDisplacement0,
+                                                    double loadAtStart, const Eigen::SparseMatrix<double>& couplingFree,
+                                                    const Eigen::SparseMatrix<double>& rootFree,
+                                                    InitProgress& progress) {
+    const PlateParameters& p = impl_->parameters;
+    if (p.timeScheme == TimeScheme::Newmark)
+        return makeNewmark(obstacles, baseDisplacement0, loadAtStart, couplingFree, progress);
+    progress.phase("condensed singular plate (massive modes, massless Delassus operator)",
+                   impl_->resources.spectrumSeconds + impl_->resources.factorSeconds);
+    OutputRows rows;
+    auto condensed = condensedPlate(rootFree, rows);
+    std::unique_ptr<CondensedScheme> scheme;
+    if (p.timeScheme == TimeScheme::Flow)
+        scheme = std::make_unique<FlowScheme>(condensed, obstacles, p.dt, p.contactSubsteps, p.dampingMass,
+                                              p.dampingStiffness, std::move(rows));
+    else
+        scheme = std::make_unique<MidpointScheme>(condensed, obstacles, p.dt, p.dampingMass, p.dampingStiffness,
+                                                  std::move(rows));
+    scheme->initialize(baseDisplacement0, p.initialLoad);
+    scheme->setLoadAtStart(loadAtStart);
+    return scheme;
+}
+
+// time_scheme = newmark: the plate in modal coordinates or on the sparse factor of A (docs/theory.md §7),
+// the scheme with its impact law, and the static initial state.
+std::unique_ptr<Scheme> PlateSimulation::makeNewmark(const Obstacles& obstacles, double baseDisplacement0,
+                                                     double loadAtStart,
+                                                     const Eigen::SparseMatrix<double>& couplingFree,
+                                                     InitProgress& progress) {
+    Impl& s = *impl_;
+    const PlateParameters& p = s.parameters;
     if (p.beta < 0.25) {
         progress.phase("kappa_h by power iteration with the factor of M", s.resources.spectrumSeconds);
         requireStableStep();
@@ -138,24 +168,22 @@ PlateSimulation::PlateSimulation(const PlateParameters& p, double baseDisplaceme
     options.dampingMass = p.dampingMass;
     options.dampingStiffness = p.dampingStiffness;
     options.singularMass = p.singularMass();  // carry the impulses (§11; the tests of the plain
-        // step build their NewmarkContactStepper directly)
+        // step build their NewmarkScheme directly)
     options.carried = p.carrier != PlateParameters::Carrier::None;  // §18–19
     if (options.carried) options.carrier = carrierOptions(p, baseDisplacement0);
-    auto stepper = std::make_unique<NewmarkContactStepper>(s.discrete, obstacles, options);
-    s.stepper = stepper.get();
-    s.engine = std::make_unique<NewmarkEngine>(s.discrete, std::move(stepper), p.length, p.width,
-                                               s.space->mesh().vertexCount());
+    auto scheme = std::make_unique<NewmarkScheme>(s.discrete, obstacles, options,
+                                                  OutputPoints{p.length, p.width, s.space->mesh().vertexCount()});
     progress.phase("static initial state (factor of K)", s.resources.staticSeconds + 0.5 * s.resources.factorSeconds);
-    initializeState(obstacles, baseDisplacement0, loadAtStart, couplingFree);
-    progress.done(s.resources.peakMB);
+    initializeState(*scheme, obstacles, baseDisplacement0, loadAtStart, couplingFree);
+    return scheme;
 }
 
 // time_scheme = conserving (docs/theory.md §17): the output points become constraint rows — a
 // corner, or a free_edge_mid on a vertex, is its contact vertex's row; a free_edge_mid between
 // vertices (ny odd) a row of its own.
-void PlateSimulation::buildConserving(const Obstacles& obstacles, double baseDisplacement0, double loadAtStart,
-                                      const Eigen::SparseMatrix<double>& rootFree) {
-    Impl& s = *impl_;
+std::shared_ptr<const CondensedPlate> PlateSimulation::condensedPlate(const Eigen::SparseMatrix<double>& rootFree,
+                                                                      OutputRows& rows) const {
+    const Impl& s = *impl_;
     const PlateParameters& p = s.parameters;
     const Mesh& mesh = s.space->mesh();
     std::vector<int> vertexRows(static_cast<std::size_t>(mesh.vertexCount()), -1);
@@ -169,14 +197,9 @@ void PlateSimulation::buildConserving(const Obstacles& obstacles, double baseDis
         extra.push_back({s.clamped->probe(*s.space, p.length, 0.5 * p.width), p.length});
         probeRows[2] = static_cast<int>(s.clamped->contactVertices.size());
     }
-    auto condensed = std::make_shared<const CondensedPlate>(condense(*s.clamped, rootFree, extra, p.modes));
-    // time_scheme = flow: exact modal flow between contacts, contact steps in sub-steps (§21).
-    const int substeps = p.timeScheme == TimeScheme::Flow ? p.contactSubsteps : 0;
-    auto stepper =
-        std::make_unique<ConservingStepper>(condensed, obstacles, p.dt, p.dampingMass, p.dampingStiffness, substeps);
-    stepper->initialize(baseDisplacement0, p.initialLoad);
-    stepper->setLoadAtStart(loadAtStart);
-    s.engine = std::make_unique<ConservingEngine>(std::move(stepper), probeRows, std::move(vertexRows));
+    rows.probes = probeRows;
+    rows.vertices = std::move(vertexRows);
+    return std::make_shared<const CondensedPlate>(condense(*s.clamped, rootFree, extra, p.modes));
 }
 
 void PlateSimulation::requireBaseBetween(const Obstacles& obstacles, double baseDisplacement0) {
@@ -209,8 +232,8 @@ void PlateSimulation::requireStableStep() const {
 // The initial state (docs/theory.md §3, §11): the static equilibrium under initial_load between
 // the obstacles, at rest; with a singular mass its massless part in equilibrium with the load at
 // t = 0 and the contact forces that hold it.
-void PlateSimulation::initializeState(const Obstacles& obstacles, double baseDisplacement0, double loadAtStart,
-                                      const Eigen::SparseMatrix<double>& couplingFree) {
+void PlateSimulation::initializeState(NewmarkScheme& scheme, const Obstacles& obstacles, double baseDisplacement0,
+                                      double loadAtStart, const Eigen::SparseMatrix<double>& couplingFree) {
     Impl& s = *impl_;
     const PlateParameters& p = s.parameters;
     Eigen::VectorXd w0, force;
@@ -225,25 +248,25 @@ void PlateSimulation::initializeState(const Obstacles& obstacles, double baseDis
         w0 = staticEquilibrium(*s.discrete, obstacles, baseDisplacement0, p.initialLoad, &force);
     }
     if (!p.singularMass()) {
-        setInitialReaction(force);
-        s.stepper->initialize(w0, baseDisplacement0, 0.0);
+        setInitialReaction(scheme, force);
+        scheme.initialize(w0, baseDisplacement0, 0.0);
     } else {
         // §11: only the part of w0 the singular mass sees is initial data; the massless part
         // is in equilibrium with the load at t = 0 (unless the static state already is).
         w0 = staticEquilibrium(*s.discrete, obstacles, baseDisplacement0, p.initialLoad, &force);
-        setInitialReaction(force);
-        s.stepper->initialize(w0, baseDisplacement0, loadAtStart);
+        setInitialReaction(scheme, force);
+        scheme.initialize(w0, baseDisplacement0, loadAtStart);
         if (loadAtStart != p.initialLoad) {
             w0 = masslessEquilibrium(*s.clamped, couplingFree, obstacles, baseDisplacement0, loadAtStart, w0, force);
-            s.stepper->initialize(w0, baseDisplacement0, loadAtStart);
+            scheme.initialize(w0, baseDisplacement0, loadAtStart);
         }
-        s.stepper->setInitialContactForce(force);
+        scheme.setInitialContactForce(force);
     }
 }
 
 // The port at t = 0 (docs/theory.md §14): the plate at rest in the static state of initial_load
 // exerts on the clamp what the load and the obstacles put on it, p0·|Ω| + Σλ and p0·∫x + Σλ_i x_i.
-void PlateSimulation::setInitialReaction(const Eigen::VectorXd& contactForce) {
+void PlateSimulation::setInitialReaction(NewmarkScheme& scheme, const Eigen::VectorXd& contactForce) {
     Impl& s = *impl_;
     const ClampedPlate& plate = *s.clamped;
     double force = s.parameters.initialLoad * plate.loadResultant, moment = s.parameters.initialLoad * plate.loadMoment;
@@ -251,28 +274,28 @@ void PlateSimulation::setInitialReaction(const Eigen::VectorXd& contactForce) {
         force += contactForce[i];
         moment += contactForce[i] * plate.contactAbscissae[static_cast<std::size_t>(i)];
     }
-    static_cast<NewmarkEngine&>(*s.engine).setInitialReaction(force, moment);
+    scheme.setInitialReaction(force, moment);
 }
 
 PlateSimulation::~PlateSimulation() = default;
 
 const PlateParameters& PlateSimulation::parameters() const { return impl_->parameters; }
 double PlateSimulation::time() const { return impl_->commTime; }
-long long PlateSimulation::stepCount() const { return impl_->engine->stepCount(); }
-double PlateSimulation::baseDisplacement() const { return impl_->engine->baseDisplacement(); }
+long long PlateSimulation::stepCount() const { return impl_->scheme->stepCount(); }
+double PlateSimulation::baseDisplacement() const { return impl_->scheme->baseDisplacement(); }
 
 void PlateSimulation::advance(long long steps, const InputSignal& base, const InputSignal& load) {
     if (!impl_->onGrid) throw StepError("advance() needs a communication time on the grid; use communicate()");
     StepPlan plan;
     plan.steps = steps;
-    plan.end = double(impl_->engine->stepCount() + steps) * impl_->parameters.dt;
+    plan.end = double(impl_->scheme->stepCount() + steps) * impl_->parameters.dt;
     communicate(plan, base, load);
 }
 
 StepPlan PlateSimulation::plan(double h) const {
     const Impl& s = *impl_;
     const double dt = s.parameters.dt;
-    const long long n = s.engine->stepCount();
+    const long long n = s.scheme->stepCount();
     StepPlan p;
     // On the grid, a whole multiple of Δt (importers' steps wobble in the last digits): the grid
     // steps, the inputs' time s = k Δt exactly as the scheme has always taken them.
@@ -316,19 +339,19 @@ bool PlateSimulation::stepThrough(const StepPlan& plan, const InputSignal& base,
     Impl& s = *impl_;
     const double dt = s.parameters.dt;
     if (!std::isfinite(load.value)) throw StepError("non-finite load input at the step start");
-    s.engine->setLoadAtStart(load.value);
-    Armature* carrier = s.stepper ? s.stepper->carrier() : nullptr;
+    s.scheme->setLoadAtStart(load.value);
+    Armature* carrier = s.scheme->carrier();
     if (carrier) carrier->beginCommunication();
     for (long long k = 1; k <= plan.steps; ++k) {
         // The last step of one that ends between grid points: keep the grid point before it.
         if (k == plan.steps && !plan.endsOnGrid) s.before = gridOutputs(true);
         const double t = plan.offset + k * dt;
-        s.engine->step(base.at(t), load.at(t));
+        s.scheme->step(base.at(t), load.at(t));
         if (k == plan.steps && !plan.endsOnGrid) break;
         if (!stopAfter.wanted) continue;
         const double commTime = s.commTime;
         const bool onGrid = s.onGrid;
-        s.commTime = double(s.engine->stepCount()) * dt;
+        s.commTime = double(s.scheme->stepCount()) * dt;
         s.onGrid = true;
         if (stopAfter(k == plan.steps)) return true;  // (a carried clamp never stops early: §18)
         s.commTime = commTime;
@@ -378,11 +401,11 @@ bool PlateSimulation::communicateUntilContactChange(const StepPlan& plan, const 
     Impl& s = *impl_;
     const double dt = s.parameters.dt;
     if (!std::isfinite(load.value)) throw StepError("non-finite load input at the step start");
-    const auto inContact = [&s] { return s.engine->contactVertices() > 0; };
+    const auto inContact = [&s] { return s.scheme->contactVertices() > 0; };
     // The last step ended between grid points and the grid point ahead changed the contact set:
     // the event is that grid point, if this step reaches it.
-    if (!s.onGrid && (s.before.contactVertices > 0) != inContact() && double(s.engine->stepCount()) * dt <= plan.end) {
-        s.commTime = double(s.engine->stepCount()) * dt;
+    if (!s.onGrid && (s.before.contactVertices > 0) != inContact() && double(s.scheme->stepCount()) * dt <= plan.end) {
+        s.commTime = double(s.scheme->stepCount()) * dt;
         s.onGrid = true;
         return true;
     }
@@ -398,7 +421,7 @@ PlateOutputs PlateSimulation::outputs(bool port) const {
     if (impl_->onGrid) return o;
     // t_c in (t_{n−1}, t_n): linear interpolation, each ledger term alike so the ledger closes.
     const double dt = impl_->parameters.dt;
-    const double theta = (impl_->commTime - double(impl_->engine->stepCount() - 1) * dt) / dt;
+    const double theta = (impl_->commTime - double(impl_->scheme->stepCount() - 1) * dt) / dt;
     const PlateOutputs& before = impl_->before;
     for (const OutputField& f : kOutputFields) {
         const double from = f.value(before);
@@ -408,37 +431,24 @@ PlateOutputs PlateSimulation::outputs(bool port) const {
     return o;
 }
 
-PlateOutputs PlateSimulation::gridOutputs(bool port) const { return impl_->engine->outputs(port); }
+PlateOutputs PlateSimulation::gridOutputs(bool port) const { return impl_->scheme->outputs(port); }
 
-std::vector<double> PlateSimulation::vertexDisplacements() const { return impl_->engine->vertexDisplacements(); }
+std::vector<double> PlateSimulation::vertexDisplacements() const { return impl_->scheme->vertexDisplacements(); }
 
 const ResourceEstimate& PlateSimulation::resources() const { return impl_->resources; }
 
-CarrierOutputs PlateSimulation::carrierOutputs() const {
-    CarrierOutputs o;
-    const Armature* carrier = impl_->stepper ? impl_->stepper->carrier() : nullptr;
-    if (!carrier) return o;
-    const CarrierState& c = carrier->state();
-    o.energy = carrier->energy(impl_->stepper->state());
-    o.driveWork = c.driveWork;
-    o.damperWork = c.damperWork;
-    o.portWork = c.portWork;
-    o.waveOut = c.waveOut;
-    o.transit = c.transit;
-    o.lineLoss = c.lineLoss;
-    return o;
-}
+CarrierOutputs PlateSimulation::carrierOutputs() const { return impl_->scheme->carrierOutputs(); }
 
-std::string PlateSimulation::engine() const { return impl_->engine->name(); }
+std::string PlateSimulation::engine() const { return impl_->scheme->name(); }
 
 Eigen::Index PlateSimulation::dofCount() const { return impl_->clamped->mass.rows(); }
 
-double PlateSimulation::firstFrequency() const { return impl_->engine->firstFrequency(); }
+double PlateSimulation::firstFrequency() const { return impl_->scheme->firstFrequency(); }
 
 double PlateSimulation::kappa() const {
     // Before the engine exists (the β < ¼ check of the constructor) from the clamped plate itself.
-    if (!impl_->engine) return largestEigenvalue(*impl_->clamped);
-    return impl_->engine->kappa();
+    if (!impl_->scheme) return largestEigenvalue(*impl_->clamped);
+    return impl_->scheme->kappa();
 }
 
 double PlateSimulation::measureFloorSolveSeconds(int repeats) const {
@@ -468,11 +478,11 @@ double PlateSimulation::measureFloorSolveSeconds(int repeats) const {
 // The scheme's state, then the communication time, whether it is on the grid and the outputs
 // at the grid point before it (§15).
 std::vector<double> PlateSimulation::saveState() const {
-    std::vector<double> out = impl_->engine->saveState();
+    std::vector<double> out = impl_->scheme->saveState();
     out.push_back(impl_->commTime);
     out.push_back(impl_->onGrid ? 1.0 : 0.0);
     for (const OutputField& f : kOutputFields) out.push_back(f.value(impl_->before));
-    if (const Armature* carrier = impl_->stepper ? impl_->stepper->carrier() : nullptr) {  // last (§18)
+    if (const Armature* carrier = impl_->scheme->carrier()) {  // last (§18)
         for (const auto& f : kCarrierFields) out.push_back(f.value(carrier->state()));
     }
     return out;
@@ -481,7 +491,7 @@ std::vector<double> PlateSimulation::saveState() const {
 void PlateSimulation::restoreState(const std::vector<double>& all) {
     std::vector<double> in = all;
     CarrierState carried;
-    Armature* carrier = impl_->stepper ? impl_->stepper->carrier() : nullptr;
+    Armature* carrier = impl_->scheme->carrier();
     if (carrier) {  // the carrier's state last (§18)
         if (in.size() < kCarrierStateSize)
             throw std::invalid_argument("state does not belong to this plate (too short)");
@@ -500,7 +510,7 @@ void PlateSimulation::restoreState(const std::vector<double>& all) {
     const double* tail = in.data() + head;
     const double dt = impl_->parameters.dt;
     const bool onGrid = tail[1] == 1.0;
-    PlateEngine& engine = *impl_->engine;
+    Scheme& engine = *impl_->scheme;
     const std::vector<double> current = engine.saveState();
     engine.restoreState(engineState);  // checks the engine's part (throws, the state unchanged)
     const double gridTime = double(engine.stepCount()) * dt;

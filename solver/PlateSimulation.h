@@ -17,13 +17,10 @@
 
 namespace plate {
 
-// The clamp's carrier at a communication point (docs/theory.md §18–19): zero without one. Only
-// on the grid (a carried clamp refuses steps between grid points).
-struct CarrierOutputs {
-    double energy = 0;  // ½ M_a v² + the suspension's Φ, J
-    double driveWork = 0, damperWork = 0, portWork = 0;  // cumulative, J (portWork: the plate's work on it)
-    double waveOut = 0, transit = 0, lineLoss = 0;  // a line end: ā (N), h ā²/(4Z) and the line's loss (J)
-};
+class Scheme;
+class NewmarkScheme;
+struct CondensedPlate;
+struct OutputRows;
 
 // How one communication step of length h maps onto the scheme's fixed grid t_k = k Δt
 // (docs/theory.md §15): the internal steps to take, where the inputs' time s starts at the
@@ -109,11 +106,16 @@ public:
 private:
     static void requireBaseBetween(const Obstacles& obstacles, double baseDisplacement0);
     void requireStableStep() const;
-    void initializeState(const Obstacles& obstacles, double baseDisplacement0, double loadAtStart,
-                         const Eigen::SparseMatrix<double>& couplingFree);
-    void buildConserving(const Obstacles& obstacles, double baseDisplacement0, double loadAtStart,
-                         const Eigen::SparseMatrix<double>& rootFree);
-    void setInitialReaction(const Eigen::VectorXd& contactForce);
+    std::unique_ptr<Scheme> makeScheme(const Obstacles& obstacles, double baseDisplacement0, double loadAtStart,
+                                       const Eigen::SparseMatrix<double>& couplingFree,
+                                       const Eigen::SparseMatrix<double>& rootFree, InitProgress& progress);
+    std::unique_ptr<Scheme> makeNewmark(const Obstacles& obstacles, double baseDisplacement0, double loadAtStart,
+                                        const Eigen::SparseMatrix<double>& couplingFree, InitProgress& progress);
+    std::shared_ptr<const CondensedPlate> condensedPlate(const Eigen::SparseMatrix<double>& rootFree,
+                                                         OutputRows& rows) const;
+    void initializeState(NewmarkScheme& scheme, const Obstacles& obstacles, double baseDisplacement0,
+                         double loadAtStart, const Eigen::SparseMatrix<double>& couplingFree);
+    void setInitialReaction(NewmarkScheme& scheme, const Eigen::VectorXd& contactForce);
     PlateOutputs gridOutputs(bool port) const;
     struct Impl;
     template <class StopAfter>

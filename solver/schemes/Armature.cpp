@@ -3,7 +3,7 @@
 #include <cmath>
 #include <sstream>
 
-#include "schemes/NewmarkContactStepper.h"
+#include "schemes/NewmarkScheme.h"
 #include "plate/PlateParameters.h"
 
 namespace plate {
@@ -124,11 +124,11 @@ void Armature::endCommunication(long long steps) {
 }
 
 // ---------------------------------------------------------------------------------------------
-// NewmarkContactStepper::step with the clamp carried (docs/theory.md §18): the plate's step with the
+// NewmarkScheme::step with the clamp carried (docs/theory.md §18): the plate's step with the
 // carrier's row bordered on, the same contact QP on the bordered columns, the plate's ledger as
 // always (its base is the carrier's z⁺) and the carrier's own.
 
-void NewmarkContactStepper::stepCarried(double fNext, double pNext) {
+void NewmarkScheme::stepCarried(double fNext, double pNext) {
     const NewmarkState& s = state_;
     if (!std::isfinite(fNext) || !std::isfinite(pNext) || !(std::fabs(fNext) <= kMaxCarrierForce) ||
         !(std::fabs(pNext) <= kMaxLoad)) {

@@ -2,7 +2,7 @@
 // What an impact law contributes to one step of the Newmark–contact scheme (docs/theory.md
 // §4–5, §11, §12): the forces it carries into the right-hand side, the bounds of the step's
 // contact QP on the vertex values y⁺ = C w⁺, and the contact work and sums of the step. The
-// stepper (NewmarkContactStepper) is the paper's step plus one of these; a new law is a new
+// stepper (NewmarkScheme) is the paper's step plus one of these; a new law is a new
 // class here, not a flag inside the step, and what it keeps in the state it sizes and sets itself.
 #include <Eigen/Core>
 #include <memory>
@@ -32,7 +32,7 @@ class ImpactLaw {
 public:
     virtual ~ImpactLaw() = default;
 
-    // Per step (NewmarkContactStepper::step), in this order:
+    // Per step (NewmarkScheme::step), in this order:
     // Forces carried from earlier steps into this one's right-hand side (none by default).
     virtual void addCarried(const NewmarkState&, Eigen::VectorXd&) {}
     // The QP's bounds for the step to the base zNext, with the free solution's vertex values in
@@ -43,7 +43,7 @@ public:
     // The law's history in the state after the step (the carried impulses).
     virtual void commit(NewmarkState&) {}
 
-    // The law's part of the state, for NewmarkContactStepper's initialize, setInitialContactForce
+    // The law's part of the state, for NewmarkScheme's initialize, setInitialContactForce
     // and setLoadAtStart (nothing by default):
     // A fresh state: the law's members of NewmarkState sized and zero (the carried impulses; their
     // size is the one the FMU state stores and NewmarkEngine's deserialize expects).

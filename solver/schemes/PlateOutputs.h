@@ -79,4 +79,12 @@ constexpr std::size_t kOutputCount = std::size(kOutputFields);
 static_assert(coversEachFieldOnce<PlateOutputs>(kOutputFields),
               "kOutputFields must list every double of PlateOutputs exactly once");
 
+// The clamp's carrier at a communication point (docs/theory.md §18–19): zero without one. Only
+// on the grid (a carried clamp refuses steps between grid points).
+struct CarrierOutputs {
+    double energy = 0;  // ½ M_a v² + the suspension's Φ, J
+    double driveWork = 0, damperWork = 0, portWork = 0;  // cumulative, J (portWork: the plate's work on it)
+    double waveOut = 0, transit = 0, lineLoss = 0;  // a line end: ā (N), h ā²/(4Z) and the line's loss (J)
+};
+
 }  // namespace plate

@@ -10,7 +10,7 @@
 #include "schemes/Armature.h"
 #include "fe/Assembly.h"
 #include "plate/FullOrderPlate.h"
-#include "schemes/NewmarkContactStepper.h"
+#include "schemes/NewmarkScheme.h"
 #include "plate/PlateParameters.h"
 
 using namespace plate;
@@ -106,7 +106,7 @@ TEST(Armature, LedgerOfPlateAndArmatureClosesThroughImpacts) {
     options.carried = true;
     options.carrier = rig.carrier;
     options.carrier.restPosition = 0.0;
-    NewmarkContactStepper stepper(rig.plate, obstacles, options);
+    NewmarkScheme stepper(rig.plate, obstacles, options);
     stepper.initialize(Eigen::VectorXd::Zero(rig.plate->size()), 0.0, 0.0);
     const double dt = rig.plate->dt();
     double worst = 0.0, largest = 0.0;

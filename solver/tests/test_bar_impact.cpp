@@ -1,7 +1,7 @@
 // A check with an exact solution (docs/theory.md §11): an elastic bar in free flight hits a rigid
 // wall with its end. Bar [0, L], c = √(E/ρ) = 1, L = 1, speed v0 = ½ toward the wall: the end
 // stays on the wall for exactly 2L/c, then the bar leaves at +v0, strain-free, with all its
-// energy ½ρL v0² = 1/8. The bar runs on the same stepper as the plate (NewmarkContactStepper
+// energy ½ρL v0² = 1/8. The bar runs on the same stepper as the plate (NewmarkScheme
 // over a DiscretePlate), with P1 elements and the consistent or the singular (P0-projected) mass.
 #include <gtest/gtest.h>
 
@@ -12,7 +12,7 @@
 #include <stdexcept>
 
 #include "plate/DiscretePlate.h"
-#include "schemes/NewmarkContactStepper.h"
+#include "schemes/NewmarkScheme.h"
 
 using namespace plate;
 
@@ -90,7 +90,7 @@ BarImpact simulate(int elements, double dt, bool singular) {
     wall.lower = -gap;
     SchemeOptions options;
     options.singularMass = singular;
-    NewmarkContactStepper stepper(bar, wall, options);
+    NewmarkScheme stepper(bar, wall, options);
     const Eigen::VectorXd zero = Eigen::VectorXd::Zero(elements + 1);
     stepper.initialize(zero, 0.0, 0.0);
     NewmarkState s = stepper.state();

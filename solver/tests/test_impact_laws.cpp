@@ -11,7 +11,7 @@
 
 #include "fe/Assembly.h"
 #include "plate/FullOrderPlate.h"
-#include "schemes/NewmarkContactStepper.h"
+#include "schemes/NewmarkScheme.h"
 #include "PlateSimulation.h"
 #include "fe/SingularMass.h"
 #include "plate/Spectrum.h"
@@ -167,7 +167,7 @@ TEST(SingularMass, MasslessPartStaysInEquilibriumThroughImpacts) {
     for (bool carried : {false, true}) {
         SchemeOptions options;
         options.singularMass = carried;
-        NewmarkContactStepper stepper(discrete, obstacles, options);
+        NewmarkScheme stepper(discrete, obstacles, options);
         stepper.initialize(w0, 0.0, 0.0);
         stepper.setInitialContactForce(force);
         int impactSteps = 0;
@@ -211,7 +211,7 @@ TEST(ImpactLaws, PerStepEnergyIdentityWithContact) {
         options.restitution = c.e;
         options.dampingMass = c.a;
         options.dampingStiffness = c.b;
-        NewmarkContactStepper stepper(discrete, obstacles, options);
+        NewmarkScheme stepper(discrete, obstacles, options);
         const Eigen::VectorXd w0 = staticEquilibrium(*discrete, obstacles, 0.0, 8600.0);
         stepper.initialize(w0, 0.0, 0.0);
         const double e0 = discreteEnergy(*plate, dt, beta, w0, w0);
@@ -280,7 +280,7 @@ TEST(ImpactLaws, RayleighDampingDecaysEachModeAtItsRate) {
     SchemeOptions options;
     options.dampingMass = a;
     options.dampingStiffness = b;
-    NewmarkContactStepper stepper(discrete, Obstacles{}, options);
+    NewmarkScheme stepper(discrete, Obstacles{}, options);
     const Eigen::VectorXd mode = phi.col(0);
     const double sigma = 0.5 * a + 0.5 * b * omega * omega, wd = std::sqrt(omega * omega - sigma * sigma);
     const auto exactAt = [&](double t) {

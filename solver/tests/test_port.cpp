@@ -11,7 +11,7 @@
 
 #include "fe/Assembly.h"
 #include "plate/FullOrderPlate.h"
-#include "schemes/NewmarkContactStepper.h"
+#include "schemes/NewmarkScheme.h"
 #include "plate/PlateParameters.h"
 
 using namespace plate;
@@ -47,7 +47,7 @@ TEST(Port, ClampForceAndMomentAreTheClampedRowsResidual) {
     obstacles.lower = -0.02;
     obstacles.upper = 0.02;
     auto plate = std::make_shared<const FullOrderPlate>(space, clamped, dt, beta);
-    NewmarkContactStepper stepper(plate, obstacles);
+    NewmarkScheme stepper(plate, obstacles);
     stepper.initialize(Eigen::VectorXd::Zero(plate->size()), 0.0, 0.0);
     Eigen::VectorXd uPrev = fullField(*clamped, full.constant, stepper.state().w, 0.0), u = uPrev;
     double worstForce = 0.0, worstMoment = 0.0, largestForce = 0.0;

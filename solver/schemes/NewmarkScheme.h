@@ -15,12 +15,14 @@
 #include <Eigen/Core>
 #include <limits>
 #include <memory>
+#include <string>
 #include <vector>
 
 #include "schemes/Armature.h"
 #include "plate/BoxQP.h"
 #include "plate/DiscretePlate.h"
 #include "schemes/ImpactLaw.h"
+#include "schemes/Scheme.h"
 #include "schemes/NewmarkState.h"
 #include "plate/Obstacles.h"
 
@@ -40,10 +42,19 @@ struct SchemeOptions {
     CarrierOptions carrier;
 };
 
-class NewmarkContactStepper {
+// Where the outputs are read: corner_1 (length, 0), corner_2 (length, width) and free_edge_mid
+// (length, width/2), and how many mesh vertices vertex_displacement has. Empty: no outputs but
+// the ledger (the unit tests).
+struct OutputPoints {
+    double length = 0.0, width = 0.0;
+    int vertexCount = 0;
+};
+
+class NewmarkScheme final : public Scheme {
 public:
     // Δt and β are the plate's (DiscretePlate::dt, beta: its step matrix was factored with them).
-    NewmarkContactStepper(std::shared_ptr<const DiscretePlate> plate, Obstacles obstacles, SchemeOptions options = {});
+    NewmarkScheme(std::shared_ptr<const DiscretePlate> plate, Obstacles obstacles, SchemeOptions options = {},
+                  OutputPoints points = {});
 
     // The plate at rest for t ≤ 0 in the shape w0 with the clamp at z0, pressure p0.
     void initialize(const Eigen::VectorXd& w0, double z0, double p0);
@@ -56,11 +67,27 @@ public:
     // it for t ≤ 0 (docs/theory.md: the load acts from t = 0 on; the initial load only shapes u⁰).
     // Only before the first step, and not when the law keeps the initial load (ImpactLaw::
     // keepsLoadBeforeStart: a singular mass, §11).
-    void setLoadAtStart(double p0);
+    void setLoadAtStart(double p0) override;
+    // The clamp's load at t = 0: the initial static state's reaction (force N, moment N·m).
+    void setInitialReaction(double force, double moment) {
+        initialForce_ = force;
+        initialMoment_ = moment;
+    }
 
     // One step to t_{n+1} with the base at zNext and the pressure at pNext there.
     // Throws StepError without changing the state if the step cannot be taken.
-    void step(double zNext, double pNext);
+    void step(double zNext, double pNext) override;
+
+    long long stepCount() const override { return state_.step; }
+    double baseDisplacement() const override { return state_.z; }
+    int contactVertices() const override { return state_.contactVertices; }
+    PlateOutputs outputs(bool port) const override;
+    std::vector<double> vertexDisplacements() const override;
+    std::vector<double> saveState() const override { return serialize(state_); }
+    void restoreState(const std::vector<double>& state) override;
+    std::string name() const override;
+    double firstFrequency() const override;
+    double kappa() const override;
 
     // Discrete energy E^{n−½} (docs/theory.md), absolute velocity in the kinetic part.
     double energy() const;
@@ -70,16 +97,19 @@ public:
         state_ = s;
         if (law_) law_->reset();  // e.g. the free-flight bound restarts from a full look
         massVelocityValid_ = false;
+        energyStep_ = -1;
     }
     const DiscretePlate& plate() const { return *plate_; }
     double dt() const { return plate_->dt(); }
     double beta() const { return plate_->beta(); }
     const SchemeOptions& options() const { return options_; }
     const Obstacles& obstacles() const { return obstacles_; }
-    Armature* carrier() { return armature_.get(); }  // nullptr unless options().carried
-    const Armature* carrier() const { return armature_.get(); }
+    Armature* carrier() override { return armature_.get(); }  // nullptr unless options().carried
+    using Scheme::carrier;
+    CarrierOutputs carrierOutputs() const override;
 
 private:
+    void portOutputs(PlateOutputs& o) const;
     void checkInputs(double zNext, double pNext) const;
     void stepCarried(double fNext, double pNext);  // step() with the carrier (Armature.cpp)
     void assembleRightHandSide(double baseJump, double pBeta);  // rhs_ of (3.6) for d
@@ -116,6 +146,13 @@ private:
     std::unique_ptr<Armature> armature_;
     double carrierShift_ = 0.0;  // the contact phase's change of z⁺ (carrier only)
     mutable Eigen::VectorXd scratch_, dwScratch_;
+    // The outputs (docs/theory.md §14): the probes, the initial reaction, the energy of the last
+    // step read and κ_h once computed.
+    int vertexCount_;
+    PointProbe corner1_, corner2_, freeEdgeMid_;
+    double initialForce_ = 0.0, initialMoment_ = 0.0;
+    mutable long long energyStep_ = -1;
+    mutable double energyCache_ = 0.0, kappa_ = -1.0;
 };
 
 }  // namespace plate

@@ -1,9 +1,10 @@
 #pragma once
-// One time-stepping engine of the plate behind PlateSimulation: the Newmark scheme of the paper
-// and its impact laws (NewmarkEngine), or the conserving condensed singular scheme
-// (ConservingEngine, docs/theory.md §17). PlateSimulation owns the communication grid, the
-// inputs and the interpolation between grid points; an engine owns its state, its outputs at
-// the grid point it stands on, and that state's flat form.
+// One time scheme of the plate behind PlateSimulation (docs/architecture.md): Newmark with its
+// impact laws (NewmarkScheme), the conserving midpoint rule (MidpointScheme, docs/theory.md §17)
+// or the exact modal flow with contact sub-steps (FlowScheme, §21). PlateSimulation owns the
+// communication grid, the inputs and the interpolation between grid points; a scheme owns its
+// state, its outputs at the grid point it stands on, and that state's flat form. Schemes are
+// made in one place: makeScheme (PlateSimulation.cpp).
 #include <string>
 #include <vector>
 
@@ -11,9 +12,11 @@
 
 namespace plate {
 
-class PlateEngine {
+class Armature;
+
+class Scheme {
 public:
-    virtual ~PlateEngine() = default;
+    virtual ~Scheme() = default;
 
     // The load input at t = 0, known only when the master starts stepping (before the first step).
     virtual void setLoadAtStart(double p0) = 0;
@@ -35,6 +38,11 @@ public:
     virtual std::string name() const = 0;  // "sparse", "modal-complete", "modal-<m>", "conserving-…"
     virtual double firstFrequency() const = 0;  // Hz, lowest mode of the plate as stepped
     virtual double kappa() const = 0;  // largest ω² of the plate as stepped, s⁻²
+
+    // The clamp's carrier (docs/theory.md §18–19), where the scheme carries the clamp: none by default.
+    virtual Armature* carrier() { return nullptr; }
+    const Armature* carrier() const { return const_cast<Scheme*>(this)->carrier(); }
+    virtual CarrierOutputs carrierOutputs() const { return {}; }  // zero without a carrier
 };
 
 }  // namespace plate

@@ -1,11 +1,13 @@
 #pragma once
-// The conserving engine (time_scheme = conserving, docs/theory.md §17): the condensed singular
-// plate (CondensedPlate.h) stepped by the midpoint rule with a discrete gradient of the boundary
-// potential ψ(r) = ½ λ*(r)ᵀ D λ*(r), so that per step, exactly up to the contact solve,
+// The schemes of the condensed singular plate (CondensedPlate.h, docs/theory.md §17): what the
+// conserving midpoint rule (MidpointScheme) and the exact flow with contact sub-steps (FlowScheme,
+// §21) share — the state, the input checks, the midpoint step with the discrete gradient of the
+// boundary potential ψ(r) = ½ λ*(r)ᵀ D λ*(r), the ledger, the outputs and the state's flat form.
+// Per step, exactly up to the contact solve,
 //
 //   E_{n+1} − E_n = (work of the base and the load) − (modal damping),       (T.17d)
 //
-// at any Δt, through impacts. In absolute modal momenta P = q̇ + b_m ż the step reads (T.17b)
+// at any Δt, through impacts. In absolute modal momenta P = q̇ + b_m ż the midpoint step reads (T.17b)
 //
 //   q⁺ − q = Δt (P + P⁺)/2 − b_m (z⁺ − z),
 //   P⁺ − P = Δt (−Ω² q̄ + p̄ F_m + GᵀΛ) − c ⊙ (q⁺ − q),     q̄ = (q + q⁺)/2, p̄ = (p + p⁺)/2,
@@ -13,13 +15,10 @@
 // with Λ = λ*(r_mid) + c_g Δr the discrete gradient (T.17c) at the constraint rows'
 // r = G q + p c_p + z·𝟙. In free flight (every row inside the obstacles at both ends) Λ = 0 and the
 // step is the diagonal midpoint step; a bound on how far the rows can have moved since they were
-// last looked at skips even the look (as the modal engine's free-flight bound does).
-//
-// With contactSubsteps = m > 0 (time_scheme = flow, §21) a step without contact advances every
-// massive mode by its exact flow instead (the base linear and the load linear over the step, the
-// damping exact), and a step in which a row is or becomes active is taken as m midpoint sub-steps
-// of Δt/m, each with its discrete gradient: free flight has no phase error, the contact phases are
-// resolved, and the energy identity (T.17d) holds step by step as before.
+// last looked at skips even the look (as the modal plate's free-flight bound does).
+// The output points are constraint rows (the corners and a vertex free_edge_mid among the contact
+// vertices, a free_edge_mid between vertices as a row of its own), so every reported height is
+// within the obstacles.
 #include <Eigen/Core>
 #include <array>
 #include <memory>
@@ -28,11 +27,12 @@
 #include "plate/BoxQP.h"
 #include "plate/CondensedPlate.h"
 #include "plate/Obstacles.h"
+#include "schemes/Scheme.h"
 
 namespace plate {
 
 // The scheme's whole mutable state; saving and restoring it continues bit-identically.
-struct ConservingState {
+struct CondensedState {
     Eigen::VectorXd q, qPrev, qPrev2;  // massive modal coordinates at t_n, t_{n−1}, t_{n−2}
     Eigen::VectorXd momentum;  // P_n = q̇_n + b_m ż_n
     Eigen::VectorXd force, forcePrev, forcePrev2;  // λ*(r) at t_n, t_{n−1}, t_{n−2} (per row, N)
@@ -55,20 +55,33 @@ struct ConservingState {
     long long impactCount[2] = {0, 0};
 };
 
-class ConservingStepper {
-public:
-    ConservingStepper(std::shared_ptr<const CondensedPlate> plate, Obstacles obstacles, double dt,
-                      double dampingMass = 0.0, double dampingStiffness = 0.0, int contactSubsteps = 0);
+// Which rows the outputs read: corner_1, corner_2 and free_edge_mid, and the row of each mesh
+// vertex (−1 for a clamped vertex). Empty: no outputs but the ledger (the unit tests).
+struct OutputRows {
+    std::array<int, 3> probes{{-1, -1, -1}};
+    std::vector<int> vertices;
+};
 
+class CondensedScheme : public Scheme {
+public:
     // At rest in static equilibrium under the pressure p0 with the clamp at z0 (the plate's own
     // static problem, reduced or not: it starts without vibrating). Throws ParameterError if the
     // contact problem does not converge.
     void initialize(double z0, double p0);
     // The load input at t = 0 (only before the first step): the massless part follows it at
     // once, the massive part keeps the initial state (docs/theory.md §11, §17).
-    void setLoadAtStart(double p0);
-    // One step to t_{n+1}; throws StepError without changing the state if it cannot be taken.
-    void step(double zNext, double pNext);
+    void setLoadAtStart(double p0) override;
+
+    long long stepCount() const override { return state_.step; }
+    double baseDisplacement() const override { return state_.z; }
+    int contactVertices() const override { return state_.contactRows; }
+    PlateOutputs outputs(bool port) const override;
+    std::vector<double> vertexDisplacements() const override;
+    std::vector<double> saveState() const override { return serialize(); }
+    void restoreState(const std::vector<double>& state) override { setState(deserialize(state)); }
+    std::string name() const override;
+    double firstFrequency() const override;
+    double kappa() const override { return plate_->omega2.maxCoeff(); }
 
     // E_n = ½|P|² + ½ m_c ż² + ½ qᵀΩ²q + (strain energy of the massless part), J (T.17a).
     double energy() const;
@@ -78,16 +91,19 @@ public:
     // Absolute height of constraint row i at t_n, t_{n−1}, t_{n−2} (level 0, 1, 2).
     double rowHeight(int i, int level = 0) const;
 
-    const ConservingState& state() const { return state_; }
-    void setState(const ConservingState& s);
+    const CondensedState& state() const { return state_; }
+    void setState(const CondensedState& s);
     const CondensedPlate& plate() const { return *plate_; }
     double dt() const { return dt_; }
 
     std::vector<double> serialize() const;
     // Throws std::invalid_argument when the data does not fit this plate or is corrupt.
-    ConservingState deserialize(const std::vector<double>& data) const;
+    CondensedState deserialize(const std::vector<double>& data) const;
 
-private:
+protected:
+    CondensedScheme(std::shared_ptr<const CondensedPlate> plate, Obstacles obstacles, double dt, double dampingMass,
+                    double dampingStiffness, OutputRows rows);
+
     // What the midpoint step (T.17b–c) of length h needs: H⁻¹, W₂ and the midpoint contact
     // problem's matrix ½W₂ + D with its solver.
     struct MidpointOperator {
@@ -99,8 +115,6 @@ private:
     };
     void buildOperator(MidpointOperator& op, double h) const;
     void midpointStep(double zNext, double pNext);  // one step of op_->h (T.17b–c)
-    void flowStep(double zNext, double pNext);  // exact free flight, or the sub-steps on contact (§21)
-    void substeps(double zNext, double pNext);
     void checkInputs(double zNext, double pNext) const;
     bool farFromObstacles(double zNext, double pNext);
     enum class Look { Skipped, Free, Contact };
@@ -112,32 +126,28 @@ private:
                       Eigen::VectorXd& y, int& solves);
     void commit(double zNext, double pNext, double work, double damped, int iterations);
     void refreshDerived();  // what is derived from the state (which force levels are zero)
+    void throwNonFinite() const;
 
     std::shared_ptr<const CondensedPlate> plate_;
     Obstacles obstacles_;
     double dt_;
     Eigen::VectorXd damping_;  // c_k = a + b ω_k² (Rayleigh on the massive modes, §17)
-    MidpointOperator full_, sub_;  // steps of Δt; sub-steps of Δt/m (time_scheme = flow)
-    const MidpointOperator* op_ = &full_;  // the one the midpoint step takes
-    int substeps_ = 0;  // m; 0: every step is a midpoint step (time_scheme = conserving)
-    // The exact flow over Δt of each mode's u = q − q_particular (§21): (u, u̇)⁺ = Φ (u, u̇).
-    Eigen::VectorXd flow11_, flow12_, flow21_, flow22_;
-    Eigen::VectorXd inverseOmega2_;  // 1/ω²
-    bool dampedModes_ = false;  // some c_k ≠ 0
-    Eigen::VectorXd slope_, offset_, u0_, ud0_, u1_, ud1_;  // the exact step's buffers
-    Eigen::VectorXd rowsCached_;  // time_scheme = flow: the rows at the end of the last (sub-)step
+    OutputRows rows_;
+    MidpointOperator full_;  // steps of Δt
+    const MidpointOperator* op_ = &full_;  // the one the midpoint step takes (FlowScheme: its sub-steps')
+    // FlowScheme: the rows at the end of the last (sub-)step start the next one; the midpoint
+    // rule recomputes them (its results stay what they always were).
+    bool keepRows_ = false;
+    Eigen::VectorXd rowsCached_;  // the rows at the end of the last (sub-)step
     bool rowsCachedValid_ = false;
 
     Eigen::MatrixXd endMatrix_;  // D
     std::unique_ptr<ContactColumns> endColumns_;
     std::unique_ptr<BoxQP> endQP_;
-    ConservingState state_;
+    CondensedState state_;
     // Step buffers, allocated once.
     Eigen::VectorXd rhs_, dq_, qNext_, momentumNext_, forceNext_, multiplier_, modalForce_;
     Eigen::VectorXd modalScratch_, w2v_;
-    Eigen::VectorXd qIntegral_;  // ∫ q over the exact step
-    // The levels t_n, t_{n−1} kept across the sub-steps of one step.
-    Eigen::VectorXd qAtStart_, qBeforeStart_, forceAtStart_, forceBeforeStart_;
     Eigen::VectorXd r0_, r1_, drFree_, dr_, base_, e_, y_, lower_, upper_;
     // Each contact solve's own multipliers (BoxQP keeps them zero off its active set).
     Eigen::VectorXd midForce_, endForce_;

@@ -1,17 +1,25 @@
-#include "schemes/NewmarkContactStepper.h"
+#include "schemes/NewmarkScheme.h"
 
 #include <algorithm>
 #include <cmath>
 #include <limits>
 #include <sstream>
 
+#include "plate/ModalPlate.h"
 #include "plate/PlateParameters.h"
+#include "plate/Spectrum.h"
 
 namespace plate {
 
-NewmarkContactStepper::NewmarkContactStepper(std::shared_ptr<const DiscretePlate> plate, Obstacles obstacles,
-                                             SchemeOptions options)
-    : plate_(std::move(plate)), obstacles_(obstacles), options_(options) {
+NewmarkScheme::NewmarkScheme(std::shared_ptr<const DiscretePlate> plate, Obstacles obstacles, SchemeOptions options,
+                             OutputPoints points)
+    : plate_(std::move(plate)),
+      obstacles_(obstacles),
+      options_(options),
+      vertexCount_(points.vertexCount),
+      corner1_(plate_->probe(points.length, 0.0)),
+      corner2_(plate_->probe(points.length, points.width)),
+      freeEdgeMid_(plate_->probe(points.length, 0.5 * points.width)) {
     const auto n = plate_->size();
     const int m = plate_->contactCount();
     rhs_.resize(n);
@@ -40,7 +48,7 @@ NewmarkContactStepper::NewmarkContactStepper(std::shared_ptr<const DiscretePlate
     }
 }
 
-void NewmarkContactStepper::initialize(const Eigen::VectorXd& w0, double z0, double p0) {
+void NewmarkScheme::initialize(const Eigen::VectorXd& w0, double z0, double p0) {
     NewmarkState& s = state_;
     s = NewmarkState{};
     massVelocityValid_ = false;
@@ -71,17 +79,17 @@ void NewmarkContactStepper::initialize(const Eigen::VectorXd& w0, double z0, dou
     }
 }
 
-void NewmarkContactStepper::setInitialContactForce(const Eigen::VectorXd& force) {
+void NewmarkScheme::setInitialContactForce(const Eigen::VectorXd& force) {
     if (law_ && state_.step == 0) law_->setInitialContactForce(state_, force);
 }
 
-void NewmarkContactStepper::setLoadAtStart(double p0) {
+void NewmarkScheme::setLoadAtStart(double p0) {
     // The law may keep the load the initial state was made with (a singular mass: its massless
     // part is in equilibrium with it, docs/theory.md §11).
     if (state_.step == 0 && !(law_ && law_->keepsLoadBeforeStart())) state_.p = state_.pPrev = state_.pPrev2 = p0;
 }
 
-NewmarkContactStepper::SolvedStep NewmarkContactStepper::finishSolve() {
+NewmarkScheme::SolvedStep NewmarkScheme::finishSolve() {
     plate_->applyStiffness(wNext_, kwNext_);
     const double damped = dampingWork();
     const double sNext = plate_->pressureLoad().dot(wNext_);
@@ -96,7 +104,7 @@ NewmarkContactStepper::SolvedStep NewmarkContactStepper::finishSolve() {
 
 // The step of (3.6) = docs/theory.md (T.1) in w = u − z·1 (§3–4): the free solution, the law's
 // contact phase, then the ledger (§6) of what the step did.
-void NewmarkContactStepper::step(double zNext, double pNext) {
+void NewmarkScheme::step(double zNext, double pNext) {
     if (armature_) return stepCarried(zNext, pNext);  // zNext is the drive force (§18)
     const NewmarkState& s = state_;
     checkInputs(zNext, pNext);
@@ -114,7 +122,7 @@ void NewmarkContactStepper::step(double zNext, double pNext) {
     commit(zNext, pNext, sNext, tNext, contact, damped, work, iterations, kkt, contactCount);
 }
 
-void NewmarkContactStepper::checkInputs(double zNext, double pNext) const {
+void NewmarkScheme::checkInputs(double zNext, double pNext) const {
     const NewmarkState& s = state_;
     if (!std::isfinite(zNext) || !std::isfinite(pNext)) {
         std::ostringstream msg;
@@ -142,7 +150,7 @@ void NewmarkContactStepper::checkInputs(double zNext, double pNext) const {
 
 // (3.6) as A d = Δt²(f^{nβ} − K w) − (M·1) Δt² z̈ (+ damping, + what the law carries) for
 // d = w⁺ − 2w + w⁻.
-void NewmarkContactStepper::assembleRightHandSide(double baseJump, double pBeta) {
+void NewmarkScheme::assembleRightHandSide(double baseJump, double pBeta) {
     const NewmarkState& s = state_;
     const double dt = this->dt(), dt2 = dt * dt;
     rhs_.noalias() = (dt2 * pBeta) * plate_->pressureLoad() - dt2 * s.kw;
@@ -163,7 +171,7 @@ void NewmarkContactStepper::assembleRightHandSide(double baseJump, double pBeta)
     if (law_) law_->addCarried(s, rhs_);
 }
 
-ContactWork NewmarkContactStepper::resolveContact(double zNext, int& iterations, double& kkt, int& contactCount) {
+ContactWork NewmarkScheme::resolveContact(double zNext, int& iterations, double& kkt, int& contactCount) {
     const NewmarkState& s = state_;
     const bool violated = law_->bounds(s, wNext_, zNext, contact_);
     if (violated) {
@@ -189,7 +197,7 @@ ContactWork NewmarkContactStepper::resolveContact(double zNext, int& iterations,
     return law_->work(s, violated, zNext + carrierShift_, contact_);
 }
 
-double NewmarkContactStepper::dampingWork() {
+double NewmarkScheme::dampingWork() {
     if (dampingBuffer_.size() == 0) return 0.0;
     const NewmarkState& s = state_;
     // (w⁺ − w⁻)ᵀ C (w⁺ − w⁻) / (4Δt): the damping term of the step times (w⁺ − w⁻)/2 (§13).
@@ -210,8 +218,8 @@ double NewmarkContactStepper::dampingWork() {
 // Discrete work of the inputs in this step, from the scheme (see energy()): pressure and base
 // inertia on w⁺ − w⁻, the contact force on the moving frame, and the change of the cross term
 // ż vᵀ(M·1) + ½ ż² 1ᵀM1 that turns the relative energy into the absolute one.
-double NewmarkContactStepper::inputWork(double zNext, double baseJump, double pBeta, double sNext, double tNext,
-                                        const ContactWork& contact) const {
+double NewmarkScheme::inputWork(double zNext, double baseJump, double pBeta, double sNext, double tNext,
+                                const ContactWork& contact) const {
     const NewmarkState& s = state_;
     const double dt = this->dt(), dt2 = dt * dt;
     const double zDotNext = (zNext - s.z) / dt, zDot = (s.z - s.zPrev) / dt;
@@ -222,8 +230,8 @@ double NewmarkContactStepper::inputWork(double zNext, double baseJump, double pB
            contact.onBase + crossNext - cross;
 }
 
-void NewmarkContactStepper::commit(double zNext, double pNext, double sNext, double tNext, const ContactWork& contact,
-                                   double damped, double work, int iterations, double kkt, int contactCount) {
+void NewmarkScheme::commit(double zNext, double pNext, double sNext, double tNext, const ContactWork& contact,
+                           double damped, double work, int iterations, double kkt, int contactCount) {
     NewmarkState& s = state_;
     const double dt = this->dt(), dt2 = dt * dt;
     s.wPrev2.swap(s.wPrev);  // three levels rotate by swaps: no copy
@@ -263,7 +271,7 @@ void NewmarkContactStepper::commit(double zNext, double pNext, double sNext, dou
     s.maxKktResidual = std::max(s.maxKktResidual, kkt);
 }
 
-double NewmarkContactStepper::energy() const {
+double NewmarkScheme::energy() const {
     // (T.2): E = ½ vᵀ(M + (β−¼)Δt²K) v + ½ ūᵀKū with v the absolute velocity (w − w⁻)/Δt + ż·1 and
     // ū = (w + w⁻)/2; K·1 = 0, so only the mass sees the base (docs/theory.md).
     const NewmarkState& s = state_;
@@ -276,6 +284,131 @@ double NewmarkContactStepper::energy() const {
                            zDot * (s.baseCoupling - s.baseCouplingPrev) / dt + 0.5 * zDot * zDot * plate_->totalMass();
     const double potential = 0.125 * (s.w + s.wPrev).dot(s.kw + s.kwPrev);
     return kinetic + potential;
+}
+
+// --- Outputs (docs/theory.md §14) ---
+
+PlateOutputs NewmarkScheme::outputs(bool port) const {
+    const NewmarkState& st = state_;
+    PlateOutputs o;
+    o.corner1 = st.z + corner1_(st.w);
+    o.corner2 = st.z + corner2_(st.w);
+    o.freeEdgeMid = st.z + freeEdgeMid_(st.w);
+    if (energyStep_ != st.step) {
+        energyCache_ = energy();
+        energyStep_ = st.step;
+    }
+    o.energy = energyCache_;
+    o.energyDissipated = st.energyDissipated;
+    o.energyInput = st.energyInput;
+    o.energyDamped = st.energyDamped;
+    o.contactVertices = st.contactVertices;
+    o.maxKktResidual = st.maxKktResidual;
+    o.qpIterationsTotal = double(st.qpIterationsTotal);
+    o.qpIterationsMax = st.qpIterationsMax;
+    o.impacts[0] = double(st.impactCount[0]);
+    o.impacts[1] = double(st.impactCount[1]);
+    if (port) portOutputs(o);
+    return o;
+}
+
+void NewmarkScheme::portOutputs(PlateOutputs& o) const {
+    // docs/theory.md §14, (T.14a, b): the step from t_n to t_{n+1} summed against the rigid motions 1 and X
+    // (K·1 = K·X = 0) gives the clamp's force and moment on the plate at t_n; the plate exerts
+    // their opposites on the clamp. Levels: w = w_{n+1}, wPrev = w_n, wPrev2 = w_{n−1}.
+    const NewmarkState& st = state_;
+    const ClampedPlate& clamped = plate_->clamped();
+    const double dt = plate_->dt(), beta = plate_->beta(), dt2 = dt * dt;
+    const Eigen::VectorXd& rotation = plate_->rotationInertia();
+    const double zAcc = (st.z - 2.0 * st.zPrev + st.zPrev2) / dt2;
+    const double translationAcc = (st.baseCoupling - 2.0 * st.baseCouplingPrev + st.baseCouplingPrev2) / dt2;
+    const double rotationAcc = (rotation.dot(st.w) - 2.0 * rotation.dot(st.wPrev) + rotation.dot(st.wPrev2)) / dt2;
+    const double pBeta = beta * st.p + (1.0 - 2.0 * beta) * st.pPrev + beta * st.pPrev2;  // f^{nβ}
+    const double contact = st.stepContactForce[0] + st.stepContactForce[1];
+    o.clampForce = -(clamped.totalMass * zAcc + translationAcc - pBeta * clamped.loadResultant - contact);
+    o.clampMoment = -(clamped.totalMassMoment * zAcc + rotationAcc - pBeta * clamped.loadMoment - st.stepContactMoment);
+    // Velocities at t_{n+1} (second order, backward: the outputs' time), accelerations at t_n
+    // (the scheme's own central difference, the level of the forces).
+    const auto velocity = [dt](double now, double prev, double prev2) {
+        return (3.0 * now - 4.0 * prev + prev2) / (2.0 * dt);
+    };
+    o.clampDisplacement = st.z;
+    o.clampVelocity = velocity(st.z, st.zPrev, st.zPrev2);
+    o.clampAcceleration = zAcc;
+    const PointProbe* probes[3] = {&corner1_, &corner2_, &freeEdgeMid_};
+    for (int k = 0; k < 3; ++k) {
+        const double now = st.z + (*probes[k])(st.w), prev = st.zPrev + (*probes[k])(st.wPrev),
+                     prev2 = st.zPrev2 + (*probes[k])(st.wPrev2);
+        o.velocity[k] = velocity(now, prev, prev2);
+        o.acceleration[k] = (now - 2.0 * prev + prev2) / dt2;
+    }
+    if (st.step == 0) {  // no step yet: the initial static state's reaction (§14)
+        o.clampForce = initialForce_;
+        o.clampMoment = initialMoment_;
+    }
+    for (int k = 0; k < 2; ++k) {
+        o.contactForce[k] = st.stepContactForce[k];
+        o.contactImpulse[k] = st.contactImpulseSum[k];
+    }
+}
+
+std::vector<double> NewmarkScheme::vertexDisplacements() const {
+    const NewmarkState& st = state_;
+    const ClampedPlate& clamped = plate_->clamped();
+    std::vector<double> u(static_cast<std::size_t>(vertexCount_), st.z);
+    Eigen::VectorXd y;
+    plate_->gatherContact(st.w, y);
+    for (std::size_t i = 0; i < clamped.contactVertices.size(); ++i)
+        u[clamped.contactVertices[i]] += y[static_cast<Eigen::Index>(i)];
+    return u;
+}
+
+void NewmarkScheme::restoreState(const std::vector<double>& data) {
+    const NewmarkState& current = state_;
+    setState(deserialize(data, current.w.size(), current.contactState.size(), current.contactImpulse.size()));
+}
+
+std::string NewmarkScheme::name() const {
+    const auto* modal = dynamic_cast<const ModalPlate*>(plate_.get());
+    if (!modal) return "sparse";
+    return modal->complete() ? "modal-complete" : "modal-" + std::to_string(modal->size());
+}
+
+double NewmarkScheme::firstFrequency() const {
+    const auto* modal = dynamic_cast<const ModalPlate*>(plate_.get());
+    double omega2;
+    if (modal) {
+        omega2 = modal->omega2()[0];
+    } else {
+        Eigen::MatrixXd phi;
+        Eigen::VectorXd w2;
+        lowestModes(plate_->clamped(), 1, phi, w2);
+        omega2 = w2[0];
+    }
+    return std::sqrt(omega2) / (2.0 * M_PI);
+}
+
+double NewmarkScheme::kappa() const {
+    if (kappa_ < 0.0) {
+        const auto* modal = dynamic_cast<const ModalPlate*>(plate_.get());
+        kappa_ = modal && modal->complete() ? modal->omega2().maxCoeff() : largestEigenvalue(plate_->clamped());
+    }
+    return kappa_;
+}
+
+CarrierOutputs NewmarkScheme::carrierOutputs() const {
+    CarrierOutputs o;
+    const Armature* carrier = armature_.get();
+    if (!carrier) return o;
+    const CarrierState& c = carrier->state();
+    o.energy = carrier->energy(state_);
+    o.driveWork = c.driveWork;
+    o.damperWork = c.damperWork;
+    o.portWork = c.portWork;
+    o.waveOut = c.waveOut;
+    o.transit = c.transit;
+    o.lineLoss = c.lineLoss;
+    return o;
 }
 
 }  // namespace plate

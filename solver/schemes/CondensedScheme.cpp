@@ -1,4 +1,4 @@
-#include "schemes/ConservingStepper.h"
+#include "schemes/CondensedScheme.h"
 
 #include <algorithm>
 #include <cmath>
@@ -8,7 +8,6 @@
 
 #include "base/Errors.h"
 #include "plate/PlateParameters.h"
-#include "base/PortableMath.h"
 
 namespace plate {
 
@@ -28,42 +27,9 @@ std::unique_ptr<ContactColumns> denseColumns(const Eigen::MatrixXd& matrix) {
         [](const Eigen::VectorXd& z, Eigen::VectorXd& y) { y = z; });
 }
 
-// The exact flow over h of ü + c u̇ + ω² u = 0 (docs/theory.md §21): (u, u̇)(h) = Φ (u, u̇)(0).
-// Undamped, a rotation by ωh (the portable sine and cosine: the same bits on every CPU). Damped,
-// exp(A h) of A = [[0, ω], [−ω, −c]] in the balanced variables (u, u̇/ω), by scaling and squaring
-// (‖A h‖/2^j ≤ ½, Taylor to degree 20: below 2^-60, then j squarings) — IEEE operations only.
-void modalFlow(double omega2, double c, double h, double& f11, double& f12, double& f21, double& f22) {
-    const double omega = std::sqrt(omega2);
-    if (c == 0.0) {
-        double sn, cs;
-        portable::sinCos(omega * h, sn, cs);
-        f11 = cs, f12 = sn / omega, f21 = -omega * sn, f22 = cs;
-        return;
-    }
-    int exponent = 0;
-    std::frexp((omega + c) * h, &exponent);
-    const int squarings = std::max(0, exponent + 1);
-    const double scale = std::ldexp(h, -squarings);
-    const double x12 = omega * scale, x21 = -omega * scale, x22 = -c * scale;  // X = A h / 2^j
-    // Taylor: E = Σ X^k / k!, the power kept as T = X^k / k!.
-    double e11 = 1.0, e12 = 0.0, e21 = 0.0, e22 = 1.0, t11 = 1.0, t12 = 0.0, t21 = 0.0, t22 = 1.0;
-    for (int k = 1; k <= 20; ++k) {
-        const double n11 = (t12 * x21) / k, n12 = (t11 * x12 + t12 * x22) / k;
-        const double n21 = (t22 * x21) / k, n22 = (t21 * x12 + t22 * x22) / k;
-        t11 = n11, t12 = n12, t21 = n21, t22 = n22;
-        e11 += t11, e12 += t12, e21 += t21, e22 += t22;
-    }
-    for (int j = 0; j < squarings; ++j) {
-        const double a = e11 * e11 + e12 * e21, b = e11 * e12 + e12 * e22;
-        const double d = e21 * e11 + e22 * e21, g = e21 * e12 + e22 * e22;
-        e11 = a, e12 = b, e21 = d, e22 = g;
-    }
-    f11 = e11, f12 = e12 / omega, f21 = e21 * omega, f22 = e22;
-}
-
 }  // namespace
 
-void ConservingStepper::buildOperator(MidpointOperator& op, double h) const {
+void CondensedScheme::buildOperator(MidpointOperator& op, double h) const {
     const CondensedPlate& c = *plate_;
     op.h = h;
     op.inverseH = (1.0 + 0.5 * h * damping_.array() + 0.25 * h * h * c.omega2.array()).inverse().matrix();
@@ -74,31 +40,20 @@ void ConservingStepper::buildOperator(MidpointOperator& op, double h) const {
     op.midQP = std::make_unique<BoxQP>(*op.midColumns);
 }
 
-ConservingStepper::ConservingStepper(std::shared_ptr<const CondensedPlate> plate, Obstacles obstacles, double dt,
-                                     double dampingMass, double dampingStiffness, int contactSubsteps)
-    : plate_(std::move(plate)), obstacles_(obstacles), dt_(dt), substeps_(contactSubsteps) {
+CondensedScheme::CondensedScheme(std::shared_ptr<const CondensedPlate> plate, Obstacles obstacles, double dt,
+                                 double dampingMass, double dampingStiffness, OutputRows outputRows)
+    : plate_(std::move(plate)), obstacles_(obstacles), dt_(dt), rows_(std::move(outputRows)) {
     const CondensedPlate& c = *plate_;
     const Eigen::Index m = c.modes(), rows = c.rows();
     damping_ = (dampingMass + dampingStiffness * c.omega2.array()).matrix();
     buildOperator(full_, dt);
-    if (substeps_ > 0) {
-        buildOperator(sub_, dt / substeps_);
-        inverseOmega2_ = c.omega2.cwiseInverse();
-        dampedModes_ = (damping_.array() != 0.0).any();
-        for (Eigen::VectorXd* v : {&slope_, &offset_, &u0_, &ud0_, &u1_, &ud1_}) v->resize(m);
-        for (Eigen::VectorXd* v : {&flow11_, &flow12_, &flow21_, &flow22_}) v->resize(m);
-        for (Eigen::Index k = 0; k < m; ++k)
-            modalFlow(c.omega2[k], damping_[k], dt, flow11_[k], flow12_[k], flow21_[k], flow22_[k]);
-    }
     endMatrix_ = c.delassus;
     endColumns_ = denseColumns(endMatrix_);
     endQP_ = std::make_unique<BoxQP>(*endColumns_);
-    for (Eigen::VectorXd* v : {&rhs_, &dq_, &qNext_, &momentumNext_, &modalForce_, &qCheck_, &modalScratch_,
-                               &qIntegral_, &qAtStart_, &qBeforeStart_})
+    for (Eigen::VectorXd* v : {&rhs_, &dq_, &qNext_, &momentumNext_, &modalForce_, &qCheck_, &modalScratch_})
         v->resize(m);
     w2v_.resize(rows);
-    for (Eigen::VectorXd* v :
-         {&forceNext_, &multiplier_, &r0_, &r1_, &drFree_, &dr_, &base_, &e_, &y_, &forceAtStart_, &forceBeforeStart_})
+    for (Eigen::VectorXd* v : {&forceNext_, &multiplier_, &r0_, &r1_, &drFree_, &dr_, &base_, &e_, &y_})
         v->resize(rows);
     midForce_ = endForce_ = Eigen::VectorXd::Zero(rows);
     lower_ = Eigen::VectorXd::Constant(rows, obstacles_.lower);
@@ -108,7 +63,7 @@ ConservingStepper::ConservingStepper(std::shared_ptr<const CondensedPlate> plate
 
 // W₂ v = ½Δt² G H⁻¹ Gᵀ v: through the modes when they are fewer than half the rows (a reduced
 // model: 2·rows·m operations instead of rows²).
-void ConservingStepper::applyW2(const Eigen::VectorXd& v, Eigen::VectorXd& out) {
+void CondensedScheme::applyW2(const Eigen::VectorXd& v, Eigen::VectorXd& out) {
     const CondensedPlate& c = *plate_;
     const double h = op_->h;
     if (2 * c.modes() >= c.rows()) {
@@ -120,14 +75,14 @@ void ConservingStepper::applyW2(const Eigen::VectorXd& v, Eigen::VectorXd& out) 
     out.noalias() = c.rowModesT.transpose() * modalScratch_;
 }
 
-void ConservingStepper::gatherRows(const Eigen::VectorXd& q, double p, double z, Eigen::VectorXd& r) const {
+void CondensedScheme::gatherRows(const Eigen::VectorXd& q, double p, double z, Eigen::VectorXd& r) const {
     r.noalias() = plate_->rowModesT.transpose() * q;
     r.noalias() += p * plate_->rowLoad;
     r.array() += z;
 }
 
-void ConservingStepper::solveContact(BoxQP& qp, const Eigen::VectorXd& free, std::vector<signed char>& state,
-                                     Eigen::VectorXd& force, Eigen::VectorXd& y, int& solves) {
+void CondensedScheme::solveContact(BoxQP& qp, const Eigen::VectorXd& free, std::vector<signed char>& state,
+                                   Eigen::VectorXd& force, Eigen::VectorXd& y, int& solves) {
     const QPResult r = qp.solve(free, lower_, upper_, state, force, y);
     ++solves;
     kkt_ = std::max(kkt_, r.kktResidual);
@@ -141,10 +96,10 @@ void ConservingStepper::solveContact(BoxQP& qp, const Eigen::VectorXd& free, std
 
 // The static problem of the condensed plate (§17): Ω² q = p0 F_m + Gᵀλ with the rows
 // r = G q + p0 c_p + z0 + D λ between the obstacles: one contact solve with G Ω⁻² Gᵀ + D.
-void ConservingStepper::initialize(double z0, double p0) {
+void CondensedScheme::initialize(double z0, double p0) {
     const CondensedPlate& c = *plate_;
-    ConservingState& s = state_;
-    s = ConservingState{};
+    CondensedState& s = state_;
+    s = CondensedState{};
     const Eigen::Index m = c.modes(), rows = c.rows();
     const Eigen::VectorXd qFree = p0 * c.modalLoad.cwiseQuotient(c.omega2);
     s.force = Eigen::VectorXd::Zero(rows);
@@ -182,8 +137,8 @@ void ConservingStepper::initialize(double z0, double p0) {
     margin_ = -1.0;
 }
 
-void ConservingStepper::setLoadAtStart(double p0) {
-    ConservingState& s = state_;
+void CondensedScheme::setLoadAtStart(double p0) {
+    CondensedState& s = state_;
     if (s.step != 0 || p0 == s.p) return;
     s.p = s.pPrev = s.pPrev2 = p0;
     if (obstacles_.any() && plate_->rows() > 0) {
@@ -200,7 +155,7 @@ void ConservingStepper::setLoadAtStart(double p0) {
     margin_ = -1.0;
 }
 
-void ConservingStepper::checkInputs(double zNext, double pNext) const {
+void CondensedScheme::checkInputs(double zNext, double pNext) const {
     const bool finite = std::isfinite(zNext) && std::isfinite(pNext);
     const bool inRange = std::fabs(zNext) <= kMaxDisplacement && std::fabs(pNext) <= kMaxLoad;
     const bool between = zNext >= obstacles_.lower && zNext <= obstacles_.upper;
@@ -224,7 +179,7 @@ void ConservingStepper::checkInputs(double zNext, double pNext) const {
 
 // Free flight without looking at the rows: since the last look they can have moved by at most
 // ‖G_i‖ ‖q⁺ − q_check‖ + |Δz| + |Δp| max|c_p| (1e-12 m: roundoff of what it is compared with).
-bool ConservingStepper::farFromObstacles(double zNext, double pNext) {
+bool CondensedScheme::farFromObstacles(double zNext, double pNext) {
     if (margin_ <= 0.0) return false;
     const double moved = plate_->rowModeNormMax * (qNext_ - qCheck_).norm() + std::abs(zNext - zCheck_) +
                          std::abs(pNext - pCheck_) * rowLoadMax_;
@@ -234,8 +189,8 @@ bool ConservingStepper::farFromObstacles(double zNext, double pNext) {
 // After a trial step to (qNext_, zNext, pNext): Skipped while the free-flight bound holds; else the
 // rows r1_ at the trial's end are looked at — Contact when a row is held at the start or past an
 // obstacle at the end, Free otherwise (the bound restarts from this look).
-ConservingStepper::Look ConservingStepper::lookAtRows(double zNext, double pNext) {
-    const ConservingState& s = state_;
+CondensedScheme::Look CondensedScheme::lookAtRows(double zNext, double pNext) {
+    const CondensedState& s = state_;
     if (!obstacles_.any() || plate_->rows() == 0 || (s.contactRows == 0 && farFromObstacles(zNext, pNext)))
         return Look::Skipped;
     gatherRows(qNext_, pNext, zNext, r1_);
@@ -251,16 +206,9 @@ ConservingStepper::Look ConservingStepper::lookAtRows(double zNext, double pNext
     return Look::Free;
 }
 
-void ConservingStepper::step(double zNext, double pNext) {
-    if (substeps_ > 0)
-        flowStep(zNext, pNext);
-    else
-        midpointStep(zNext, pNext);
-}
-
-void ConservingStepper::midpointStep(double zNext, double pNext) {
+void CondensedScheme::midpointStep(double zNext, double pNext) {
     const CondensedPlate& c = *plate_;
-    const ConservingState& s = state_;
+    const CondensedState& s = state_;
     checkInputs(zNext, pNext);
     const double dt = op_->h, dz = zNext - s.z, dp = pNext - s.p, pMid = 0.5 * (s.p + pNext);
     // The free midpoint step (T.17b with Λ = 0): H Δq = Δt P − b_m Δz + ½Δt²(p̄ F_m − Ω² q).
@@ -292,11 +240,7 @@ void ConservingStepper::midpointStep(double zNext, double pNext) {
         modalForce_.setZero();
     }
     momentumNext_.noalias() = (2.0 / dt) * (dq_ + dz * c.modalBaseInertia) - s.momentum;
-    if (!std::isfinite(momentumNext_.sum()) || !std::isfinite(qNext_.sum())) {
-        std::ostringstream msg;
-        msg << "the step to t = " << double(s.step + 1) * dt << " produced a non-finite displacement";
-        throw StepError(msg.str());
-    }
+    if (!std::isfinite(momentumNext_.sum()) || !std::isfinite(qNext_.sum())) throwNonFinite();
     // The step's forces on the massive modes at the midpoint (T.17b) and the work (T.17d).
     const double damped = dq_.dot(damping_.cwiseProduct(dq_)) / dt;
     rhs_.noalias() =
@@ -304,7 +248,7 @@ void ConservingStepper::midpointStep(double zNext, double pNext) {
     const double contactSum = contact ? multiplier_.sum() : 0.0, onLoad = contact ? multiplier_.dot(c.rowLoad) : 0.0;
     const double onRigid = c.modalBaseInertia.dot(rhs_) - contactSum;  // clamp + load on the plate
     const double work = pMid * c.modalLoad.dot(dq_) - dp * onLoad + dz * onRigid;
-    ConservingState& st = state_;
+    CondensedState& st = state_;
     st.clampForce = onRigid - pMid * c.loadResultant;
     st.clampMoment = c.modalRotationInertia.dot(rhs_) - pMid * c.loadMoment;
     st.stepContactMoment = 0.0;
@@ -327,156 +271,18 @@ void ConservingStepper::midpointStep(double zNext, double pNext) {
         st.contactImpulseSum[k] += sums[k] * dt;
     }
     commit(zNext, pNext, work, damped, iterations_);
-    // time_scheme = flow: the rows at this step's end for the next sub-step's start (r1 is G q⁺ + …
-    // when the rows were looked at, r0 + Δr after a contact solve); the conserving scheme always
-    // recomputes them (its results stay what they were).
-    rowsCachedValid_ = substeps_ > 0 && rowsLooked;
+    // FlowScheme: the rows at this step's end start the next sub-step (r1 is G q⁺ + … when the
+    // rows were looked at, r0 + Δr after a contact solve).
+    rowsCachedValid_ = keepRows_ && rowsLooked;
     if (rowsCachedValid_) rowsCached_ = r1_;
-}
-
-// time_scheme = flow (docs/theory.md §21). Over a step the base moves linearly (ż = v = Δz/Δt, the
-// input the midpoint step assumes too) and the load linearly; in relative coordinates each mode
-// then obeys q̈ + c q̇ + ω² q = F (p + ṗ s) with q̇ = P − b v, whose solution is a particular
-// polynomial q_p = A + B s (ω²B = Fṗ, ω²A + cB = F p) plus the free flow of u = q − q_p. The
-// integral ∫u = −(Δu̇ + c Δu)/ω² (the equation integrated) gives the work exactly:
-//   load  Σ F ([p q] − ṗ ∫q),   base  Δz · bᵀ(F p̄ − Ω² ∫q/Δt − c Δq/Δt),
-//   damped  Σ (−Δe + F([p q] − ṗ ∫q)),  e = ½ q̇² + ½ ω² q²  (per damped mode),
-// so that the ledger (T.17d) closes as in a midpoint step. A row past an obstacle at the end: the
-// step is taken again as m discrete-gradient sub-steps instead.
-void ConservingStepper::flowStep(double zNext, double pNext) {
-    const CondensedPlate& c = *plate_;
-    const ConservingState& s = state_;
-    checkInputs(zNext, pNext);
-    const double h = dt_, dz = zNext - s.z, v = dz / h, pDot = (pNext - s.p) / h, pMid = 0.5 * (s.p + pNext);
-    // (F.1) for every mode at once: q_p = offset + slope·s, u = q − q_p flows by Φ.
-    const auto F = c.modalLoad.array();
-    const auto b = c.modalBaseInertia.array();
-    const auto invW2 = inverseOmega2_.array();
-    const auto damping = damping_.array();
-    auto slope = slope_.array();
-    auto offset = offset_.array();
-    auto u0 = u0_.array();
-    auto ud0 = ud0_.array();
-    auto u1 = u1_.array();
-    auto ud1 = ud1_.array();
-    if (pDot == 0.0) {
-        slope.setZero();
-        offset = (s.p * F) * invW2;
-    } else {
-        slope = (pDot * F) * invW2;
-        offset = (s.p * F - damping * slope) * invW2;
-    }
-    u0 = s.q.array() - offset;
-    ud0 = s.momentum.array() - v * b - slope;
-    u1 = flow11_.array() * u0 + flow12_.array() * ud0;
-    ud1 = flow21_.array() * u0 + flow22_.array() * ud0;
-    qNext_.array() = u1 + offset + h * slope;
-    momentumNext_.array() = ud1 + slope + v * b;
-    qIntegral_.array() = -((ud1 - ud0) + damping * (u1 - u0)) * invW2 + h * (offset + (0.5 * h) * slope);
-    const bool damped = dampedModes_;
-    iterations_ = solves_ = 0;
-    kkt_ = 0.0;
-    // The contact check of the midpoint step (its free-flight bound included).
-    const Look look = lookAtRows(zNext, pNext);
-    if (look == Look::Contact) {
-        substeps(zNext, pNext);
-        return;
-    }
-    rowsCachedValid_ = look == Look::Free;
-    if (rowsCachedValid_) rowsCached_ = r1_;
-    if (!std::isfinite(momentumNext_.sum()) || !std::isfinite(qNext_.sum())) {
-        std::ostringstream msg;
-        msg << "the step to t = " << double(s.step + 1) * h << " produced a non-finite displacement";
-        throw StepError(msg.str());
-    }
-    if (multiplierUsed_) multiplier_.setZero();
-    multiplierUsed_ = false;
-    if (!forceNextZero_) forceNext_.setZero();
-    dq_.noalias() = qNext_ - s.q;
-    // The step's mean forces on the massive modes: F p̄ − Ω² ∫q/Δt − c Δq/Δt.
-    const double perStep = 1.0 / h;
-    rhs_.array() = pMid * F - perStep * (c.omega2.array() * qIntegral_.array() + damping * dq_.array());
-    const double loadWork =
-        pNext * c.modalLoad.dot(qNext_) - s.p * c.modalLoad.dot(s.q) - pDot * c.modalLoad.dot(qIntegral_);
-    const double onRigid = c.modalBaseInertia.dot(rhs_);  // clamp + load on the plate (no contact)
-    double dampedWork = 0.0;
-    if (damped) {
-        for (Eigen::Index k = 0; k < c.omega2.size(); ++k) {
-            if (damping_[k] == 0.0) continue;
-            const double b = c.modalBaseInertia[k], f = c.modalLoad[k], w2 = c.omega2[k];
-            const double qd0 = s.momentum[k] - b * v, qd1 = momentumNext_[k] - b * v;
-            const double de = 0.5 * (qd1 * qd1 - qd0 * qd0) + 0.5 * w2 * (qNext_[k] * qNext_[k] - s.q[k] * s.q[k]);
-            dampedWork += -de + f * (pNext * qNext_[k] - s.p * s.q[k] - pDot * qIntegral_[k]);
-        }
-    }
-    ConservingState& st = state_;
-    st.clampForce = onRigid - pMid * c.loadResultant;
-    st.clampMoment = c.modalRotationInertia.dot(rhs_) - pMid * c.loadMoment;
-    st.stepContactMoment = 0.0;
-    st.stepContactForce[0] = st.stepContactForce[1] = 0.0;
-    commit(zNext, pNext, loadWork + dz * onRigid, dampedWork, 0);
-}
-
-// The step from t_n as m midpoint sub-steps of Δt/m, the base and the load linear in between (as
-// the exact step assumes). Each sub-step keeps its energy identity; the levels t_n, t_{n−1} and the
-// port's values over the step are those of one step of Δt afterwards.
-void ConservingStepper::substeps(double zNext, double pNext) {
-    ConservingState& s = state_;
-    const int m = substeps_;
-    qAtStart_ = s.q;
-    qBeforeStart_ = s.qPrev;
-    forceAtStart_ = s.force;
-    forceBeforeStart_ = s.forcePrev;
-    const double z0 = s.z, zBefore = s.zPrev, p0 = s.p, pBefore = s.pPrev;
-    const long long step0 = s.step;
-    // ż at t_n as one step of Δt had it (the clamp-carried mass's terms in commit).
-    s.zPrev = z0 - (z0 - zBefore) / m;
-    double force = 0.0, moment = 0.0, contact[2] = {0.0, 0.0}, contactMoment = 0.0;
-    int iterationsMax = 0;
-    op_ = &sub_;
-    try {
-        for (int j = 1; j <= m; ++j) {
-            const double z = j == m ? zNext : z0 + (zNext - z0) * (double(j) / m);
-            const double p = j == m ? pNext : p0 + (pNext - p0) * (double(j) / m);
-            midpointStep(z, p);
-            force += s.clampForce;
-            moment += s.clampMoment;
-            contact[0] += s.stepContactForce[0];
-            contact[1] += s.stepContactForce[1];
-            contactMoment += s.stepContactMoment;
-            iterationsMax = std::max(iterationsMax, iterations_);
-        }
-    } catch (...) {
-        op_ = &full_;
-        throw;
-    }
-    op_ = &full_;
-    s.qPrev2 = qBeforeStart_;
-    s.qPrev = qAtStart_;
-    s.forcePrev2 = forceBeforeStart_;
-    s.forcePrev = forceAtStart_;
-    s.zPrev2 = zBefore;
-    s.zPrev = z0;
-    s.pPrev2 = pBefore;
-    s.pPrev = p0;
-    s.step = step0 + 1;
-    s.clampForce = force / m;
-    s.clampMoment = moment / m;
-    s.stepContactForce[0] = contact[0] / m;
-    s.stepContactForce[1] = contact[1] / m;
-    s.stepContactMoment = contactMoment / m;
-    s.gradientIterationsLast = iterationsMax;
-    forceZero_ = {s.force.isZero(0.0), s.forcePrev.isZero(0.0), s.forcePrev2.isZero(0.0)};
-    forceNextZero_ = false;
-    margin_ = -1.0;
 }
 
 // Λ = λ*(r_mid) + c_g Δr with c_g = (ψ0 − ψ1 − λ*(r_mid)·Δr)/|Δr|² (T.17c), so that Λ·Δr = ψ0 − ψ1.
 // With e = c_g Δr held from the last iterate, λ*(r_mid) solves the contact problem with the
 // constant matrix ½W₂ + D at r0 + ½Δr_free + ½W₂e; then Δr = Δr_free + W₂(λ + e), ψ1 = ψ(r0 + Δr)
 // from one solve with D, and e is updated, until the energy residual vanishes.
-void ConservingStepper::discreteGradient(double psi0) {
-    ConservingState& s = state_;
+void CondensedScheme::discreteGradient(double psi0) {
+    CondensedState& s = state_;
     e_.setZero();
     rowTrial_ = s.rowState;
     midTrial_ = s.midState;
@@ -516,9 +322,9 @@ void ConservingStepper::discreteGradient(double psi0) {
     }
 }
 
-void ConservingStepper::commit(double zNext, double pNext, double work, double damped, int iterations) {
+void CondensedScheme::commit(double zNext, double pNext, double work, double damped, int iterations) {
     const CondensedPlate& c = *plate_;
-    ConservingState& s = state_;
+    CondensedState& s = state_;
     const double dt = op_->h;
     // The mass moving with the clamp (discarded modes) and the massless part's load terms enter
     // the energy (T.17a); their changes are booked as the inputs' work (T.17d).
@@ -565,9 +371,9 @@ void ConservingStepper::commit(double zNext, double pNext, double work, double d
     s.maxKktResidual = std::max(s.maxKktResidual, kkt_);
 }
 
-double ConservingStepper::energy() const {
+double CondensedScheme::energy() const {
     const CondensedPlate& c = *plate_;
-    const ConservingState& s = state_;
+    const CondensedState& s = state_;
     const double zDot = (s.z - s.zPrev) / dt_;
     const double kinetic = 0.5 * s.momentum.squaredNorm() + 0.5 * c.clampMass * zDot * zDot;
     // Strain energy: ½ qᵀΩ²q + ½ bᵀ S b of the massless part b = S⁻¹Q0ᵀ(pF + Cᵀλ) (T.17a).
@@ -575,9 +381,9 @@ double ConservingStepper::energy() const {
     return kinetic + 0.5 * s.q.dot(c.omega2.cwiseProduct(s.q)) + massless;
 }
 
-double ConservingStepper::rowHeight(int i, int level) const {
+double CondensedScheme::rowHeight(int i, int level) const {
     const CondensedPlate& c = *plate_;
-    const ConservingState& s = state_;
+    const CondensedState& s = state_;
     const Eigen::VectorXd& q = level == 0 ? s.q : level == 1 ? s.qPrev : s.qPrev2;
     const Eigen::VectorXd& f = level == 0 ? s.force : level == 1 ? s.forcePrev : s.forcePrev2;
     const double z = level == 0 ? s.z : level == 1 ? s.zPrev : s.zPrev2;
@@ -586,9 +392,9 @@ double ConservingStepper::rowHeight(int i, int level) const {
     return c.rowModesT.col(i).dot(q) + p * c.rowLoad[i] + z + heldBack;
 }
 
-void ConservingStepper::initialReaction(double& force, double& moment) const {
+void CondensedScheme::initialReaction(double& force, double& moment) const {
     const CondensedPlate& c = *plate_;
-    const ConservingState& s = state_;
+    const CondensedState& s = state_;
     const Eigen::VectorXd rate = s.p * c.modalLoad - c.omega2.cwiseProduct(s.q) + c.rowModesT * s.force;
     double contact = 0.0, contactMoment = 0.0;
     for (Eigen::Index i = 0; i < s.force.size(); ++i) {
@@ -599,14 +405,14 @@ void ConservingStepper::initialReaction(double& force, double& moment) const {
     moment = -(c.modalRotationInertia.dot(rate) - contactMoment - s.p * c.loadMoment);
 }
 
-void ConservingStepper::setState(const ConservingState& s) {
+void CondensedScheme::setState(const CondensedState& s) {
     state_ = s;
     margin_ = -1.0;  // the free-flight bound restarts from a full look
     refreshDerived();
 }
 
-void ConservingStepper::refreshDerived() {
-    const ConservingState& s = state_;
+void CondensedScheme::refreshDerived() {
+    const CondensedState& s = state_;
     forceZero_ = {s.force.isZero(0.0), s.forcePrev.isZero(0.0), s.forcePrev2.isZero(0.0)};
     forceNext_.setZero();
     forceNextZero_ = true;
@@ -614,6 +420,70 @@ void ConservingStepper::refreshDerived() {
     multiplierUsed_ = false;
     rowsCachedValid_ = false;
 }
+
+void CondensedScheme::throwNonFinite() const {
+    std::ostringstream msg;
+    msg << "the step to t = " << double(state_.step + 1) * op_->h << " produced a non-finite displacement";
+    throw StepError(msg.str());
+}
+
+PlateOutputs CondensedScheme::outputs(bool port) const {
+    const CondensedScheme& stepper = *this;
+    const CondensedState& st = state_;
+    PlateOutputs o;
+    o.corner1 = stepper.rowHeight(rows_.probes[0]);
+    o.corner2 = stepper.rowHeight(rows_.probes[1]);
+    o.freeEdgeMid = stepper.rowHeight(rows_.probes[2]);
+    o.energy = stepper.energy();
+    o.energyDissipated = 0.0;  // the scheme loses nothing at impacts (T.17d)
+    o.energyInput = st.energyInput;
+    o.energyDamped = st.energyDamped;
+    o.maxKktResidual = st.maxKktResidual;
+    o.contactVertices = st.contactRows;
+    o.qpIterationsTotal = double(st.lcpSolves);
+    o.qpIterationsMax = st.gradientIterationsMax;
+    o.impacts[0] = double(st.impactCount[0]);
+    o.impacts[1] = double(st.impactCount[1]);
+    if (!port) return o;
+    // The port at t_{n−½} (§17): what the plate exerts on the clamp is the opposite of the clamp's
+    // force on it. Velocities at t_n (second-order backward), accelerations at t_{n−1}.
+    const double dt = stepper.dt(), dt2 = dt * dt;
+    const auto velocity = [dt](double now, double prev, double prev2) {
+        return (3.0 * now - 4.0 * prev + prev2) / (2.0 * dt);
+    };
+    o.clampForce = -st.clampForce;
+    o.clampMoment = -st.clampMoment;
+    if (st.step == 0) stepper.initialReaction(o.clampForce, o.clampMoment);  // no step yet (§17)
+    o.clampDisplacement = st.z;
+    o.clampVelocity = velocity(st.z, st.zPrev, st.zPrev2);
+    o.clampAcceleration = (st.z - 2.0 * st.zPrev + st.zPrev2) / dt2;
+    for (int k = 0; k < 3; ++k) {
+        const double now = stepper.rowHeight(rows_.probes[k], 0), prev = stepper.rowHeight(rows_.probes[k], 1),
+                     prev2 = stepper.rowHeight(rows_.probes[k], 2);
+        o.velocity[k] = velocity(now, prev, prev2);
+        o.acceleration[k] = (now - 2.0 * prev + prev2) / dt2;
+    }
+    for (int k = 0; k < 2; ++k) {
+        o.contactForce[k] = st.stepContactForce[k];
+        o.contactImpulse[k] = st.contactImpulseSum[k];
+    }
+    return o;
+}
+
+std::vector<double> CondensedScheme::vertexDisplacements() const {
+    const std::vector<int>& vertexRows = rows_.vertices;
+    std::vector<double> u(vertexRows.size(), state_.z);
+    for (std::size_t v = 0; v < vertexRows.size(); ++v)
+        if (vertexRows[v] >= 0) u[v] = rowHeight(vertexRows[v]);
+    return u;
+}
+
+std::string CondensedScheme::name() const {
+    const CondensedPlate& c = *plate_;
+    return c.modes() == c.massiveCount ? "conserving-complete" : "conserving-" + std::to_string(c.modes());
+}
+
+double CondensedScheme::firstFrequency() const { return std::sqrt(plate_->omega2[0]) / (2.0 * M_PI); }
 
 // The flat form for FMU states: a format tag, the sizes, then every member in one order, written
 // and read by the same table (members()).
@@ -681,7 +551,7 @@ struct Reader {
 
 }  // namespace
 
-std::vector<double> ConservingStepper::serialize() const {
+std::vector<double> CondensedScheme::serialize() const {
     const auto modes = static_cast<std::size_t>(plate_->modes()), rows = static_cast<std::size_t>(plate_->rows());
     std::vector<double> out{kFormat, double(modes), double(rows)};
     Writer writer{out, modes, rows};
@@ -689,13 +559,13 @@ std::vector<double> ConservingStepper::serialize() const {
     return out;
 }
 
-ConservingState ConservingStepper::deserialize(const std::vector<double>& data) const {
+CondensedState CondensedScheme::deserialize(const std::vector<double>& data) const {
     const auto modes = static_cast<std::size_t>(plate_->modes()), rows = static_cast<std::size_t>(plate_->rows());
     if (data.size() < 3 || data[0] != kFormat)
         throw std::invalid_argument("state does not belong to this plate (another engine or format)");
     if (data[1] != double(modes) || data[2] != double(rows))
         throw std::invalid_argument("state does not belong to this plate (other sizes)");
-    ConservingState s;
+    CondensedState s;
     Reader reader{data, 3, modes, rows};
     members(s, reader);
     if (reader.at != data.size()) throw std::invalid_argument("state does not belong to this plate (too long)");

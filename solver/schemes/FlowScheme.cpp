@@ -1,0 +1,198 @@
+#include "schemes/FlowScheme.h"
+
+#include <algorithm>
+#include <cmath>
+
+#include "base/PortableMath.h"
+
+namespace plate {
+
+namespace {
+
+// The exact flow over h of ü + c u̇ + ω² u = 0 (docs/theory.md §21): (u, u̇)(h) = Φ (u, u̇)(0).
+// Undamped, a rotation by ωh (the portable sine and cosine: the same bits on every CPU). Damped,
+// exp(A h) of A = [[0, ω], [−ω, −c]] in the balanced variables (u, u̇/ω), by scaling and squaring
+// (‖A h‖/2^j ≤ ½, Taylor to degree 20: below 2^-60, then j squarings) — IEEE operations only.
+void modalFlow(double omega2, double c, double h, double& f11, double& f12, double& f21, double& f22) {
+    const double omega = std::sqrt(omega2);
+    if (c == 0.0) {
+        double sn, cs;
+        portable::sinCos(omega * h, sn, cs);
+        f11 = cs, f12 = sn / omega, f21 = -omega * sn, f22 = cs;
+        return;
+    }
+    int exponent = 0;
+    std::frexp((omega + c) * h, &exponent);
+    const int squarings = std::max(0, exponent + 1);
+    const double scale = std::ldexp(h, -squarings);
+    const double x12 = omega * scale, x21 = -omega * scale, x22 = -c * scale;  // X = A h / 2^j
+    // Taylor: E = Σ X^k / k!, the power kept as T = X^k / k!.
+    double e11 = 1.0, e12 = 0.0, e21 = 0.0, e22 = 1.0, t11 = 1.0, t12 = 0.0, t21 = 0.0, t22 = 1.0;
+    for (int k = 1; k <= 20; ++k) {
+        const double n11 = (t12 * x21) / k, n12 = (t11 * x12 + t12 * x22) / k;
+        const double n21 = (t22 * x21) / k, n22 = (t21 * x12 + t22 * x22) / k;
+        t11 = n11, t12 = n12, t21 = n21, t22 = n22;
+        e11 += t11, e12 += t12, e21 += t21, e22 += t22;
+    }
+    for (int j = 0; j < squarings; ++j) {
+        const double a = e11 * e11 + e12 * e21, b = e11 * e12 + e12 * e22;
+        const double d = e21 * e11 + e22 * e21, g = e21 * e12 + e22 * e22;
+        e11 = a, e12 = b, e21 = d, e22 = g;
+    }
+    f11 = e11, f12 = e12 / omega, f21 = e21 * omega, f22 = e22;
+}
+
+}  // namespace
+
+FlowScheme::FlowScheme(std::shared_ptr<const CondensedPlate> plate, Obstacles obstacles, double dt, int contactSubsteps,
+                       double dampingMass, double dampingStiffness, OutputRows outputRows)
+    : CondensedScheme(std::move(plate), obstacles, dt, dampingMass, dampingStiffness, std::move(outputRows)),
+      substeps_(contactSubsteps) {
+    const CondensedPlate& c = *plate_;
+    const Eigen::Index m = c.modes(), rows = c.rows();
+    keepRows_ = true;
+    buildOperator(sub_, dt / substeps_);
+    inverseOmega2_ = c.omega2.cwiseInverse();
+    dampedModes_ = (damping_.array() != 0.0).any();
+    for (Eigen::VectorXd* v : {&slope_, &offset_, &u0_, &ud0_, &u1_, &ud1_, &qIntegral_, &qAtStart_, &qBeforeStart_})
+        v->resize(m);
+    for (Eigen::VectorXd* v : {&flow11_, &flow12_, &flow21_, &flow22_}) v->resize(m);
+    for (Eigen::Index k = 0; k < m; ++k)
+        modalFlow(c.omega2[k], damping_[k], dt, flow11_[k], flow12_[k], flow21_[k], flow22_[k]);
+    for (Eigen::VectorXd* v : {&forceAtStart_, &forceBeforeStart_}) v->resize(rows);
+}
+
+// time_scheme = flow (docs/theory.md §21). Over a step the base moves linearly (ż = v = Δz/Δt, the
+// input the midpoint step assumes too) and the load linearly; in relative coordinates each mode
+// then obeys q̈ + c q̇ + ω² q = F (p + ṗ s) with q̇ = P − b v, whose solution is a particular
+// polynomial q_p = A + B s (ω²B = Fṗ, ω²A + cB = F p) plus the free flow of u = q − q_p. The
+// integral ∫u = −(Δu̇ + c Δu)/ω² (the equation integrated) gives the work exactly:
+//   load  Σ F ([p q] − ṗ ∫q),   base  Δz · bᵀ(F p̄ − Ω² ∫q/Δt − c Δq/Δt),
+//   damped  Σ (−Δe + F([p q] − ṗ ∫q)),  e = ½ q̇² + ½ ω² q²  (per damped mode),
+// so that the ledger (T.17d) closes as in a midpoint step. A row past an obstacle at the end: the
+// step is taken again as m discrete-gradient sub-steps instead.
+void FlowScheme::step(double zNext, double pNext) {
+    const CondensedPlate& c = *plate_;
+    const CondensedState& s = state_;
+    checkInputs(zNext, pNext);
+    const double h = dt_, dz = zNext - s.z, v = dz / h, pDot = (pNext - s.p) / h, pMid = 0.5 * (s.p + pNext);
+    // (F.1) for every mode at once: q_p = offset + slope·s, u = q − q_p flows by Φ.
+    const auto F = c.modalLoad.array();
+    const auto b = c.modalBaseInertia.array();
+    const auto invW2 = inverseOmega2_.array();
+    const auto damping = damping_.array();
+    auto slope = slope_.array();
+    auto offset = offset_.array();
+    auto u0 = u0_.array();
+    auto ud0 = ud0_.array();
+    auto u1 = u1_.array();
+    auto ud1 = ud1_.array();
+    if (pDot == 0.0) {
+        slope.setZero();
+        offset = (s.p * F) * invW2;
+    } else {
+        slope = (pDot * F) * invW2;
+        offset = (s.p * F - damping * slope) * invW2;
+    }
+    u0 = s.q.array() - offset;
+    ud0 = s.momentum.array() - v * b - slope;
+    u1 = flow11_.array() * u0 + flow12_.array() * ud0;
+    ud1 = flow21_.array() * u0 + flow22_.array() * ud0;
+    qNext_.array() = u1 + offset + h * slope;
+    momentumNext_.array() = ud1 + slope + v * b;
+    qIntegral_.array() = -((ud1 - ud0) + damping * (u1 - u0)) * invW2 + h * (offset + (0.5 * h) * slope);
+    const bool damped = dampedModes_;
+    iterations_ = solves_ = 0;
+    kkt_ = 0.0;
+    // The contact check of the midpoint step (its free-flight bound included).
+    const Look look = lookAtRows(zNext, pNext);
+    if (look == Look::Contact) {
+        substeps(zNext, pNext);
+        return;
+    }
+    rowsCachedValid_ = look == Look::Free;
+    if (rowsCachedValid_) rowsCached_ = r1_;
+    if (!std::isfinite(momentumNext_.sum()) || !std::isfinite(qNext_.sum())) throwNonFinite();
+    if (multiplierUsed_) multiplier_.setZero();
+    multiplierUsed_ = false;
+    if (!forceNextZero_) forceNext_.setZero();
+    dq_.noalias() = qNext_ - s.q;
+    // The step's mean forces on the massive modes: F p̄ − Ω² ∫q/Δt − c Δq/Δt.
+    const double perStep = 1.0 / h;
+    rhs_.array() = pMid * F - perStep * (c.omega2.array() * qIntegral_.array() + damping * dq_.array());
+    const double loadWork =
+        pNext * c.modalLoad.dot(qNext_) - s.p * c.modalLoad.dot(s.q) - pDot * c.modalLoad.dot(qIntegral_);
+    const double onRigid = c.modalBaseInertia.dot(rhs_);  // clamp + load on the plate (no contact)
+    double dampedWork = 0.0;
+    if (damped) {
+        for (Eigen::Index k = 0; k < c.omega2.size(); ++k) {
+            if (damping_[k] == 0.0) continue;
+            const double b = c.modalBaseInertia[k], f = c.modalLoad[k], w2 = c.omega2[k];
+            const double qd0 = s.momentum[k] - b * v, qd1 = momentumNext_[k] - b * v;
+            const double de = 0.5 * (qd1 * qd1 - qd0 * qd0) + 0.5 * w2 * (qNext_[k] * qNext_[k] - s.q[k] * s.q[k]);
+            dampedWork += -de + f * (pNext * qNext_[k] - s.p * s.q[k] - pDot * qIntegral_[k]);
+        }
+    }
+    CondensedState& st = state_;
+    st.clampForce = onRigid - pMid * c.loadResultant;
+    st.clampMoment = c.modalRotationInertia.dot(rhs_) - pMid * c.loadMoment;
+    st.stepContactMoment = 0.0;
+    st.stepContactForce[0] = st.stepContactForce[1] = 0.0;
+    commit(zNext, pNext, loadWork + dz * onRigid, dampedWork, 0);
+}
+
+// The step from t_n as m midpoint sub-steps of Δt/m, the base and the load linear in between (as
+// the exact step assumes). Each sub-step keeps its energy identity; the levels t_n, t_{n−1} and the
+// port's values over the step are those of one step of Δt afterwards.
+void FlowScheme::substeps(double zNext, double pNext) {
+    CondensedState& s = state_;
+    const int m = substeps_;
+    qAtStart_ = s.q;
+    qBeforeStart_ = s.qPrev;
+    forceAtStart_ = s.force;
+    forceBeforeStart_ = s.forcePrev;
+    const double z0 = s.z, zBefore = s.zPrev, p0 = s.p, pBefore = s.pPrev;
+    const long long step0 = s.step;
+    // ż at t_n as one step of Δt had it (the clamp-carried mass's terms in commit).
+    s.zPrev = z0 - (z0 - zBefore) / m;
+    double force = 0.0, moment = 0.0, contact[2] = {0.0, 0.0}, contactMoment = 0.0;
+    int iterationsMax = 0;
+    op_ = &sub_;
+    try {
+        for (int j = 1; j <= m; ++j) {
+            const double z = j == m ? zNext : z0 + (zNext - z0) * (double(j) / m);
+            const double p = j == m ? pNext : p0 + (pNext - p0) * (double(j) / m);
+            midpointStep(z, p);
+            force += s.clampForce;
+            moment += s.clampMoment;
+            contact[0] += s.stepContactForce[0];
+            contact[1] += s.stepContactForce[1];
+            contactMoment += s.stepContactMoment;
+            iterationsMax = std::max(iterationsMax, iterations_);
+        }
+    } catch (...) {
+        op_ = &full_;
+        throw;
+    }
+    op_ = &full_;
+    s.qPrev2 = qBeforeStart_;
+    s.qPrev = qAtStart_;
+    s.forcePrev2 = forceBeforeStart_;
+    s.forcePrev = forceAtStart_;
+    s.zPrev2 = zBefore;
+    s.zPrev = z0;
+    s.pPrev2 = pBefore;
+    s.pPrev = p0;
+    s.step = step0 + 1;
+    s.clampForce = force / m;
+    s.clampMoment = moment / m;
+    s.stepContactForce[0] = contact[0] / m;
+    s.stepContactForce[1] = contact[1] / m;
+    s.stepContactMoment = contactMoment / m;
+    s.gradientIterationsLast = iterationsMax;
+    forceZero_ = {s.force.isZero(0.0), s.forcePrev.isZero(0.0), s.forcePrev2.isZero(0.0)};
+    forceNextZero_ = false;
+    margin_ = -1.0;
+}
+
+}  // namespace plate
