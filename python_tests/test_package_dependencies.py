@@ -3,8 +3,9 @@ a user who installs it with pip gets what it needs, nothing found by accident in
 
 import ast
 import sys
-import tomllib
 from pathlib import Path
+
+import tomllib
 
 ROOT = Path(__file__).resolve().parent.parent
 PACKAGE = ROOT / "python" / "plateimpact"
