@@ -5,7 +5,11 @@ under Wine (build/dist/fmi3/PlateImpact.fmu, made by scripts/build-aarch64.sh an
 scripts/build-win64.sh; a platform whose binary or toolchain is missing is skipped). Each output
 within the experiment's own tolerance (the validator's comparison, plateimpact.validate). No
 Python and no XML run under emulation: the test writes each experiment as a plan of numbers.
-`python python_tests/test_experiments_platforms.py` prints the spreads (docs/validation.md)."""
+The state experiment runs only where the manifest says its state was written
+(serialized-state/<platform>). Under qemu the suite leaves out the experiments of more than
+QEMU_STEPS internal steps (smoke and release: 10,000 steps, two minutes emulated);
+PLATEIMPACT_ALL_EXPERIMENTS=1 or `python python_tests/test_experiments_platforms.py` (which prints
+the spreads of docs/validation.md) runs them all."""
 
 from __future__ import annotations
 
@@ -29,6 +33,7 @@ HERE = Path(__file__).resolve().parent
 DIST = ROOT / "build" / "dist" / "fmi3" / "PlateImpact.fmu"
 WINE = Path("/usr/lib/wine/wine64")
 KINDS = {"Float64": "f", "Int32": "i", "UInt64": "u", "Boolean": "b"}
+QEMU_STEPS = 2000
 
 # platform -> (binary inside the FMU, compiler and flags, how to run the driver)
 PLATFORMS = {
@@ -96,8 +101,14 @@ def available(platform):
     return None
 
 
-def replay(platform, work: Path):
-    """{experiment: {output: (deviation, tolerance)}} of every experiment on `platform`'s binary."""
+def internal_steps(exp, variables):
+    dt = float(exp.parameters["dt"][1]) if "dt" in exp.parameters else float(variables["dt"].start)
+    return (exp.stop - exp.start) / dt
+
+
+def replay(platform, work: Path, everything=True):
+    """{experiment: {output: (deviation, tolerance)}} of every experiment on `platform`'s binary
+    (everything=False: under qemu, those of at most QEMU_STEPS internal steps)."""
     binary, compiler, link, runner = PLATFORMS[platform]
     work.mkdir(parents=True, exist_ok=True)
     with zipfile.ZipFile(DIST) as z:
@@ -113,6 +124,10 @@ def replay(platform, work: Path):
     variables = {v.name: v for v in md.modelVariables}
     related = validate.read_manifest(DIST)
     experiments, _ = validate.load_experiments(DIST, related, work)
+    written_on = {r.role.split("/", 1)[1] for r in related if (r.role or "").startswith("serialized-state/")}
+    experiments = [e for e in experiments if e.state is None or platform in written_on]
+    if not everything and PLATFORMS[platform][3][:1] == ["qemu-aarch64"]:
+        experiments = [e for e in experiments if internal_steps(e, variables) <= QEMU_STEPS]
     args, plans = [], []
     for exp in experiments:
         plan, out = work / f"{exp.name}.plan", work / f"{exp.name}.out"
@@ -136,8 +151,9 @@ def test_every_experiment_within_tolerance(platform, tmp_path):
     why = available(platform)
     if why:
         pytest.skip(why)
-    results = replay(platform, tmp_path)
-    assert len(results) >= 8, sorted(results)
+    everything = os.environ.get("PLATEIMPACT_ALL_EXPERIMENTS") == "1"
+    results = replay(platform, tmp_path, everything)
+    assert len(results) >= (5 if platform == "aarch64-linux" and not everything else 7), sorted(results)
     bad = [
         f"{e} {o}: {d:.3e} > {t:.3e}" for e, signals in results.items() for o, (d, t) in signals.items() if not d <= t
     ]
