@@ -2,8 +2,9 @@
 # On demand (minutes: the whole solver is compiled): builds the source FMU
 # (build/dist/PlateImpact-source.fmu) with fmpy's generic builder, fmpy.build.build_platform_binary
 # (it reads the buildDescription.xml's first SourceFileSet and puts only sources/ on the include
-# path), and replays the smoke experiment through the validator on the result. Prints the build's
-# wall time. The suite checks the same reading without compiling (python_tests/test_source_fmu_fmpy.py);
+# path), and replays the smoke experiment through the validator on the result; then the same with
+# fmu-manipulation-toolbox's compile (`fmutool -compile-sources`) when fmutool is on the PATH or at
+# $FMUTOOL (pip install fmu-manipulation-toolbox, in a venv of its own). Prints each build's wall time. The suite checks the same reading without compiling (python_tests/test_source_fmu_fmpy.py);
 # the plain CMake build of sources/CMakeLists.txt is python_tests/test_source_fmu.py.
 #   bash scripts/check-source-fmu-builders.sh [WORK_DIR]
 set -euo pipefail
@@ -24,3 +25,14 @@ build_platform_binary(sys.argv[1], sys.argv[2])
   || { tail -30 "$work/fmpy/build.log" >&2; echo "check-source-fmu-builders: fmpy's build_platform_binary failed (log: $work/fmpy/build.log)" >&2; exit 1; }
 echo "check-source-fmu-builders: fmpy build_platform_binary: $(( $(date +%s) - start )) s"
 "$repo/.venv/bin/python" -m plateimpact.validate "$work/fmpy/PlateImpact" --master fmpy --experiment smoke
+fmutool="${FMUTOOL:-$(command -v fmutool || true)}"
+if [ -z "$fmutool" ]; then
+  echo "check-source-fmu-builders: fmutool not found (PATH, \$FMUTOOL): fmu-manipulation-toolbox skipped"
+  exit 0
+fi
+rm -rf "$work/fmutool" && mkdir -p "$work/fmutool"
+start=$(date +%s)
+nice -n 10 "$fmutool" -input "$fmu" -compile-sources -output "$work/fmutool/PlateImpact.fmu" > "$work/fmutool/build.log" 2>&1 \
+  || { tail -30 "$work/fmutool/build.log" >&2; echo "check-source-fmu-builders: fmutool -compile-sources failed (log: $work/fmutool/build.log)" >&2; exit 1; }
+echo "check-source-fmu-builders: fmutool -compile-sources: $(( $(date +%s) - start )) s"
+"$repo/.venv/bin/python" -m plateimpact.validate "$work/fmutool/PlateImpact.fmu" --master fmpy --experiment smoke
