@@ -15,6 +15,8 @@ from pathlib import Path
 import fmpy
 import numpy as np
 
+from plateimpact.fmufile import require_fmu
+
 
 def simulate(fmu, start, stop, interval):
     """The default scene with early return: rows at every interval and at every contact event."""
@@ -68,12 +70,19 @@ def draw(ax, row, p, tol=1e-9):
 def main(argv=None):
     ap = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
     ap.add_argument("--fmu", default="build/fmi3/PlateImpact.fmu")
-    ap.add_argument("--out", default="docs/figures", help="plate_impact.gif and plate_impact.png go here")
+    ap.add_argument(
+        "--out", default="out", help="plate_impact.gif and plate_impact.png go here (the README's: --out docs/figures)"
+    )
     ap.add_argument("--start", type=float, default=0.04)
     ap.add_argument("--stop", type=float, default=0.1)
     ap.add_argument("--interval", type=float, default=2e-3, help="regular frame interval, s")
-    ap.add_argument("--quick", action="store_true", help="smoke run: 0.04 to 0.06 s, a frame every 5 ms")
+    ap.add_argument(
+        "--quick",
+        action="store_true",
+        help="smoke run: --stop 0.06 (0.04 to 0.06 s), --interval 5e-3 (a frame every 5 ms)",
+    )
     args = ap.parse_args(argv)
+    args.fmu = str(require_fmu(args.fmu, "animate"))
     if args.quick:
         args.stop, args.interval = 0.06, 5e-3
     args.gif, args.png = (str(Path(args.out) / f"plate_impact.{ext}") for ext in ("gif", "png"))

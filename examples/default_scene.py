@@ -13,6 +13,7 @@ import time
 from pathlib import Path
 
 from plateimpact import PlateImpactFMU, default_base
+from plateimpact.fmufile import require_fmu
 from plateimpact.scenes import AMPLITUDE, FREQUENCY
 
 
@@ -25,8 +26,9 @@ def main(argv=None):
     ap.add_argument("--step", type=float, default=1e-4, help="communication step, s")
     ap.add_argument("--dt", type=float, default=1e-5)
     ap.add_argument("--element", default="argyris", choices=("argyris", "fvs"))
-    ap.add_argument("--quick", action="store_true", help="smoke run: the first 0.1 s")
+    ap.add_argument("--quick", action="store_true", help="smoke run: --stop-time 0.1 (the first 0.1 s)")
     args = ap.parse_args(argv)
+    args.fmu = str(require_fmu(args.fmu, "default_scene"))
     if args.quick:
         args.stop_time = 0.1
 

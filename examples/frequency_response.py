@@ -27,6 +27,7 @@ import csv
 import time
 from pathlib import Path
 
+from plateimpact.fmufile import require_fmu
 from plateimpact.response_map import CSV_COLUMNS, dask_map, grid
 
 
@@ -95,8 +96,13 @@ def main(argv=None):
     ap.add_argument("--nx", type=int, default=14)
     ap.add_argument("--ny", type=int, default=5)
     ap.add_argument("--no-progress", action="store_true")
-    ap.add_argument("--quick", action="store_true", help="smoke test: 2×2 map, 0.1 s, 6×2 cells")
+    ap.add_argument(
+        "--quick",
+        action="store_true",
+        help="smoke test, a 2×2 map: --frequencies 8,30 --gaps 0.012,0.05 --stop-time 0.1 --settle 0.05 --nx 6 --ny 2",
+    )
     args = ap.parse_args(argv)
+    args.fmu = str(require_fmu(args.fmu, "frequency_response"))
     if args.quick:
         args.frequencies, args.gaps = [8.0, 30.0], [0.012, 0.05]
         args.stop_time, args.settle, args.nx, args.ny = 0.1, 0.05, 6, 2

@@ -34,6 +34,7 @@ from pathlib import Path
 import numpy as np
 
 from plateimpact import PlateImpactFMU, unzipped
+from plateimpact.fmufile import require_fmu
 from plateimpact.scenes import DT, FIRST_IMPACT, base, errors, run_derivatives
 
 MODES = {"hold": 1, "linear": 2, "quadratic": 3}
@@ -182,6 +183,7 @@ def main(argv=None):
     ap.add_argument("--quick", action="store_true", help="smoke run: smooth scene, h = 1e-3 s, 0.07 s, no cost")
     ap.add_argument("--no-speed", action="store_true", help="skip the cost measurement")
     args = ap.parse_args(argv)
+    args.fmu = str(require_fmu(args.fmu, "input_accuracy"))
     steps = [1e-3] if args.quick else [float(s) for s in args.steps.split(",")]
     stop = 0.07 if args.quick else args.stop_time
     scenes = ["smooth"] if args.quick else args.scenes.split(",")

@@ -17,12 +17,12 @@ obstacles are flat and fixed): with ±0.01 m obstacles the paper's amplitude 0.0
 admissible, so figure 8 uses 0.009 m, the paper's ratio amplitude/gap = 0.9. The model is
 linear and the obstacles are homogeneous, so that scene is the ±0.1 m scene scaled by 1/10.
 
-Writes the PNGs and two CSVs to --out (default docs/figures):
+Writes the PNGs and two CSVs to --out (default out/; the docs page's: --out docs/figures):
   paper_scenes.csv           one row per simulation: scene, element, mesh, Δt, wall time and
                              the numbers docs/paper-scenes.md quotes
   paper_scenes_elements.csv  Argyris against FVS for the same scene and Δt
 
-    python examples/paper_scenes.py            # full run, a few minutes
+    python examples/paper_scenes.py --out docs/figures   # full run, a few minutes
     python tools/render_docs.py paper-scenes.md   # docs/paper-scenes.md's tables from the CSVs
     python examples/paper_scenes.py --quick --out /tmp/ps   # smoke test, short horizons
 """
@@ -38,11 +38,24 @@ from pathlib import Path
 import numpy as np
 
 from plateimpact import PlateImpactFMU, sine
+from plateimpact.fmufile import require_fmu
 from plateimpact.scenes import AMPLITUDE
 
 MESHES = {"argyris": (14, 5), "fvs": (20, 7)}
 MESHES_FREE = {"argyris": (16, 5), "fvs": (20, 7)}  # figs 13, 16, 18: "160 Argyris triangles"
 LABEL = {"argyris": "Argyris", "fvs": "FVS"}
+
+
+def elements(el, nx, ny):
+    """Element count of an nx x ny mesh: two Argyris triangles or one FVS quadrilateral per cell."""
+    return nx * ny * (2 if el == "argyris" else 1)
+
+
+def mesh_text(meshes):
+    """The meshes as a title says them: "Argyris 140 (14×5), FVS 140 (20×7) elements"."""
+    return ", ".join(f"{LABEL[el]} {elements(el, nx, ny)} ({nx}×{ny})" for el, (nx, ny) in meshes.items()) + " elements"
+
+
 SERIES = (
     "time",
     "base",
@@ -314,7 +327,7 @@ def plot_energy(path, runs, dts):
             r = runs[(dt, el)]
             ax.plot(r["time"], r["energy"], lw=1.0, color=f"C{i}", label=f"Δt = {dt:g} s")
         nx, ny = r["nx"], r["ny"]
-        n_el = nx * ny * (2 if el == "argyris" else 1)
+        n_el = elements(el, nx, ny)
         ax.set_title(f"{LABEL[el]}, {n_el} elements ({nx}×{ny})", fontsize=9)
         ax.set_xlabel("time [s]")
         ax.legend(fontsize=8)
@@ -329,9 +342,10 @@ def plot_energy(path, runs, dts):
 def main(argv=None):
     ap = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
     ap.add_argument("--fmu", default="build/PlateImpact.fmu")
-    ap.add_argument("--out", default="docs/figures")
+    ap.add_argument("--out", default="out", help="PNGs and CSVs go here (docs/paper-scenes.md: --out docs/figures)")
     ap.add_argument("--quick", action="store_true", help="short horizons (smoke test)")
     args = ap.parse_args(argv)
+    args.fmu = str(require_fmu(args.fmu, "paper_scenes"))
     out = Path(args.out)
     out.mkdir(parents=True, exist_ok=True)
     q = args.quick
@@ -392,7 +406,7 @@ def _experiments(args, out, q, meshes, meshes_free, results, pairs):
             f"max|c1−c2| = {np.max(np.abs(r['corner_1'] - r['corner_2'])):.1e} m"
         ),
         (-0.1, 0.1),
-        f"Figs 5–7: base {AMPLITUDE:g} sin(2π·10 t), obstacles ±0.1 m, 140 elements each",
+        f"Figs 5–7: base {AMPLITUDE:g} sin(2π·10 t), obstacles ±0.1 m, {mesh_text(meshes)}",
     )
 
     print("Fig 8: obstacles ±0.01 m, base amplitude 0.009 m")

@@ -26,6 +26,7 @@ import csv
 import time
 from pathlib import Path
 
+from plateimpact.fmufile import require_fmu
 from plateimpact.scenes import AMPLITUDE
 from plateimpact.sweep import CSV_COLUMNS, SineSweep, rayleigh_for_band, run_sweep
 
@@ -105,8 +106,13 @@ def main(argv=None):
     ap.add_argument("--mass", choices=("consistent", "singular_p0", "singular_p1dg"), default="consistent")
     ap.add_argument("--restitution", type=float, default=0.0, help="restitution coefficient e in [0, 1]")
     ap.add_argument("--no-progress", action="store_true")
-    ap.add_argument("--quick", action="store_true", help="smoke test: 0.05 s sweep, 6x2 cells, dt 1e-4")
+    ap.add_argument(
+        "--quick",
+        action="store_true",
+        help="smoke test: --duration 0.05 --nx 6 --ny 2 --dt 1e-4 --step 1e-3 --f-start 20 --f-end 60 --amplitude 0.09",
+    )
     args = ap.parse_args(argv)
+    args.fmu = str(require_fmu(args.fmu, "sine_sweep"))
     if args.quick:
         args.duration, args.nx, args.ny, args.dt, args.step = 0.05, 6, 2, 1e-4, 1e-3
         args.f_start, args.f_end, args.amplitude = 20.0, 60.0, AMPLITUDE

@@ -30,6 +30,7 @@ def test_readme_python_block_runs(index, fmu_path, tmp_path, monkeypatch):
     matplotlib.use("Agg")
     build = Path(fmu_path).resolve().parent
     (tmp_path / "build").symlink_to(build, target_is_directory=True)
+    (tmp_path / "out").mkdir()  # as run.sh leaves it
     monkeypatch.chdir(tmp_path)
     code = blocks()[index]
     with contextlib.redirect_stdout(io.StringIO()):
@@ -38,5 +39,5 @@ def test_readme_python_block_runs(index, fmu_path, tmp_path, monkeypatch):
 
     plt.close("all")
     if "savefig" in code:
-        saved = re.search(r'savefig\("([^"]+)"\)', code).group(1)
+        saved = re.search(r'savefig\("([^"]+)"', code).group(1)
         assert os.path.getsize(tmp_path / saved) > 0

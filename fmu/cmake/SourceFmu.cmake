@@ -5,7 +5,7 @@
 #   sources/buildDescription.xml       FMI 3.0 build description (one configuration)
 #   sources/CMakeLists.txt             fmu/source/CMakeLists.txt: a plain CMake build into binaries/
 #   sources/plateimpact/solver/        the solver's sources (solver/ without its tests and bench)
-#   sources/plateimpact/fmu/           core/, fmi3/ (the FMI 3.0 front end), binding/, headers/
+#   sources/plateimpact/fmu/           the FMI 3.0 layer and the PlateImpact binding, fmi2/ and fmi3/ headers
 #   sources/plateimpact/generated/     PlateImpactGuid.h (the instantiation token of this build)
 #   sources/suitesparse/               CHOLMOD Core + Cholesky, AMD, COLAMD, SuiteSparse_config (pinned 5.12.0)
 #   sources/eigen3/Eigen/              Eigen's headers (MPL-2.0), sources/xxhash/xxhash.h (BSD-2-Clause)
@@ -51,33 +51,52 @@ file(COPY "${EIGEN}/Eigen" DESTINATION "${src}/eigen3")
 configure_file("${XXHASH}" "${src}/xxhash/xxhash.h" COPYONLY)
 
 # buildDescription.xml: every compiled file, the include directories and definitions, as the
-# CMakeLists.txt beside it compiles them.
+# CMakeLists.txt beside it compiles them. One SourceFileSet (C and C++ files, each compiled by its
+# extension), no language attribute: fmpy's build_platform_binary (0.3.32) reads only the first set
+# (and would take its language for every file), so a second set of C files would be left out.
+# fmpy also ignores IncludeDirectory and puts only sources/ on the include path: the forwarding
+# headers at sources/ (sources/<name> includes <include directory>/<name>, and sources/Eigen/<Module>
+# the Eigen module) make every include resolve from there too. plateimpact/fmu/gcc/RuntimeRelease.cpp
+# is left out: it belongs to a build that links libstdc++ statically (sources/CMakeLists.txt).
 file(GLOB_RECURSE c_files RELATIVE "${src}" "${src}/suitesparse/*.c")
 list(FILTER c_files INCLUDE REGEX "/(cholmod_[^/]*|amd_[^/]*|colamd|SuiteSparse_config)\\.c$")
 file(GLOB_RECURSE cpp_files RELATIVE "${src}" "${src}/plateimpact/*.cpp")
+list(FILTER cpp_files EXCLUDE REGEX "/gcc/")
 list(SORT c_files)
 list(SORT cpp_files)
+set(includes suitesparse/CHOLMOD/Include suitesparse/SuiteSparse_config suitesparse/AMD/Include
+             suitesparse/COLAMD/Include plateimpact/solver plateimpact/fmu plateimpact/fmu/headers/fmi2
+             plateimpact/fmu/headers/fmi3 plateimpact/generated xxhash)
+set(forwarded "")
+foreach(i IN LISTS includes)
+  # Recursive: the solver's and the FMU layer's includes name their folder (fe/Mesh.h, core/Model.h).
+  file(GLOB_RECURSE headers RELATIVE "${src}/${i}" "${src}/${i}/*.h")
+  list(FILTER headers EXCLUDE REGEX "^headers/")
+  foreach(h IN LISTS headers)
+    list(FIND forwarded "${h}" seen)
+    if(NOT seen EQUAL -1)
+      message(FATAL_ERROR "SourceFmu.cmake: two headers named ${h} (${i} and another include directory)")
+    endif()
+    list(APPEND forwarded "${h}")
+    file(WRITE "${src}/${h}" "/* Forwards to ${i}/${h}: for builders that put only sources/ on the include path. */\n#include \"${i}/${h}\"\n")
+  endforeach()
+endforeach()
+file(GLOB eigen_modules RELATIVE "${src}/eigen3/Eigen" "${src}/eigen3/Eigen/*")
+foreach(m IN LISTS eigen_modules)
+  if(NOT IS_DIRECTORY "${src}/eigen3/Eigen/${m}")
+    file(WRITE "${src}/Eigen/${m}" "/* Forwards to eigen3/Eigen/${m}: for builders that put only sources/ on the include path. */\n#include \"../eigen3/Eigen/${m}\"\n")
+  endif()
+endforeach()
 set(xml "<?xml version=\"1.0\" encoding=\"UTF-8\"?>\n<fmiBuildDescription fmiVersion=\"3.0\">\n")
-string(APPEND xml "  <BuildConfiguration modelIdentifier=\"PlateImpact\" description=\"The FMI 3.0 binary from these sources; or with CMake: cmake -S sources -B build &amp;&amp; cmake --build build (sources/CMakeLists.txt). plateimpact/fmu/gcc/RuntimeRelease.cpp only with GCC's libstdc++ linked statically.\">\n")
-string(APPEND xml "    <SourceFileSet name=\"suitesparse\" language=\"C99\">\n")
-foreach(f IN LISTS c_files)
+string(APPEND xml "  <BuildConfiguration modelIdentifier=\"PlateImpact\" description=\"The FMI 3.0 binary from these sources: the .c files are C99, the .cpp files C++17 (one set, each file compiled by its extension). Or with CMake: cmake -S sources -B build &amp;&amp; cmake --build build (sources/CMakeLists.txt, which also links libstdc++ statically with plateimpact/fmu/gcc/RuntimeRelease.cpp).\">\n")
+string(APPEND xml "    <SourceFileSet name=\"plateimpact\">\n")
+foreach(f IN LISTS c_files cpp_files)
   string(APPEND xml "      <SourceFile name=\"${f}\"/>\n")
 endforeach()
 foreach(d NGPL NPARTITION NCHECK NDEBUG)
-  string(APPEND xml "      <PreprocessorDefinition name=\"${d}\"/>\n")
+  string(APPEND xml "      <PreprocessorDefinition name=\"${d}\" value=\"1\"/>\n")
 endforeach()
-foreach(i suitesparse/CHOLMOD/Include suitesparse/SuiteSparse_config suitesparse/AMD/Include suitesparse/COLAMD/Include)
-  string(APPEND xml "      <IncludeDirectory name=\"${i}\"/>\n")
-endforeach()
-string(APPEND xml "    </SourceFileSet>\n    <SourceFileSet name=\"plateimpact\" language=\"C++17\">\n")
-foreach(f IN LISTS cpp_files)
-  string(APPEND xml "      <SourceFile name=\"${f}\"/>\n")
-endforeach()
-foreach(d NGPL NPARTITION NCHECK NDEBUG)
-  string(APPEND xml "      <PreprocessorDefinition name=\"${d}\"/>\n")
-endforeach()
-foreach(i plateimpact/solver plateimpact/fmu plateimpact/fmu/headers/fmi2 plateimpact/fmu/headers/fmi3 plateimpact/generated
-          eigen3 xxhash suitesparse/CHOLMOD/Include suitesparse/SuiteSparse_config)
+foreach(i IN LISTS includes ITEMS eigen3)
   string(APPEND xml "      <IncludeDirectory name=\"${i}\"/>\n")
 endforeach()
 string(APPEND xml "    </SourceFileSet>\n    <Library name=\"m\" external=\"true\" description=\"the C maths library (Unix)\"/>\n")

@@ -32,3 +32,15 @@ def fmu_file(path) -> Path:
     except zipfile.BadZipFile as e:
         raise FMUFileError(f"{p} is not an FMU (not a zip archive: {e}; {hint})") from None
     return p
+
+
+def require_fmu(path, prog: str) -> Path:
+    """fmu_file for a command-line program: on a missing or broken FMU, one line on stderr
+    (`prog: FMU not found: ... (build it with ...)`) and exit status 2 instead of a traceback."""
+    import sys
+
+    try:
+        return fmu_file(path)
+    except FMUFileError as e:
+        print(f"{prog}: {e}", file=sys.stderr)
+        raise SystemExit(2) from None

@@ -109,7 +109,7 @@ EXPERIMENTS = (
         "smoke",
         "smoke-test",
         "The default scene for 0.1 s: the default plate (14x5 Argyris cells, dt = 1e-5 s, obstacles at "
-        "+-0.1 m) on the base 0.09 sin(2 pi 10 t) m, communicated every 1e-4 s; first impact near 0.045 s",
+        "+-0.1 m) on the base 0.09 sin(2 pi 10 t) m, communicated every 1e-4 s; first impact near 0.0496 s",
         0.1,
         1e-4,
         dict(QUADRATIC),
@@ -625,8 +625,12 @@ python -m plateimpact.validate PlateImpact.fmu        # the plateimpact package 
 <p>or with any master: set the SSV's parameters, feed the stimuli CSV, run from startTime to stopTime
 at stepSize and compare the outputs named in the experiment's References with the reference CSV.</p>
 <h2>The serialized state</h2>
-<p>{"".join(f"<code>{st.name}.fmustate</code> is the state of experiment {st.base} at t = {st.at:g} s, serialized through fmiXSerializeFMUState (FMI 2.0 and FMI 3.0 write the same bytes); experiment <code>{st.name}</code> restores it in a new instance (fmiXDeSerializeFMUState and fmiXSetFMUState right after instantiation, no initialization: the parameters are the state's) and runs on to {next(e for e in EXPERIMENTS if e.name == st.base).stop:g} s with the stimuli of {st.base}. Its reference is that continuation as restored where the state was written (so the replay there is bit for bit); at build time it was checked against the uninterrupted run of {st.base} within that experiment's tolerances (largest deviation {max(v['spread']['uninterrupted'] / v['tolerance'] for v in report[st.name].values()):.1e} of the tolerance). The manifest lists the file once per platform it was written on (role serialized-state/&lt;platform&gt;). " for st in STATES)}
-With fmusim: <code>fmusim --initial-fmu-state-file {STATES[0].name}.fmustate --start-time {STATES[0].at:g} ...</code>.</p>
+<p>{"".join(f"<code>{st.name}.fmustate</code> is the state of experiment {st.base} at t = {st.at:g} s, serialized through fmiXSerializeFMUState (FMI 2.0 and FMI 3.0 write the same bytes); experiment <code>{st.name}</code> restores it in a new instance (fmiXDeSerializeFMUState and fmiXSetFMUState right after instantiation, no initialization: the parameters are the state's) and runs on to {next(e for e in EXPERIMENTS if e.name == st.base).stop:g} s with the stimuli of {st.base}. Its reference is that continuation as restored where the state was written (so this project's fmpy-based replay on that platform is bit for bit; another master restores and steps it with its own time grid and lands within the tolerances, not on the same bits: fmusim 6e-7 to 9e-7 N on the clamp outputs); at build time it was checked against the uninterrupted run of {st.base} within that experiment's tolerances (largest deviation {max(v['spread']['uninterrupted'] / v['tolerance'] for v in report[st.name].values()):.1e} of the tolerance). The manifest lists the file once per platform it was written on (role serialized-state/&lt;platform&gt;). " for st in STATES)}
+With fmusim, one that restores states: Reference-FMUs fmusim v0.0.39 crashes there (SIGSEGV: its
+fmusim/FMIUtil.c hands FreeFMUState the state instead of its address); use v0.0.39 with that one call
+patched (the repository's scripts/build-fmusim.sh patches it) or the standalone fmusim 0.8 or newer
+(https://github.com/modelica/fmusim, <code>fmusim simulate ...</code>):
+<code>fmusim --initial-fmu-state-file {STATES[0].name}.fmustate --start-time {STATES[0].at:g} ...</code>.</p>
 <h2>The experiments</h2>
 <table border="1" cellpadding="3">
 <tr><th>name</th><th>role</th><th>what</th><th>parameters</th><th>stimuli</th><th>tolerance per output</th></tr>

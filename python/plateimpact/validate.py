@@ -9,7 +9,8 @@ experiment it can run (role experiment..., type application/x-plateimpact-experi
 documentation/fmi-ls-ref.html of the FMU) through fmpy, and through fmusim when it is found
 (on the PATH, at $FMUSIM, or at .deps/fmusim/bin/fmusim of the repository). Prints pass/fail per
 output with its deviation and tolerance; exit status 0 when everything passed, 1 when something
-failed, 2 when the FMU is missing or carries no manifest.
+failed, 2 when the FMU cannot be validated: missing, no manifest, no binary for this platform
+(a source-only FMU: build it first), an unknown --experiment, or --master fmusim without fmusim.
 """
 
 from __future__ import annotations
@@ -18,6 +19,7 @@ import argparse
 import hashlib
 import os
 import shutil
+import signal
 import subprocess
 import sys
 import tempfile
@@ -201,6 +203,46 @@ def load_experiments(fmu: Path, related, workdir: Path):
     return runnable, skipped
 
 
+def platform_binaries(fmu: Path, md) -> tuple[list, bool]:
+    """(the binaries/ folders the FMU has, whether one is this platform's)."""
+    import fmpy
+
+    if fmu.is_dir():
+        folders = sorted(p.name for p in (fmu / "binaries").iterdir()) if (fmu / "binaries").is_dir() else []
+    else:
+        with zipfile.ZipFile(fmu) as z:
+            folders = sorted({n.split("/")[1] for n in z.namelist() if n.startswith("binaries/") and n.count("/") >= 2})
+    here = fmpy.platform if md.fmiVersion.startswith("2") else fmpy.platform_tuple
+    return folders, here in folders
+
+
+def check_runnable(fmu: Path, md):
+    """A ValidationError when the FMU has no binary for this platform (a source-only FMU says how to build it)."""
+    import fmpy
+
+    folders, ok = platform_binaries(fmu, md)
+    if ok:
+        return
+    here = fmpy.platform if md.fmiVersion.startswith("2") else fmpy.platform_tuple
+    try:
+        has_sources = bool(_read(fmu, "sources/buildDescription.xml"))
+    except (KeyError, zipfile.BadZipFile):
+        has_sources = False
+    if has_sources:
+        raise ValidationError(
+            f"{fmu} has no binary for {here}, only sources: build it first (unzip it to DIR, "
+            f"`cmake -S DIR/sources -B build && cmake --build build`, then validate DIR; or "
+            f"fmpy.build.build_platform_binary(DIR))"
+        )
+    raise ValidationError(f"{fmu} has no binary for {here} (it has: {', '.join(folders) or 'none'})")
+
+
+FMUSIM_HINT = (
+    "a fmusim on the PATH, at $FMUSIM or at .deps/fmusim/bin/fmusim (scripts/build-fmusim.sh builds "
+    "Reference-FMUs v0.0.39's with its FreeFMUState fix); or --master fmpy"
+)
+
+
 def find_fmusim():
     for candidate in (
         os.environ.get("FMUSIM"),
@@ -241,8 +283,30 @@ def run_fmusim(fmusim: str, fmu: Path, exp: Experiment, variables, workdir: Path
     cmd.append(str(fmu))
     proc = subprocess.run(cmd, capture_output=True, text=True, timeout=600)
     if proc.returncode != 0:
-        raise RuntimeError(f"fmusim exited with {proc.returncode}: {(proc.stderr or proc.stdout).strip()[-400:]}")
+        raise RuntimeError(fmusim_failure(proc.returncode, proc.stderr or proc.stdout, exp))
     return read_csv(out)
+
+
+def fmusim_failure(returncode: int, output: str, exp: Experiment) -> str:
+    """What a failed fmusim run means: its exit status or the signal that killed it, the likely cause, its last output."""
+    tail = output.strip()[-300:]
+    if returncode >= 0:
+        return f"fmusim exited with {returncode}: {tail}"
+    try:
+        name = signal.Signals(-returncode).name
+    except ValueError:
+        name = f"signal {-returncode}"
+    text = f"fmusim crashed ({name})"
+    if exp.state is not None and -returncode in (signal.SIGSEGV, signal.SIGABRT, signal.SIGBUS):
+        text += (
+            " restoring the FMU state: Reference-FMUs fmusim v0.0.39 passes the state instead of its address "
+            "to FreeFMUState (fmusim/FMIUtil.c) and crashes there; use a fmusim that restores states: "
+            "v0.0.39 with that call patched (scripts/build-fmusim.sh) or the standalone fmusim >= 0.8 "
+            "(https://github.com/modelica/fmusim)"
+        )
+    else:
+        text += ": a crash of the master or of the FMU; rerun with fmpy (--master fmpy) to tell which"
+    return text + (f"; its last output: {tail}" if tail else "")
 
 
 def validate(fmu, masters=("fmpy", "fmusim"), only=None, log=print):
@@ -254,13 +318,21 @@ def validate(fmu, masters=("fmpy", "fmusim"), only=None, log=print):
     sums = check_checksums(fmu, related)
     md = read_model_description(str(fmu))
     variables = {v.name: v for v in md.modelVariables}
+    check_runnable(fmu, md)
     fmusim = find_fmusim() if "fmusim" in masters else None
+    if masters == ("fmusim",) and fmusim is None:
+        raise ValidationError(f"--master fmusim: fmusim not found; {FMUSIM_HINT}")
     results = []
     with tempfile.TemporaryDirectory(prefix="plateimpact-validate-") as tmp:
         work = Path(tmp)
         experiments, skipped = load_experiments(fmu, related, work)
+        unknown = sorted(set(only or ()) - {e.name for e in experiments})
+        if unknown:
+            raise ValidationError(
+                f"no experiment {', '.join(unknown)} in {fmu}; it carries: {', '.join(e.name for e in experiments)}"
+            )
         if "fmusim" in masters and fmusim is None:
-            skipped.append(("fmusim", "not found (PATH, $FMUSIM, .deps/fmusim/bin/fmusim): replayed through fmpy only"))
+            skipped.append(("fmusim", f"not found: replayed through fmpy only (for fmusim too: {FMUSIM_HINT})"))
         for exp in experiments:
             if only and exp.name not in only:
                 continue
@@ -314,9 +386,6 @@ def main(argv=None):
             print(f"FAIL checksum {path}: {message}")
     for what, why in skipped:
         print(f"skipped {what}: {why}")
-    if args.master == "fmusim" and not any(r.master == "fmusim" for r in results):
-        print("plateimpact-validate: fmusim not found", file=sys.stderr)
-        return 2
     bad_sums = sum(1 for _, ok, _ in sums if not ok)
     failed = sum(1 for r in results if not r.passed)
     print(

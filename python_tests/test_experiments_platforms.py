@@ -1,0 +1,173 @@
+"""Every reference experiment the FMU carries (FMI-LS-REF), replayed on the FMI 3.0 binary of each
+platform by one C master, python_tests/experiment_driver.c, compiled here for the platform: the
+x86-64 Linux binary natively, the aarch64-linux one under qemu-aarch64 and the x86_64-windows one
+under Wine (build/dist/fmi3/PlateImpact.fmu, made by scripts/build-aarch64.sh and
+scripts/build-win64.sh; a platform whose binary or toolchain is missing is skipped). Each output
+within the experiment's own tolerance (the validator's comparison, plateimpact.validate). No
+Python and no XML run under emulation: the test writes each experiment as a plan of numbers.
+The state experiment runs only where the manifest says its state was written
+(serialized-state/<platform>). Under qemu (about 15 s of emulated CPU per 1,000 internal steps)
+the suite replays QEMU_SUITE, one experiment per engine, element and input path beyond the
+default scene that test_aarch64.py runs; PLATEIMPACT_ALL_EXPERIMENTS=1 or
+`python python_tests/test_experiments_platforms.py` (which prints the spreads of
+docs/validation.md) replays them all (five minutes)."""
+
+from __future__ import annotations
+
+import os
+import shutil
+import subprocess
+import sys
+import tempfile
+import zipfile
+from pathlib import Path
+
+import fmpy
+import numpy as np
+import pytest
+
+from plateimpact import validate
+from plateimpact.references import deviation, read_csv, typed
+
+ROOT = Path(__file__).resolve().parent.parent
+HERE = Path(__file__).resolve().parent
+DIST = ROOT / "build" / "dist" / "fmi3" / "PlateImpact.fmu"
+WINE = Path("/usr/lib/wine/wine64")
+KINDS = {"Float64": "f", "Int32": "i", "UInt64": "u", "Boolean": "b"}
+QEMU_SUITE = ("conserving", "fvs", "load")
+
+# platform -> (binary inside the FMU, compiler and flags, how to run the driver)
+PLATFORMS = {
+    "x86_64-linux": ("x86_64-linux/PlateImpact.so", ["cc", "-O2"], ["-ldl"], []),
+    "aarch64-linux": (
+        "aarch64-linux/PlateImpact.so",
+        ["aarch64-linux-gnu-gcc", "-O2"],
+        ["-ldl"],
+        ["qemu-aarch64", "-L", "/usr/aarch64-linux-gnu"],
+    ),
+    "x86_64-windows": ("x86_64-windows/PlateImpact.dll", ["x86_64-w64-mingw32-gcc", "-O2"], ["-static"], [str(WINE)]),
+}
+
+
+def host_path(platform, path):
+    return "Z:" + str(path).replace("/", "\\") if platform.endswith("windows") else str(path)
+
+
+def write_plan(path, exp, variables):
+    n = int(round((exp.stop - exp.start) / exp.step)) + 1
+    grid = exp.start + np.arange(n) * exp.step
+    params = []
+    if exp.state is None:
+        for name, (kind, text) in exp.parameters.items():
+            v = variables[name]
+            value = typed(text, kind, v)
+            text = repr(float(value)) if v.type == "Float64" else str(int(value))
+            params.append(f"{KINDS[v.type]} {v.valueReference} {text}")
+    inputs, rows = [], np.zeros((n, 0))
+    if exp.stimuli is not None:
+        stim = read_csv(exp.stimuli)
+        inputs = [c for c in stim.dtype.names if c != "time"]
+        rows = np.column_stack([np.interp(grid, stim["time"], stim[c]) for c in inputs])
+    outputs = list(exp.tolerances)
+    state = exp.state.read_bytes() if exp.state is not None else b""
+    lines = [f"{exp.start!r} {exp.stop!r} {exp.step!r} {len(params)} {len(inputs)} {len(outputs)} {n} {len(state)}"]
+    lines += params
+    lines.append(" ".join(str(variables[c].valueReference) for c in inputs))
+    lines.append(" ".join(str(variables[c].valueReference) for c in outputs))
+    lines += [" ".join(float(x).hex() for x in row) for row in rows] if inputs else []
+    lines.append(state.hex())
+    Path(path).write_text("\n".join(lines) + "\n")
+    return outputs
+
+
+def read_result(path, outputs):
+    data = np.array([[float.fromhex(x) for x in line.split()] for line in Path(path).read_text().splitlines()])
+    out = np.zeros(len(data), dtype=[("time", float)] + [(o, float) for o in outputs])
+    out["time"] = data[:, 0]
+    for i, o in enumerate(outputs):
+        out[o] = data[:, i + 1]
+    return out
+
+
+def available(platform):
+    binary, compiler, _, runner = PLATFORMS[platform]
+    if not DIST.is_file():
+        return f"{DIST.relative_to(ROOT)} not built (scripts/build-aarch64.sh or scripts/build-win64.sh)"
+    with zipfile.ZipFile(DIST) as z:
+        if f"binaries/{binary}" not in z.namelist():
+            return f"no binaries/{binary} in {DIST.name}"
+    for tool in (compiler[0], *(runner[:1])):
+        if shutil.which(tool) is None and not Path(tool).exists():
+            return f"{tool} not found"
+    return None
+
+
+def replay(platform, work: Path, everything=True):
+    """{experiment: {output: (deviation, tolerance)}} of every experiment on `platform`'s binary
+    (everything=False: under qemu, those of QEMU_SUITE)."""
+    binary, compiler, link, runner = PLATFORMS[platform]
+    work.mkdir(parents=True, exist_ok=True)
+    with zipfile.ZipFile(DIST) as z:
+        z.extractall(work / "fmu")
+    exe = work / ("experiment_driver.exe" if platform.endswith("windows") else "experiment_driver")
+    build = subprocess.run(
+        [*compiler, "-I", str(ROOT / "fmu" / "fmi3"), str(HERE / "experiment_driver.c"), "-o", str(exe), *link],
+        capture_output=True,
+        text=True,
+    )
+    assert build.returncode == 0, build.stderr
+    md = fmpy.read_model_description(str(DIST))
+    variables = {v.name: v for v in md.modelVariables}
+    related = validate.read_manifest(DIST)
+    experiments, _ = validate.load_experiments(DIST, related, work)
+    written_on = {r.role.split("/", 1)[1] for r in related if (r.role or "").startswith("serialized-state/")}
+    experiments = [e for e in experiments if e.state is None or platform in written_on]
+    if not everything and PLATFORMS[platform][3][:1] == ["qemu-aarch64"]:
+        experiments = [e for e in experiments if e.name in QEMU_SUITE]
+    args, plans = [], []
+    for exp in experiments:
+        plan, out = work / f"{exp.name}.plan", work / f"{exp.name}.out"
+        plans.append((exp, out, write_plan(plan, exp, variables)))
+        args += [host_path(platform, plan), host_path(platform, out)]
+    env = dict(os.environ, WINEDEBUG="-all", WINEPREFIX=str(ROOT / "build-win64" / "wineprefix"))
+    lib = host_path(platform, work / "fmu" / "binaries" / binary)
+    run = subprocess.run(
+        [*runner, str(exe), lib, md.instantiationToken, *args], capture_output=True, text=True, env=env, timeout=1200
+    )
+    assert run.returncode == 0, f"{platform}: {run.stderr[-2000:]}"
+    results = {}
+    for exp, out, outputs in plans:
+        result, reference = read_result(out, outputs), read_csv(exp.reference)
+        results[exp.name] = {o: (deviation(result, reference, o), exp.tolerances[o]) for o in outputs}
+    return results
+
+
+@pytest.mark.parametrize("platform", list(PLATFORMS))
+def test_every_experiment_within_tolerance(platform, tmp_path):
+    why = available(platform)
+    if why:
+        pytest.skip(why)
+    everything = os.environ.get("PLATEIMPACT_ALL_EXPERIMENTS") == "1"
+    results = replay(platform, tmp_path, everything)
+    assert len(results) >= (len(QEMU_SUITE) if platform == "aarch64-linux" and not everything else 7), sorted(results)
+    bad = [
+        f"{e} {o}: {d:.3e} > {t:.3e}" for e, signals in results.items() for o, (d, t) in signals.items() if not d <= t
+    ]
+    assert not bad, f"{platform}: " + "; ".join(bad)
+
+
+def main():
+    for platform in PLATFORMS:
+        why = available(platform)
+        if why:
+            print(f"{platform}: skipped ({why})")
+            continue
+        with tempfile.TemporaryDirectory() as tmp:
+            results = replay(platform, Path(tmp))
+        for e, signals in results.items():
+            name, (d, t) = max(signals.items(), key=lambda kv: kv[1][0] / kv[1][1])
+            print(f"{platform:15} {e:13} largest {d / t:.1e} of a tolerance ({name}: {d:.3e})")
+
+
+if __name__ == "__main__":
+    sys.exit(main())
