@@ -241,7 +241,7 @@ def first_frequency(bench, cfg, workdir):
 def python_baseline(
     export_dir, dt, steps, comm, split, beta=0.5, amplitude=AMPLITUDE, frequency=FREQUENCY, gap=OBSTACLE
 ):
-    """The same three-level scheme as NewmarkContactStepper (docs/theory.md §3–4) in plain
+    """The same three-level scheme as NewmarkScheme (docs/theory.md §3–4) in plain
     Python/SciPy: A = M + βΔt²K factored once (scipy.sparse.linalg.factorized), the free
     solution every step, and on steps where it violates a bound the full step QP
     min ½wᵀAw − wᵀb, obstacle − z⁺ ≤ w_C ≤ obstacle − z⁺, solved by OSQP (set up once, q/l/u

@@ -554,7 +554,7 @@ def failures(r):
     # Every QP converged: the stepper fails the step when a QP does not converge or its KKT
     # residual exceeds 1e-10 (caught above as a step error); the running maximum says the same.
     # The residual includes primal feasibility max(lower - y, y - upper) of every vertex,
-    # relative to the largest |bound| or |free solution| of that QP (solver/BoxQP.cpp,
+    # relative to the largest |bound| or |free solution| of that QP (solver/plate/BoxQP.cpp,
     # kktResidual), so KKT <= 1e-10 also bounds the penetration of every vertex, not only the
     # probes, by 1e-10 x that scale; the QP moreover puts active vertices on the obstacle
     # exactly and accepts free ones only within 1e-15 (1 + |bound|) of it.

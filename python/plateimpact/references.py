@@ -31,7 +31,7 @@ What FLOOR covers, measured (never bit-identity):
     test_aarch64.py, main of 2026-11-25; 1.3e-8 and 3.0e-8 before issue 31; the cause: Eigen's NEON FMA), which the
     rounding-level noise of (b) does not reach (3e-10 on the smoke test): FLOOR = 1e-5 is 88 x
     that largest platform spread;
-  - CPUs: the one CPU-dependent path (the modal kernel's x86-64-v3 clone, solver/Kernels.h) runs
+  - CPUs: the one CPU-dependent path (the modal kernel's x86-64-v3 clone, solver/plate/Kernels.h) runs
     only with modes > 0, which no experiment uses.
 
     python -m plateimpact.references build/PlateImpact.fmu OUT_DIR --fmi3 build/fmi3/PlateImpact.fmu

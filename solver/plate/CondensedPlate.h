@@ -1,7 +1,7 @@
 #pragma once
 // The clamped plate with a singular mass, condensed (docs/theory.md §17): the massive space in
 // mass-normalized modes with their static completion, the massless space static at every
-// instant. What the conserving engine (ConservingStepper) steps:
+// instant. What the condensed schemes (CondensedScheme: MidpointScheme, FlowScheme) step:
 //
 //   q̈ + Ω² q = p F_m − b_m z̈ + Gᵀλ,      y = G q + p c_p + z·𝟙 + D λ   (constraint rows),
 //

@@ -46,7 +46,7 @@ public:
     // The law's part of the state, for NewmarkScheme's initialize, setInitialContactForce
     // and setLoadAtStart (nothing by default):
     // A fresh state: the law's members of NewmarkState sized and zero (the carried impulses; their
-    // size is the one the FMU state stores and NewmarkEngine's deserialize expects).
+    // size is the one the FMU state stores and NewmarkScheme::restoreState expects).
     virtual void initialize(NewmarkState&) {}
     // Before the first step: the contact forces λ0 (per contact vertex) that hold the initial
     // state's massless part in equilibrium (docs/theory.md §11), for a law that carries them.

@@ -12,7 +12,7 @@ namespace {
 constexpr double kFormatVersion = 3.0;
 
 // The flat form after the header (format version, n, m, impulses): every member in one order,
-// written and read by this one table (as ConservingStepper's members()). A new member is one line
+// written and read by this one table (as CondensedScheme's members()). A new member is one line
 // here, with kFormatVersion raised. The bounds of the counts: a long long up to 9e15 (exact as a
 // double), an int up to INT_MAX, the contact vertices up to m.
 template <class State, class Visit>

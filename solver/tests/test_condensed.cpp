@@ -153,7 +153,7 @@ LedgerRun runLedger(const std::shared_ptr<const CondensedPlate>& plate, const Ob
     return run;
 }
 
-TEST(ConservingStepper, LedgerClosesEveryStepThroughImpacts) {
+TEST(CondensedScheme, LedgerClosesEveryStepThroughImpacts) {
     const Condensed s(ElementType::Argyris, 14, 5, MassProjection::P0);
     auto plate = std::make_shared<const CondensedPlate>(s.c);
     Obstacles obstacles;

@@ -1,4 +1,4 @@
-// The portable sine and cosine (solver/PortableMath.h): within 2 ulp of the C library's over the
+// The portable sine and cosine (solver/base/PortableMath.h): within 2 ulp of the C library's over the
 // arguments the solver uses (quadrature guesses in [0, π], modal rotations ω Δt up to thousands
 // of radians), exact at the quadrant points, and odd/even. Their bits are the same everywhere by
 // construction (IEEE operations only, no contraction); what is tested here is that they are
