@@ -35,8 +35,8 @@ import time
 from pathlib import Path
 
 import numpy as np
-
 from cosim import run_system, run_system_fmpy_ssp, system_energy
+
 from plateimpact.fmufile import require_fmu
 
 # The plate: the default 14x5 Argyris plate (37.3 kg, first mode 5.95 Hz) with 2 % Rayleigh

@@ -7,6 +7,7 @@
 #include <stdexcept>
 
 #include "base/Errors.h"
+#include "base/StateArchive.h"
 #include "plate/PlateParameters.h"
 
 namespace plate {
@@ -485,93 +486,49 @@ std::string CondensedScheme::name() const {
 
 double CondensedScheme::firstFrequency() const { return std::sqrt(plate_->omega2[0]) / (2.0 * M_PI); }
 
-// The flat form for FMU states: a format tag, the sizes, then every member in one order, written
-// and read by the same table (members()).
+// The flat form for FMU states (base/StateArchive.h): a format tag, the sizes (massive modes,
+// constraint rows), then every member in the order of this one description. A new member is one
+// line here, with kFormat raised.
 namespace {
 
-constexpr double kFormat = 17.0;  // the conserving engine's state, version 1
+constexpr double kFormat = 17.0;  // the condensed schemes' state, version 1
+constexpr std::size_t kModes = 0, kRows = 1;
 
-template <class State, class Visit>
-void members(State& s, Visit& visit) {
-    for (auto* v : {&s.q, &s.qPrev, &s.qPrev2, &s.momentum}) visit.vector(*v, visit.modes);
-    for (auto* v : {&s.force, &s.forcePrev, &s.forcePrev2}) visit.vector(*v, visit.rows);
-    for (auto* x : {&s.z, &s.zPrev, &s.zPrev2, &s.p, &s.pPrev, &s.pPrev2, &s.energyInput, &s.energyDamped, &s.boundary,
-                    &s.maxKktResidual, &s.clampForce, &s.clampMoment, &s.stepContactForce[0], &s.stepContactForce[1],
-                    &s.stepContactMoment, &s.contactImpulseSum[0], &s.contactImpulseSum[1]})
-        visit.real(*x);
-    for (auto* k : {&s.step, &s.lcpSolves, &s.impactCount[0], &s.impactCount[1]}) visit.count(*k);
-    for (auto* k : {&s.gradientIterationsMax, &s.gradientIterationsLast, &s.contactRows}) visit.count(*k);
-    for (auto* v : {&s.rowState, &s.midState}) visit.states(*v);
-}
-
-struct Writer {
-    std::vector<double>& out;
-    std::size_t modes, rows;
-    void vector(const Eigen::VectorXd& v, std::size_t) { out.insert(out.end(), v.data(), v.data() + v.size()); }
-    void real(const double& x) { out.push_back(x); }
-    void count(const long long& k) { out.push_back(static_cast<double>(k)); }
-    void count(const int& k) { out.push_back(static_cast<double>(k)); }
-    void states(const std::vector<signed char>& v) { out.insert(out.end(), v.begin(), v.end()); }
-};
-
-struct Reader {
-    const std::vector<double>& in;
-    std::size_t at, modes, rows;
-    double next() {
-        if (at >= in.size()) throw std::invalid_argument("state does not belong to this plate (too short)");
-        const double x = in[at++];
-        if (!std::isfinite(x)) throw std::invalid_argument("corrupt state: non-finite value");
-        return x;
-    }
-    void vector(Eigen::VectorXd& v, std::size_t n) {
-        v.resize(static_cast<Eigen::Index>(n));
-        for (std::size_t i = 0; i < n; ++i) v[static_cast<Eigen::Index>(i)] = next();
-    }
-    void real(double& x) { x = next(); }
-    double whole() {
-        const double x = next();
-        if (x < 0.0 || x > 9.0e15 || x != std::floor(x)) throw std::invalid_argument("corrupt state: bad count");
-        return x;
-    }
-    void count(long long& k) { k = static_cast<long long>(whole()); }
-    void count(int& k) {
-        const double x = whole();
-        if (x > 2147483647.0) throw std::invalid_argument("corrupt state: bad count");
-        k = static_cast<int>(x);
-    }
-    void states(std::vector<signed char>& v) {
-        v.resize(rows);
-        for (auto& x : v) {
-            const double d = next();
-            if (d != -1.0 && d != 0.0 && d != 1.0) throw std::invalid_argument("corrupt state: bad contact state");
-            x = static_cast<signed char>(d);
-        }
-    }
+const auto members = [](auto& s, auto& v) {
+    for (auto* x : {&s.q, &s.qPrev, &s.qPrev2, &s.momentum}) v.vector(*x, kModes, "modal coordinate");
+    for (auto* x : {&s.force, &s.forcePrev, &s.forcePrev2}) v.vector(*x, kRows, "contact force");
+    for (auto* x : {&s.z, &s.zPrev, &s.zPrev2}) v.real(*x, "z");
+    for (auto* x : {&s.p, &s.pPrev, &s.pPrev2}) v.real(*x, "p");
+    v.real(s.energyInput, "energy input");
+    v.real(s.energyDamped, "energy damped");
+    v.real(s.boundary, "boundary energy");
+    v.real(s.maxKktResidual, "KKT residual");
+    v.real(s.clampForce, "clamp force");
+    v.real(s.clampMoment, "clamp moment");
+    for (auto* x : {&s.stepContactForce[0], &s.stepContactForce[1]}) v.real(*x, "contact force");
+    v.real(s.stepContactMoment, "contact moment");
+    for (auto* x : {&s.contactImpulseSum[0], &s.contactImpulseSum[1]}) v.real(*x, "contact impulse");
+    v.count(s.step, "step");
+    v.count(s.lcpSolves, "contact solves");
+    for (auto* k : {&s.impactCount[0], &s.impactCount[1]}) v.count(*k, "impacts");
+    for (auto* k : {&s.gradientIterationsMax, &s.gradientIterationsLast}) v.count(*k, "gradient iterations");
+    v.count(s.contactRows, "contact rows", static_cast<double>(v.size(kRows)));
+    for (auto* x : {&s.rowState, &s.midState}) v.states(*x, kRows);
 };
 
 }  // namespace
 
-std::vector<double> CondensedScheme::serialize() const {
-    const auto modes = static_cast<std::size_t>(plate_->modes()), rows = static_cast<std::size_t>(plate_->rows());
-    std::vector<double> out{kFormat, double(modes), double(rows)};
-    Writer writer{out, modes, rows};
-    members(state_, writer);
-    return out;
-}
+std::vector<double> CondensedScheme::serialize() const { return archive::save(state_, kFormat, sizes(), members); }
 
 CondensedState CondensedScheme::deserialize(const std::vector<double>& data) const {
-    const auto modes = static_cast<std::size_t>(plate_->modes()), rows = static_cast<std::size_t>(plate_->rows());
-    if (data.size() < 3 || data[0] != kFormat)
-        throw std::invalid_argument("state does not belong to this plate (another engine or format)");
-    if (data[1] != double(modes) || data[2] != double(rows))
-        throw std::invalid_argument("state does not belong to this plate (other sizes)");
-    CondensedState s;
-    Reader reader{data, 3, modes, rows};
-    members(s, reader);
-    if (reader.at != data.size()) throw std::invalid_argument("state does not belong to this plate (too long)");
+    CondensedState s = archive::load<CondensedState>(data, kFormat, sizes(), members);
     if (s.z < obstacles_.lower || s.z > obstacles_.upper)
         throw std::invalid_argument("corrupt state: clamp past an obstacle");
     return s;
+}
+
+std::array<std::size_t, 2> CondensedScheme::sizes() const {
+    return {static_cast<std::size_t>(plate_->modes()), static_cast<std::size_t>(plate_->rows())};
 }
 
 }  // namespace plate

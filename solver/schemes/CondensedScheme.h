@@ -99,6 +99,7 @@ public:
     std::vector<double> serialize() const;
     // Throws std::invalid_argument when the data does not fit this plate or is corrupt.
     CondensedState deserialize(const std::vector<double>& data) const;
+    std::array<std::size_t, 2> sizes() const;  // of the flat form: massive modes, constraint rows
 
 protected:
     CondensedScheme(std::shared_ptr<const CondensedPlate> plate, Obstacles obstacles, double dt, double dampingMass,

@@ -10,8 +10,8 @@ namespace plate {
 
 class MidpointScheme final : public CondensedScheme {
 public:
-    MidpointScheme(std::shared_ptr<const CondensedPlate> plate, Obstacles obstacles, double dt, double dampingMass = 0.0,
-                   double dampingStiffness = 0.0, OutputRows rows = {})
+    MidpointScheme(std::shared_ptr<const CondensedPlate> plate, Obstacles obstacles, double dt,
+                   double dampingMass = 0.0, double dampingStiffness = 0.0, OutputRows rows = {})
         : CondensedScheme(std::move(plate), obstacles, dt, dampingMass, dampingStiffness, std::move(rows)) {}
 
     void step(double zNext, double pNext) override { midpointStep(zNext, pNext); }

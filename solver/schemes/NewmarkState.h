@@ -1,6 +1,8 @@
 #pragma once
 // The state of the Newmark–contact scheme and its flat serialization (FMU states).
 #include <Eigen/Core>
+#include <string>
+#include <utility>
 #include <vector>
 
 namespace plate {
@@ -33,12 +35,14 @@ struct NewmarkState {
     long long impactCount[2] = {0, 0};
 };
 
-// Flat form: format version, sizes, then the members in the order of one table (NewmarkState.cpp,
-// members()): the five vectors, the scalars, the contact set, the impulses.
+// Flat form (base/StateArchive.h): format version, sizes, then the members in the order of their one
+// description (NewmarkState.cpp, members): the five vectors, the scalars, the contact set, the impulses.
 std::vector<double> serialize(const NewmarkState& state);
 // Throws std::invalid_argument if the data does not fit a plate with n coordinates, m contact
 // vertices and `impulses` stored impulses per level (0, or m with a singular mass), or is corrupt
 // (non-finite displacements, an impossible contact state).
 NewmarkState deserialize(const std::vector<double>& data, Eigen::Index n, std::size_t m, std::size_t impulses);
+// Where each member starts after the 4-value header (the tests that damage a state on purpose).
+std::vector<std::pair<std::string, std::size_t>> stateLayout(Eigen::Index n, std::size_t m, std::size_t impulses);
 
 }  // namespace plate
