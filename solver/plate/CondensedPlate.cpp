@@ -34,6 +34,26 @@ void rowDirection(const ClampedPlate& plate, const std::vector<ConstraintRow>& e
     for (std::size_t k = 0; k < f.dofs.size(); ++k) v[f.dofs[k]] += f.coefficients[k];
 }
 
+// T's eigenvalues (1/ω²) all well above roundoff: every massive function moves the plate.
+void requireMassiveSpace(const Eigen::SelfAdjointEigenSolver<Eigen::MatrixXd>& eigen, Eigen::Index nq) {
+    if (eigen.info() == Eigen::Success && nq > 0 && eigen.eigenvalues()[0] > 1e-13 * eigen.eigenvalues()[nq - 1])
+        return;
+    throw ParameterError(
+        "the singular mass's massive space is degenerate on this mesh (the massive flexibility Rᵀ K⁻¹ R is "
+        "singular; allowed: a projection space whose functions the clamped plate can all move)");
+}
+
+// D positive definite: the massless space moves each constraint row on its own.
+void requireDelassusPositive(const Eigen::MatrixXd& delassus, Eigen::Index rows) {
+    const Eigen::LLT<Eigen::MatrixXd> check(delassus);
+    if (check.info() == Eigen::Success) return;
+    std::ostringstream msg;
+    msg << "the massless space of the singular mass cannot move each of the " << rows
+        << " constraint rows independently on this mesh (the massless Delassus operator is not positive "
+           "definite); allowed: mass = singular_p0, or another mesh";
+    throw ParameterError(msg.str());
+}
+
 }  // namespace
 
 CondensedPlate condense(const ClampedPlate& plate, const Eigen::SparseMatrix<double>& root,
@@ -62,12 +82,7 @@ CondensedPlate condense(const ClampedPlate& plate, const Eigen::SparseMatrix<dou
     // The massive stiffness T⁻¹ = Φ Ω² Φᵀ: T's eigenvalues are 1/ω², largest first = lowest mode.
     flexibility = 0.5 * (flexibility + flexibility.transpose()).eval();
     const Eigen::SelfAdjointEigenSolver<Eigen::MatrixXd> eigen(flexibility);
-    if (eigen.info() != Eigen::Success || nq == 0 || !(eigen.eigenvalues()[0] > 1e-13 * eigen.eigenvalues()[nq - 1])) {
-        std::ostringstream msg;
-        msg << "the singular mass's massive space is degenerate on this mesh (the massive flexibility Rᵀ K⁻¹ R is "
-               "singular; allowed: a projection space whose functions the clamped plate can all move)";
-        throw ParameterError(msg.str());
-    }
+    requireMassiveSpace(eigen, nq);
     const Eigen::VectorXd mu = eigen.eigenvalues().reverse();
     const Eigen::MatrixXd phi = eigen.eigenvectors().rowwise().reverse();
     const Eigen::VectorXd omega2All = mu.cwiseInverse();
@@ -84,14 +99,7 @@ CondensedPlate condense(const ClampedPlate& plate, const Eigen::SparseMatrix<dou
     // whatever the reduction), symmetrized.
     c.delassus = rowFlexibility - rowsPhi * omega2All.asDiagonal() * rowsPhi.transpose();
     c.delassus = 0.5 * (c.delassus + c.delassus.transpose()).eval();
-    const Eigen::LLT<Eigen::MatrixXd> check(c.delassus);
-    if (check.info() != Eigen::Success) {
-        std::ostringstream msg;
-        msg << "the massless space of the singular mass cannot move each of the " << rows
-            << " constraint rows independently on this mesh (the massless Delassus operator is not positive "
-               "definite); allowed: mass = singular_p0, or another mesh";
-        throw ParameterError(msg.str());
-    }
+    requireDelassusPositive(c.delassus, rows);
 
     // Loads through the same flexibilities: K⁻¹ v gives the rows' response C K⁻¹ v and the
     // massive part Rᵀ K⁻¹ v, whose modal coordinates are Ω² Φᵀ Rᵀ K⁻¹ v (= Vᵀ v).
