@@ -109,8 +109,7 @@ struct Layout : Sizes<N> {
 
 // The flat form of `state`: format, sizes, then its members as `members` names them.
 template <class State, std::size_t N, class Members>
-std::vector<double> save(const State& state, double format, const std::array<std::size_t, N>& sizes,
-                         Members members) {
+std::vector<double> save(const State& state, double format, const std::array<std::size_t, N>& sizes, Members members) {
     Sizer<N> sizer{{sizes}};
     members(state, sizer);
     std::vector<double> out;
@@ -129,7 +128,8 @@ State load(const std::vector<double>& in, double format, const std::array<std::s
     Sizer<N> sizer{{sizes}};
     members(state, sizer);
     if (in.empty() || in[0] != format)
-        throw std::invalid_argument("state does not belong to this plate (another scheme, or an earlier release's format)");
+        throw std::invalid_argument(
+            "state does not belong to this plate (another scheme, or an earlier release's format)");
     bool fits = in.size() == 1 + N + sizer.length;
     for (std::size_t k = 0; fits && k < N; ++k) fits = in[1 + k] == static_cast<double>(sizes[k]);
     if (!fits) throw std::invalid_argument("state does not belong to this plate (size or format differs)");

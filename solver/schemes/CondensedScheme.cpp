@@ -156,11 +156,7 @@ void CondensedScheme::setLoadAtStart(double p0) {
     margin_ = -1.0;
 }
 
-void CondensedScheme::checkInputs(double zNext, double pNext) const {
-    const bool finite = std::isfinite(zNext) && std::isfinite(pNext);
-    const bool inRange = std::fabs(zNext) <= kMaxDisplacement && std::fabs(pNext) <= kMaxLoad;
-    const bool between = zNext >= obstacles_.lower && zNext <= obstacles_.upper;
-    if (finite && inRange && between) return;  // the message is built only for a refusal
+void CondensedScheme::refuseInputs(double zNext, double pNext, bool finite, bool inRange) const {
     const double t = double(state_.step + 1) * dt_;
     std::ostringstream msg;
     msg.precision(15);
@@ -178,22 +174,10 @@ void CondensedScheme::checkInputs(double zNext, double pNext) const {
     throw StepError(msg.str());
 }
 
-// Free flight without looking at the rows: since the last look they can have moved by at most
-// ‖G_i‖ ‖q⁺ − q_check‖ + |Δz| + |Δp| max|c_p| (1e-12 m: roundoff of what it is compared with).
-bool CondensedScheme::farFromObstacles(double zNext, double pNext) {
-    if (margin_ <= 0.0) return false;
-    const double moved = plate_->rowModeNormMax * (qNext_ - qCheck_).norm() + std::abs(zNext - zCheck_) +
-                         std::abs(pNext - pCheck_) * rowLoadMax_;
-    return moved + 1e-12 < margin_;
-}
-
-// After a trial step to (qNext_, zNext, pNext): Skipped while the free-flight bound holds; else the
-// rows r1_ at the trial's end are looked at — Contact when a row is held at the start or past an
-// obstacle at the end, Free otherwise (the bound restarts from this look).
-CondensedScheme::Look CondensedScheme::lookAtRows(double zNext, double pNext) {
+// The rows r1_ at the trial's end looked at: Contact when a row is held at the start or past an
+// obstacle at the end, Free otherwise (the free-flight bound restarts from this look).
+CondensedScheme::Look CondensedScheme::lookAtRowsNow(double zNext, double pNext) {
     const CondensedState& s = state_;
-    if (!obstacles_.any() || plate_->rows() == 0 || (s.contactRows == 0 && farFromObstacles(zNext, pNext)))
-        return Look::Skipped;
     gatherRows(qNext_, pNext, zNext, r1_);
     double margin = std::numeric_limits<double>::infinity();
     for (Eigen::Index i = 0; i < r1_.size(); ++i)

@@ -21,12 +21,14 @@
 // within the obstacles.
 #include <Eigen/Core>
 #include <array>
+#include <cmath>
 #include <memory>
 #include <vector>
 
 #include "plate/BoxQP.h"
 #include "plate/CondensedPlate.h"
 #include "plate/Obstacles.h"
+#include "plate/PlateParameters.h"
 #include "schemes/Scheme.h"
 
 namespace plate {
@@ -116,10 +118,32 @@ protected:
     };
     void buildOperator(MidpointOperator& op, double h) const;
     void midpointStep(double zNext, double pNext);  // one step of op_->h (T.17b–c)
-    void checkInputs(double zNext, double pNext) const;
-    bool farFromObstacles(double zNext, double pNext);
+    // The inputs of a step: finite, in range, the clamp between the obstacles (inline: every step of
+    // both schemes asks; refuseInputs builds the message only for a refusal).
+    void checkInputs(double zNext, double pNext) const {
+        const bool finite = std::isfinite(zNext) && std::isfinite(pNext);
+        const bool inRange = std::fabs(zNext) <= kMaxDisplacement && std::fabs(pNext) <= kMaxLoad;
+        const bool between = zNext >= obstacles_.lower && zNext <= obstacles_.upper;
+        if (!(finite && inRange && between)) refuseInputs(zNext, pNext, finite, inRange);
+    }
+    [[noreturn]] void refuseInputs(double zNext, double pNext, bool finite, bool inRange) const;
+    // Free flight without looking at the rows: since the last look they can have moved by at most
+    // ‖G_i‖ ‖q⁺ − q_check‖ + |Δz| + |Δp| max|c_p| (1e-12 m: roundoff of what it is compared with).
+    bool farFromObstacles(double zNext, double pNext) const {
+        if (margin_ <= 0.0) return false;
+        const double moved = plate_->rowModeNormMax * (qNext_ - qCheck_).norm() + std::abs(zNext - zCheck_) +
+                             std::abs(pNext - pCheck_) * rowLoadMax_;
+        return moved + 1e-12 < margin_;
+    }
+    // The contact check after a trial step to (qNext_, zNext, pNext): Skipped while the free-flight
+    // bound holds (inline: the common case of both schemes), else lookAtRowsNow.
     enum class Look { Skipped, Free, Contact };
-    Look lookAtRows(double zNext, double pNext);  // the contact check after a trial step
+    Look lookAtRows(double zNext, double pNext) {
+        if (!obstacles_.any() || plate_->rows() == 0 || (state_.contactRows == 0 && farFromObstacles(zNext, pNext)))
+            return Look::Skipped;
+        return lookAtRowsNow(zNext, pNext);
+    }
+    Look lookAtRowsNow(double zNext, double pNext);
     void gatherRows(const Eigen::VectorXd& q, double p, double z, Eigen::VectorXd& r) const;
     void applyW2(const Eigen::VectorXd& v, Eigen::VectorXd& out);
     void discreteGradient(double psi0);  // Λ into multiplier_, from r0_, drFree_
