@@ -14,15 +14,7 @@ set -euo pipefail
 repo="$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)"
 cd "$repo"
 
-need=()
-command -v aarch64-linux-gnu-g++ >/dev/null || need+=(g++-aarch64-linux-gnu)
-command -v qemu-aarch64 >/dev/null || need+=(qemu-user)
-if [ ${#need[@]} -gt 0 ]; then
-  echo "build-aarch64.sh: installing Debian packages: ${need[*]}"
-  export DEBIAN_FRONTEND=noninteractive
-  apt-get update -qq
-  apt-get install -y -qq "${need[@]}" >/dev/null
-fi
+bash "$repo/scripts/packages.sh" aarch64 qemu  # when missing
 
 # x86_64-linux (modelDescription.xml, documentation/, the binary): the normal build, whole
 # (setup.sh configures only once and builds every target: nothing here rebuilds a subset).

@@ -14,15 +14,7 @@ set -euo pipefail
 repo="$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)"
 cd "$repo"
 
-need=()
-command -v x86_64-w64-mingw32-g++-posix >/dev/null || need+=(g++-mingw-w64-x86-64-posix)
-[ -x /usr/lib/wine/wine64 ] || need+=(wine64)
-if [ ${#need[@]} -gt 0 ]; then
-  echo "build-win64.sh: installing Debian packages: ${need[*]}"
-  export DEBIAN_FRONTEND=noninteractive
-  apt-get update -qq
-  apt-get install -y -qq "${need[@]}" >/dev/null
-fi
+bash "$repo/scripts/packages.sh" win64  # when missing
 
 # linux64 (modelDescription.xml, documentation/, binaries/linux64): the normal build, whole
 # (setup.sh configures only once and builds every target: nothing here rebuilds a subset).
