@@ -24,3 +24,24 @@ def extracted_fmu(fmu_path, tmp_path_factory) -> Path:
         archive.extractall(target)
     assert (target / "binaries" / "linux64" / "PlateImpact.so").is_file()
     return target
+
+
+# Tests that share a resource outside their tmp_path run in one pytest-xdist worker (test.sh runs
+# `pytest -n auto --dist loadgroup`): the Wine prefix build-win64/wineprefix (made on first use).
+SERIAL = {"test_win64.py": "wine"}
+
+# `slow`: left out of the developer loop (`bash test.sh --quick`, `pytest -m "not slow"`); test.sh
+# runs them all. A file name (every test in it) or a test's name without its parameters. Chosen
+# by `pytest --durations=40`: each costs more than about 5 s of one core.
+SLOW = {
+    # files: builds, emulators, valgrind, subprocess catalogues
+}
+
+
+def pytest_collection_modifyitems(config, items):
+    for item in items:
+        file = item.path.name
+        if file in SERIAL:
+            item.add_marker(pytest.mark.xdist_group(SERIAL[file]))
+        if file in SLOW or f"{file}::{item.originalname}" in SLOW:
+            item.add_marker(pytest.mark.slow)
