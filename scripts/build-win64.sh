@@ -22,9 +22,11 @@ bash "$repo/scripts/setup.sh"
 cmake --build build -j"$(nproc)" --target fmu_driver fmu3_driver -- --no-print-directory >/dev/null
 
 # win64: the DLL and the C master as an .exe.
+# A unity build (each target's sources a few at a time: Eigen parsed and instantiated once per
+# batch: less compile time); the arithmetic is the same (-ffp-contract=off, no fast-math).
 if [ ! -f build-win64/CMakeCache.txt ]; then
   cmake -S . -B build-win64 -DCMAKE_TOOLCHAIN_FILE=cmake/mingw-w64.cmake -DPLATEIMPACT_TESTS=OFF \
-    -DCMAKE_BUILD_TYPE=Release >/dev/null
+    -DCMAKE_BUILD_TYPE=Release -DCMAKE_UNITY_BUILD=ON >/dev/null
 fi
 cmake --build build-win64 -j"$(nproc)" --target PlateImpact PlateImpact3 fmu_driver fmu3_driver -- --no-print-directory >/dev/null
 

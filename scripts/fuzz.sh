@@ -41,7 +41,9 @@ bash "$repo/scripts/packages.sh" fuzz  # when missing
 build() {  # build <dir> <extra cmake args...>
   local dir="$1"; shift
   if [ ! -f "$dir/CMakeCache.txt" ]; then
+    # -O1 and a unity build (sources compiled a few at a time): half the compile time of -O3
     CC=clang CXX=clang++ cmake -S "$repo" -B "$dir" -DCMAKE_BUILD_TYPE=Release -DPLATEIMPACT_FUZZ=ON \
+      "-DCMAKE_CXX_FLAGS_RELEASE=-O1 -DNDEBUG" "-DCMAKE_C_FLAGS_RELEASE=-O1 -DNDEBUG" -DCMAKE_UNITY_BUILD=ON \
       -DPLATEIMPACT_TESTS=OFF "$@" >/dev/null
   fi
   cmake --build "$dir" -j"$(nproc)" --target fuzzers -- --no-print-directory >/dev/null
