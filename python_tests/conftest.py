@@ -24,3 +24,38 @@ def extracted_fmu(fmu_path, tmp_path_factory) -> Path:
         archive.extractall(target)
     assert (target / "binaries" / "linux64" / "PlateImpact.so").is_file()
     return target
+
+
+# Tests that share a resource outside their tmp_path run in one pytest-xdist worker (test.sh runs
+# `pytest -n auto --dist loadgroup`): the Wine prefix build-win64/wineprefix (made on first use).
+SERIAL = {"test_win64.py": "wine"}
+
+# `slow`: left out of the developer loop (`bash test.sh --quick`, `pytest -m "not slow"`); test.sh
+# runs them all. A file name (every test in it) or a test's name without its parameters. Chosen
+# by `pytest --durations=60` (times of one core, no workers).
+SLOW = {
+    "test_source_fmu.py",  # compiles the whole solver from the source FMU (145 s)
+    "test_golden.py::test_golden_bit_for_bit_on_other_cpus",  # Python under qemu-x86_64 (40 s each)
+    "test_aarch64.py",  # the C master under qemu-aarch64 (28 s)
+    "test_win64.py",  # Wine (25 s)
+    "test_valgrind.py",  # memcheck (6 s)
+    "test_speed_report.py",  # tools/speed_vs_error.py --quick (10 s)
+    "test_examples.py",  # the examples as users run them (17 s)
+    "test_fmi_conformance.py::test_catalogue",  # one child process per case (31 s)
+    "test_fmi_conformance.py::test_two_threads_match_sequential_runs",
+    "test_impact_laws.py::test_singular_mass_energy_through_impacts_converges_in_dt",
+    "test_references.py::test_validator_passes_every_experiment",
+    "test_system_model.py::test_coupled_system_reaches_the_held_input_accuracy",
+    "test_stability.py::test_stability_case",  # the stress matrix, short horizons (25 s)
+    "test_conserving.py::test_conserving_and_singular_p0_tend_to_the_same_impact_times",
+    "test_fmi3.py::test_animate_example_quick",
+}
+
+
+def pytest_collection_modifyitems(config, items):
+    for item in items:
+        file = item.path.name
+        if file in SERIAL:
+            item.add_marker(pytest.mark.xdist_group(SERIAL[file]))
+        if file in SLOW or f"{file}::{item.originalname}" in SLOW:
+            item.add_marker(pytest.mark.slow)

@@ -2,7 +2,7 @@
 buildDescription.xml valid against the schema fmpy ships that lists files the FMU has, the
 licence texts of what the sources contain; compiled from its own sources/ by a plain CMake call
 in a fresh folder, the result passes the smoke-test reference experiment through the validator
-(FMI-LS-REF, the files it carries). A few minutes: the whole solver is compiled."""
+(FMI-LS-REF, the files it carries). A few minutes: the whole solver is compiled (at -O1)."""
 
 import os
 import shutil
@@ -54,7 +54,13 @@ def test_compiled_from_its_own_sources_passes_the_smoke_test(tmp_path):
     build = tmp_path / "build"
     env = dict(os.environ, CMAKE_BUILD_PARALLEL_LEVEL="2")
     for cmd in (
-        ["cmake", "-S", str(fmu / "sources"), "-B", str(build), "-DCMAKE_BUILD_TYPE=Release"],
+        # The documented call, at -O1: what is checked (the file list, the includes, the CMake
+        # file, the smoke experiment) does not depend on the optimization level, and -O1 compiles
+        # in about half the time of -O3 (build/ and the cross builds compile these sources at -O3).
+        [
+            *("cmake", "-S", str(fmu / "sources"), "-B", str(build), "-DCMAKE_BUILD_TYPE=Release"),
+            *("-DCMAKE_CXX_FLAGS_RELEASE=-O1 -DNDEBUG", "-DCMAKE_C_FLAGS_RELEASE=-O1 -DNDEBUG"),
+        ],
         ["nice", "-n", "10", "cmake", "--build", str(build)],
     ):
         out = subprocess.run(cmd, capture_output=True, text=True, env=env, timeout=1800)

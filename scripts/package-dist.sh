@@ -37,7 +37,7 @@ add_binary() {
 
 # package <native staged FMU folder> <output .fmu> <platform file name>...: the zip.
 package() {
-  local native="$1" out="$2" stage="$2.d"
+  local native="$1" out="$2" stage="$2.d.$$"
   shift 2
   [ -f "$native/modelDescription.xml" ] || { echo "package-dist.sh: $native missing: run scripts/setup.sh first" >&2; exit 1; }
   rm -rf "$stage" && mkdir -p "$(dirname "$out")"
@@ -46,11 +46,14 @@ package() {
     add_binary "$stage" "$1" "$2" "$3"
     shift 3
   done
-  rm -f "$out"
-  # extra/: the reference experiments; terminalsAndIcons/: FMI 3.0 terminals (both staged by the build)
-  (cd "$stage" && cmake -E tar cf "$out" --format=zip modelDescription.xml binaries documentation \
+  # extra/: the reference experiments; terminalsAndIcons/: FMI 3.0 terminals (both staged by the build).
+  # Zipped beside and renamed into place: a test reading the FMU meanwhile (pytest -n) sees a whole file.
+  rm -f "$out.part.$$"
+  (cd "$stage" && cmake -E tar cf "$out.part.$$" --format=zip modelDescription.xml binaries documentation \
     $(ls -d extra terminalsAndIcons 2>/dev/null))
+  mv -f "$out.part.$$" "$out"
   echo "package-dist.sh: wrote ${out#"$repo"/} ($(ls "$stage/binaries" | tr '\n' ' ')$(($(stat -c %s "$out") / 1024)) KiB)"
+  rm -rf "$stage"
 }
 
 package build/fmu/PlateImpact.fmu.d "$repo/build/dist/PlateImpact.fmu" \

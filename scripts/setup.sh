@@ -5,24 +5,7 @@ set -euo pipefail
 repo="$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)"
 cd "$repo"
 
-need_apt=()
-command -v cmake >/dev/null || need_apt+=(cmake)
-command -v g++ >/dev/null || need_apt+=(g++)
-command -v make >/dev/null || need_apt+=(make)
-command -v readelf >/dev/null || need_apt+=(binutils)
-[ -f /usr/include/eigen3/Eigen/Core ] || need_apt+=(libeigen3-dev)
-[ -f /usr/include/gtest/gtest.h ] || need_apt+=(libgtest-dev)
-[ -f /usr/include/xxhash.h ] || need_apt+=(libxxhash-dev)  # the FMU-state checksum (header-only)
-command -v valgrind >/dev/null || need_apt+=(valgrind)  # python_tests/test_valgrind.py
-command -v clang-format >/dev/null || need_apt+=(clang-format)  # test.sh: the C++ style check
-command -v python3 >/dev/null || need_apt+=(python3)
-python3 -c 'import venv, ensurepip' 2>/dev/null || need_apt+=(python3-venv)
-if [ ${#need_apt[@]} -gt 0 ]; then
-  echo "setup: installing Debian packages: ${need_apt[*]}"
-  export DEBIAN_FRONTEND=noninteractive
-  apt-get update -qq
-  apt-get install -y -qq "${need_apt[@]}" >/dev/null
-fi
+bash "$repo/scripts/packages.sh" base  # the Debian packages, when missing (scripts/packages.sh)
 
 venv="$repo/.venv"
 stamp="$venv/.requirements.sha256"
