@@ -7,6 +7,7 @@
 // everything else is hidden (-fvisibility=hidden and the linker version script fmi2/exports.map).
 #include <cstring>
 #include <memory>
+#include <optional>
 #include <string>
 #include <type_traits>
 #include <vector>
@@ -104,6 +105,20 @@ Status statusNotAvailable(Instance& i, fmi2StatusKind kind) {
           "fmi2Pending or fmi2Discard); returning fmi2Discard",
           i.function(), name);
     return Status::Discard;
+}
+
+constexpr std::nullopt_t kNoKind = std::nullopt;  // a status function that gives no kind
+
+// fmi2Get<Type>Status: the kind `given` is give(instance); every other kind is not available.
+template <class T, class Give>
+fmi2Status getStatus(fmi2Component c, const char* function, fmi2StatusKind s, T* value,
+                     std::optional<fmi2StatusKind> given, Give give) {
+    return run(c, function, kStatusStates, [&](Instance& i) {
+        if (!value) return i.fail("argument value must not be NULL");
+        if (s != given) return statusNotAvailable(i, s);
+        *value = give(i);
+        return Status::OK;
+    });
 }
 
 }  // namespace
@@ -330,39 +345,25 @@ fmi2Status fmi2CancelStep(fmi2Component c) {
 }
 
 fmi2Status fmi2GetStatus(fmi2Component c, const fmi2StatusKind s, fmi2Status* value) {
-    return run(c, "fmi2GetStatus", kStatusStates, [&](Instance& i) {
-        return value ? statusNotAvailable(i, s) : i.fail("argument value must not be NULL");
-    });
+    return getStatus(c, "fmi2GetStatus", s, value, kNoKind, [](Instance&) { return fmi2OK; });
 }
 
 fmi2Status fmi2GetRealStatus(fmi2Component c, const fmi2StatusKind s, fmi2Real* value) {
-    return run(c, "fmi2GetRealStatus", kStatusStates, [&](Instance& i) {
-        if (!value) return i.fail("argument value must not be NULL");
-        if (s != fmi2LastSuccessfulTime) return statusNotAvailable(i, s);
-        *value = i.currentTime();
-        return Status::OK;
-    });
+    return getStatus(c, "fmi2GetRealStatus", s, value, fmi2LastSuccessfulTime,
+                     [](Instance& i) { return i.currentTime(); });
 }
 
 fmi2Status fmi2GetIntegerStatus(fmi2Component c, const fmi2StatusKind s, fmi2Integer* value) {
-    return run(c, "fmi2GetIntegerStatus", kStatusStates, [&](Instance& i) {
-        return value ? statusNotAvailable(i, s) : i.fail("argument value must not be NULL");
-    });
+    return getStatus(c, "fmi2GetIntegerStatus", s, value, kNoKind, [](Instance&) { return 0; });
 }
 
 fmi2Status fmi2GetBooleanStatus(fmi2Component c, const fmi2StatusKind s, fmi2Boolean* value) {
-    return run(c, "fmi2GetBooleanStatus", kStatusStates, [&](Instance& i) {
-        if (!value) return i.fail("argument value must not be NULL");
-        if (s != fmi2Terminated) return statusNotAvailable(i, s);
-        *value = fmi2False;  // the model never asks the master to end the simulation
-        return Status::OK;
-    });
+    // The model never asks the master to end the simulation.
+    return getStatus(c, "fmi2GetBooleanStatus", s, value, fmi2Terminated, [](Instance&) { return fmi2False; });
 }
 
 fmi2Status fmi2GetStringStatus(fmi2Component c, const fmi2StatusKind s, fmi2String* value) {
-    return run(c, "fmi2GetStringStatus", kStatusStates, [&](Instance& i) {
-        return value ? statusNotAvailable(i, s) : i.fail("argument value must not be NULL");
-    });
+    return getStatus(c, "fmi2GetStringStatus", s, value, kNoKind, [](Instance&) { return ""; });
 }
 
 }  // extern "C"

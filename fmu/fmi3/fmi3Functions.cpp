@@ -252,6 +252,14 @@ constexpr const char* kModelExchange =
 constexpr const char* kScheduled = "Scheduled Execution is not supported; this FMU implements Co-Simulation only";
 constexpr const char* kNoClocks = "this FMU has no clocks";
 
+// An instantiation of an interface type this FMU does not implement: logs why, returns NULL.
+fmi3Instance refuse(fmi3InstanceEnvironment environment, fmi3LogMessageCallback logMessage, const char* function,
+                    fmi3String instanceName, const char* why) {
+    fmu::logWithoutInstance(loggerOf(environment, logMessage), "%s (%s): %s", function,
+                            instanceName ? instanceName : "", why);
+    return nullptr;
+}
+
 }  // namespace
 
 #define PLATEIMPACT_FMI3_GET(Name, T, kind)                                                                      \
@@ -354,24 +362,14 @@ fmi3Instance fmi3InstantiateCoSimulation(fmi3String instanceName, fmi3String ins
 fmi3Instance fmi3InstantiateModelExchange(fmi3String instanceName, fmi3String, fmi3String, fmi3Boolean, fmi3Boolean,
                                           fmi3InstanceEnvironment instanceEnvironment,
                                           fmi3LogMessageCallback logMessage) {
-    if (logMessage)
-        logMessage(instanceEnvironment, fmi3Error, "logStatusError",
-                   (std::string("fmi3InstantiateModelExchange (") + (instanceName ? instanceName : "") +
-                    "): " + kModelExchange)
-                       .c_str());
-    return nullptr;
+    return refuse(instanceEnvironment, logMessage, "fmi3InstantiateModelExchange", instanceName, kModelExchange);
 }
 
 fmi3Instance fmi3InstantiateScheduledExecution(fmi3String instanceName, fmi3String, fmi3String, fmi3Boolean,
                                                fmi3Boolean, fmi3InstanceEnvironment instanceEnvironment,
                                                fmi3LogMessageCallback logMessage, fmi3ClockUpdateCallback,
                                                fmi3LockPreemptionCallback, fmi3UnlockPreemptionCallback) {
-    if (logMessage)
-        logMessage(instanceEnvironment, fmi3Error, "logStatusError",
-                   (std::string("fmi3InstantiateScheduledExecution (") + (instanceName ? instanceName : "") +
-                    "): " + kScheduled)
-                       .c_str());
-    return nullptr;
+    return refuse(instanceEnvironment, logMessage, "fmi3InstantiateScheduledExecution", instanceName, kScheduled);
 }
 
 void fmi3FreeInstance(fmi3Instance c) {
