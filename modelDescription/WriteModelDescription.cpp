@@ -270,7 +270,7 @@ public:
         for (const fmu::ArrayOutput& a : model.arrayOutputs()) {
             html << "<tr><td><code>" << a.name << "</code></td><td>" << a.vr << "</td><td>output</td><td>Float64[";
             for (std::size_t k = 0; k < a.extents.size(); ++k) {
-                const fmu::StructuralParameter* s = structural(model, a.extents[k]);
+                const fmu::StructuralParameter* s = model.findStructural(a.extents[k]);
                 html << (k ? "][" : "") << (s ? s->name : "?");
             }
             html << "]</td><td></td><td></td><td></td><td>" << (a.unit ? escape(a.unit) : "") << "</td><td>"
@@ -279,11 +279,6 @@ public:
     }
 
 private:
-    static const fmu::StructuralParameter* structural(const fmu::Model& model, fmu::ValueReference vr) {
-        for (const fmu::StructuralParameter& s : model.structuralParameters())
-            if (s.vr == vr) return &s;
-        return nullptr;
-    }
     static long long structuralStart(const fmu::Model& model, const fmu::StructuralParameter& s) {
         if (s.ownValue()) return s.offset;
         const Variable* base = model.find(s.parameter);

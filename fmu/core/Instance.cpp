@@ -1,6 +1,7 @@
 #include "core/Instance.h"
 
 #include <algorithm>
+#include <climits>
 #include <cmath>
 #include <cstdio>
 #include <cstring>
@@ -460,6 +461,42 @@ Status Instance::doStep(double t, double h, bool stopAtEvent, bool* endedAtEvent
         model_->doStep(t, h);
     }
     return Status::OK;
+}
+
+std::size_t Instance::arrayLength(const ArrayOutput& array) const {
+    std::size_t n = 1;
+    for (ValueReference extent : array.extents) {
+        const StructuralParameter* s = model_->findStructural(extent);
+        n *= s ? structuralValue(*s) : 0;
+    }
+    return n;
+}
+
+std::size_t Instance::structuralValue(const StructuralParameter& s) const {
+    const Variable* base = model_->find(s.parameter);
+    const double value = s.ownValue() ? model_->ownStructuralValue(s) : base ? model_->get(*base) + s.offset : 0.0;
+    return value > 0 ? static_cast<std::size_t>(value) : 0;
+}
+
+Status Instance::setStructural(const StructuralParameter& s, double value) {
+    if (s.ownValue()) {
+        if (!(state_ & (Instantiated | ConfigurationMode)))
+            return fail(
+                "%s is a fixed structural parameter: set it before initialization (instantiated or "
+                "configuration mode)",
+                s.name);
+        if (!(value >= s.min && value <= s.max))
+            return fail("%s = %.0f rejected: allowed %d to %d", s.name, value, s.min, s.max);
+        model_->setOwnStructuralValue(s, value);
+        return Status::OK;
+    }
+    const double parameter = value - s.offset;
+    const Variable* base = model_->find(s.parameter);
+    if (!base) return fail("internal error: %s is a view of no parameter", s.name);
+    if (!(parameter >= INT_MIN && parameter <= INT_MAX))
+        return fail("%s = %.0f rejected: it sets %s = %s - %d out of the Int32 range", s.name, value, base->name,
+                    s.name, s.offset);
+    return setValues(VariableType::Integer, &s.parameter, 1, &parameter);
 }
 
 Status Instance::getArray(const ArrayOutput& array, double value[], std::size_t n) {

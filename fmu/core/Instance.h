@@ -84,6 +84,12 @@ public:
     void setIntermediateUpdate(std::function<double(double)> callback);
     // Arrays (FMI 3.0): the values of an array output of the model (n of them).
     Status getArray(const ArrayOutput& array, double value[], std::size_t n);
+    // Number of values of an array output: the product of its extents' values now.
+    std::size_t arrayLength(const ArrayOutput& array) const;
+    // Structural parameters (FMI 3.0): the value now (0 for a negative one), and setting it: its
+    // own value, or its Integer parameter becomes value - offset.
+    std::size_t structuralValue(const StructuralParameter& s) const;
+    Status setStructural(const StructuralParameter& s, double value);
     // Transitions without work of their own (configuration, event and step mode).
     void enterState(State next) { state_ = next; }
     const Model& model() const { return *model_; }

@@ -54,6 +54,18 @@ const Variable* Model::find(ValueReference vr) const {
     return nullptr;
 }
 
+const StructuralParameter* Model::findStructural(ValueReference vr) const {
+    for (const StructuralParameter& s : structuralParameters())
+        if (s.vr == vr) return &s;
+    return nullptr;
+}
+
+const ArrayOutput* Model::findArray(ValueReference vr) const {
+    for (const ArrayOutput& a : arrayOutputs())
+        if (a.vr == vr) return &a;
+    return nullptr;
+}
+
 void Model::setInputDerivative(const Variable& v, int, double) {
     throw ModelError(std::string(v.name) + " takes no input derivatives");
 }

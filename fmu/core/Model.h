@@ -140,6 +140,8 @@ public:
     virtual const ModelInfo& info() const = 0;
     virtual const std::vector<Variable>& variables() const = 0;
     const Variable* find(ValueReference vr) const;
+    const StructuralParameter* findStructural(ValueReference vr) const;  // nullptr: none
+    const ArrayOutput* findArray(ValueReference vr) const;  // nullptr: none
 
     // Values, as doubles for every type (Integer and Boolean exactly). The generic
     // layer has checked type, causality and finiteness; `set` may still throw ModelError.

@@ -7,7 +7,6 @@
 // of Integer parameters of the table, Model.h), configuration mode, and early return with
 // event mode at the model's events (Model::doStepUntilEvent) when the master grants them at
 // fmi3InstantiateCoSimulation. Only the fmi3* symbols leave the shared object (fmi3/exports.map).
-#include <climits>
 #include <cmath>
 #include <cstring>
 #include <memory>
@@ -74,23 +73,11 @@ fmi3Status run(fmi3Instance c, const char* function, unsigned allowed, Body&& bo
 // The FMI 3.0 types of the get/set functions, as far as they concern this layer.
 enum class Kind { Float64, Int32, Int64, UInt64, Boolean, Other };
 
-const StructuralParameter* findStructural(const fmu::Model& model, fmi3ValueReference vr) {
-    for (const StructuralParameter& s : model.structuralParameters())
-        if (s.vr == vr) return &s;
-    return nullptr;
-}
-
-const ArrayOutput* findArray(const fmu::Model& model, fmi3ValueReference vr) {
-    for (const ArrayOutput& a : model.arrayOutputs())
-        if (a.vr == vr) return &a;
-    return nullptr;
-}
-
 // The FMI 3.0 type of the variable behind vr, for messages ("Float64 variable length").
 std::string describe(const fmu::Model& model, fmi3ValueReference vr) {
     if (vr == kTimeValueReference) return "the Float64 variable time";
-    if (const StructuralParameter* s = findStructural(model, vr)) return std::string("the UInt64 variable ") + s->name;
-    if (const ArrayOutput* a = findArray(model, vr)) return std::string("the Float64 array ") + a->name;
+    if (const StructuralParameter* s = model.findStructural(vr)) return std::string("the UInt64 variable ") + s->name;
+    if (const ArrayOutput* a = model.findArray(vr)) return std::string("the Float64 array ") + a->name;
     if (const fmu::Variable* v = model.find(vr))
         return std::string("the ") + fmu::fmi3::typeName(v->type) + " variable " + v->name;
     return "no variable (unknown value reference)";
@@ -106,22 +93,6 @@ bool tableTypeOf(Kind kind, const fmu::Variable& v, VariableType* type) {
     }
 }
 
-std::size_t structuralValue(const Instance& i, const StructuralParameter& s) {
-    const fmu::Variable* base = i.model().find(s.parameter);
-    const double value = s.ownValue() ? i.model().ownStructuralValue(s) : base ? i.model().get(*base) + s.offset : 0.0;
-    return value > 0 ? static_cast<std::size_t>(value) : 0;
-}
-
-// Number of values of an array output: the product of its extents' values now.
-std::size_t arrayLength(const Instance& i, const ArrayOutput& a) {
-    std::size_t n = 1;
-    for (fmi3ValueReference extent : a.extents) {
-        const StructuralParameter* s = findStructural(i.model(), extent);
-        n *= s ? structuralValue(i, *s) : 0;
-    }
-    return n;
-}
-
 // One scalar of an fmi3Get<kind> call into *x.
 Status getScalar(Instance& i, Kind kind, fmi3ValueReference vr, double* x) {
     const fmu::Model& model = i.model();
@@ -129,9 +100,9 @@ Status getScalar(Instance& i, Kind kind, fmi3ValueReference vr, double* x) {
         *x = i.currentTime();
         return Status::OK;
     }
-    if (const StructuralParameter* s = findStructural(model, vr)) {
+    if (const StructuralParameter* s = model.findStructural(vr)) {
         if (kind != Kind::UInt64) return i.fail("value reference %u is %s", vr, describe(model, vr).c_str());
-        *x = double(structuralValue(i, *s));
+        *x = double(i.structuralValue(*s));
         return Status::OK;
     }
     const fmu::Variable* v = model.find(vr);
@@ -144,7 +115,7 @@ Status getScalar(Instance& i, Kind kind, fmi3ValueReference vr, double* x) {
 bool beforeInitialization(const Instance& i, fmi3ValueReference vr) {
     if (!(i.state() & (fmu::Instantiated | fmu::ConfigurationMode))) return false;
     const fmu::Variable* v = i.model().find(vr);
-    return findArray(i.model(), vr) || vr == kTimeValueReference || (v && v->causality == fmu::Causality::Output);
+    return i.model().findArray(vr) || vr == kTimeValueReference || (v && v->causality == fmu::Causality::Output);
 }
 
 template <class T>
@@ -156,10 +127,10 @@ Status getValues(Instance& i, Kind kind, const fmi3ValueReference vrs[], size_t 
         if (beforeInitialization(i, vrs[k]))
             return i.fail("value reference %u is %s, an output: available from initialization mode on", vrs[k],
                           describe(i.model(), vrs[k]).c_str());
-        const ArrayOutput* array = findArray(i.model(), vrs[k]);
+        const ArrayOutput* array = i.model().findArray(vrs[k]);
         if (array && kind != Kind::Float64)
             return i.fail("value reference %u is %s", vrs[k], describe(i.model(), vrs[k]).c_str());
-        const std::size_t n = array ? arrayLength(i, *array) : 1;
+        const std::size_t n = array ? i.arrayLength(*array) : 1;
         if (nValues - next < n || next > nValues)
             return i.fail(
                 "nValues = %zu is too small: %s (value reference %u) needs %zu values, from position %zu "
@@ -179,42 +150,20 @@ Status getValues(Instance& i, Kind kind, const fmi3ValueReference vrs[], size_t 
     if (next != nValues) {
         std::string arrays;  // which of them are arrays, and their sizes
         for (size_t k = 0; k < nvr; ++k)
-            if (const ArrayOutput* array = findArray(i.model(), vrs[k]))
+            if (const ArrayOutput* array = i.model().findArray(vrs[k]))
                 arrays += std::string(arrays.empty() ? "" : ", ") + array->name + " needs " +
-                          std::to_string(arrayLength(i, *array)) + " values";
+                          std::to_string(i.arrayLength(*array)) + " values";
         return i.fail("nValues = %zu, but the %zu value references have %zu values%s%s%s", nValues, nvr, next,
                       arrays.empty() ? "" : " (", arrays.c_str(), arrays.empty() ? "" : ")");
     }
     return Status::OK;
 }
 
-// A structural parameter set: its own value, or its Integer parameter becomes value - offset.
-Status setStructural(Instance& i, const StructuralParameter& s, double value) {
-    if (s.ownValue()) {
-        if (!(i.state() & (fmu::Instantiated | fmu::ConfigurationMode)))
-            return i.fail(
-                "%s is a fixed structural parameter: set it before initialization (instantiated or "
-                "configuration mode)",
-                s.name);
-        if (!(value >= s.min && value <= s.max))
-            return i.fail("%s = %.0f rejected: allowed %d to %d", s.name, value, s.min, s.max);
-        i.model().setOwnStructuralValue(s, value);
-        return Status::OK;
-    }
-    const double parameter = value - s.offset;
-    const fmu::Variable* base = i.model().find(s.parameter);
-    if (!base) return i.fail("internal error: %s is a view of no parameter", s.name);
-    if (!(parameter >= INT_MIN && parameter <= INT_MAX))
-        return i.fail("%s = %.0f rejected: it sets %s = %s - %d out of the Int32 range", s.name, value, base->name,
-                      s.name, s.offset);
-    return i.setValues(VariableType::Integer, &s.parameter, 1, &parameter);
-}
-
 Status setScalar(Instance& i, Kind kind, fmi3ValueReference vr, double x) {
     const fmu::Model& model = i.model();
-    if (const StructuralParameter* s = findStructural(model, vr); s && kind == Kind::UInt64)
-        return setStructural(i, *s, x);
-    if (vr == kTimeValueReference || findArray(model, vr))
+    if (const StructuralParameter* s = model.findStructural(vr); s && kind == Kind::UInt64)
+        return i.setStructural(*s, x);
+    if (vr == kTimeValueReference || model.findArray(vr))
         return i.fail("value reference %u is %s, which cannot be set", vr, describe(model, vr).c_str());
     const fmu::Variable* v = model.find(vr);
     VariableType type;
@@ -330,7 +279,7 @@ fmi3Instance fmi3InstantiateCoSimulation(fmi3String instanceName, fmi3String ins
             const fmi3ValueReference vr = requiredIntermediateVariables ? requiredIntermediateVariables[k] : 0;
             const fmu::Variable* v = self->instance->model().find(vr);
             const bool readable = vr == kTimeValueReference || (v && v->causality == fmu::Causality::Output) ||
-                                  findArray(self->instance->model(), vr);
+                                  self->instance->model().findArray(vr);
             if (!requiredIntermediateVariables || !readable) {
                 fmu::logWithoutInstance(logger,
                                         "%s: required intermediate variable (vr %u) is not an output of this FMU "
