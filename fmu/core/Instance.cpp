@@ -110,8 +110,8 @@ Status Instance::fail(const char* format, ...) {
 // ---------------------------------------------------------------------------------------------
 // Life cycle
 
-Instance::Instance(std::string instanceName, Logger logger, bool loggingOn, ApiNames names)
-    : instanceName_(std::move(instanceName)), logger_(std::move(logger)), names_(names), model_(createModel()) {
+Instance::Instance(Logger logger, bool loggingOn, ApiNames names)
+    : logger_(std::move(logger)), names_(names), model_(createModel()) {
     // As the Reference FMUs: errors are logged unless switched off with setDebugLogging;
     // warnings and the call trace follow loggingOn.
     logCategories_[LogStatusError] = true;

@@ -41,7 +41,7 @@ struct Snapshot;
 class Instance {
 public:
     // `names`: the functions of the front end's interface that the core's messages name.
-    Instance(std::string instanceName, Logger logger, bool loggingOn, ApiNames names);
+    Instance(Logger logger, bool loggingOn, ApiNames names);
     ~Instance();
     Instance(const Instance&) = delete;
     Instance& operator=(const Instance&) = delete;
@@ -96,7 +96,6 @@ public:
     Model& model() { return *model_; }
     // The time of the independent variable: the start time plus the model's time.
     double currentTime() const;
-    const std::string& instanceName() const { return instanceName_; }
     const char* function() const { return function_; }  // the function running (message prefix)
 
     // Logs "<function>: <message>" as an error and returns Status::Error.
@@ -113,7 +112,6 @@ private:
     void restore(const Snapshot& snapshot);
     void attachTrace();
 
-    std::string instanceName_;
     Logger logger_;
     bool logCategories_[LogCategoryCount];
     ApiNames names_;

@@ -164,7 +164,7 @@ fmi2Component fmi2Instantiate(fmi2String instanceName, fmi2Type fmuType, fmi2Str
                                     fmuGUID ? fmuGUID : "(null)", fmu::modelGuid());
             return nullptr;
         }
-        auto instance = std::make_unique<Instance>(instanceName, logger, loggingOn != fmi2False, kNames);
+        auto instance = std::make_unique<Instance>(logger, loggingOn != fmi2False, kNames);
         instance->log(Status::OK, fmu::LogAll, "fmi2Instantiate: instance \"%s\" of %s (GUID %s)", instanceName,
                       instance->model().info().modelName, fmu::modelGuid());
         return instance.release();

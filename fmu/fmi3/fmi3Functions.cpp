@@ -270,7 +270,7 @@ fmi3Instance fmi3InstantiateCoSimulation(fmi3String instanceName, fmi3String ins
             return nullptr;
         }
         self->intermediateUpdate = intermediateUpdate;
-        self->instance = std::make_unique<Instance>(instanceName, logger, loggingOn, kNames);
+        self->instance = std::make_unique<Instance>(logger, loggingOn, kNames);
         self->instance->log(Status::OK, fmu::LogAll, "%s: instance \"%s\" of %s (instantiationToken %s)", f,
                             instanceName, self->instance->model().info().modelName, fmu::modelGuid());
         // Intermediate update (providesIntermediateUpdate): the outputs, the arrays and time may be
