@@ -199,7 +199,7 @@ public:
 class Fmi3Emitter final : public Emitter {
 public:
     Fmi3Emitter() : Emitter(3) {}
-    const char* typeName(VariableType type) const override { return fmu::fmi3TypeName(type); }
+    const char* typeName(VariableType type) const override { return fmu::fmi3::typeName(type); }
 
     void header(std::ostream& xml, const fmu::Model& model) const override {
         const fmu::ModelInfo& info = model.info();
@@ -220,9 +220,9 @@ public:
 
     void variables(std::ostream& xml, const fmu::Model& model) const override {
         xml << "  <ModelVariables>\n"
-            << "    <Float64 name=\"time\" valueReference=\"" << fmu::kFmi3TimeValueReference
+            << "    <Float64 name=\"time\" valueReference=\"" << fmu::fmi3::kTimeValueReference
             << "\" causality=\"independent\" variability=\"continuous\" description=\"Simulation time\"/>\n";
-        std::vector<fmi2ValueReference> outputs;
+        std::vector<fmu::ValueReference> outputs;
         for (const Variable& v : model.variables()) {
             if (v.causality == Causality::Output) outputs.push_back(v.vr);
             xml << "    <" << typeName(v.type) << " name=\"" << v.name << "\" valueReference=\"" << v.vr << "\""
@@ -242,7 +242,7 @@ public:
                 << intermediate(model, Causality::Output);
             if (a.unit) xml << " unit=\"" << escape(a.unit) << "\"";
             xml << " description=\"" << escape(forVersion(a.description, version)) << "\">\n";
-            for (fmi2ValueReference extent : a.extents)
+            for (fmu::ValueReference extent : a.extents)
                 xml << "      <Dimension valueReference=\"" << extent << "\"/>\n";
             xml << "    </Float64>\n";
             outputs.push_back(a.vr);
@@ -251,14 +251,14 @@ public:
         // No direct feedthrough: the outputs at a communication point depend on the inputs only
         // through the steps before it.
         xml << "  <ModelStructure>\n";
-        for (fmi2ValueReference vr : outputs)
+        for (fmu::ValueReference vr : outputs)
             xml << "    <Output valueReference=\"" << vr << "\" dependencies=\"\"/>\n";
-        for (fmi2ValueReference vr : outputs) xml << "    <InitialUnknown valueReference=\"" << vr << "\"/>\n";
+        for (fmu::ValueReference vr : outputs) xml << "    <InitialUnknown valueReference=\"" << vr << "\"/>\n";
         xml << "  </ModelStructure>\n\n";
     }
 
     void extraRows(std::ostream& html, const fmu::Model& model) const override {
-        html << "<tr><td><code>time</code></td><td>" << fmu::kFmi3TimeValueReference
+        html << "<tr><td><code>time</code></td><td>" << fmu::fmi3::kTimeValueReference
              << "</td><td>independent</td><td>Float64</td><td></td><td></td><td></td><td>s</td><td>Simulation "
                 "time</td></tr>\n";
         for (const fmu::StructuralParameter& s : model.structuralParameters())
@@ -270,7 +270,7 @@ public:
         for (const fmu::ArrayOutput& a : model.arrayOutputs()) {
             html << "<tr><td><code>" << a.name << "</code></td><td>" << a.vr << "</td><td>output</td><td>Float64[";
             for (std::size_t k = 0; k < a.extents.size(); ++k) {
-                const fmu::StructuralParameter* s = structural(model, a.extents[k]);
+                const fmu::StructuralParameter* s = model.findStructural(a.extents[k]);
                 html << (k ? "][" : "") << (s ? s->name : "?");
             }
             html << "]</td><td></td><td></td><td></td><td>" << (a.unit ? escape(a.unit) : "") << "</td><td>"
@@ -279,11 +279,6 @@ public:
     }
 
 private:
-    static const fmu::StructuralParameter* structural(const fmu::Model& model, fmi2ValueReference vr) {
-        for (const fmu::StructuralParameter& s : model.structuralParameters())
-            if (s.vr == vr) return &s;
-        return nullptr;
-    }
     static long long structuralStart(const fmu::Model& model, const fmu::StructuralParameter& s) {
         if (s.ownValue()) return s.offset;
         const Variable* base = model.find(s.parameter);

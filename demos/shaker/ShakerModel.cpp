@@ -34,7 +34,7 @@ const fmu::ModelInfo kInfo{
     /*stateMagic=*/"SHAKERAR",
 };
 
-enum Vr : fmi2ValueReference {
+enum Vr : fmu::ValueReference {
     kMass = 0,
     kStiffness = 1,
     kDamping = 2,
@@ -57,11 +57,11 @@ enum Vr : fmi2ValueReference {
     kTlmLineLoss = 29,
 };
 
-fmu::Variable parameter(fmi2ValueReference vr, const char* name, const char* unit, const char* description) {
+fmu::Variable parameter(fmu::ValueReference vr, const char* name, const char* unit, const char* description) {
     return {vr, name, VariableType::Real, Causality::Parameter, description, unit, nullptr, true, false};
 }
 
-fmu::Variable switchParameter(fmi2ValueReference vr, const char* name, const char* description, int lo, int hi) {
+fmu::Variable switchParameter(fmu::ValueReference vr, const char* name, const char* description, int lo, int hi) {
     fmu::Variable v{vr, name, VariableType::Integer, Causality::Parameter, description, nullptr, nullptr, true, false};
     v.min = lo;
     v.max = hi;
@@ -69,11 +69,11 @@ fmu::Variable switchParameter(fmi2ValueReference vr, const char* name, const cha
 }
 
 // The inputs set the acceleration at t = 0: a new value before initialization ends rebuilds.
-fmu::Variable input(fmi2ValueReference vr, const char* name, const char* description) {
+fmu::Variable input(fmu::ValueReference vr, const char* name, const char* description) {
     return {vr, name, VariableType::Real, Causality::Input, description, "N", nullptr, true, false};
 }
 
-fmu::Variable output(fmi2ValueReference vr, const char* name, const char* unit, const char* description) {
+fmu::Variable output(fmu::ValueReference vr, const char* name, const char* unit, const char* description) {
     return {vr, name, VariableType::Real, Causality::Output, description, unit, nullptr, false, false};
 }
 

@@ -1,7 +1,7 @@
 // The SineSweep model binding: plate::SineSweep (SineSweep.h beside it) behind fmu::Model, the
 // controller of the two-FMU system model (demos/system_model.py). No inputs; its output
-// base_displacement comes with exact first and second derivatives through
-// fmi2GetRealOutputDerivatives, for masters that pass them on.
+// base_displacement comes with exact first and second derivatives (the output derivatives of
+// FMI 2.0), for masters that pass them on.
 #include <cmath>
 #include <memory>
 #include <string>
@@ -36,7 +36,7 @@ const fmu::EnumerationType kSweepLaw{
     "How the frequency goes from start to end",
     {{"linear", 1, "f = f0 + (f1 - f0) t / duration"}, {"logarithmic", 2, "f = f0 (f1/f0)^(t / duration)"}}};
 
-enum Vr : fmi2ValueReference {
+enum Vr : fmu::ValueReference {
     kAmplitude = 0,
     kStartFrequency = 1,
     kEndFrequency = 2,
@@ -47,7 +47,7 @@ enum Vr : fmi2ValueReference {
     kFrequency = 11,
 };
 
-fmu::Variable parameter(fmi2ValueReference vr, const char* name, VariableType type, const char* unit,
+fmu::Variable parameter(fmu::ValueReference vr, const char* name, VariableType type, const char* unit,
                         const char* description) {
     return {vr, name, type, Causality::Parameter, description, unit, nullptr, true, false};
 }

@@ -44,11 +44,11 @@ base_displacement = 0.09 sin(2&pi; 10 t) m it hits the obstacles from t &asymp; 
 <ul>
 <li>Any communication step: the scheme keeps its fixed grid of dt and interpolates the outputs between grid
 points; steps that are whole multiples of dt (relative tolerance 1e-9) run exactly on the grid.</li>
-<li>Inputs: {fmi2:give their first and second derivatives (fmi2SetRealInputDerivatives) when you can; otherwise
+<li>Inputs: {fmi2:give their first and second derivatives (fmiXSetRealInputDerivatives) when you can; otherwise
 }the FMU {fmi2:extrapolates}{fmi3:holds or extrapolates} the communicated values (base_input_mode, load_input_mode).</li>
 <li>Switches (element, mass, base_drive, base_input_mode, load_input_mode) are Integers: the description of each
 lists its items, e.g. base_drive = 2 drives the clamp by base_velocity.</li>
-{fmi3:<li>Early return: a master that grants it at fmi3InstantiateCoSimulation gets every contact onset and
+{fmi3:<li>Early return: a master that grants it at fmiXInstantiateCoSimulation gets every contact onset and
 release as an event, exactly on the internal grid (lastSuccessfulTime), the impact in the outputs there.</li>
 <li>The array output vertex_displacement holds the deflection at every mesh vertex
 ([vertex_output][vertices_x][vertices_y]); vertices_x = nx + 1 and vertices_y = ny + 1 are views of nx and ny;

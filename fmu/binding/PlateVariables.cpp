@@ -73,7 +73,7 @@ struct Row {
 };
 
 // The variable; a parameter's new value invalidates what was built from the old one.
-fmu::Variable declared(fmi2ValueReference vr, const char* name, VariableType type, Causality causality,
+fmu::Variable declared(fmu::ValueReference vr, const char* name, VariableType type, Causality causality,
                        const char* unit, const char* description, double min = NAN, double max = NAN) {
     fmu::Variable v{vr, name, type, causality, description, unit, nullptr, causality == Causality::Parameter, false};
     v.min = min;
@@ -84,37 +84,37 @@ fmu::Variable declared(fmi2ValueReference vr, const char* name, VariableType typ
 // The rows' makers, one per kind of variable, each with the description last so that a row of
 // the table below keeps its data on its first line. Ranges are solver/PlateParameters.h's (the one
 // place they are written); an Integer or a Boolean here has no unit.
-Row parameter(fmi2ValueReference vr, const char* name, const char* unit, const plate::Range& range, Get get, Set set,
+Row parameter(fmu::ValueReference vr, const char* name, const char* unit, const plate::Range& range, Get get, Set set,
               const char* description) {
     return {declared(vr, name, VariableType::Real, Causality::Parameter, unit, description, range.min, range.max), get,
             set};
 }
-Row integerParameter(fmi2ValueReference vr, const char* name, const plate::Range& range, Get get, Set set,
+Row integerParameter(fmu::ValueReference vr, const char* name, const plate::Range& range, Get get, Set set,
                      const char* description) {
     return {declared(vr, name, VariableType::Integer, Causality::Parameter, nullptr, description, range.min, range.max),
             get, set};
 }
-Row booleanParameter(fmi2ValueReference vr, const char* name, Get get, Set set, const char* description) {
+Row booleanParameter(fmu::ValueReference vr, const char* name, Get get, Set set, const char* description) {
     return {declared(vr, name, VariableType::Boolean, Causality::Parameter, nullptr, description), get, set};
 }
 // A parameter that switches between named items (fmu::integerSwitch).
-Row choice(fmi2ValueReference vr, const char* name, const fmu::EnumerationType& items, Get get, Set set,
+Row choice(fmu::ValueReference vr, const char* name, const fmu::EnumerationType& items, Get get, Set set,
            const char* description) {
     return {fmu::integerSwitch(vr, name, description, items), get, set};
 }
 // A Real input in [-bound, bound] with derivatives; shapesInitialState: its value at
 // initialization places the initial state.
-Row input(fmi2ValueReference vr, const char* name, const char* unit, bool shapesInitialState, double bound, Get get,
+Row input(fmu::ValueReference vr, const char* name, const char* unit, bool shapesInitialState, double bound, Get get,
           Set set, const char* description) {
     fmu::Variable v = declared(vr, name, VariableType::Real, Causality::Input, unit, description, -bound, bound);
     v.shapesInitialState = shapesInitialState;
     v.hasDerivatives = true;
     return {v, get, set};
 }
-Row output(fmi2ValueReference vr, const char* name, const char* unit, Get get, const char* description) {
+Row output(fmu::ValueReference vr, const char* name, const char* unit, Get get, const char* description) {
     return {declared(vr, name, VariableType::Real, Causality::Output, unit, description), get, nullptr};
 }
-Row integerOutput(fmi2ValueReference vr, const char* name, Get get, const char* description) {
+Row integerOutput(fmu::ValueReference vr, const char* name, Get get, const char* description) {
     return {declared(vr, name, VariableType::Integer, Causality::Output, nullptr, description), get, nullptr};
 }
 
@@ -393,7 +393,7 @@ const std::vector<fmu::Terminal>& plateTerminals() {
     return terminals;
 }
 
-InputPort* PlateValues::inputPort(fmi2ValueReference vr) {
+InputPort* PlateValues::inputPort(fmu::ValueReference vr) {
     switch (vr) {
         case kVrBaseDisplacement: return &baseDisplacement;
         case kVrBaseVelocity: return &baseVelocity;

@@ -15,7 +15,7 @@ namespace plateimpact {
 // it did not set the input for continues the reconstruction (after an early return, FMI 3.0
 // event mode), where recording the unchanged value again would bend the signal at that time.
 struct InputPort {
-    plate::InputSignal signal;  // value (fmi2SetReal) + derivatives (fmi2SetRealInputDerivatives)
+    plate::InputSignal signal;  // the value set + its derivatives (input derivatives)
     bool derivativesGiven = false;  // the master set derivatives since the value: they win
     bool fresh = true;  // set since the last step began (the start value counts as set at t = 0)
     double signalTime = 0.0;  // the model time `signal` starts at (its value's communication point)
@@ -77,11 +77,11 @@ struct PlateValues {
         portValid = simulation != nullptr;
         return simulation ? portOutputs : outputs;
     }
-    InputPort* inputPort(fmi2ValueReference vr);  // nullptr: not an input
+    InputPort* inputPort(fmu::ValueReference vr);  // nullptr: not an input
 };
 
 // The value references: part of the interface, never renumbered (a gap leaves room to group).
-enum PlateVr : fmi2ValueReference {
+enum PlateVr : fmu::ValueReference {
     kVrLength = 0,
     kVrWidth = 1,
     kVrThickness = 2,

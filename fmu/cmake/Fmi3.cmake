@@ -1,21 +1,16 @@
 # The FMI 3.0 co-simulation FMUs, from the same model bindings as the FMI 2.0 ones (included by
-# fmu/CMakeLists.txt after add_fmu): the generic layer with fmi3Functions.cpp instead of
-# fmi2Functions.cpp (fmu_layer3), the binding's object files as compiled for FMI 2.0, and the
+# fmu/CMakeLists.txt after add_fmu): the version-neutral core with fmi3Functions.cpp instead of
+# fmi2Functions.cpp (fmu_layer3), the same object files of the core and the binding, and the
 # FMI 3.0 modelDescription.xml written from the same table by the same writer
 # (modelDescription/WriteModelDescription.cpp). Lands in ${CMAKE_BINARY_DIR}/fmi3/<Model>.fmu
 # with binaries/x86_64-linux/<Model>.so; ${CMAKE_BINARY_DIR}/<Model>.fmu stays the FMI 2.0 one.
 # Cross builds (win64, aarch64) make only the shared object (target <Model>3); the scripts
 # add it to the FMU (scripts/build-win64.sh, scripts/build-aarch64.sh).
 
-add_library(fmu_layer3 OBJECT core/Instance.cpp core/StateFormat.cpp core/Model.cpp fmi3/fmi3Functions.cpp)
-target_include_directories(fmu_layer3 PUBLIC "${CMAKE_CURRENT_SOURCE_DIR}" "${CMAKE_CURRENT_SOURCE_DIR}/headers/fmi2"
-                                             "${CMAKE_CURRENT_SOURCE_DIR}/headers/fmi3")
+add_library(fmu_layer3 OBJECT fmi3/fmi3Functions.cpp)
+target_include_directories(fmu_layer3 PUBLIC "${CMAKE_CURRENT_SOURCE_DIR}/headers/fmi3")
+target_link_libraries(fmu_layer3 PUBLIC fmu_core)
 target_compile_options(fmu_layer3 PRIVATE -Wall -Wextra)
-if(CMAKE_CROSSCOMPILING)
-  # xxHash is header-only: the host's (Debian's libxxhash-dev) serves the cross build.
-  file(COPY /usr/include/xxhash.h DESTINATION "${CMAKE_BINARY_DIR}/host-headers")
-  target_include_directories(fmu_layer3 PRIVATE "${CMAKE_BINARY_DIR}/host-headers")
-endif()
 
 # add_fmu3(<Model> [LIBRARIES <libs>]): after add_fmu(<Model> ...), whose writer and licence list it uses.
 file(MAKE_DIRECTORY "${CMAKE_BINARY_DIR}/fmi3")
@@ -23,7 +18,7 @@ file(MAKE_DIRECTORY "${CMAKE_BINARY_DIR}/fmi3")
 function(add_fmu3 model)
   cmake_parse_arguments(ARG "" "" "LIBRARIES" ${ARGN})
   set(out_dir "${CMAKE_CURRENT_BINARY_DIR}/fmi3")
-  add_library(${model}3 SHARED $<TARGET_OBJECTS:fmu_layer3> $<TARGET_OBJECTS:${model}Binding>)
+  add_library(${model}3 SHARED $<TARGET_OBJECTS:fmu_core> $<TARGET_OBJECTS:fmu_layer3> $<TARGET_OBJECTS:${model}Binding>)
   target_link_libraries(${model}3 PRIVATE ${ARG_LIBRARIES})
   set_target_properties(${model}3 PROPERTIES PREFIX "" OUTPUT_NAME ${model}
     LIBRARY_OUTPUT_DIRECTORY "${out_dir}" RUNTIME_OUTPUT_DIRECTORY "${out_dir}")

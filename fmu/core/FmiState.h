@@ -3,7 +3,7 @@
 // states that record them (StateFormat.h).
 namespace fmu {
 
-// States of the FMI 2.0 co-simulation state machine (FMI 2.0.4, section 4.2.4), as bits so
+// States of the co-simulation state machine (FMI 2.0.4 section 4.2.4, FMI 3.0 section 4.2), as bits so
 // that the allowed states of a function are one mask. EventMode and ContinuousTimeMode
 // belong to Model Exchange and are never entered.
 enum State : unsigned {
@@ -19,8 +19,8 @@ enum State : unsigned {
     Terminated = 1u << 9,
     Error = 1u << 10,
     Fatal = 1u << 11,
-    ConfigurationMode = 1u << 12,  // FMI 3.0 only (fmi3EnterConfigurationMode)
-    // FMI 3.0 only: inside fmi3DoStep, while the master's intermediate update callback runs
+    ConfigurationMode = 1u << 12,  // FMI 3.0 only (entering configuration mode)
+    // FMI 3.0 only: inside a step, while the master's intermediate update callback runs
     // (outputs may be read, nothing set).
     IntermediateUpdateMode = 1u << 13,
 };

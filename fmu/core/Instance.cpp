@@ -1,6 +1,7 @@
 #include "core/Instance.h"
 
 #include <algorithm>
+#include <climits>
 #include <cmath>
 #include <cstdio>
 #include <cstring>
@@ -13,7 +14,7 @@ namespace fmu {
 
 namespace {
 
-// Tolerance of fmi2DoStep's communication point (importers' times wobble in the last digits).
+// Tolerance of a step's communication point (importers' times wobble in the last digits).
 constexpr double kTimeTolerance = 1e-9;
 
 std::string formatMessage(const char* format, va_list args) {
@@ -26,17 +27,6 @@ std::string formatMessage(const char* format, va_list args) {
     std::vsnprintf(&text[0], text.size(), format, args);
     text.resize(static_cast<std::size_t>(length));
     return text;
-}
-
-// The importer may treat the message as a printf format (FMI 2.0, fmi2CallbackLogger).
-std::string escapePercent(const std::string& text) {
-    std::string out;
-    out.reserve(text.size());
-    for (char ch : text) {
-        out += ch;
-        if (ch == '%') out += '%';
-    }
-    return out;
 }
 
 }  // namespace
@@ -75,39 +65,37 @@ const char* logCategoryName(LogCategory category) {
     return "logAll";
 }
 
-void logWithoutInstance(const fmi2CallbackFunctions* functions, fmi2String instanceName, const char* format, ...) {
-    if (!functions || !functions->logger) return;
+void logWithoutInstance(const Logger& logger, const char* format, ...) {
+    if (!logger) return;
     try {
         va_list args;
         va_start(args, format);
-        const std::string message = escapePercent(formatMessage(format, args));
+        const std::string message = formatMessage(format, args);
         va_end(args);
-        functions->logger(functions->componentEnvironment, instanceName ? instanceName : "", fmi2Error,
-                          logCategoryName(LogStatusError), message.c_str());
+        logger(Status::Error, logCategoryName(LogStatusError), message.c_str());
     } catch (...) {
         // nothing sensible is left to do: the caller returns NULL
     }
 }
 
-void Instance::vlog(fmi2Status status, LogCategory category, const char* format, va_list args) {
-    if (!callbacks_.logger || !logCategories_[category]) return;
+void Instance::vlog(Status status, LogCategory category, const char* format, va_list args) {
+    if (!logger_ || !logCategories_[category]) return;
     try {
-        const std::string message = escapePercent(formatMessage(format, args));
-        callbacks_.logger(callbacks_.componentEnvironment, instanceName_.c_str(), status, logCategoryName(category),
-                          message.c_str());
+        const std::string message = formatMessage(format, args);
+        logger_(status, logCategoryName(category), message.c_str());
     } catch (...) {
         // out of memory while logging: drop the message, never throw into the importer
     }
 }
 
-void Instance::log(fmi2Status status, LogCategory category, const char* format, ...) {
+void Instance::log(Status status, LogCategory category, const char* format, ...) {
     va_list args;
     va_start(args, format);
     vlog(status, category, format, args);
     va_end(args);
 }
 
-fmi2Status Instance::fail(const char* format, ...) {
+Status Instance::fail(const char* format, ...) {
     va_list args;
     va_start(args, format);
     std::string message;
@@ -115,37 +103,38 @@ fmi2Status Instance::fail(const char* format, ...) {
         message = std::string(function_) + ": " + formatMessage(format, args);
     } catch (...) {}
     va_end(args);
-    log(fmi2Error, LogStatusError, "%s", message.c_str());
-    return fmi2Error;
+    log(Status::Error, LogStatusError, "%s", message.c_str());
+    return Status::Error;
 }
 
 // ---------------------------------------------------------------------------------------------
 // Life cycle
 
-Instance::Instance(std::string instanceName, const fmi2CallbackFunctions& callbacks, bool loggingOn, const char* api)
-    : instanceName_(std::move(instanceName)), callbacks_(callbacks), api_(api), model_(createModel()) {
-    // As the Reference FMUs: errors are logged unless switched off with fmi2SetDebugLogging;
+Instance::Instance(Logger logger, bool loggingOn, ApiNames names)
+    : logger_(std::move(logger)), names_(names), model_(createModel()) {
+    // As the Reference FMUs: errors are logged unless switched off with setDebugLogging;
     // warnings and the call trace follow loggingOn.
     logCategories_[LogStatusError] = true;
     logCategories_[LogStatusWarning] = loggingOn;
     logCategories_[LogAll] = loggingOn;
     logCategories_[LogInfo] = loggingOn;
     attachTrace();
-    const bool fmi3 = std::strcmp(api_, "fmi3") == 0;
-    log(fmi2OK, LogAll, "%s: instance \"%s\" of %s (%s %s)", fmi3 ? "fmi3InstantiateCoSimulation" : "fmi2Instantiate",
-        instanceName_.c_str(), model_->info().modelName, fmi3 ? "instantiationToken" : "GUID", modelGuid());
 }
 
 Instance::~Instance() = default;
 
 void Instance::attachTrace() {
-    model_->trace = [this](const std::string& message) { log(fmi2OK, LogAll, "%s: %s", function_, message.c_str()); };
-    model_->inform = [this](const std::string& message) { log(fmi2OK, LogInfo, "%s: %s", function_, message.c_str()); };
+    model_->trace = [this](const std::string& message) {
+        log(Status::OK, LogAll, "%s: %s", function_, message.c_str());
+    };
+    model_->inform = [this](const std::string& message) {
+        log(Status::OK, LogInfo, "%s: %s", function_, message.c_str());
+    };
     if (!intermediateUpdate_) {
         model_->intermediateUpdate = nullptr;
         return;
     }
-    // The master's callback may call back into this instance (fmi3GetFloat64): it does so in
+    // The master's callback may call back into this instance (to get outputs): it does so in
     // IntermediateUpdateMode, and the running function's name is restored for the messages after.
     model_->intermediateUpdate = [this](double time) {
         const State running = state_;
@@ -165,17 +154,14 @@ void Instance::setIntermediateUpdate(std::function<double(double)> callback) {
     attachTrace();
 }
 
-void Instance::logFreeInstance() { log(fmi2OK, LogAll, "%sFreeInstance", api_); }
-
-fmi2Status Instance::setDebugLogging(fmi2Boolean loggingOn, size_t nCategories, const fmi2String categories[]) {
-    const bool on = loggingOn != fmi2False;
+Status Instance::setDebugLogging(bool on, std::size_t nCategories, const char* const categories[]) {
     bool next[LogCategoryCount];
     std::copy(logCategories_, logCategories_ + LogCategoryCount, next);
     if (nCategories == 0) {
         std::fill(next, next + LogCategoryCount, on);
     } else {
         if (!categories) return fail("argument categories[] must not be NULL");
-        for (size_t i = 0; i < nCategories; ++i) {
+        for (std::size_t i = 0; i < nCategories; ++i) {
             const char* name = categories[i];
             if (!name) return fail("categories[%zu] must not be NULL", i);
             if (std::strcmp(name, "logStatusError") == 0) {
@@ -195,42 +181,42 @@ fmi2Status Instance::setDebugLogging(fmi2Boolean loggingOn, size_t nCategories, 
         }
     }
     std::copy(next, next + LogCategoryCount, logCategories_);
-    return fmi2OK;
+    return Status::OK;
 }
 
-fmi2Status Instance::setupExperiment(fmi2Real startTime, fmi2Boolean toleranceDefined, fmi2Real tolerance,
-                                     fmi2Boolean stopTimeDefined, fmi2Real stopTime) {
+Status Instance::setupExperiment(double startTime, bool toleranceDefined, double tolerance, bool stopTimeDefined,
+                                 double stopTime) {
     if (!std::isfinite(startTime)) return fail("startTime = %g is not a finite number", startTime);
     startTime_ = startTime;
-    // function_: fmi2SetupExperiment, or fmi3EnterInitializationMode, which takes these arguments.
-    if (toleranceDefined) log(fmi2OK, LogAll, "%s: tolerance %g ignored (fixed time step)", function_, tolerance);
-    if (stopTimeDefined) log(fmi2OK, LogAll, "%s: stopTime %g", function_, stopTime);
-    return fmi2OK;
+    // function_: the front end's function that takes these arguments.
+    if (toleranceDefined) log(Status::OK, LogAll, "%s: tolerance %g ignored (fixed time step)", function_, tolerance);
+    if (stopTimeDefined) log(Status::OK, LogAll, "%s: stopTime %g", function_, stopTime);
+    return Status::OK;
 }
 
-fmi2Status Instance::enterInitializationMode() {
+Status Instance::enterInitializationMode() {
     state_ = InitializationMode;
-    return fmi2OK;
+    return Status::OK;
 }
 
-fmi2Status Instance::exitInitializationMode() {
+Status Instance::exitInitializationMode() {
     if (!model_->built()) model_->build();  // throws ModelError naming a bad parameter
     state_ = StepComplete;
-    return fmi2OK;
+    return Status::OK;
 }
 
-fmi2Status Instance::terminate() {
+Status Instance::terminate() {
     state_ = Terminated;
-    return fmi2OK;
+    return Status::OK;
 }
 
-fmi2Status Instance::reset() {
-    // The same as after fmi2Instantiate: a fresh model with its default values.
+Status Instance::reset() {
+    // The same as after instantiation: a fresh model with its default values.
     model_ = createModel();
     attachTrace();
     startTime_ = 0.0;
     state_ = Instantiated;
-    return fmi2OK;
+    return Status::OK;
 }
 
 double Instance::currentTime() const { return startTime_ + model_->time(); }
@@ -238,7 +224,7 @@ double Instance::currentTime() const { return startTime_ + model_->time(); }
 // ---------------------------------------------------------------------------------------------
 // Variables
 
-const Variable* Instance::variableFor(fmi2ValueReference vr, VariableType type) {
+const Variable* Instance::variableFor(ValueReference vr, VariableType type) {
     const Variable* variable = model_->find(vr);
     if (!variable) {
         fail("unknown value reference %u", vr);
@@ -259,21 +245,21 @@ bool Instance::settable(const Variable& variable) {
     }
     if (variable.causality == Causality::Parameter &&
         !(state_ & (Instantiated | ConfigurationMode | InitializationMode))) {
-        log(fmi2Error, LogStatusError,
+        log(Status::Error, LogStatusError,
             "illegal call sequence: %s of fixed parameter %s (vr %u) in state %s; fixed parameters can only be set "
-            "before %sExitInitializationMode",
-            function_, variable.name, variable.vr, stateName(state_), api_);
+            "before %s",
+            function_, variable.name, variable.vr, stateName(state_), names_.exitInitializationMode);
         return false;
     }
     return true;
 }
 
-fmi2Status Instance::getValues(VariableType type, const fmi2ValueReference vr[], size_t nvr, double value[]) {
-    if (nvr == 0) return fmi2OK;
+Status Instance::getValues(VariableType type, const ValueReference vr[], std::size_t nvr, double value[]) {
+    if (nvr == 0) return Status::OK;
     if (!vr || !value) return fail("arguments vr[] and value[] must not be NULL");
-    for (size_t i = 0; i < nvr; ++i) {
+    for (std::size_t i = 0; i < nvr; ++i) {
         const Variable* variable = variableFor(vr[i], type);
-        if (!variable) return fmi2Error;
+        if (!variable) return Status::Error;
         if (state_ == IntermediateUpdateMode && variable->causality != Causality::Output)
             return fail(
                 "%s (vr %u) is not an intermediate update variable (allowed inside the intermediate update "
@@ -284,15 +270,15 @@ fmi2Status Instance::getValues(VariableType type, const fmi2ValueReference vr[],
             model_->build();
         value[i] = model_->get(*variable);
     }
-    return fmi2OK;
+    return Status::OK;
 }
 
-fmi2Status Instance::setValues(VariableType type, const fmi2ValueReference vr[], size_t nvr, const double value[]) {
-    if (nvr == 0) return fmi2OK;
+Status Instance::setValues(VariableType type, const ValueReference vr[], std::size_t nvr, const double value[]) {
+    if (nvr == 0) return Status::OK;
     if (!vr || !value) return fail("arguments vr[] and value[] must not be NULL");
-    for (size_t i = 0; i < nvr; ++i) {
+    for (std::size_t i = 0; i < nvr; ++i) {
         const Variable* variable = variableFor(vr[i], type);
-        if (!variable || !settable(*variable)) return fmi2Error;
+        if (!variable || !settable(*variable)) return Status::Error;
         if (!std::isfinite(value[i]))
             return fail("%s (vr %u) = %g rejected: NaN and Inf are not allowed", variable->name, variable->vr,
                         value[i]);
@@ -310,7 +296,7 @@ fmi2Status Instance::setValues(VariableType type, const fmi2ValueReference vr[],
             model_->built())
             model_->drop();
     }
-    return fmi2OK;
+    return Status::OK;
 }
 
 // ---------------------------------------------------------------------------------------------
@@ -348,57 +334,57 @@ void Instance::restore(const Snapshot& snapshot) {
     }
 }
 
-fmi2Status Instance::getFMUstate(fmi2FMUstate* state) {
+Status Instance::getState(StateHandle* state) {
     if (!state) return fail("argument FMUstate must not be NULL");
     if (*state) {  // reuse a state this FMU handed out before
         Snapshot* previous = asSnapshot(*state);
         if (!previous) return fail("*FMUstate is not an FMU state of %s", model_->info().modelName);
         capture(*previous);
-        return fmi2OK;
+        return Status::OK;
     }
     auto snapshot = std::make_unique<Snapshot>();
     capture(*snapshot);
-    *state = snapshot.release();  // owned by the importer until fmi2FreeFMUstate
-    return fmi2OK;
+    *state = snapshot.release();  // owned by the importer until freeState
+    return Status::OK;
 }
 
-fmi2Status Instance::setFMUstate(fmi2FMUstate state) {
+Status Instance::setState(StateHandle state) {
     const Snapshot* snapshot = asSnapshot(state);
     if (!snapshot) return fail("FMUstate is NULL or not an FMU state of %s", model_->info().modelName);
     restore(*snapshot);
-    return fmi2OK;
+    return Status::OK;
 }
 
-fmi2Status Instance::freeFMUstate(fmi2FMUstate* state) {
+Status Instance::freeState(StateHandle* state) {
     if (!state) return fail("argument FMUstate must not be NULL");
-    if (!*state) return fmi2OK;
+    if (!*state) return Status::OK;
     Snapshot* snapshot = asSnapshot(*state);
     if (!snapshot) return fail("*FMUstate is not an FMU state of %s", model_->info().modelName);
     std::unique_ptr<Snapshot> owned(snapshot);  // takes ownership back and frees it
     *state = nullptr;
-    return fmi2OK;
+    return Status::OK;
 }
 
-fmi2Status Instance::serializedFMUstateSize(fmi2FMUstate state, size_t* size) {
+Status Instance::serializedStateSize(StateHandle state, std::size_t* size) {
     const Snapshot* snapshot = asSnapshot(state);
     if (!snapshot) return fail("FMUstate is NULL or not an FMU state of %s", model_->info().modelName);
     if (!size) return fail("argument size must not be NULL");
     *size = serializedSize(*snapshot);
-    return fmi2OK;
+    return Status::OK;
 }
 
-fmi2Status Instance::serializeFMUstate(fmi2FMUstate state, fmi2Byte serialized[], size_t size) {
+Status Instance::serializeState(StateHandle state, Byte serialized[], std::size_t size) {
     const Snapshot* snapshot = asSnapshot(state);
     if (!snapshot) return fail("FMUstate is NULL or not an FMU state of %s", model_->info().modelName);
     if (!serialized) return fail("argument serializedState must not be NULL");
     const std::size_t expected = serializedSize(*snapshot);
     if (size != expected)
-        return fail("size = %zu, but the state needs %zu bytes (fmi2SerializedFMUstateSize)", size, expected);
+        return fail("size = %zu, but the state needs %zu bytes (%s)", size, expected, names_.serializedStateSize);
     serialize(*snapshot, *model_, modelGuid(), serialized, size);
-    return fmi2OK;
+    return Status::OK;
 }
 
-fmi2Status Instance::deSerializeFMUstate(const fmi2Byte serialized[], size_t size, fmi2FMUstate* state) {
+Status Instance::deserializeState(const Byte serialized[], std::size_t size, StateHandle* state) {
     if (!state) return fail("argument FMUstate must not be NULL");
     if (!serialized && size > 0) return fail("argument serializedState must not be NULL");
     if (*state && !asSnapshot(*state)) return fail("*FMUstate is not an FMU state of %s", model_->info().modelName);
@@ -410,20 +396,20 @@ fmi2Status Instance::deSerializeFMUstate(const fmi2Byte serialized[], size_t siz
     }
     if (*state) {
         *asSnapshot(*state) = std::move(decoded);
-        return fmi2OK;
+        return Status::OK;
     }
-    *state = std::make_unique<Snapshot>(std::move(decoded)).release();  // the importer's until fmi2FreeFMUstate
-    return fmi2OK;
+    *state = std::make_unique<Snapshot>(std::move(decoded)).release();  // the importer's until freeState
+    return Status::OK;
 }
 
 // ---------------------------------------------------------------------------------------------
 // Co-simulation
 
-fmi2Status Instance::setRealInputDerivatives(const fmi2ValueReference vr[], size_t nvr, const fmi2Integer order[],
-                                             const fmi2Real value[]) {
-    if (nvr == 0) return fmi2OK;
+Status Instance::setInputDerivatives(const ValueReference vr[], std::size_t nvr, const int order[],
+                                     const double value[]) {
+    if (nvr == 0) return Status::OK;
     if (!vr || !order || !value) return fail("arguments vr[], order[] and value[] must not be NULL");
-    for (size_t i = 0; i < nvr; ++i) {
+    for (std::size_t i = 0; i < nvr; ++i) {
         const Variable* variable = model_->find(vr[i]);
         if (!variable || variable->causality != Causality::Input || !variable->hasDerivatives) {
             std::string inputs;
@@ -440,16 +426,15 @@ fmi2Status Instance::setRealInputDerivatives(const fmi2ValueReference vr[], size
                         variable->name, value[i]);
         model_->setInputDerivative(*variable, order[i], value[i]);
     }
-    return fmi2OK;
+    return Status::OK;
 }
 
-fmi2Status Instance::getRealOutputDerivatives(const fmi2ValueReference vr[], size_t nvr, const fmi2Integer order[],
-                                              fmi2Real value[]) {
+Status Instance::getOutputDerivatives(const ValueReference vr[], std::size_t nvr, const int order[], double value[]) {
     const int maxOrder = model_->info().maxOutputDerivativeOrder;
     if (maxOrder == 0) return fail("not supported (maxOutputDerivativeOrder=\"0\")");
-    if (nvr == 0) return fmi2OK;
+    if (nvr == 0) return Status::OK;
     if (!vr || !order || !value) return fail("arguments vr[], order[] and value[] must not be NULL");
-    for (size_t i = 0; i < nvr; ++i) {
+    for (std::size_t i = 0; i < nvr; ++i) {
         const Variable* variable = model_->find(vr[i]);
         if (!variable || variable->causality != Causality::Output || !variable->hasDerivatives)
             return fail("value reference %u is not a Real output with derivatives", vr[i]);
@@ -457,12 +442,10 @@ fmi2Status Instance::getRealOutputDerivatives(const fmi2ValueReference vr[], siz
             return fail("derivative order %d of %s is not supported (1 to %d)", order[i], variable->name, maxOrder);
         value[i] = model_->getOutputDerivative(*variable, order[i]);
     }
-    return fmi2OK;
+    return Status::OK;
 }
 
-fmi2Status Instance::doStep(fmi2Real t, fmi2Real h) { return doStep(t, h, false, nullptr); }
-
-fmi2Status Instance::doStep(fmi2Real t, fmi2Real h, bool stopAtEvent, bool* endedAtEvent) {
+Status Instance::doStep(double t, double h, bool stopAtEvent, bool* endedAtEvent) {
     if (endedAtEvent) *endedAtEvent = false;
     const double now = currentTime();
     if (!std::isfinite(t) || std::fabs(t - now) > kTimeTolerance * std::max(1.0, std::fabs(t)))
@@ -477,27 +460,52 @@ fmi2Status Instance::doStep(fmi2Real t, fmi2Real h, bool stopAtEvent, bool* ende
     } else {
         model_->doStep(t, h);
     }
-    return fmi2OK;
+    return Status::OK;
 }
 
-fmi2Status Instance::getArray(const ArrayOutput& array, double value[], size_t n) {
+std::size_t Instance::arrayLength(const ArrayOutput& array) const {
+    std::size_t n = 1;
+    for (ValueReference extent : array.extents) {
+        const StructuralParameter* s = model_->findStructural(extent);
+        n *= s ? structuralValue(*s) : 0;
+    }
+    return n;
+}
+
+std::size_t Instance::structuralValue(const StructuralParameter& s) const {
+    const Variable* base = model_->find(s.parameter);
+    const double value = s.ownValue() ? model_->ownStructuralValue(s) : base ? model_->get(*base) + s.offset : 0.0;
+    return value > 0 ? static_cast<std::size_t>(value) : 0;
+}
+
+Status Instance::setStructural(const StructuralParameter& s, double value) {
+    if (s.ownValue()) {
+        if (!(state_ & (Instantiated | ConfigurationMode)))
+            return fail(
+                "%s is a fixed structural parameter: set it before initialization (instantiated or "
+                "configuration mode)",
+                s.name);
+        if (!(value >= s.min && value <= s.max))
+            return fail("%s = %.0f rejected: allowed %d to %d", s.name, value, s.min, s.max);
+        model_->setOwnStructuralValue(s, value);
+        return Status::OK;
+    }
+    const double parameter = value - s.offset;
+    const Variable* base = model_->find(s.parameter);
+    if (!base) return fail("internal error: %s is a view of no parameter", s.name);
+    if (!(parameter >= INT_MIN && parameter <= INT_MAX))
+        return fail("%s = %.0f rejected: it sets %s = %s - %d out of the Int32 range", s.name, value, base->name,
+                    s.name, s.offset);
+    return setValues(VariableType::Integer, &s.parameter, 1, &parameter);
+}
+
+Status Instance::getArray(const ArrayOutput& array, double value[], std::size_t n) {
     if (n > 0 && !value) return fail("argument values[] must not be NULL");
     // As getValues: an output read in initialization mode builds what the parameters describe.
     if (state_ == InitializationMode && !model_->built()) model_->build();
     if (!model_->built()) return fail("%s is not available before initialization", array.name);
     model_->getArray(array, value, n);
-    return fmi2OK;
-}
-
-fmi2Status Instance::statusNotAvailable(fmi2StatusKind kind) {
-    static constexpr const char* kKinds[] = {"fmi2DoStepStatus", "fmi2PendingStatus", "fmi2LastSuccessfulTime",
-                                             "fmi2Terminated"};
-    const char* name = (kind >= 0 && kind <= 3) ? kKinds[kind] : "an unknown status kind";
-    log(fmi2Discard, LogStatusError,
-        "%s: %s is not available from this function (fmi2DoStep never returns "
-        "fmi2Pending or fmi2Discard); returning fmi2Discard",
-        function_, name);
-    return fmi2Discard;
+    return Status::OK;
 }
 
 }  // namespace fmu

@@ -1,9 +1,10 @@
 #pragma once
-// One instance of a co-simulation FMU, model-independent: the FMI 2.0 state machine (one
-// allowed-state mask per function), logging, the checks every fmi2Get*/fmi2Set* makes against
-// the model's table of variables, FMU states, and the dispatch that runs a function's body,
-// prefixes its messages with the function's name and keeps exceptions inside. Everything the
-// model does is behind fmu::Model (Model.h).
+// One instance of a co-simulation FMU, model-independent and of no FMI version: the state
+// machine (the front end gives each function's allowed-state mask), logging, the checks every
+// get/set makes against the model's table of variables, FMU states, and the dispatch that runs
+// a function's body, prefixes its messages with the function's name and keeps exceptions
+// inside. Everything the model does is behind fmu::Model (Model.h); the front ends
+// (the folders fmi2/ and fmi3/) convert types and statuses (core/Types.h).
 #include <cstdarg>
 #include <functional>
 #include <memory>
@@ -11,7 +12,7 @@
 
 #include "core/FmiState.h"
 #include "core/Model.h"
-#include "fmi2Functions.h"
+#include "core/Types.h"
 
 // printf-style checking of the log formats; mingw-w64 formats with its own C99 stdio.
 #if defined(__MINGW32__)
@@ -26,89 +27,95 @@ namespace fmu {
 enum LogCategory { LogStatusError = 0, LogStatusWarning = 1, LogAll = 2, LogInfo = 3, LogCategoryCount = 4 };
 const char* logCategoryName(LogCategory category);
 
-// Logging without an instance (fmi2Instantiate failures).
-void logWithoutInstance(const fmi2CallbackFunctions* functions, fmi2String instanceName, const char* format, ...)
-    PLATEIMPACT_PRINTF_FORMAT(3, 4);
+// Logging without an instance (failed instantiations): an error in logStatusError.
+void logWithoutInstance(const Logger& logger, const char* format, ...) PLATEIMPACT_PRINTF_FORMAT(2, 3);
+
+// How the core's own messages name two functions of the front end's interface.
+struct ApiNames {
+    const char* exitInitializationMode;  // fixed parameters can be set only before it
+    const char* serializedStateSize;  // gives the size a serialized state needs
+};
 
 struct Snapshot;
 
 class Instance {
 public:
-    // `api` is the prefix of the front end's function names ("fmi2" or "fmi3"): the messages the
-    // layer writes on its own name the functions of the interface the importer called.
-    Instance(std::string instanceName, const fmi2CallbackFunctions& callbacks, bool loggingOn,
-             const char* api = "fmi2");
+    // `names`: the functions of the front end's interface that the core's messages name.
+    Instance(Logger logger, bool loggingOn, ApiNames names);
     ~Instance();
     Instance(const Instance&) = delete;
     Instance& operator=(const Instance&) = delete;
 
-    // Runs `body` as the fmi2 function `function` if the state allows it (else logs "illegal
-    // call sequence: ..."); exceptions become a logged fmi2Error; fmi2Error enters the error
-    // state. fmi2Functions.cpp calls every function through it.
+    // Runs `body` as the front end's function `function` if the state allows it (else logs
+    // "illegal call sequence: ..."); exceptions become a logged Status::Error; an error enters
+    // the error state. The front ends call every function through it.
     template <class Body>
-    fmi2Status call(const char* function, unsigned allowedStates, Body&& body);
+    Status call(const char* function, unsigned allowedStates, Body&& body);
 
-    fmi2Status setDebugLogging(fmi2Boolean loggingOn, size_t nCategories, const fmi2String categories[]);
-    fmi2Status setupExperiment(fmi2Real startTime, fmi2Boolean toleranceDefined, fmi2Real tolerance,
-                               fmi2Boolean stopTimeDefined, fmi2Real stopTime);
-    fmi2Status enterInitializationMode();
-    fmi2Status exitInitializationMode();
-    fmi2Status terminate();
-    fmi2Status reset();
-    void logFreeInstance();
+    Status setDebugLogging(bool loggingOn, std::size_t nCategories, const char* const categories[]);
+    Status setupExperiment(double startTime, bool toleranceDefined, double tolerance, bool stopTimeDefined,
+                           double stopTime);
+    Status enterInitializationMode();
+    Status exitInitializationMode();
+    Status terminate();
+    Status reset();
 
-    // fmi2Get*/fmi2Set* of any type: values travel as doubles (exact for Integer and Boolean).
-    fmi2Status getValues(VariableType type, const fmi2ValueReference vr[], size_t nvr, double value[]);
-    fmi2Status setValues(VariableType type, const fmi2ValueReference vr[], size_t nvr, const double value[]);
+    // Get/set of any type: values travel as doubles (exact for Integer and Boolean).
+    Status getValues(VariableType type, const ValueReference vr[], std::size_t nvr, double value[]);
+    Status setValues(VariableType type, const ValueReference vr[], std::size_t nvr, const double value[]);
 
-    fmi2Status getFMUstate(fmi2FMUstate* state);
-    fmi2Status setFMUstate(fmi2FMUstate state);
-    fmi2Status freeFMUstate(fmi2FMUstate* state);
-    fmi2Status serializedFMUstateSize(fmi2FMUstate state, size_t* size);
-    fmi2Status serializeFMUstate(fmi2FMUstate state, fmi2Byte serialized[], size_t size);
-    fmi2Status deSerializeFMUstate(const fmi2Byte serialized[], size_t size, fmi2FMUstate* state);
+    Status getState(StateHandle* state);
+    Status setState(StateHandle state);
+    Status freeState(StateHandle* state);
+    Status serializedStateSize(StateHandle state, std::size_t* size);
+    Status serializeState(StateHandle state, Byte serialized[], std::size_t size);
+    Status deserializeState(const Byte serialized[], std::size_t size, StateHandle* state);
 
-    fmi2Status setRealInputDerivatives(const fmi2ValueReference vr[], size_t nvr, const fmi2Integer order[],
-                                       const fmi2Real value[]);
-    fmi2Status getRealOutputDerivatives(const fmi2ValueReference vr[], size_t nvr, const fmi2Integer order[],
-                                        fmi2Real value[]);
-    fmi2Status doStep(fmi2Real currentCommunicationPoint, fmi2Real communicationStepSize);
-    // FMI 3.0 (fmi3Functions.cpp): with stopAtEvent the step may end early at an event of the
-    // model (Model::doStepUntilEvent); *endedAtEvent tells whether it ended at one.
-    fmi2Status doStep(fmi2Real currentCommunicationPoint, fmi2Real communicationStepSize, bool stopAtEvent,
-                      bool* endedAtEvent);
-    // FMI 3.0 intermediate update: `callback(time)` runs the master's callback at an internal
+    // Derivatives of Real inputs (set) and outputs (get), orders from 1.
+    Status setInputDerivatives(const ValueReference vr[], std::size_t nvr, const int order[], const double value[]);
+    Status getOutputDerivatives(const ValueReference vr[], std::size_t nvr, const int order[], double value[]);
+    // One communication step from `t` (the current time, checked) of length `h`. With
+    // stopAtEvent the step may end early at an event of the model (Model::doStepUntilEvent);
+    // *endedAtEvent tells whether it ended at one.
+    Status doStep(double t, double h, bool stopAtEvent = false, bool* endedAtEvent = nullptr);
+    // Intermediate update (FMI 3.0): `callback(time)` runs the master's callback at an internal
     // grid point (the instance in IntermediateUpdateMode meanwhile) and returns the early return
-    // time it asked for (HUGE_VAL: none). Kept across fmi3Reset.
+    // time it asked for (HUGE_VAL: none). Kept across reset().
     void setIntermediateUpdate(std::function<double(double)> callback);
-    // FMI 3.0 arrays: the values of an array output of the model (n of them).
-    fmi2Status getArray(const ArrayOutput& array, double value[], size_t n);
-    // FMI 3.0 transitions without work of their own (configuration, event and step mode).
+    // Arrays (FMI 3.0): the values of an array output of the model (n of them).
+    Status getArray(const ArrayOutput& array, double value[], std::size_t n);
+    // Number of values of an array output: the product of its extents' values now.
+    std::size_t arrayLength(const ArrayOutput& array) const;
+    // Structural parameters (FMI 3.0): the value now (0 for a negative one), and setting it: its
+    // own value, or its Integer parameter becomes value - offset.
+    std::size_t structuralValue(const StructuralParameter& s) const;
+    Status setStructural(const StructuralParameter& s, double value);
+    // Transitions without work of their own (configuration, event and step mode).
     void enterState(State next) { state_ = next; }
     const Model& model() const { return *model_; }
     Model& model() { return *model_; }
-    fmi2Status statusNotAvailable(fmi2StatusKind kind);
+    // The time of the independent variable: the start time plus the model's time.
     double currentTime() const;
+    const char* function() const { return function_; }  // the function running (message prefix)
 
-    // Logs "<function>: <message>" as an fmi2Error and returns fmi2Error.
-    fmi2Status fail(const char* format, ...) PLATEIMPACT_PRINTF_FORMAT(2, 3);
-    void log(fmi2Status status, LogCategory category, const char* format, ...) PLATEIMPACT_PRINTF_FORMAT(4, 5);
+    // Logs "<function>: <message>" as an error and returns Status::Error.
+    Status fail(const char* format, ...) PLATEIMPACT_PRINTF_FORMAT(2, 3);
+    void log(Status status, LogCategory category, const char* format, ...) PLATEIMPACT_PRINTF_FORMAT(4, 5);
 
     State state() const { return state_; }
 
 private:
-    void vlog(fmi2Status status, LogCategory category, const char* format, va_list args);
-    const Variable* variableFor(fmi2ValueReference vr, VariableType type);
+    void vlog(Status status, LogCategory category, const char* format, va_list args);
+    const Variable* variableFor(ValueReference vr, VariableType type);
     bool settable(const Variable& variable);  // logs why not
     void capture(Snapshot& snapshot) const;
     void restore(const Snapshot& snapshot);
     void attachTrace();
 
-    std::string instanceName_;
-    fmi2CallbackFunctions callbacks_;
+    Logger logger_;
     bool logCategories_[LogCategoryCount];
-    const char* api_;  // "fmi2" or "fmi3"
-    const char* function_ = "";  // the fmi2/fmi3 function running (message prefix)
+    ApiNames names_;
+    const char* function_ = "";  // the front end's function running (message prefix)
     State state_ = Instantiated;
     double startTime_ = 0.0;
     std::unique_ptr<Model> model_;
@@ -116,11 +123,11 @@ private:
 };
 
 template <class Body>
-fmi2Status Instance::call(const char* function, unsigned allowedStates, Body&& body) {
+Status Instance::call(const char* function, unsigned allowedStates, Body&& body) {
     function_ = function;
-    fmi2Status status = fmi2Error;
+    Status status = Status::Error;
     if (!(state_ & allowedStates)) {
-        log(fmi2Error, LogStatusError, "illegal call sequence: %s is not allowed in state %s", function,
+        log(Status::Error, LogStatusError, "illegal call sequence: %s is not allowed in state %s", function,
             stateName(state_));
     } else {
         try {
@@ -131,24 +138,14 @@ fmi2Status Instance::call(const char* function, unsigned allowedStates, Body&& b
             fail("unknown exception");
         }
     }
-    // FMI 2.0: after fmi2Error only fmi2SetFMUstate, fmi2Reset, fmi2FreeInstance (and getters
+    // After an error only setting an FMU state, reset and freeing the instance (and getters
     // for debugging) are allowed.
-    if (status == fmi2Error) state_ = Error;
-    if (status == fmi2Fatal) state_ = Fatal;
+    if (status == Status::Error) state_ = Error;
+    if (status == Status::Fatal) state_ = Fatal;
     return status;
 }
 
-// Allowed states of each function group (FMI 2.0.4, table in section 4.2.4).
-constexpr unsigned kFreeInstanceStates =
-    Instantiated | InitializationMode | StepComplete | StepFailed | StepCanceled | Terminated | Error;
-constexpr unsigned kDebugLoggingStates = kFreeInstanceStates | StepInProgress;
-constexpr unsigned kResetStates = kFreeInstanceStates;
-constexpr unsigned kFMUstateStates = kFreeInstanceStates;
-constexpr unsigned kGetStates = InitializationMode | StepComplete | StepFailed | StepCanceled | Terminated | Error;
-constexpr unsigned kSetStates = Instantiated | InitializationMode | StepComplete;
-constexpr unsigned kInputDerivativeStates = Instantiated | InitializationMode | StepComplete;
-constexpr unsigned kOutputDerivativeStates = StepComplete | StepFailed | StepCanceled | Terminated | Error;
-constexpr unsigned kStatusStates = StepComplete | StepInProgress | StepFailed | Terminated;
+// Every state: functions that only log why they are not supported.
 constexpr unsigned kAnyState = ~0u;
 
 }  // namespace fmu

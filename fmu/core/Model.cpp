@@ -41,16 +41,28 @@ int EnumerationType::highest() const {
     return high;
 }
 
-Variable integerSwitch(fmi2ValueReference vr, const char* name, const char* description, const EnumerationType& items) {
+Variable integerSwitch(ValueReference vr, const char* name, const char* description, const EnumerationType& items) {
     Variable v{vr, name, VariableType::Integer, Causality::Parameter, description, nullptr, &items, true, false};
     v.min = items.lowest();
     v.max = items.highest();
     return v;
 }
 
-const Variable* Model::find(fmi2ValueReference vr) const {
+const Variable* Model::find(ValueReference vr) const {
     for (const Variable& v : variables())
         if (v.vr == vr) return &v;
+    return nullptr;
+}
+
+const StructuralParameter* Model::findStructural(ValueReference vr) const {
+    for (const StructuralParameter& s : structuralParameters())
+        if (s.vr == vr) return &s;
+    return nullptr;
+}
+
+const ArrayOutput* Model::findArray(ValueReference vr) const {
+    for (const ArrayOutput& a : arrayOutputs())
+        if (a.vr == vr) return &a;
     return nullptr;
 }
 

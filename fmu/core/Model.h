@@ -1,7 +1,7 @@
 #pragma once
-// The contract between the model-independent FMI 2.0 co-simulation layer (Instance.cpp,
-// fmi2Functions.cpp, StateFormat.cpp) and one model binding (PlateModel.cpp, or
-// sinesweep/SweepModel.cpp): the model's table of variables and its behaviour. The same table
+// The contract between the model-independent co-simulation core (Instance.cpp, StateFormat.cpp;
+// of no FMI version, the front ends fmi2/ and fmi3/ over it) and one model binding
+// (binding/PlateModel.cpp, or demos/sinesweep/SweepModel.cpp): the model's table of variables and its behaviour. The same table
 // writes modelDescription.xml (modelDescription/WriteModelDescription.cpp), serializes FMU
 // states and decides whether two configurations are equal. A binding knows nothing of the FMI
 // state machine; the generic layer knows nothing of plates.
@@ -13,7 +13,7 @@
 #include <utility>
 #include <vector>
 
-#include "fmi2Functions.h"
+#include "core/Types.h"
 
 namespace fmu {
 
@@ -44,7 +44,7 @@ struct EnumerationType {
 
 // One row of a model's table of variables.
 struct Variable {
-    fmi2ValueReference vr;
+    ValueReference vr;
     const char* name;
     VariableType type;
     Causality causality;
@@ -54,7 +54,8 @@ struct Variable {
     // A new value before initialization ends invalidates what was built from the old one
     // (parameters; an input that places the initial state).
     bool shapesInitialState = false;
-    // Real inputs: take fmi2SetRealInputDerivatives; Real outputs: give fmi2GetRealOutputDerivatives.
+    // Real inputs: take input derivatives; Real outputs: give output derivatives (FMI 2.0's
+    // SetRealInputDerivatives and GetRealOutputDerivatives).
     bool hasDerivatives = false;
     // The allowed range (Real, Integer), NaN where there is none: modelDescription.xml's min and
     // max, the documentation's table; the generic layer refuses an input outside it when set
@@ -65,7 +66,7 @@ struct Variable {
 
 // A parameter that switches between named items (element, base_drive, ...): an Integer whose
 // min/max are its items' range; the description writer lists the items after `description`.
-Variable integerSwitch(fmi2ValueReference vr, const char* name, const char* description, const EnumerationType& items);
+Variable integerSwitch(ValueReference vr, const char* name, const char* description, const EnumerationType& items);
 
 // Capabilities and fixed parts of modelDescription.xml.
 struct ModelInfo {
@@ -89,12 +90,12 @@ struct ModelInfo {
 // Or (parameter = kOwnValue) a value of its own in [min, max], starting at `offset`, that the
 // model keeps (Model::ownStructuralValue) and nothing else reads: an array's switch (min = 0
 // lets the master empty the array, FMI 3.0 §2.4.7.3).
-constexpr fmi2ValueReference kOwnValue = 0xFFFFFFFFu;
+constexpr ValueReference kOwnValue = 0xFFFFFFFFu;
 struct StructuralParameter {
-    fmi2ValueReference vr;
+    ValueReference vr;
     const char* name;
     const char* description;
-    fmi2ValueReference parameter;  // the table's Integer parameter it is a view of, or kOwnValue
+    ValueReference parameter;  // the table's Integer parameter it is a view of, or kOwnValue
     int offset;  // a view: extent = parameter + offset; an own value: its start
     int min = 0, max = 0;  // an own value's range (a view's is its parameter's check)
     bool ownValue() const { return parameter == kOwnValue; }
@@ -102,11 +103,11 @@ struct StructuralParameter {
 
 // FMI 3.0 only: an array output (row-major, the first extent varies slowest).
 struct ArrayOutput {
-    fmi2ValueReference vr;
+    ValueReference vr;
     const char* name;
     const char* description;
     const char* unit;  // nullptr: none
-    std::vector<fmi2ValueReference> extents;  // value references of StructuralParameters
+    std::vector<ValueReference> extents;  // value references of StructuralParameters
 };
 
 // FMI 3.0 terminals (terminalsAndIcons/terminalsAndIcons.xml, FMI 3.0 section 2.4.9): a named
@@ -126,7 +127,7 @@ struct Terminal {
 };
 
 // A value or call the model rejects; the message names what, the value and what is allowed.
-// The generic layer logs it after the name of the fmi2 function.
+// The generic layer logs it after the name of the front end's function.
 class ModelError : public std::runtime_error {
 public:
     using std::runtime_error::runtime_error;
@@ -138,7 +139,9 @@ public:
 
     virtual const ModelInfo& info() const = 0;
     virtual const std::vector<Variable>& variables() const = 0;
-    const Variable* find(fmi2ValueReference vr) const;
+    const Variable* find(ValueReference vr) const;
+    const StructuralParameter* findStructural(ValueReference vr) const;  // nullptr: none
+    const ArrayOutput* findArray(ValueReference vr) const;  // nullptr: none
 
     // Values, as doubles for every type (Integer and Boolean exactly). The generic
     // layer has checked type, causality and finiteness; `set` may still throw ModelError.
@@ -147,7 +150,7 @@ public:
     virtual void setInputDerivative(const Variable& v, int order, double value);
     virtual double getOutputDerivative(const Variable& v, int order) const;
 
-    // Builds what the parameters describe (at fmi2ExitInitializationMode, or earlier when an
+    // Builds what the parameters describe (when initialization mode is left, or earlier when an
     // output is read in initialization mode); drops it again (a shaping value changed).
     virtual void build() = 0;
     virtual bool built() const = 0;
@@ -157,7 +160,7 @@ public:
     // One communication step [t, t + h] (t checked by the caller); throws ModelError.
     virtual void doStep(double t, double h) = 0;
 
-    // FMI 3.0 early return (fmu/fmi3Functions.cpp): like doStep, but the step may end early,
+    // FMI 3.0 early return (the fmi3/ front end): like doStep, but the step may end early,
     // right after the first internal step at which an event of the model happens (time()
     // tells where). Returns whether the step ended at an event. Default: no events.
     virtual bool doStepUntilEvent(double t, double h) {
@@ -177,7 +180,7 @@ public:
     // FMI 3.0 terminals: none by default.
     virtual const std::vector<Terminal>& terminals() const;
     // The value of a structural parameter with a value of its own (its start until set; the
-    // caller has checked the range). A new instance (fmi3Reset) starts again from the starts.
+    // caller has checked the range). A new instance (a reset) starts again from the starts.
     double ownStructuralValue(const StructuralParameter& s) const;
     void setOwnStructuralValue(const StructuralParameter& s, double value);
 
@@ -198,7 +201,7 @@ public:
     std::function<double(double time)> intermediateUpdate;
 
 private:
-    std::vector<std::pair<fmi2ValueReference, double>> ownStructuralValues_;  // those set so far
+    std::vector<std::pair<ValueReference, double>> ownStructuralValues_;  // those set so far
 };
 
 // Defined once by each model binding.

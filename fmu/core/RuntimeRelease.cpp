@@ -1,7 +1,7 @@
 // The FMU links libstdc++ statically (it must run where no matching libstdc++ is installed),
 // so it carries its own copy of the runtime's emergency exception-handling pool, allocated at
 // load time. libstdc++ frees it only on request: do so when the importer unloads the FMU
-// (fmi2FreeInstance → dlclose in fmpy), or every load/unload cycle loses 72,704 bytes
+// (freeing the instance → dlclose in fmpy), or every load/unload cycle loses 72,704 bytes
 // (valgrind, python_tests/test_valgrind.py). Nothing of this copy runs after the unload.
 namespace __gnu_cxx {
 void __freeres() noexcept;

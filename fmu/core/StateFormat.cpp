@@ -25,7 +25,7 @@ constexpr std::size_t kChecksumOffset = 8 + 4 + 4 + kGuidField + 8;
 constexpr std::size_t kHeaderBytes = kChecksumOffset + 8;
 
 // XXH64 of every byte of a serialized state but the checksum field itself.
-std::uint64_t checksum(const fmi2Byte* bytes, std::size_t size) {
+std::uint64_t checksum(const Byte* bytes, std::size_t size) {
     XXH64_state_t state;
     XXH64_reset(&state, 0);
     XXH64_update(&state, bytes, kChecksumOffset);
@@ -70,7 +70,7 @@ std::vector<double> payload(const Snapshot& s) {
 
 }  // namespace
 
-Snapshot* asSnapshot(fmi2FMUstate state) {
+Snapshot* asSnapshot(StateHandle state) {
     auto* snapshot = static_cast<Snapshot*>(state);
     return snapshot && snapshot->tag == Snapshot::kTag ? snapshot : nullptr;
 }
@@ -81,7 +81,7 @@ std::size_t serializedSize(const Snapshot& s) {
     return kHeaderBytes + sizeof(double) * (2 + s.values.size() + s.modelState.size());
 }
 
-void serialize(const Snapshot& s, const Model& model, const char* guid, fmi2Byte* out, std::size_t size) {
+void serialize(const Snapshot& s, const Model& model, const char* guid, Byte* out, std::size_t size) {
     const std::vector<double> data = payload(s);
     const std::uint32_t version = kFormatVersion;
     const std::uint32_t guidLength = static_cast<std::uint32_t>(std::strlen(guid));
@@ -99,7 +99,7 @@ void serialize(const Snapshot& s, const Model& model, const char* guid, fmi2Byte
     std::memcpy(out + kChecksumOffset, &sum, 8);
 }
 
-Snapshot deserialize(const fmi2Byte* bytes, std::size_t size, const char* guid, const Model& model) {
+Snapshot deserialize(const Byte* bytes, std::size_t size, const char* guid, const Model& model) {
     if (size < kHeaderBytes)
         throw CorruptState(std::to_string(size) + " bytes, shorter than the " + std::to_string(kHeaderBytes) +
                            "-byte header");

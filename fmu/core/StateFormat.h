@@ -1,5 +1,5 @@
 #pragma once
-// FMU states: what fmi2GetFMUstate captures, and the byte format of fmi2SerializeFMUstate.
+// FMU states: what getting an FMU state captures, and the byte format of a serialized one.
 // Model-independent: the values of the settable variables are written by walking the model's
 // table, the rest is the model's own saveState().
 #include <cstdint>
@@ -20,8 +20,8 @@ struct Snapshot {
     std::vector<double> modelState;  // Model::saveState
 };
 
-// The snapshot behind an fmi2FMUstate handed out by this layer, or nullptr.
-Snapshot* asSnapshot(fmi2FMUstate state);
+// The snapshot behind a StateHandle handed out by this layer, or nullptr.
+Snapshot* asSnapshot(StateHandle state);
 
 // Parameters and inputs: the variables an FMU state carries, in table order.
 bool isSettable(const Variable& v);
@@ -42,9 +42,9 @@ public:
 //   bytes 80..    n doubles: the state-machine state, the start time, the values of the
 //                 settable variables in table order, then the model's state.
 std::size_t serializedSize(const Snapshot& snapshot);
-void serialize(const Snapshot& snapshot, const Model& model, const char* guid, fmi2Byte* out, std::size_t size);
+void serialize(const Snapshot& snapshot, const Model& model, const char* guid, Byte* out, std::size_t size);
 // Throws CorruptState naming what is wrong (magic, version, GUID, size, checksum, a value out
 // of range), in that order.
-Snapshot deserialize(const fmi2Byte* bytes, std::size_t size, const char* guid, const Model& model);
+Snapshot deserialize(const Byte* bytes, std::size_t size, const char* guid, const Model& model);
 
 }  // namespace fmu

@@ -1,12 +1,12 @@
-// The FMI 3.0 C API (Co-Simulation), model-independent, over the same generic Instance as
-// fmi2Functions.cpp: every fmi3* function runs its body through Instance::call with the states
-// that allow it (Fmi3Interface.h), which logs an illegal call sequence, prefixes messages with
-// the function's name and keeps exceptions inside. Beyond FMI 2.0: the independent variable
+// The FMI 3.0 C API (Co-Simulation), model-independent: a thin front end over the same
+// version-neutral core as fmi2/fmi2Functions.cpp (core/Instance.h), converting FMI 3.0 types
+// and statuses. Every fmi3* function runs its body through Instance::call with the states that
+// allow it (Fmi3Interface.h), which logs an illegal call sequence, prefixes messages with the
+// function's name and keeps exceptions inside. Beyond FMI 2.0: the independent variable
 // "time", array outputs sized by UInt64 structural parameters (views
 // of Integer parameters of the table, Model.h), configuration mode, and early return with
 // event mode at the model's events (Model::doStepUntilEvent) when the master grants them at
-// fmi3InstantiateCoSimulation. Only the fmi3* symbols leave the shared object (fmu/exports3.map).
-#include <climits>
+// fmi3InstantiateCoSimulation. Only the fmi3* symbols leave the shared object (fmi3/exports.map).
 #include <cmath>
 #include <cstring>
 #include <memory>
@@ -20,44 +20,46 @@
 
 using fmu::ArrayOutput;
 using fmu::Instance;
+using fmu::Status;
 using fmu::StructuralParameter;
 using fmu::VariableType;
+using fmu::fmi3::kTimeValueReference;
+
+static_assert(std::is_same_v<fmi3ValueReference, fmu::ValueReference> && std::is_same_v<fmi3Byte, fmu::Byte> &&
+                  std::is_same_v<fmi3Int32, int>,
+              "value references, bytes and derivative orders pass unconverted");
 
 namespace {
 
 // Tolerance of "the step ended before t + h" (the model's grid times against the master's sum).
 constexpr double kEarlyTolerance = 1e-9;
 
-// One FMI 3.0 instance: the master's callback and grants, and the generic Instance, whose
-// fmi2-style log calls forwardLog hands to the master's fmi3LogMessageCallback.
+// The functions the core's messages name. The size message has always named FMI 2.0's
+// function, in FMI 3.0 too; kept so that the messages stay as they were.
+constexpr fmu::ApiNames kNames = {"fmi3ExitInitializationMode", "fmi2SerializedFMUstateSize"};
+
+// Status and fmi3Status list the same outcomes in the same order.
+fmi3Status toFmi3(Status status) {
+    static constexpr fmi3Status kStatus[] = {fmi3OK, fmi3Warning, fmi3Discard, fmi3Error, fmi3Fatal};
+    return kStatus[static_cast<int>(status)];
+}
+
+// The core's logger over the master's fmi3LogMessageCallback (none without one).
+fmu::Logger loggerOf(fmi3InstanceEnvironment environment, fmi3LogMessageCallback logMessage) {
+    if (!logMessage) return nullptr;
+    return [environment, logMessage](Status status, const char* category, const char* message) {
+        logMessage(environment, toFmi3(status), category, message);
+    };
+}
+
+// One FMI 3.0 instance: the master's callbacks and grants, and the core's Instance.
 struct Fmi3Instance {
     fmi3InstanceEnvironment environment = nullptr;
-    fmi3LogMessageCallback logMessage = nullptr;
     bool eventModeUsed = false;
     bool earlyReturnAllowed = false;
     fmi3IntermediateUpdateCallback intermediateUpdate = nullptr;
     std::unique_ptr<Instance> instance;
 };
-
-// The layer passes each message as a printf format with its '%' doubled (and no arguments).
-void forwardLog(fmi2ComponentEnvironment environment, fmi2String, fmi2Status status, fmi2String category,
-                fmi2String message, ...) {
-    const auto* self = static_cast<const Fmi3Instance*>(environment);
-    if (!self || !self->logMessage || !message) return;
-    std::string text;
-    for (const char* p = message; *p; ++p) {
-        text += *p;
-        if (p[0] == '%' && p[1] == '%') ++p;
-    }
-    self->logMessage(self->environment, static_cast<fmi3Status>(status), category, text.c_str());
-}
-
-fmi2CallbackFunctions callbacksOf(Fmi3Instance& self) {
-    fmi2CallbackFunctions callbacks{};
-    callbacks.logger = forwardLog;
-    callbacks.componentEnvironment = &self;
-    return callbacks;
-}
 
 // Runs `body(self, instance)` as `function` when `c` is an instance and the state allows it.
 template <class Body>
@@ -65,32 +67,19 @@ fmi3Status run(fmi3Instance c, const char* function, unsigned allowed, Body&& bo
     auto* self = static_cast<Fmi3Instance*>(c);
     if (!self) return fmi3Error;  // a NULL instance has no logger to tell
     Instance& instance = *self->instance;
-    return static_cast<fmi3Status>(
-        instance.call(function, allowed, [&]() -> fmi2Status { return body(*self, instance); }));
+    return toFmi3(instance.call(function, allowed, [&]() -> Status { return body(*self, instance); }));
 }
 
 // The FMI 3.0 types of the get/set functions, as far as they concern this layer.
 enum class Kind { Float64, Int32, Int64, UInt64, Boolean, Other };
 
-const StructuralParameter* findStructural(const fmu::Model& model, fmi3ValueReference vr) {
-    for (const StructuralParameter& s : model.structuralParameters())
-        if (s.vr == vr) return &s;
-    return nullptr;
-}
-
-const ArrayOutput* findArray(const fmu::Model& model, fmi3ValueReference vr) {
-    for (const ArrayOutput& a : model.arrayOutputs())
-        if (a.vr == vr) return &a;
-    return nullptr;
-}
-
 // The FMI 3.0 type of the variable behind vr, for messages ("Float64 variable length").
 std::string describe(const fmu::Model& model, fmi3ValueReference vr) {
-    if (vr == fmu::kFmi3TimeValueReference) return "the Float64 variable time";
-    if (const StructuralParameter* s = findStructural(model, vr)) return std::string("the UInt64 variable ") + s->name;
-    if (const ArrayOutput* a = findArray(model, vr)) return std::string("the Float64 array ") + a->name;
+    if (vr == kTimeValueReference) return "the Float64 variable time";
+    if (const StructuralParameter* s = model.findStructural(vr)) return std::string("the UInt64 variable ") + s->name;
+    if (const ArrayOutput* a = model.findArray(vr)) return std::string("the Float64 array ") + a->name;
     if (const fmu::Variable* v = model.find(vr))
-        return std::string("the ") + fmu::fmi3TypeName(v->type) + " variable " + v->name;
+        return std::string("the ") + fmu::fmi3::typeName(v->type) + " variable " + v->name;
     return "no variable (unknown value reference)";
 }
 
@@ -104,33 +93,17 @@ bool tableTypeOf(Kind kind, const fmu::Variable& v, VariableType* type) {
     }
 }
 
-std::size_t structuralValue(const Instance& i, const StructuralParameter& s) {
-    const fmu::Variable* base = i.model().find(s.parameter);
-    const double value = s.ownValue() ? i.model().ownStructuralValue(s) : base ? i.model().get(*base) + s.offset : 0.0;
-    return value > 0 ? static_cast<std::size_t>(value) : 0;
-}
-
-// Number of values of an array output: the product of its extents' values now.
-std::size_t arrayLength(const Instance& i, const ArrayOutput& a) {
-    std::size_t n = 1;
-    for (fmi3ValueReference extent : a.extents) {
-        const StructuralParameter* s = findStructural(i.model(), extent);
-        n *= s ? structuralValue(i, *s) : 0;
-    }
-    return n;
-}
-
 // One scalar of an fmi3Get<kind> call into *x.
-fmi2Status getScalar(Instance& i, Kind kind, fmi3ValueReference vr, double* x) {
+Status getScalar(Instance& i, Kind kind, fmi3ValueReference vr, double* x) {
     const fmu::Model& model = i.model();
-    if (vr == fmu::kFmi3TimeValueReference && kind == Kind::Float64) {
+    if (vr == kTimeValueReference && kind == Kind::Float64) {
         *x = i.currentTime();
-        return fmi2OK;
+        return Status::OK;
     }
-    if (const StructuralParameter* s = findStructural(model, vr)) {
+    if (const StructuralParameter* s = model.findStructural(vr)) {
         if (kind != Kind::UInt64) return i.fail("value reference %u is %s", vr, describe(model, vr).c_str());
-        *x = double(structuralValue(i, *s));
-        return fmi2OK;
+        *x = double(i.structuralValue(*s));
+        return Status::OK;
     }
     const fmu::Variable* v = model.find(vr);
     VariableType type;
@@ -142,23 +115,22 @@ fmi2Status getScalar(Instance& i, Kind kind, fmi3ValueReference vr, double* x) {
 bool beforeInitialization(const Instance& i, fmi3ValueReference vr) {
     if (!(i.state() & (fmu::Instantiated | fmu::ConfigurationMode))) return false;
     const fmu::Variable* v = i.model().find(vr);
-    return findArray(i.model(), vr) || vr == fmu::kFmi3TimeValueReference ||
-           (v && v->causality == fmu::Causality::Output);
+    return i.model().findArray(vr) || vr == kTimeValueReference || (v && v->causality == fmu::Causality::Output);
 }
 
 template <class T>
-fmi2Status getValues(Instance& i, Kind kind, const fmi3ValueReference vrs[], size_t nvr, T values[], size_t nValues) {
-    if (nvr == 0) return fmi2OK;
+Status getValues(Instance& i, Kind kind, const fmi3ValueReference vrs[], size_t nvr, T values[], size_t nValues) {
+    if (nvr == 0) return Status::OK;
     if (!vrs || !values) return i.fail("arguments valueReferences[] and values[] must not be NULL");
     std::size_t next = 0;
     for (size_t k = 0; k < nvr; ++k) {
         if (beforeInitialization(i, vrs[k]))
             return i.fail("value reference %u is %s, an output: available from initialization mode on", vrs[k],
                           describe(i.model(), vrs[k]).c_str());
-        const ArrayOutput* array = findArray(i.model(), vrs[k]);
+        const ArrayOutput* array = i.model().findArray(vrs[k]);
         if (array && kind != Kind::Float64)
             return i.fail("value reference %u is %s", vrs[k], describe(i.model(), vrs[k]).c_str());
-        const std::size_t n = array ? arrayLength(i, *array) : 1;
+        const std::size_t n = array ? i.arrayLength(*array) : 1;
         if (nValues - next < n || next > nValues)
             return i.fail(
                 "nValues = %zu is too small: %s (value reference %u) needs %zu values, from position %zu "
@@ -166,11 +138,11 @@ fmi2Status getValues(Instance& i, Kind kind, const fmi3ValueReference vrs[], siz
                 nValues, describe(i.model(), vrs[k]).c_str(), vrs[k], n, next);
         if (array) {
             if constexpr (std::is_same_v<T, double>) {  // an emptied array (an extent 0) has nothing to ask
-                if (n > 0 && i.getArray(*array, values + next, n) != fmi2OK) return fmi2Error;
+                if (n > 0 && i.getArray(*array, values + next, n) != Status::OK) return Status::Error;
             }
         } else {
             double x = 0.0;
-            if (getScalar(i, kind, vrs[k], &x) != fmi2OK) return fmi2Error;
+            if (getScalar(i, kind, vrs[k], &x) != Status::OK) return Status::Error;
             values[next] = static_cast<T>(x);
         }
         next += n;
@@ -178,42 +150,20 @@ fmi2Status getValues(Instance& i, Kind kind, const fmi3ValueReference vrs[], siz
     if (next != nValues) {
         std::string arrays;  // which of them are arrays, and their sizes
         for (size_t k = 0; k < nvr; ++k)
-            if (const ArrayOutput* array = findArray(i.model(), vrs[k]))
+            if (const ArrayOutput* array = i.model().findArray(vrs[k]))
                 arrays += std::string(arrays.empty() ? "" : ", ") + array->name + " needs " +
-                          std::to_string(arrayLength(i, *array)) + " values";
+                          std::to_string(i.arrayLength(*array)) + " values";
         return i.fail("nValues = %zu, but the %zu value references have %zu values%s%s%s", nValues, nvr, next,
                       arrays.empty() ? "" : " (", arrays.c_str(), arrays.empty() ? "" : ")");
     }
-    return fmi2OK;
+    return Status::OK;
 }
 
-// A structural parameter set: its own value, or its Integer parameter becomes value - offset.
-fmi2Status setStructural(Instance& i, const StructuralParameter& s, double value) {
-    if (s.ownValue()) {
-        if (!(i.state() & (fmu::Instantiated | fmu::ConfigurationMode)))
-            return i.fail(
-                "%s is a fixed structural parameter: set it before initialization (instantiated or "
-                "configuration mode)",
-                s.name);
-        if (!(value >= s.min && value <= s.max))
-            return i.fail("%s = %.0f rejected: allowed %d to %d", s.name, value, s.min, s.max);
-        i.model().setOwnStructuralValue(s, value);
-        return fmi2OK;
-    }
-    const double parameter = value - s.offset;
-    const fmu::Variable* base = i.model().find(s.parameter);
-    if (!base) return i.fail("internal error: %s is a view of no parameter", s.name);
-    if (!(parameter >= INT_MIN && parameter <= INT_MAX))
-        return i.fail("%s = %.0f rejected: it sets %s = %s - %d out of the Int32 range", s.name, value, base->name,
-                      s.name, s.offset);
-    return i.setValues(VariableType::Integer, &s.parameter, 1, &parameter);
-}
-
-fmi2Status setScalar(Instance& i, Kind kind, fmi3ValueReference vr, double x) {
+Status setScalar(Instance& i, Kind kind, fmi3ValueReference vr, double x) {
     const fmu::Model& model = i.model();
-    if (const StructuralParameter* s = findStructural(model, vr); s && kind == Kind::UInt64)
-        return setStructural(i, *s, x);
-    if (vr == fmu::kFmi3TimeValueReference || findArray(model, vr))
+    if (const StructuralParameter* s = model.findStructural(vr); s && kind == Kind::UInt64)
+        return i.setStructural(*s, x);
+    if (vr == kTimeValueReference || model.findArray(vr))
         return i.fail("value reference %u is %s, which cannot be set", vr, describe(model, vr).c_str());
     const fmu::Variable* v = model.find(vr);
     VariableType type;
@@ -222,23 +172,22 @@ fmi2Status setScalar(Instance& i, Kind kind, fmi3ValueReference vr, double x) {
 }
 
 template <class T>
-fmi2Status setValues(Instance& i, Kind kind, const fmi3ValueReference vrs[], size_t nvr, const T values[],
-                     size_t nValues) {
-    if (nvr == 0) return fmi2OK;
+Status setValues(Instance& i, Kind kind, const fmi3ValueReference vrs[], size_t nvr, const T values[], size_t nValues) {
+    if (nvr == 0) return Status::OK;
     if (!vrs || !values) return i.fail("arguments valueReferences[] and values[] must not be NULL");
     if (nValues != nvr)
         return i.fail("nValues = %zu, but the %zu value references have %zu values (no settable arrays)", nValues, nvr,
                       nvr);
     for (size_t k = 0; k < nvr; ++k) {
         const double x = kind == Kind::Boolean ? double(values[k] != 0) : double(values[k]);
-        if (setScalar(i, kind, vrs[k], x) != fmi2OK) return fmi2Error;
+        if (setScalar(i, kind, vrs[k], x) != Status::OK) return Status::Error;
     }
-    return fmi2OK;
+    return Status::OK;
 }
 
 // fmi3Get/Set of a type this FMU has no variables of.
-fmi2Status noVariables(Instance& i, const char* type, const fmi3ValueReference vrs[], size_t nvr) {
-    if (nvr == 0) return fmi2OK;
+Status noVariables(Instance& i, const char* type, const fmi3ValueReference vrs[], size_t nvr) {
+    if (nvr == 0) return Status::OK;
     const fmi3ValueReference vr = vrs ? vrs[0] : 0u;
     return i.fail("this FMU has no %s variables (value reference %u is %s)", type, vr, describe(i.model(), vr).c_str());
 }
@@ -251,6 +200,14 @@ constexpr const char* kModelExchange =
     "Model Exchange is not supported; this FMU implements FMI 3.0 Co-Simulation only";
 constexpr const char* kScheduled = "Scheduled Execution is not supported; this FMU implements Co-Simulation only";
 constexpr const char* kNoClocks = "this FMU has no clocks";
+
+// An instantiation of an interface type this FMU does not implement: logs why, returns NULL.
+fmi3Instance refuse(fmi3InstanceEnvironment environment, fmi3LogMessageCallback logMessage, const char* function,
+                    fmi3String instanceName, const char* why) {
+    fmu::logWithoutInstance(loggerOf(environment, logMessage), "%s (%s): %s", function,
+                            instanceName ? instanceName : "", why);
+    return nullptr;
+}
 
 }  // namespace
 
@@ -283,9 +240,8 @@ const char* fmi3GetVersion(void) { return fmi3Version; }
 
 fmi3Status fmi3SetDebugLogging(fmi3Instance c, fmi3Boolean loggingOn, size_t nCategories,
                                const fmi3String categories[]) {
-    return run(c, "fmi3SetDebugLogging", fmu::fmi3::kDebugLoggingStates, [&](Fmi3Instance&, Instance& i) {
-        return i.setDebugLogging(loggingOn ? fmi2True : fmi2False, nCategories, categories);
-    });
+    return run(c, "fmi3SetDebugLogging", fmu::fmi3::kDebugLoggingStates,
+               [&](Fmi3Instance&, Instance& i) { return i.setDebugLogging(loggingOn, nCategories, categories); });
 }
 
 fmi3Instance fmi3InstantiateCoSimulation(fmi3String instanceName, fmi3String instantiationToken, fmi3String,
@@ -298,33 +254,34 @@ fmi3Instance fmi3InstantiateCoSimulation(fmi3String instanceName, fmi3String ins
     try {
         auto self = std::make_unique<Fmi3Instance>();
         self->environment = instanceEnvironment;
-        self->logMessage = logMessage;
         self->eventModeUsed = eventModeUsed;
         self->earlyReturnAllowed = earlyReturnAllowed;
-        const fmi2CallbackFunctions callbacks = callbacksOf(*self);
+        const fmu::Logger logger = loggerOf(instanceEnvironment, logMessage);
         const char* f = "fmi3InstantiateCoSimulation";
         if (!instanceName || instanceName[0] == '\0') {
-            fmu::logWithoutInstance(&callbacks, instanceName, "%s: missing instance name", f);
+            fmu::logWithoutInstance(logger, "%s: missing instance name", f);
             return nullptr;
         }
         if (!instantiationToken || std::strcmp(instantiationToken, fmu::modelGuid()) != 0) {
-            fmu::logWithoutInstance(&callbacks, instanceName,
+            fmu::logWithoutInstance(logger,
                                     "%s: wrong instantiationToken \"%s\"; this binary has \"%s\" "
                                     "(modelDescription.xml and binary come from different builds)",
                                     f, instantiationToken ? instantiationToken : "(null)", fmu::modelGuid());
             return nullptr;
         }
         self->intermediateUpdate = intermediateUpdate;
-        self->instance = std::make_unique<Instance>(instanceName, callbacks, loggingOn, "fmi3");
+        self->instance = std::make_unique<Instance>(logger, loggingOn, kNames);
+        self->instance->log(Status::OK, fmu::LogAll, "%s: instance \"%s\" of %s (instantiationToken %s)", f,
+                            instanceName, self->instance->model().info().modelName, fmu::modelGuid());
         // Intermediate update (providesIntermediateUpdate): the outputs, the arrays and time may be
         // read inside the callback; nothing may be set (intermediateVariableSetRequested = false).
         for (size_t k = 0; k < nRequiredIntermediateVariables; ++k) {
             const fmi3ValueReference vr = requiredIntermediateVariables ? requiredIntermediateVariables[k] : 0;
             const fmu::Variable* v = self->instance->model().find(vr);
-            const bool readable = vr == fmu::kFmi3TimeValueReference || (v && v->causality == fmu::Causality::Output) ||
-                                  findArray(self->instance->model(), vr);
+            const bool readable = vr == kTimeValueReference || (v && v->causality == fmu::Causality::Output) ||
+                                  self->instance->model().findArray(vr);
             if (!requiredIntermediateVariables || !readable) {
-                fmu::logWithoutInstance(&callbacks, instanceName,
+                fmu::logWithoutInstance(logger,
                                         "%s: required intermediate variable (vr %u) is not an output of this FMU "
                                         "(the intermediate update variables are the outputs, the arrays and time)",
                                         f, vr);
@@ -354,52 +311,42 @@ fmi3Instance fmi3InstantiateCoSimulation(fmi3String instanceName, fmi3String ins
 fmi3Instance fmi3InstantiateModelExchange(fmi3String instanceName, fmi3String, fmi3String, fmi3Boolean, fmi3Boolean,
                                           fmi3InstanceEnvironment instanceEnvironment,
                                           fmi3LogMessageCallback logMessage) {
-    if (logMessage)
-        logMessage(instanceEnvironment, fmi3Error, "logStatusError",
-                   (std::string("fmi3InstantiateModelExchange (") + (instanceName ? instanceName : "") +
-                    "): " + kModelExchange)
-                       .c_str());
-    return nullptr;
+    return refuse(instanceEnvironment, logMessage, "fmi3InstantiateModelExchange", instanceName, kModelExchange);
 }
 
 fmi3Instance fmi3InstantiateScheduledExecution(fmi3String instanceName, fmi3String, fmi3String, fmi3Boolean,
                                                fmi3Boolean, fmi3InstanceEnvironment instanceEnvironment,
                                                fmi3LogMessageCallback logMessage, fmi3ClockUpdateCallback,
                                                fmi3LockPreemptionCallback, fmi3UnlockPreemptionCallback) {
-    if (logMessage)
-        logMessage(instanceEnvironment, fmi3Error, "logStatusError",
-                   (std::string("fmi3InstantiateScheduledExecution (") + (instanceName ? instanceName : "") +
-                    "): " + kScheduled)
-                       .c_str());
-    return nullptr;
+    return refuse(instanceEnvironment, logMessage, "fmi3InstantiateScheduledExecution", instanceName, kScheduled);
 }
 
 void fmi3FreeInstance(fmi3Instance c) {
     std::unique_ptr<Fmi3Instance> owned(static_cast<Fmi3Instance*>(c));
-    if (owned) owned->instance->logFreeInstance();
+    if (owned) owned->instance->log(Status::OK, fmu::LogAll, "fmi3FreeInstance");
 }
 
 fmi3Status fmi3EnterInitializationMode(fmi3Instance c, fmi3Boolean toleranceDefined, fmi3Float64 tolerance,
                                        fmi3Float64 startTime, fmi3Boolean stopTimeDefined, fmi3Float64 stopTime) {
     return run(c, "fmi3EnterInitializationMode", fmu::Instantiated, [&](Fmi3Instance&, Instance& i) {
-        const fmi2Status status = i.setupExperiment(startTime, toleranceDefined, tolerance, stopTimeDefined, stopTime);
-        return status == fmi2OK ? i.enterInitializationMode() : status;
+        const Status status = i.setupExperiment(startTime, toleranceDefined, tolerance, stopTimeDefined, stopTime);
+        return status == Status::OK ? i.enterInitializationMode() : status;
     });
 }
 
 fmi3Status fmi3ExitInitializationMode(fmi3Instance c) {
     return run(c, "fmi3ExitInitializationMode", fmu::InitializationMode, [](Fmi3Instance& self, Instance& i) {
-        const fmi2Status status = i.exitInitializationMode();
-        if (status == fmi2OK && self.eventModeUsed) i.enterState(fmu::EventMode);
+        const Status status = i.exitInitializationMode();
+        if (status == Status::OK && self.eventModeUsed) i.enterState(fmu::EventMode);
         return status;
     });
 }
 
 fmi3Status fmi3EnterEventMode(fmi3Instance c) {
-    return run(c, "fmi3EnterEventMode", fmu::StepMode, [](Fmi3Instance& self, Instance& i) {
+    return run(c, "fmi3EnterEventMode", fmu::fmi3::StepMode, [](Fmi3Instance& self, Instance& i) {
         if (!self.eventModeUsed) return i.fail("event mode was not requested at instantiation (eventModeUsed = false)");
         i.enterState(fmu::EventMode);
-        return fmi2OK;
+        return Status::OK;
     });
 }
 
@@ -409,8 +356,7 @@ fmi3Status fmi3Terminate(fmi3Instance c) {
 }
 
 fmi3Status fmi3Reset(fmi3Instance c) {
-    return run(c, "fmi3Reset", fmu::kResetStates | fmu::EventMode | fmu::ConfigurationMode,
-               [](Fmi3Instance&, Instance& i) { return i.reset(); });
+    return run(c, "fmi3Reset", fmu::fmi3::kResetStates, [](Fmi3Instance&, Instance& i) { return i.reset(); });
 }
 
 // ---------------------------------------------------------------------------------------------
@@ -467,29 +413,27 @@ fmi3Status fmi3GetVariableDependencies(fmi3Instance c, fmi3ValueReference, size_
 
 fmi3Status fmi3GetFMUState(fmi3Instance c, fmi3FMUState* state) {
     return run(c, "fmi3GetFMUState", fmu::fmi3::kFMUStateStates,
-               [&](Fmi3Instance&, Instance& i) { return i.getFMUstate(state); });
+               [&](Fmi3Instance&, Instance& i) { return i.getState(state); });
 }
 fmi3Status fmi3SetFMUState(fmi3Instance c, fmi3FMUState state) {
     return run(c, "fmi3SetFMUState", fmu::fmi3::kFMUStateStates,
-               [&](Fmi3Instance&, Instance& i) { return i.setFMUstate(state); });
+               [&](Fmi3Instance&, Instance& i) { return i.setState(state); });
 }
 fmi3Status fmi3FreeFMUState(fmi3Instance c, fmi3FMUState* state) {
     return run(c, "fmi3FreeFMUState", fmu::fmi3::kFMUStateStates,
-               [&](Fmi3Instance&, Instance& i) { return i.freeFMUstate(state); });
+               [&](Fmi3Instance&, Instance& i) { return i.freeState(state); });
 }
 fmi3Status fmi3SerializedFMUStateSize(fmi3Instance c, fmi3FMUState state, size_t* size) {
     return run(c, "fmi3SerializedFMUStateSize", fmu::fmi3::kFMUStateStates,
-               [&](Fmi3Instance&, Instance& i) { return i.serializedFMUstateSize(state, size); });
+               [&](Fmi3Instance&, Instance& i) { return i.serializedStateSize(state, size); });
 }
 fmi3Status fmi3SerializeFMUState(fmi3Instance c, fmi3FMUState state, fmi3Byte serialized[], size_t size) {
-    return run(c, "fmi3SerializeFMUState", fmu::fmi3::kFMUStateStates, [&](Fmi3Instance&, Instance& i) {
-        return i.serializeFMUstate(state, reinterpret_cast<fmi2Byte*>(serialized), size);
-    });
+    return run(c, "fmi3SerializeFMUState", fmu::fmi3::kFMUStateStates,
+               [&](Fmi3Instance&, Instance& i) { return i.serializeState(state, serialized, size); });
 }
 fmi3Status fmi3DeserializeFMUState(fmi3Instance c, const fmi3Byte serialized[], size_t size, fmi3FMUState* state) {
-    return run(c, "fmi3DeserializeFMUState", fmu::fmi3::kFMUStateStates, [&](Fmi3Instance&, Instance& i) {
-        return i.deSerializeFMUstate(reinterpret_cast<const fmi2Byte*>(serialized), size, state);
-    });
+    return run(c, "fmi3DeserializeFMUState", fmu::fmi3::kFMUStateStates,
+               [&](Fmi3Instance&, Instance& i) { return i.deserializeState(serialized, size, state); });
 }
 
 fmi3Status fmi3GetDirectionalDerivative(fmi3Instance c, const fmi3ValueReference[], size_t, const fmi3ValueReference[],
@@ -509,14 +453,14 @@ fmi3Status fmi3EnterConfigurationMode(fmi3Instance c) {
         if (i.model().structuralParameters().empty())
             return i.fail("this FMU has no structural parameters to configure");
         i.enterState(fmu::ConfigurationMode);
-        return fmi2OK;
+        return Status::OK;
     });
 }
 
 fmi3Status fmi3ExitConfigurationMode(fmi3Instance c) {
     return run(c, "fmi3ExitConfigurationMode", fmu::ConfigurationMode, [](Fmi3Instance&, Instance& i) {
         i.enterState(fmu::Instantiated);
-        return fmi2OK;
+        return Status::OK;
     });
 }
 
@@ -574,14 +518,14 @@ fmi3Status fmi3UpdateDiscreteStates(fmi3Instance c, fmi3Boolean* discreteStatesN
         *discreteStatesNeedUpdate = *terminateSimulation = *nominalsChanged = *valuesChanged = fmi3False;
         *nextEventTimeDefined = fmi3False;
         *nextEventTime = 0.0;
-        return fmi2OK;
+        return Status::OK;
     });
 }
 
 fmi3Status fmi3EnterStepMode(fmi3Instance c) {
     return run(c, "fmi3EnterStepMode", fmu::EventMode, [](Fmi3Instance&, Instance& i) {
-        i.enterState(fmu::StepMode);
-        return fmi2OK;
+        i.enterState(fmu::fmi3::StepMode);
+        return Status::OK;
     });
 }
 
@@ -622,9 +566,9 @@ fmi3Status fmi3GetNumberOfContinuousStates(fmi3Instance c, size_t*) {
 
 fmi3Status fmi3GetOutputDerivatives(fmi3Instance c, const fmi3ValueReference vrs[], size_t nvr,
                                     const fmi3Int32 orders[], fmi3Float64 values[], size_t nValues) {
-    return run(c, "fmi3GetOutputDerivatives", fmu::StepMode | fmu::Terminated, [&](Fmi3Instance&, Instance& i) {
+    return run(c, "fmi3GetOutputDerivatives", fmu::fmi3::StepMode | fmu::Terminated, [&](Fmi3Instance&, Instance& i) {
         if (nValues != nvr) return i.fail("nValues = %zu, but %zu value references of scalars", nValues, nvr);
-        return i.getRealOutputDerivatives(vrs, nvr, orders, values);
+        return i.getOutputDerivatives(vrs, nvr, orders, values);
     });
 }
 
@@ -632,22 +576,22 @@ fmi3Status fmi3GetOutputDerivatives(fmi3Instance c, const fmi3ValueReference vrs
 // event happens (PlateImpact: the contact set becomes non-empty or empty), at that grid time.
 fmi3Status fmi3DoStep(fmi3Instance c, fmi3Float64 t, fmi3Float64 h, fmi3Boolean, fmi3Boolean* eventHandlingNeeded,
                       fmi3Boolean* terminateSimulation, fmi3Boolean* earlyReturn, fmi3Float64* lastSuccessfulTime) {
-    return run(c, "fmi3DoStep", fmu::StepMode, [&](Fmi3Instance& self, Instance& i) {
+    return run(c, "fmi3DoStep", fmu::fmi3::StepMode, [&](Fmi3Instance& self, Instance& i) {
         if (!eventHandlingNeeded || !terminateSimulation || !earlyReturn || !lastSuccessfulTime)
             return i.fail("the output arguments must not be NULL");
         *eventHandlingNeeded = *terminateSimulation = *earlyReturn = fmi3False;
         bool atEvent = false;
-        const fmi2Status status = i.doStep(t, h, self.earlyReturnAllowed, &atEvent);
+        const Status status = i.doStep(t, h, self.earlyReturnAllowed, &atEvent);
         *lastSuccessfulTime = i.currentTime();
-        if (status != fmi2OK) return status;
+        if (status != Status::OK) return status;
         // Early: at an event of the model, or where the master's intermediate update asked.
         const bool early = (t + h) - *lastSuccessfulTime > kEarlyTolerance * std::fabs(h);
         *earlyReturn = early;
         *eventHandlingNeeded = atEvent && self.eventModeUsed;
         if (early)
-            i.log(fmi2OK, fmu::LogAll, "fmi3DoStep: early return at t = %.17g (%s; the step asked for %.17g)",
+            i.log(Status::OK, fmu::LogAll, "fmi3DoStep: early return at t = %.17g (%s; the step asked for %.17g)",
                   *lastSuccessfulTime, atEvent ? "an event" : "asked by the intermediate update", t + h);
-        return fmi2OK;
+        return Status::OK;
     });
 }
 
