@@ -1,7 +1,7 @@
 """The examples on a new user's path (issue 40): a missing FMU is one line on stderr and a
 non-zero exit, not a traceback or a cluster's worker errors; no example writes into a tracked
 folder by default; `--quick`'s help names every setting it changes; the README's snippets write
-only where git ignores. examples/system_model.py is another engineer's file and is not covered."""
+only where git ignores. demos/system_model.py is not covered."""
 
 import ast
 import re
@@ -15,13 +15,13 @@ import pytest
 REPO = Path(__file__).resolve().parent.parent
 EXAMPLES = REPO / "examples"
 SCRIPTS = [
-    "animate.py",
-    "default_scene.py",
-    "frequency_response.py",
-    "input_accuracy.py",
-    "paper_scenes.py",
-    "shaker.py",
-    "sine_sweep.py",
+    "examples/animate.py",
+    "examples/default_scene.py",
+    "examples/frequency_response.py",
+    "examples/input_accuracy.py",
+    "examples/paper_scenes.py",
+    "demos/shaker.py",
+    "examples/sine_sweep.py",
 ]
 
 
@@ -30,7 +30,7 @@ def git(*args):
 
 
 def main_function(script):
-    tree = ast.parse((EXAMPLES / script).read_text())
+    tree = ast.parse((REPO / script).read_text())
     return next(n for n in tree.body if isinstance(n, ast.FunctionDef) and n.name == "main")
 
 
@@ -68,12 +68,12 @@ def quick_changes(script):
 @pytest.mark.parametrize("script", SCRIPTS)
 def test_missing_fmu_is_one_line_and_a_failure(script, tmp_path):
     missing = tmp_path / "no" / "PlateImpact.fmu"
-    cmd = [sys.executable, str(EXAMPLES / script), "--quick", "--fmu", str(missing), "--out", str(tmp_path / "o")]
+    cmd = [sys.executable, str(REPO / script), "--quick", "--fmu", str(missing), "--out", str(tmp_path / "o")]
     r = subprocess.run(cmd, capture_output=True, text=True, timeout=120, cwd=tmp_path)
     assert r.returncode != 0, f"{script} exited 0 without its FMU"
     err = r.stderr.strip().splitlines()
     assert len(err) == 1 and "Traceback" not in r.stderr, f"{script}: {r.stderr[-1500:]}"
-    assert "not found" in err[0] and script.removesuffix(".py") in err[0], err[0]
+    assert "not found" in err[0] and Path(script).stem in err[0], err[0]
     assert not (tmp_path / "o").exists() or not any((tmp_path / "o").iterdir())
 
 
@@ -100,7 +100,7 @@ def test_quick_help_names_what_it_changes(script):
 
 def test_quick_changes_are_seen():
     # the AST reader finds what --quick sets (a reader that found nothing would pass everything)
-    assert {"amplitude", "f_start", "nx"} <= quick_changes("sine_sweep.py")
+    assert {"amplitude", "f_start", "nx"} <= quick_changes("examples/sine_sweep.py")
 
 
 def test_readme_snippets_write_only_ignored_files():
@@ -122,7 +122,7 @@ def test_shaker_quick_compares_envelopes_and_plots_data(fmu_path, tmp_path):
     import importlib.util
 
     pytest.importorskip("libcosimpy.CosimExecution")
-    spec = importlib.util.spec_from_file_location("shaker_quick", EXAMPLES / "shaker.py")
+    spec = importlib.util.spec_from_file_location("shaker_quick", REPO / "demos" / "shaker.py")
     shaker = importlib.util.module_from_spec(spec)
     spec.loader.exec_module(shaker)
     shaker.ENVELOPE.update(shaker.QUICK_ENVELOPE)  # what main does for --quick

@@ -111,7 +111,15 @@ def replay(platform, work: Path, everything=True):
         z.extractall(work / "fmu")
     exe = work / ("experiment_driver.exe" if platform.endswith("windows") else "experiment_driver")
     build = subprocess.run(
-        [*compiler, "-I", str(ROOT / "fmu" / "fmi3"), str(HERE / "experiment_driver.c"), "-o", str(exe), *link],
+        [
+            *compiler,
+            "-I",
+            str(ROOT / "fmu" / "headers" / "fmi3"),
+            str(HERE / "experiment_driver.c"),
+            "-o",
+            str(exe),
+            *link,
+        ],
         capture_output=True,
         text=True,
     )

@@ -31,7 +31,16 @@ def setup(fmu_path, tmp_path_factory):
     work = tmp_path_factory.mktemp("golden_c")
     driver = work / "golden_driver"
     out = subprocess.run(
-        [cc, "-O2", "-I", str(HERE.parent / "fmu" / "fmi2"), str(HERE / "golden_driver.c"), "-o", str(driver), "-ldl"],
+        [
+            cc,
+            "-O2",
+            "-I",
+            str(HERE.parent / "fmu" / "headers" / "fmi2"),
+            str(HERE / "golden_driver.c"),
+            "-o",
+            str(driver),
+            "-ldl",
+        ],
         capture_output=True,
         text=True,
     )

@@ -5,7 +5,7 @@ initialize again -> step -> terminate -> free, for the Argyris, FVS and reduced 
 configurations on 4 x 2 cells. No invalid access, no use of uninitialised memory, no definite
 or indirect leak; the driver itself checks that restored and reset runs repeat bit for bit.
 
-The driver is compiled here (cc, the FMI headers of fmu/fmi2) and loads the FMU under test
+The driver is compiled here (cc, the FMI headers of fmu/headers/fmi2) and loads the FMU under test
 ($PLATEIMPACT_FMU or build/PlateImpact.fmu) from its unzipped folder, as importers do. The
 sanitizer build cannot run under valgrind: it is skipped there (test.sh runs the sanitizer stage
 without this file).
@@ -21,7 +21,7 @@ import pytest
 
 HERE = Path(__file__).resolve().parent
 DRIVER_SOURCE = HERE / "fmu_driver.c"
-FMI_HEADERS = HERE.parent / "fmu" / "fmi2"
+FMI_HEADERS = HERE.parent / "fmu" / "headers" / "fmi2"
 STEPS = 6  # communication steps of 1 ms (10 internal steps each) per configuration
 
 # Reports that are not PlateImpact's, each matched narrowly:

@@ -36,7 +36,7 @@ constexpr double kEarlyTolerance = 1e-9;
 
 // The functions the core's messages name. The size message has always named FMI 2.0's
 // function, in FMI 3.0 too; kept so that the messages stay as they were.
-constexpr fmu::ApiNames kNames = {"fmi3ExitInitializationMode", "fmi2SerializedFMUstateSize"};
+constexpr fmu::ApiNames kNames = {"fmi3ExitInitializationMode", "fmi3SerializedFMUStateSize"};
 
 // Status and fmi3Status list the same outcomes in the same order.
 fmi3Status toFmi3(Status status) {

@@ -478,7 +478,7 @@ namespace {
 constexpr double kFormat = 17.0;  // the condensed schemes' state, version 1
 constexpr std::size_t kModes = 0, kRows = 1;
 
-const auto members = [](auto& s, auto& v) {
+const auto condensedMembers = [](auto& s, auto& v) {
     for (auto* x : {&s.q, &s.qPrev, &s.qPrev2, &s.momentum}) v.vector(*x, kModes, "modal coordinate");
     for (auto* x : {&s.force, &s.forcePrev, &s.forcePrev2}) v.vector(*x, kRows, "contact force");
     for (auto* x : {&s.z, &s.zPrev, &s.zPrev2}) v.real(*x, "z");
@@ -502,10 +502,12 @@ const auto members = [](auto& s, auto& v) {
 
 }  // namespace
 
-std::vector<double> CondensedScheme::serialize() const { return archive::save(state_, kFormat, sizes(), members); }
+std::vector<double> CondensedScheme::serialize() const {
+    return archive::save(state_, kFormat, sizes(), condensedMembers);
+}
 
 CondensedState CondensedScheme::deserialize(const std::vector<double>& data) const {
-    CondensedState s = archive::load<CondensedState>(data, kFormat, sizes(), members);
+    CondensedState s = archive::load<CondensedState>(data, kFormat, sizes(), condensedMembers);
     if (s.z < obstacles_.lower || s.z > obstacles_.upper)
         throw std::invalid_argument("corrupt state: clamp past an obstacle");
     return s;

@@ -17,7 +17,7 @@ constexpr double kFormatVersion = 3.0;
 // Sizes: 0 the coordinates n, 1 the contact vertices m, 2 the carried impulses per level.
 constexpr std::size_t kCoordinates = 0, kContacts = 1, kImpulses = 2;
 
-const auto members = [](auto& s, auto& v) {
+const auto newmarkMembers = [](auto& s, auto& v) {
     for (auto* x : {&s.w, &s.wPrev, &s.kw, &s.kwPrev, &s.wPrev2}) v.vector(*x, kCoordinates, "displacement");
     v.real(s.z, "z");
     v.real(s.zPrev, "z_prev");
@@ -53,16 +53,17 @@ std::vector<double> serialize(const NewmarkState& s) {
     return archive::save(s, kFormatVersion,
                          std::array<std::size_t, 3>{static_cast<std::size_t>(s.w.size()), s.contactState.size(),
                                                     static_cast<std::size_t>(s.contactImpulse.size())},
-                         members);
+                         newmarkMembers);
 }
 
 NewmarkState deserialize(const std::vector<double>& in, Eigen::Index n, std::size_t m, std::size_t impulses) {
-    return archive::load<NewmarkState>(in, kFormatVersion,
-                                       std::array<std::size_t, 3>{static_cast<std::size_t>(n), m, impulses}, members);
+    return archive::load<NewmarkState>(
+        in, kFormatVersion, std::array<std::size_t, 3>{static_cast<std::size_t>(n), m, impulses}, newmarkMembers);
 }
 
 std::vector<std::pair<std::string, std::size_t>> stateLayout(Eigen::Index n, std::size_t m, std::size_t impulses) {
-    return archive::layout<NewmarkState>(std::array<std::size_t, 3>{static_cast<std::size_t>(n), m, impulses}, members);
+    return archive::layout<NewmarkState>(std::array<std::size_t, 3>{static_cast<std::size_t>(n), m, impulses},
+                                         newmarkMembers);
 }
 
 }  // namespace plate
