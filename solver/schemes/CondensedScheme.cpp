@@ -421,33 +421,17 @@ PlateOutputs CondensedScheme::outputs(bool port) const {
     o.freeEdgeMid = stepper.rowHeight(rows_.probes[2]);
     o.energy = stepper.energy();
     o.energyDissipated = 0.0;  // the scheme loses nothing at impacts (T.17d)
-    o.energyInput = st.energyInput;
-    o.energyDamped = st.energyDamped;
-    o.maxKktResidual = st.maxKktResidual;
-    o.contactVertices = st.contactRows;
-    o.qpIterationsTotal = double(st.lcpSolves);
-    o.qpIterationsMax = st.gradientIterationsMax;
-    o.impacts[0] = double(st.impactCount[0]);
-    o.impacts[1] = double(st.impactCount[1]);
+    setLedger(o, {st.energyInput, st.energyDamped, st.maxKktResidual, st.contactRows, st.lcpSolves,
+                  st.gradientIterationsMax, st.impactCount});
     if (!port) return o;
     // The port at t_{n−½} (§17): what the plate exerts on the clamp is the opposite of the clamp's
     // force on it. Velocities at t_n (second-order backward), accelerations at t_{n−1}.
-    const double dt = stepper.dt(), dt2 = dt * dt;
-    const auto velocity = [dt](double now, double prev, double prev2) {
-        return (3.0 * now - 4.0 * prev + prev2) / (2.0 * dt);
-    };
     o.clampForce = -st.clampForce;
     o.clampMoment = -st.clampMoment;
     if (st.step == 0) stepper.initialReaction(o.clampForce, o.clampMoment);  // no step yet (§17)
-    o.clampDisplacement = st.z;
-    o.clampVelocity = velocity(st.z, st.zPrev, st.zPrev2);
-    o.clampAcceleration = (st.z - 2.0 * st.zPrev + st.zPrev2) / dt2;
-    for (int k = 0; k < 3; ++k) {
-        const double now = stepper.rowHeight(rows_.probes[k], 0), prev = stepper.rowHeight(rows_.probes[k], 1),
-                     prev2 = stepper.rowHeight(rows_.probes[k], 2);
-        o.velocity[k] = velocity(now, prev, prev2);
-        o.acceleration[k] = (now - 2.0 * prev + prev2) / dt2;
-    }
+    const double z[3] = {st.z, st.zPrev, st.zPrev2};
+    setPortKinematics(o, stepper.dt(),
+                      [&](int k, int level) { return k < 3 ? stepper.rowHeight(rows_.probes[k], level) : z[level]; });
     for (int k = 0; k < 2; ++k) {
         o.contactForce[k] = st.stepContactForce[k];
         o.contactImpulse[k] = st.contactImpulseSum[k];

@@ -300,14 +300,8 @@ PlateOutputs NewmarkScheme::outputs(bool port) const {
     }
     o.energy = energyCache_;
     o.energyDissipated = st.energyDissipated;
-    o.energyInput = st.energyInput;
-    o.energyDamped = st.energyDamped;
-    o.contactVertices = st.contactVertices;
-    o.maxKktResidual = st.maxKktResidual;
-    o.qpIterationsTotal = double(st.qpIterationsTotal);
-    o.qpIterationsMax = st.qpIterationsMax;
-    o.impacts[0] = double(st.impactCount[0]);
-    o.impacts[1] = double(st.impactCount[1]);
+    setLedger(o, {st.energyInput, st.energyDamped, st.maxKktResidual, st.contactVertices, st.qpIterationsTotal,
+                  st.qpIterationsMax, st.impactCount});
     if (port) portOutputs(o);
     return o;
 }
@@ -329,19 +323,10 @@ void NewmarkScheme::portOutputs(PlateOutputs& o) const {
     o.clampMoment = -(clamped.totalMassMoment * zAcc + rotationAcc - pBeta * clamped.loadMoment - st.stepContactMoment);
     // Velocities at t_{n+1} (second order, backward: the outputs' time), accelerations at t_n
     // (the scheme's own central difference, the level of the forces).
-    const auto velocity = [dt](double now, double prev, double prev2) {
-        return (3.0 * now - 4.0 * prev + prev2) / (2.0 * dt);
-    };
-    o.clampDisplacement = st.z;
-    o.clampVelocity = velocity(st.z, st.zPrev, st.zPrev2);
-    o.clampAcceleration = zAcc;
     const PointProbe* probes[3] = {&corner1_, &corner2_, &freeEdgeMid_};
-    for (int k = 0; k < 3; ++k) {
-        const double now = st.z + (*probes[k])(st.w), prev = st.zPrev + (*probes[k])(st.wPrev),
-                     prev2 = st.zPrev2 + (*probes[k])(st.wPrev2);
-        o.velocity[k] = velocity(now, prev, prev2);
-        o.acceleration[k] = (now - 2.0 * prev + prev2) / dt2;
-    }
+    const double z[3] = {st.z, st.zPrev, st.zPrev2};
+    const Eigen::VectorXd* w[3] = {&st.w, &st.wPrev, &st.wPrev2};
+    setPortKinematics(o, dt, [&](int k, int level) { return k < 3 ? z[level] + (*probes[k])(*w[level]) : z[level]; });
     if (st.step == 0) {  // no step yet: the initial static state's reaction (§14)
         o.clampForce = initialForce_;
         o.clampMoment = initialMoment_;

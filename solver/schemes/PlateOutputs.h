@@ -26,6 +26,42 @@ struct PlateOutputs {
     double velocity[3] = {0, 0, 0}, acceleration[3] = {0, 0, 0};  // corner1, corner2, freeEdgeMid
 };
 
+// What every scheme reports alike, written once: the ledger and counters of its state at t_n.
+struct Ledger {
+    double energyInput, energyDamped, maxKktResidual;
+    int contacts;
+    long long solves;  // QP iterations (Newmark) or contact solves (the condensed schemes)
+    int iterationsMax;
+    const long long (&impacts)[2];
+};
+inline void setLedger(PlateOutputs& o, const Ledger& l) {
+    o.energyInput = l.energyInput;
+    o.energyDamped = l.energyDamped;
+    o.maxKktResidual = l.maxKktResidual;
+    o.contactVertices = l.contacts;
+    o.qpIterationsTotal = double(l.solves);
+    o.qpIterationsMax = l.iterationsMax;
+    o.impacts[0] = double(l.impacts[0]);
+    o.impacts[1] = double(l.impacts[1]);
+}
+
+// The port's kinematics (docs/theory.md §14, §17), written once: `height(k, level)` is the height
+// of output point k (0 corner_1, 1 corner_2, 2 free_edge_mid, 3 the clamp) at the newest level 0
+// and the two before it; the velocity is the second-order backward difference at level 0, the
+// acceleration the central difference at level 1.
+template <class Height>
+void setPortKinematics(PlateOutputs& o, double dt, Height&& height) {
+    const double dt2 = dt * dt;
+    double* velocity[4] = {&o.velocity[0], &o.velocity[1], &o.velocity[2], &o.clampVelocity};
+    double* acceleration[4] = {&o.acceleration[0], &o.acceleration[1], &o.acceleration[2], &o.clampAcceleration};
+    for (int k = 0; k < 4; ++k) {
+        const double now = height(k, 0), prev = height(k, 1), prev2 = height(k, 2);
+        *velocity[k] = (3.0 * now - 4.0 * prev + prev2) / (2.0 * dt);
+        *acceleration[k] = (now - 2.0 * prev + prev2) / dt2;
+    }
+    o.clampDisplacement = height(3, 0);
+}
+
 // How an output passes between grid points (PlateSimulation::outputs).
 enum class Between {
     Interpolated,  // a quantity: linear interpolation between the grid points around t
