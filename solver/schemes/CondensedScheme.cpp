@@ -7,6 +7,7 @@
 #include <stdexcept>
 
 #include "base/Errors.h"
+#include "base/History.h"
 #include "base/StateArchive.h"
 #include "plate/PlateParameters.h"
 
@@ -334,12 +335,8 @@ void CondensedScheme::commit(double zNext, double pNext, double work, double dam
     forceNextZero_ = forceZero_[2];
     forceZero_ = {nextZero, forceZero_[0], forceZero_[1]};
     s.boundary = solves_ > 0 ? boundaryNext_ : 0.0;
-    s.zPrev2 = s.zPrev;
-    s.zPrev = s.z;
-    s.z = zNext;
-    s.pPrev2 = s.pPrev;
-    s.pPrev = s.p;
-    s.p = pNext;
+    advanceLevels(s.z, s.zPrev, s.zPrev2, zNext);
+    advanceLevels(s.p, s.pPrev, s.pPrev2, pNext);
     ++s.step;
     if (solves_ > 0) {
         s.rowState.swap(rowTrial_);

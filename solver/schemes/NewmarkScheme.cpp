@@ -5,6 +5,7 @@
 #include <limits>
 #include <sstream>
 
+#include "base/History.h"
 #include "plate/ModalPlate.h"
 #include "plate/PlateParameters.h"
 #include "plate/Spectrum.h"
@@ -239,17 +240,11 @@ void NewmarkScheme::commit(double zNext, double pNext, double sNext, double tNex
     s.w.swap(wNext_);
     s.kwPrev.swap(s.kw);
     s.kw.swap(kwNext_);
-    s.zPrev2 = s.zPrev;
-    s.zPrev = s.z;
-    s.z = zNext;
-    s.pPrev2 = s.pPrev;
-    s.pPrev = s.p;
-    s.p = pNext;
+    advanceLevels(s.z, s.zPrev, s.zPrev2, zNext);
+    advanceLevels(s.p, s.pPrev, s.pPrev2, pNext);
     s.pressureWorkPrev = s.pressureWork;
     s.pressureWork = sNext;
-    s.baseCouplingPrev2 = s.baseCouplingPrev;
-    s.baseCouplingPrev = s.baseCoupling;
-    s.baseCoupling = tNext;
+    advanceLevels(s.baseCoupling, s.baseCouplingPrev, s.baseCouplingPrev2, tNext);
     for (int k = 0; k < 2; ++k) {  // the port (§14)
         const double force = contact.sum[k] / dt2;
         s.impactCount[k] += force != 0.0 && s.stepContactForce[k] == 0.0;  // a contact onset
