@@ -94,7 +94,12 @@ public:
     const std::vector<fmu::Variable>& variables() const override { return plateVariables(); }
 
     double get(const fmu::Variable& v) const override { return getValue(values_, v); }
-    void set(const fmu::Variable& v, double x) override { setValue(values_, v, x); }
+    void set(const fmu::Variable& v, double x) override {
+        setValue(values_, v, x);
+        // Set while the simulation runs (not the start value of initialization mode): the drive is driven.
+        if (simulation_ && v.causality == fmu::Causality::Input && values_.inputPort(v.vr) == &drivePort())
+            driveSet_ = true;
+    }
 
     // FMI 3.0: the vertex displacements as an array, early return at contact onset and release.
     const std::vector<fmu::StructuralParameter>& structuralParameters() const override {
@@ -156,6 +161,16 @@ public:
         refreshOutputs();
         const plate::PlateParameters& p = values_.parameters;
         trace(format("simulation built (nx = %g, ny = %g, dt = %g s)", p.nx, p.ny, p.dt));
+        warnOfCoarseStep();
+        driveSet_ = interpolationWarned_ = false;
+    }
+    void terminate() override {
+        // A drive the master never set: the clamp stayed where it started (a CSV column missing or
+        // misspelled runs to the end without an error otherwise).
+        if (!driveSet_ && simulation_->stepCount() > 0 && !carried())
+            warn(std::string(driveName()) +
+                 " (base_drive) was never set during this run: the clamp stayed at its start value, so only the "
+                 "load moved the plate; if an input file or a connection should drive it, check the input's name");
     }
     bool built() const override { return simulation_ != nullptr; }
     void drop() override {
@@ -183,6 +198,14 @@ public:
                 "the clamp is carried inside the FMU, which takes communication steps on the grid of dt only",
                 h, values_.parameters.dt));
         const double now = simulation_->time();
+        if (!plan.endsOnGrid && plan.steps < 2 && !interpolationWarned_) {
+            interpolationWarned_ = true;
+            warn(
+                format("communicationStepSize h = %.17g is shorter than two internal steps of dt = %g: the outputs "
+                       "are interpolated between the grid points around t (docs/theory.md §15); for the scheme's own "
+                       "values take h a whole multiple of dt, or a smaller dt",
+                       h, values_.parameters.dt));
+        }
         for (InputPort* port : ports()) port->beginStep(now);
         try {
             const plate::InputSignal base = clampSignal(now, plan.span);
@@ -287,6 +310,33 @@ private:
                 &values_.driveForce,       &values_.tlmWaveIn};
     }
     bool carried() const { return values_.baseDrive == BaseDrive::Force || values_.baseDrive == BaseDrive::Tlm; }
+    // The motion input base_drive chooses (carried clamps: their drive).
+    InputPort& drivePort() {
+        switch (values_.baseDrive) {
+            case BaseDrive::Velocity: return values_.baseVelocity;
+            case BaseDrive::Acceleration: return values_.baseAcceleration;
+            case BaseDrive::Force: return values_.driveForce;
+            case BaseDrive::Tlm: return values_.tlmWaveIn;
+            case BaseDrive::Displacement: break;
+        }
+        return values_.baseDisplacement;
+    }
+    const char* driveName() const {
+        static const char* const names[] = {
+            "", "base_displacement", "base_velocity", "base_acceleration", "drive_force", "tlm_wave_in"};
+        return names[static_cast<int>(values_.baseDrive)];
+    }
+    // dt against the plate's first period (plate::PlateParameters::firstFrequencyEstimate; dt above
+    // T1/2 is refused by the solver): fewer than 20 steps per period give visibly wrong amplitudes
+    // and phases. Once per build.
+    void warnOfCoarseStep() {
+        const plate::PlateParameters& p = values_.parameters;
+        const double period = 1.0 / p.firstFrequencyEstimate();
+        if (p.dt <= period / 20.0) return;
+        warn(format("dt = %g s is %.3g of the plate's first period T1 = %.4g s", p.dt, p.dt / period, period) +
+             " (fewer than 20 steps per period): the outputs resolve the first mode only roughly; take dt <= " +
+             format("%.4g s (T1/20) for accurate results", period / 20.0, 0.0));
+    }
     // A clamp moved by one input only (docs/theory.md §16–18): a force-driven or line-carried clamp
     // whose motion inputs are set as well, or a motion-driven one given a force, is refused.
     void requireOneDrive() const {
@@ -397,6 +447,8 @@ private:
     double simulationBase0_ = 0.0;  // base displacement the simulation was built with
     // The clamp at the communication time when a velocity or an acceleration drives it.
     double clampPosition_ = 0.0, clampVelocity_ = 0.0;
+    bool driveSet_ = false;  // the drive input was set during the run (warned at terminate otherwise)
+    bool interpolationWarned_ = false;  // the warning of steps shorter than two grid steps, once
     bool stopAtContactChange_ = false;  // inside doStepUntilEvent
     bool endedAtEvent_ = false;  // the last step of doStepUntilEvent ended at a contact change
     bool returnRequested_ = false;  // ... or where the master's intermediate update asked

@@ -113,9 +113,9 @@ Status Instance::fail(const char* format, ...) {
 Instance::Instance(Logger logger, bool loggingOn, ApiNames names)
     : logger_(std::move(logger)), names_(names), model_(createModel()) {
     // As the Reference FMUs: errors are logged unless switched off with setDebugLogging;
-    // warnings and the call trace follow loggingOn.
+    // so are warnings (a computed result that is likely not what was meant); the call trace follows loggingOn.
     logCategories_[LogStatusError] = true;
-    logCategories_[LogStatusWarning] = loggingOn;
+    logCategories_[LogStatusWarning] = true;  // the model's plausibility warnings: results the user must see
     logCategories_[LogAll] = loggingOn;
     logCategories_[LogInfo] = loggingOn;
     attachTrace();
@@ -129,6 +129,9 @@ void Instance::attachTrace() {
     };
     model_->inform = [this](const std::string& message) {
         log(Status::OK, LogInfo, "%s: %s", function_, message.c_str());
+    };
+    model_->warn = [this](const std::string& message) {
+        log(Status::Warning, LogStatusWarning, "%s: %s", function_, message.c_str());
     };
     if (!intermediateUpdate_) {
         model_->intermediateUpdate = nullptr;
@@ -206,6 +209,7 @@ Status Instance::exitInitializationMode() {
 }
 
 Status Instance::terminate() {
+    if (model_->built()) model_->terminate();
     state_ = Terminated;
     return Status::OK;
 }

@@ -157,6 +157,8 @@ public:
     virtual void drop() = 0;
     // Time since the start of the experiment.
     virtual double time() const = 0;
+    // The end of the run (terminate): what the model has to say about the run as a whole.
+    virtual void terminate() {}
     // One communication step [t, t + h] (t checked by the caller); throws ModelError.
     virtual void doStep(double t, double h) = 0;
 
@@ -194,6 +196,9 @@ public:
     // Where the model's information for the user goes (the instance's logInfo category): what
     // an initialization will cost and how far it is.
     std::function<void(const std::string&)> inform = [](const std::string&) {};
+    // Where the model's plausibility warnings go (the instance's logStatusWarning category, status
+    // Warning): a result that is computed but likely not what the user meant, once each.
+    std::function<void(const std::string&)> warn = [](const std::string&) {};
     // FMI 3.0 intermediate update, when the master gave the callback: the model calls it at each
     // internal grid point inside a communication step, standing there (time() and the outputs
     // of that point); it returns the time at which the master wants the step to end (HUGE_VAL:

@@ -31,6 +31,10 @@ void requireRange(const char* name, double value, const Range& r, const char* wh
 
 }  // namespace
 
+double PlateParameters::firstFrequencyEstimate() const {
+    return 1.8751 * 1.8751 / (2.0 * M_PI * length * length) * std::sqrt(bendingStiffness() / surfaceDensity());
+}
+
 void validate(const PlateParameters& p) {
     using namespace ranges;
     requireRange("length", p.length, kLength);
@@ -49,6 +53,18 @@ void validate(const PlateParameters& p) {
                      "when obstacle_upper_enabled (the plate starts at w = 0)");
     requireRange("dt", p.dt, kDt);
     requireRange("beta", p.beta, kBeta);
+    // Fewer than two steps per first period resolve nothing of the plate's motion (every output
+    // would be the static state or noise): refused, whatever the scheme. Finer than T1/20 for an
+    // accurate output: the FMU says so (fmu/binding/PlateModel.cpp).
+    const double period = 1.0 / p.firstFrequencyEstimate();
+    if (p.dt > 0.5 * period) {
+        std::ostringstream allowed;
+        allowed.precision(6);
+        allowed << "dt <= " << 0.5 * period << " s, half the plate's first period T1 = " << period
+                << " s (first mode about " << 1.0 / period << " Hz); dt <= T1/20 = " << period / 20.0
+                << " s for accurate outputs";
+        reject("dt", p.dt, allowed.str().c_str());
+    }
     requireRange("initial_load", p.initialLoad, kInitialLoad);
     requireRange("modes", p.modes, kModes, "(0 = full space)");
     if (p.mass != MassModel::Consistent && p.mass != MassModel::SingularP0 && p.mass != MassModel::SingularP1dg)

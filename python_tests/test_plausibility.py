@@ -1,0 +1,75 @@
+"""No silent wrong answer (issue 40, item 1): a result the FMU computes but that is likely not what
+the user meant comes with one warning (status fmi2Warning, category logStatusWarning, logged even
+with loggingOn = false, as errors are) naming the cause and the fix; a dt that resolves nothing
+of the plate's motion is refused with the allowed range. A normal run logs no warning.
+
+The yardstick is the first period of the clamped-free strip, T1 = 2π L² / (1.8751² √(D/ρh))
+(the default plate: 0.164 s; its first mode 5.95 Hz, T1 = 0.168 s)."""
+
+import math
+
+import pytest
+from fmpy.fmi1 import FMICallException
+from plate_fmu import PlateRun
+
+from plateimpact import PlateImpactFMU
+
+SMALL = dict(nx=4, ny=2)
+E, NU, T, RHO, L = 2.1e11, 0.3, 0.01, 7770.0, 1.2
+T1 = 2 * math.pi * L**2 / (1.8751**2 * math.sqrt(E * T**3 / (12 * (1 - NU**2)) / (RHO * T)))
+
+
+def warnings(run):
+    return [m for s, _, m in run.log if s == 1]
+
+
+def test_a_normal_run_warns_of_nothing(fmu_path):
+    with PlateRun(fmu_path, **SMALL, dt=1e-4) as run:
+        for _ in range(20):
+            run.step(1e-4, base=0.001)
+        run.close()
+        assert warnings(run) == []
+
+
+def test_a_dt_that_resolves_nothing_is_refused(fmu_path):
+    """dt = 1 s (inside dt's own range): a 1 s run returned all-zero outputs without a word."""
+    messages = []
+    with pytest.raises(FMICallException):
+        PlateImpactFMU(fmu_path, logger=lambda s, c, m: messages.append(m), **SMALL, dt=1.0)
+    text = " ".join(messages)
+    assert "invalid parameter dt = 1" in text and "first period" in text, text
+    bound = float(text.split("dt <= ")[1].split(" s")[0])
+    assert bound == pytest.approx(T1 / 2, rel=1e-4)  # the allowed range is the stated one
+    # just inside the bound: built (and warned of)
+    with PlateRun(fmu_path, **SMALL, dt=0.99 * bound) as run:
+        assert [m for m in warnings(run) if "first period" in m]
+
+
+def test_a_coarse_dt_is_warned_of_once(fmu_path):
+    dt = T1 / 10  # five times coarser than T1/20, allowed
+    with PlateRun(fmu_path, **SMALL, dt=dt) as run:
+        for _ in range(3):
+            run.step(dt, base=0.0)
+        run.close()
+        coarse = [m for m in warnings(run) if "first period" in m]
+        assert len(coarse) == 1 and "dt <= " in coarse[0], warnings(run)
+
+
+def test_a_drive_never_set_is_warned_of_at_the_end(fmu_path):
+    """An input file whose base_displacement column is missing: the run ends with the clamp at 0."""
+    with PlateRun(fmu_path, **SMALL, dt=1e-4) as run:
+        for _ in range(5):
+            run.step(1e-4, base=None, load=100.0)
+        assert warnings(run) == []  # nothing to say before the run ends
+        run.close()
+        never = [m for m in warnings(run) if "never set" in m]
+        assert len(never) == 1 and "base_displacement" in never[0], warnings(run)
+
+
+def test_outputs_interpolated_inside_one_grid_step_are_warned_of_once(fmu_path):
+    dt = 1e-4
+    with PlateRun(fmu_path, **SMALL, dt=dt) as run:
+        for _ in range(6):
+            run.step(0.3 * dt, base=0.0)
+        inside = [m for m in warnings(run) if "interpolated" in m]
+        assert len(inside) == 1 and "whole multiple of dt" in inside[0], warnings(run)
