@@ -49,6 +49,8 @@ SLOW = {
     "test_stability.py::test_stability_case",  # the stress matrix, short horizons (25 s)
     "test_conserving.py::test_conserving_and_singular_p0_tend_to_the_same_impact_times",
     "test_fmi3.py::test_animate_example_quick",
+    "test_golden_emulated.py",  # the C golden driver under qemu-x86_64 (Nehalem, Haswell: 79 s)
+    "test_experiments_platforms.py",  # the experiments under Wine and qemu-aarch64 (53 s)
 }
 
 
@@ -59,3 +61,6 @@ def pytest_collection_modifyitems(config, items):
             item.add_marker(pytest.mark.xdist_group(SERIAL[file]))
         if file in SLOW or f"{file}::{item.originalname}" in SLOW:
             item.add_marker(pytest.mark.slow)
+    # The slow ones first (a stable sort): pytest-xdist hands tests out in this order, so the long
+    # ones start while the short ones fill the other worker, instead of running alone at the end.
+    items.sort(key=lambda item: item.get_closest_marker("slow") is None)

@@ -61,7 +61,7 @@ def test_compiled_from_its_own_sources_passes_the_smoke_test(tmp_path):
             *("cmake", "-S", str(fmu / "sources"), "-B", str(build), "-DCMAKE_BUILD_TYPE=Release"),
             *("-DCMAKE_CXX_FLAGS_RELEASE=-O1 -DNDEBUG", "-DCMAKE_C_FLAGS_RELEASE=-O1 -DNDEBUG"),
         ],
-        ["nice", "-n", "10", "cmake", "--build", str(build)],
+        ["nice", "-n", "10", "cmake", "--build", str(build), "--parallel", str(os.cpu_count() or 1)],
     ):
         out = subprocess.run(cmd, capture_output=True, text=True, env=env, timeout=1800)
         assert out.returncode == 0, out.stdout[-3000:] + out.stderr[-3000:]
