@@ -410,13 +410,12 @@ void CondensedScheme::throwNonFinite() const {
 }
 
 PlateOutputs CondensedScheme::outputs(bool port) const {
-    const CondensedScheme& stepper = *this;
     const CondensedState& st = state_;
     PlateOutputs o;
-    o.corner1 = stepper.rowHeight(rows_.probes[0]);
-    o.corner2 = stepper.rowHeight(rows_.probes[1]);
-    o.freeEdgeMid = stepper.rowHeight(rows_.probes[2]);
-    o.energy = stepper.energy();
+    o.corner1 = rowHeight(rows_.probes[0]);
+    o.corner2 = rowHeight(rows_.probes[1]);
+    o.freeEdgeMid = rowHeight(rows_.probes[2]);
+    o.energy = energy();
     o.energyDissipated = 0.0;  // the scheme loses nothing at impacts (T.17d)
     setLedger(o, {st.energyInput, st.energyDamped, st.maxKktResidual, st.contactRows, st.lcpSolves,
                   st.gradientIterationsMax, st.impactCount});
@@ -425,10 +424,9 @@ PlateOutputs CondensedScheme::outputs(bool port) const {
     // force on it. Velocities at t_n (second-order backward), accelerations at t_{n−1}.
     o.clampForce = -st.clampForce;
     o.clampMoment = -st.clampMoment;
-    if (st.step == 0) stepper.initialReaction(o.clampForce, o.clampMoment);  // no step yet (§17)
+    if (st.step == 0) initialReaction(o.clampForce, o.clampMoment);  // no step yet (§17)
     const double z[3] = {st.z, st.zPrev, st.zPrev2};
-    setPortKinematics(o, stepper.dt(),
-                      [&](int k, int level) { return k < 3 ? stepper.rowHeight(rows_.probes[k], level) : z[level]; });
+    setPortKinematics(o, dt(), [&](int k, int level) { return k < 3 ? rowHeight(rows_.probes[k], level) : z[level]; });
     for (int k = 0; k < 2; ++k) {
         o.contactForce[k] = st.stepContactForce[k];
         o.contactImpulse[k] = st.contactImpulseSum[k];

@@ -94,6 +94,27 @@ TEST(StateTables, NewmarkStateRoundTripIsIdentical) {
     EXPECT_EQ(plate::serialize(plate::deserialize(every, 4, 3, 3)), every);
 }
 
+// The archive's layout (what a test that damages a state on purpose patches) is where the values
+// stand: each named member's first value, after the 4-value header, and the members fill the flat
+// form exactly.
+TEST(StateTables, NewmarkStateLayoutIsWhereTheValuesStand) {
+    const NewmarkState s = sampleState(4, 3, 3);
+    const std::vector<double> flat = plate::serialize(s);
+    const auto layout = plate::stateLayout(4, 3, 3);
+    const auto offset = [&layout](const std::string& name) {
+        const auto it = std::find_if(layout.begin(), layout.end(), [&](const auto& f) { return f.first == name; });
+        EXPECT_NE(it, layout.end()) << name;
+        return 4 + it->second;
+    };
+    EXPECT_EQ(offset("displacement"), 4u);
+    EXPECT_EQ(flat[offset("z")], s.z);
+    EXPECT_EQ(flat[offset("step")], double(s.step));
+    EXPECT_EQ(flat[offset("contact vertices")], double(s.contactVertices));
+    EXPECT_EQ(flat[offset("contact state")], double(s.contactState[0]));
+    EXPECT_EQ(layout.back().first, "contact impulse");  // the last member: its second level, 3 values
+    EXPECT_EQ(4 + layout.back().second + 3, flat.size());
+}
+
 TEST(StateTables, NewmarkStateRefusesCorruptCountsAndSizes) {
     const NewmarkState s = sampleState(4, 3, 3);
     const std::vector<double> flat = plate::serialize(s);
