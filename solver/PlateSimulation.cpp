@@ -129,7 +129,9 @@ std::unique_ptr<Scheme> PlateSimulation::makeScheme(const Obstacles& obstacles, 
     auto condensed = condensedPlate(rootFree, rows);
     std::unique_ptr<CondensedScheme> scheme;
     if (p.timeScheme == TimeScheme::Flow)
-        scheme = std::make_unique<FlowScheme>(condensed, obstacles, p.dt, p.contactSubsteps, p.dampingMass,
+        scheme = std::make_unique<FlowScheme>(condensed, obstacles, p.dt,
+                                              ContactRefinement{p.contactSubsteps, p.tolerance, p.maxContactSubsteps},
+                                              p.dampingMass,
                                               p.dampingStiffness, std::move(rows));
     else
         scheme = std::make_unique<MidpointScheme>(condensed, obstacles, p.dt, p.dampingMass, p.dampingStiffness,

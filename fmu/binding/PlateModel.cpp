@@ -162,7 +162,8 @@ public:
         const plate::PlateParameters& p = values_.parameters;
         trace(format("simulation built (nx = %g, ny = %g, dt = %g s)", p.nx, p.ny, p.dt));
         warnOfCoarseStep();
-        driveSet_ = interpolationWarned_ = false;
+        driveSet_ = interpolationWarned_ = errorWarned_ = false;
+        warnOfUnusedTolerance();
     }
     void terminate() override {
         // A drive the master never set: the clamp stayed where it started (a CSV column missing or
@@ -217,6 +218,7 @@ public:
                 format("step from t = %.17g failed at t = %.17g: ", t, t + simulation_->time() - now) + e.what());
         }
         refreshOutputs();
+        warnOfErrorEstimate();
         trace(format("t = %.17g, h = %.17g, %g steps", t, h, double(plan.steps)));
     }
 
@@ -337,6 +339,34 @@ private:
              " (fewer than 20 steps per period): the outputs resolve the first mode only roughly; take dt <= " +
              format("%.4g s (T1/20) for accurate results", period / 20.0, 0.0));
     }
+    // A tolerance only the flow law uses (docs/theory.md §22), set for another scheme: said at build.
+    void warnOfUnusedTolerance() {
+        const plate::PlateParameters& p = values_.parameters;
+        if (p.tolerance > 0.0 && p.timeScheme != plate::TimeScheme::Flow)
+            warn(format("tolerance = %g m is used by time_scheme = flow only (3): this run's scheme ignores it, and "
+                        "error_estimate stays 0",
+                        p.tolerance, 0.0));
+    }
+    // tolerance > 0 (docs/theory.md §22): the contact steps' accumulated error estimate passing the
+    // tolerance, or a contact step the cap bounded, is said once per build.
+    void warnOfErrorEstimate() {
+        const plate::PlateParameters& p = values_.parameters;
+        const plate::PlateOutputs& o = values_.outputs;
+        if (errorWarned_ || p.tolerance <= 0.0 || p.timeScheme != plate::TimeScheme::Flow) return;
+        if (o.errorEstimate > p.tolerance) {
+            errorWarned_ = true;
+            warn(format("error_estimate = %.3g m passed tolerance = %.3g m at t = %.17g", o.errorEstimate,
+                        p.tolerance, simulation_->time()) +
+                 ": the contact phases so far add up to more than the tolerance (it bounds what about 3 ms of "
+                 "contact adds); later outputs are this much less certain (docs/performance.md)");
+        } else if (o.cappedSteps > 0) {
+            errorWarned_ = true;
+            warn(format("a contact step at t = %.17g needed more than max_contact_substeps = %g sub-steps for its "
+                        "target",
+                        simulation_->time(), double(p.maxContactSubsteps)) +
+                 "; raise max_contact_substeps (capped_steps counts such steps; error_estimate includes them)");
+        }
+    }
     // A clamp moved by one input only (docs/theory.md §16–18): a force-driven or line-carried clamp
     // whose motion inputs are set as well, or a motion-driven one given a force, is refused.
     void requireOneDrive() const {
@@ -449,6 +479,7 @@ private:
     double clampPosition_ = 0.0, clampVelocity_ = 0.0;
     bool driveSet_ = false;  // the drive input was set during the run (warned at terminate otherwise)
     bool interpolationWarned_ = false;  // the warning of steps shorter than two grid steps, once
+    bool errorWarned_ = false;  // the warning of the error estimate past the tolerance, once
     bool stopAtContactChange_ = false;  // inside doStepUntilEvent
     bool endedAtEvent_ = false;  // the last step of doStepUntilEvent ended at a contact change
     bool returnRequested_ = false;  // ... or where the master's intermediate update asked

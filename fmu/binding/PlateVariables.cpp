@@ -214,7 +214,15 @@ const Row kRows[] = {
         "conserving scheme with exact free flight and sub-stepped contact steps: accurate after impact)"),
     integerParameter(kVrContactSubsteps, "contact_substeps", kContactSubsteps, PARAMETER(contactSubsteps),
         "time_scheme = flow: midpoint sub-steps of each internal step in which a constraint row is or becomes "
-        "active (1..64; the free steps take the exact modal flow whatever this is)"),
+        "active when tolerance = 0 (1..64; the free steps take the exact modal flow whatever this is)"),
+    parameter(kVrTolerance,         "tolerance",          "m",     kTolerance,         PARAMETER(tolerance),
+        "time_scheme = flow: > 0 chooses each contact step's sub-steps from an error estimate of its own (step "
+        "doubling) so that the contact phases add at most about this much displacement error per 3 ms of contact "
+        "(error_estimate reports the sum; a warning when it passes the tolerance); 0 = contact_substeps sub-steps"),
+    integerParameter(kVrMaxContactSubsteps, "max_contact_substeps", kMaxContactSubsteps,
+        PARAMETER(maxContactSubsteps),
+        "time_scheme = flow with tolerance > 0: the most sub-steps one contact step may take (a power of two, "
+        "2..1024): the cap on one internal step's work; capped_steps counts the steps it bounded"),
     parameter(kVrRestitution,       "restitution",        "1",     kRestitution,       PARAMETER(restitution),
         "Restitution coefficient e in [0, 1] of the impact law on (u+ + e u-)/(1 + e); 0 is the paper's scheme"),
     parameter(kVrDampingMass,       "damping_mass",       "1/s",   kDampingMass,       PARAMETER(dampingMass),
@@ -262,6 +270,12 @@ const Row kRows[] = {
         "Active-set iterations of all per-step QPs so far (saturates at 2147483647)"),
     integerOutput(kVrQpIterationsMax,   "qp_iterations_max",   OUTPUT(qpIterationsMax),
         "Largest number of active-set iterations of one per-step QP so far"),
+    output(kVrErrorEstimate,           "error_estimate",             "m",    OUTPUT(errorEstimate),
+        "time_scheme = flow with tolerance > 0: the accumulated estimate of the displacement error the contact "
+        "steps added since t = 0 (the sum of each step's |coarse - fine| bound; free flight is exact); 0 otherwise"),
+    integerOutput(kVrCappedSteps,       "capped_steps",        OUTPUT(cappedSteps),
+        "time_scheme = flow with tolerance > 0: contact steps whose estimate stayed above its target at "
+        "max_contact_substeps sub-steps (the cap bounded their work, not their error)"),
     output(kVrClampForce,              "clamp_force",                "N",    PORT(clampForce),
         "Vertical force the plate exerts on the clamp (positive upward): what a shaker carrying the clamp feels; the "
         "scheme's value at the last internal step's centre t - dt (t - dt/2 with time_scheme = conserving). Fed back "

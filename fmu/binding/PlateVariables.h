@@ -141,6 +141,10 @@ enum PlateVr : fmu::ValueReference {
     kVrMemoryLimit = 60,
     kVrTimeScheme = 65,
     kVrContactSubsteps = 66,
+    kVrTolerance = 67,
+    kVrMaxContactSubsteps = 68,
+    kVrErrorEstimate = 41,
+    kVrCappedSteps = 42,
     // The carried clamp (docs/theory.md §18–19).
     kVrArmatureMass = 100,
     kVrArmatureStiffness = 101,

@@ -7,6 +7,7 @@
 //                                 mass=consistent|singular_p0|singular_p1dg
 //                                 scheme=newmark|conserving|flow (time_scheme, docs/theory.md §17, §21)
 //                                 substeps=N (contact_substeps of scheme=flow)
+//                                 tolerance=M max_substeps=N (scheme=flow: adaptive contact sub-steps)
 //                                 engine=auto|sparse|modal (how exact mode runs)
 //                                 port=1 (read the port's outputs too, every communication step)
 //                                 series=FILE (CSV of the outputs every communication step;
@@ -195,6 +196,8 @@ int main(int argc, char** argv) {
     if (args.count("scheme") && args["scheme"] == "conserving") p.timeScheme = plate::TimeScheme::Conserving;
     if (args.count("scheme") && args["scheme"] == "flow") p.timeScheme = plate::TimeScheme::Flow;
     p.contactSubsteps = static_cast<int>(num("substeps", p.contactSubsteps));
+    p.tolerance = num("tolerance", p.tolerance);
+    p.maxContactSubsteps = static_cast<int>(num("max_substeps", p.maxContactSubsteps));
     p.memoryLimit = num("memory_limit", 0.0);
     if (args.count("export")) return exportMatrices(p, args["export"]);
     if (num("estimate_only", 0) != 0) return printEstimate(p);
@@ -268,12 +271,13 @@ int main(int argc, char** argv) {
             "\"step_cpu_s\": %.6g, \"floor_cpu_s\": %.6g, "
             "\"floor_solve_s\": %.6g, \"step_over_floor\": %.4g, \"qp_iterations_total\": %.0f, "
             "\"energy_dissipated\": %.10g, \"impacts_lower\": %.0f, \"impacts_upper\": %.0f, \"checksum\": %.10g, "
-            "%s%s}\n",
+            "\"error_estimate\": %.6g, \"capped_steps\": %.0f, %s%s}\n",
             p.element == plate::ElementType::Fvs ? "fvs" : "argyris", p.nx, p.ny, p.dt, p.beta, p.modes,
             sim.engine().c_str(), static_cast<long>(sim.dofCount()), steps,
             std::chrono::duration<double>(t1 - t0).count(), std::chrono::duration<double>(t3 - t2).count(), perStep,
             (cpu3 - cpu2) / steps, floorCpu, floor, perStep / floor, o.qpIterationsTotal, o.energyDissipated,
-            o.impacts[0], o.impacts[1], energySum, resources.c_str(), spectrum.c_str());
+            o.impacts[0], o.impacts[1], energySum, o.errorEstimate, o.cappedSteps, resources.c_str(),
+            spectrum.c_str());
     } catch (const std::exception& e) {
         std::fprintf(stderr, "plate_bench: %s\n", e.what());
         return 1;

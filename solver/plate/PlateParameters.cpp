@@ -78,6 +78,11 @@ void validate(const PlateParameters& p) {
                "mass = singular_p0 (2) or singular_p1dg (3) with time_scheme = conserving or flow: the scheme steps "
                "the massive modes of a singular mass and keeps its massless part static");
     requireRange("contact_substeps", p.contactSubsteps, kContactSubsteps);
+    requireRange("tolerance", p.tolerance, kTolerance);
+    requireRange("max_contact_substeps", p.maxContactSubsteps, kMaxContactSubsteps);
+    if ((p.maxContactSubsteps & (p.maxContactSubsteps - 1)) != 0)
+        throw ParameterError("invalid parameter max_contact_substeps = " + std::to_string(p.maxContactSubsteps) +
+                             " (allowed: a power of two from 2 to 1024)");
     if (p.singularMass() && p.modes != 0 && !conserving)
         reject("modes", p.modes,
                "modes = 0 with a singular mass and time_scheme = newmark (the reduced singular model is "

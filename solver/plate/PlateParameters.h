@@ -44,6 +44,11 @@ struct PlateParameters {
     // time_scheme = flow: the midpoint sub-steps of a step in which a constraint row is or
     // becomes active (docs/theory.md §21).
     int contactSubsteps = 16;
+    // time_scheme = flow with tolerance > 0 (m, on displacements; docs/theory.md §22): each
+    // contact step as many sub-steps as its own error estimate asks (step doubling), at most
+    // maxContactSubsteps; 0 = every contact step in contactSubsteps sub-steps.
+    double tolerance = 0.0;
+    int maxContactSubsteps = 128;
     bool condensed() const { return timeScheme == TimeScheme::Conserving || timeScheme == TimeScheme::Flow; }
     // Impact law (docs/theory.md §12): the contact constraint holds on (u⁺ + e u⁻)/(1 + e);
     // e = 0 is the paper's scheme.
@@ -105,6 +110,7 @@ constexpr Range kObstacleLower{-kMaxDisplacement, 0.0, false, true}, kObstacleUp
 constexpr Range kDt{1e-12, 1.0}, kBeta{0.0, 0.5}, kInitialLoad{-kMaxLoad, kMaxLoad};
 constexpr Range kModes{0, 2147483647.0}, kRestitution{0.0, 1.0};
 constexpr Range kContactSubsteps{1, 64};
+constexpr Range kTolerance{0.0, 1.0}, kMaxContactSubsteps{2, 1024};
 constexpr Range kDampingMass{0.0, 1e6}, kDampingStiffness{0.0, 1.0};
 constexpr Range kMemoryLimit{0.0, 1e9};  // MB; 0 = no limit
 // The carrier (§18–19): a mass > 0 (a massless armature is a line end or no carrier at all).

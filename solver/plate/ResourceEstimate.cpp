@@ -231,6 +231,10 @@ ResourceEstimate estimateResources(const PlateParameters& p, const ProblemSize& 
     if (e.engine == EngineKind::Conserving) {
         e.factorsMB = factorBytes(s) / kMB;
         engineBytes = kDouble * (4 * massive * massive + 2 * rows * massive + 16 * rows * rows);
+        // time_scheme = flow with a tolerance (FlowScheme.h): the midpoint matrices of every
+        // sub-step level (W₂, ½W₂ + D and its QP columns: three r × r each) and |G|.
+        if (p.timeScheme == TimeScheme::Flow && p.tolerance > 0.0)
+            engineBytes += kDouble * (3 * std::log2(double(p.maxContactSubsteps)) * rows * rows + rows * massive);
         phases = std::max(phases, e.matricesMB * kMB + factorBytes(s) + lower + engineBytes);
     } else if (e.engine == EngineKind::Sparse) {
         // The step factor of A, then the factor of K for the static state beside it.

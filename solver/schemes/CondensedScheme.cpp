@@ -393,6 +393,24 @@ void CondensedScheme::setState(const CondensedState& s) {
     refreshDerived();
 }
 
+void CondensedScheme::save(Snapshot& to) const {
+    to.state = state_;
+    to.midForce = midForce_;
+    to.endForce = endForce_;
+    to.rowsCached = rowsCached_;
+    to.rowsCachedValid = rowsCachedValid_;
+}
+
+void CondensedScheme::restore(const Snapshot& from) {
+    state_ = from.state;
+    refreshDerived();
+    midForce_ = from.midForce;
+    endForce_ = from.endForce;
+    rowsCached_ = from.rowsCached;
+    rowsCachedValid_ = from.rowsCachedValid;
+    margin_ = -1.0;
+}
+
 void CondensedScheme::refreshDerived() {
     const CondensedState& s = state_;
     forceZero_ = {s.force.isZero(0.0), s.forcePrev.isZero(0.0), s.forcePrev2.isZero(0.0)};
@@ -419,6 +437,8 @@ PlateOutputs CondensedScheme::outputs(bool port) const {
     o.energyDissipated = 0.0;  // the scheme loses nothing at impacts (T.17d)
     setLedger(o, {st.energyInput, st.energyDamped, st.maxKktResidual, st.contactRows, st.lcpSolves,
                   st.gradientIterationsMax, st.impactCount});
+    o.errorEstimate = st.errorEstimate;
+    o.cappedSteps = double(st.cappedSteps);
     if (!port) return o;
     // The port at t_{n−½} (§17): what the plate exerts on the clamp is the opposite of the clamp's
     // force on it. Velocities at t_n (second-order backward), accelerations at t_{n−1}.
@@ -454,7 +474,7 @@ double CondensedScheme::firstFrequency() const { return std::sqrt(plate_->omega2
 // line here, with kFormat raised.
 namespace {
 
-constexpr double kFormat = 17.0;  // the condensed schemes' state, version 1
+constexpr double kFormat = 18.0;  // the condensed schemes' state, version 2 (the flow law's tolerance)
 constexpr std::size_t kModes = 0, kRows = 1;
 
 const auto condensedMembers = [](auto& s, auto& v) {
@@ -477,6 +497,9 @@ const auto condensedMembers = [](auto& s, auto& v) {
     for (auto* k : {&s.gradientIterationsMax, &s.gradientIterationsLast}) v.count(*k, "gradient iterations");
     v.count(s.contactRows, "contact rows", static_cast<double>(v.size(kRows)));
     for (auto* x : {&s.rowState, &s.midState}) v.states(*x, kRows);
+    v.real(s.errorEstimate, "error estimate");
+    v.count(s.cappedSteps, "capped steps");
+    v.count(s.refinementLevel, "refinement level", 30.0);
 };
 
 }  // namespace

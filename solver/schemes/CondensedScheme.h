@@ -55,6 +55,12 @@ struct CondensedState {
     double stepContactForce[2] = {0, 0}, stepContactMoment = 0;
     double contactImpulseSum[2] = {0, 0};
     long long impactCount[2] = {0, 0};
+    // time_scheme = flow with a tolerance (docs/theory.md §22): the accumulated estimate of the
+    // displacement error, the contact steps the sub-step cap bounded and the controller's level
+    // (the next contact step takes 2^level sub-steps). Unused by the other schemes.
+    double errorEstimate = 0;
+    long long cappedSteps = 0;
+    int refinementLevel = 1;
 };
 
 // Which rows the outputs read: corner_1, corner_2 and free_edge_mid, and the row of each mesh
@@ -117,6 +123,15 @@ protected:
         std::unique_ptr<BoxQP> midQP;
     };
     void buildOperator(MidpointOperator& op, double h) const;
+    // The state with what the next step's solves start from (their warm starts): a step can be
+    // taken again from a snapshot, bit for bit as the first time (FlowScheme's step doubling).
+    struct Snapshot {
+        CondensedState state;
+        Eigen::VectorXd midForce, endForce, rowsCached;
+        bool rowsCachedValid = false;
+    };
+    void save(Snapshot& to) const;
+    void restore(const Snapshot& from);
     void midpointStep(double zNext, double pNext);  // one step of op_->h (T.17b–c)
     // The inputs of a step: finite, in range, the clamp between the obstacles (inline: every step of
     // both schemes asks; refuseInputs builds the message only for a refusal).

@@ -42,16 +42,39 @@ void modalFlow(double omega2, double c, double h, double& f11, double& f12, doub
     f11 = e11, f12 = e12 / omega, f21 = e21 * omega, f22 = e22;
 }
 
+// The local target of step doubling (docs/theory.md §22): a contact step of Δt may add
+// tolerance·Δt/kContactTime, so that the contact phases add about the tolerance per kContactTime
+// of contact (error per unit step). Chosen by measurement on §5.2 and the default scene
+// (docs/performance.md, "Accuracy on request"): the error over 0.3 s stays inside the tolerance.
+constexpr double kContactTime = 3e-3;  // s
+// The level drops for the next contact step when the estimate was below 1/kLowerBelow of the
+// target (one level down multiplies it by about 4 where the sub-steps are second order).
+constexpr double kLowerBelow = 8.0;
+
 }  // namespace
 
-FlowScheme::FlowScheme(std::shared_ptr<const CondensedPlate> plate, Obstacles obstacles, double dt, int contactSubsteps,
-                       double dampingMass, double dampingStiffness, OutputRows outputRows)
+FlowScheme::FlowScheme(std::shared_ptr<const CondensedPlate> plate, Obstacles obstacles, double dt,
+                       ContactRefinement refinement, double dampingMass, double dampingStiffness,
+                       OutputRows outputRows)
     : CondensedScheme(std::move(plate), obstacles, dt, dampingMass, dampingStiffness, std::move(outputRows)),
-      substeps_(contactSubsteps) {
+      refinement_(refinement) {
     const CondensedPlate& c = *plate_;
     const Eigen::Index m = c.modes(), rows = c.rows();
     keepRows_ = true;
-    buildOperator(sub_, dt / substeps_);
+    if (refinement_.tolerance > 0.0) {
+        // Levels 1 … log2(maxSubsteps): 2^j sub-steps of Δt/2^j (level 0 is the step itself, full_).
+        for (int j = 1; (1 << j) <= refinement_.maxSubsteps; ++j) {
+            levels_.push_back(std::make_unique<MidpointOperator>());
+            buildOperator(*levels_.back(), dt / double(1 << j));
+        }
+        stepTarget_ = refinement_.tolerance * dt / kContactTime;
+        rowModesAbs_ = c.rowModesT.cwiseAbs();
+        inverseOmega_ = c.omega2.cwiseSqrt().cwiseInverse();
+        amplitude_.resize(m);
+        rowBound_.resize(rows);
+    } else {
+        buildOperator(sub_, dt / refinement_.substeps);
+    }
     inverseOmega2_ = c.omega2.cwiseInverse();
     dampedModes_ = (damping_.array() != 0.0).any();
     for (Eigen::VectorXd* v : {&slope_, &offset_, &u0_, &ud0_, &u1_, &ud1_, &qIntegral_, &qAtStart_, &qBeforeStart_})
@@ -107,7 +130,10 @@ void FlowScheme::step(double zNext, double pNext) {
     // The contact check of the midpoint step (its free-flight bound included).
     const Look look = lookAtRows(zNext, pNext);
     if (look == Look::Contact) {
-        substeps(zNext, pNext);
+        if (refinement_.tolerance > 0.0)
+            refine(zNext, pNext);
+        else
+            substeps(zNext, pNext, refinement_.substeps, sub_);
         return;
     }
     rowsCachedValid_ = look == Look::Free;
@@ -144,9 +170,8 @@ void FlowScheme::step(double zNext, double pNext) {
 // The step from t_n as m midpoint sub-steps of Δt/m, the base and the load linear in between (as
 // the exact step assumes). Each sub-step keeps its energy identity; the levels t_n, t_{n−1} and the
 // port's values over the step are those of one step of Δt afterwards.
-void FlowScheme::substeps(double zNext, double pNext) {
+void FlowScheme::substeps(double zNext, double pNext, int m, const MidpointOperator& op) {
     CondensedState& s = state_;
-    const int m = substeps_;
     qAtStart_ = s.q;
     qBeforeStart_ = s.qPrev;
     forceAtStart_ = s.force;
@@ -157,7 +182,7 @@ void FlowScheme::substeps(double zNext, double pNext) {
     s.zPrev = z0 - (z0 - zBefore) / m;
     double force = 0.0, moment = 0.0, contact[2] = {0.0, 0.0}, contactMoment = 0.0;
     int iterationsMax = 0;
-    op_ = &sub_;
+    op_ = &op;
     try {
         for (int j = 1; j <= m; ++j) {
             const double z = j == m ? zNext : z0 + (zNext - z0) * (double(j) / m);
@@ -193,6 +218,57 @@ void FlowScheme::substeps(double zNext, double pNext) {
     forceZero_ = {s.force.isZero(0.0), s.forcePrev.isZero(0.0), s.forcePrev2.isZero(0.0)};
     forceNextZero_ = false;
     margin_ = -1.0;
+}
+
+// tolerance > 0 (docs/theory.md §22): the contact step from t_n taken at 2^(j−1) and at 2^j
+// sub-steps from the same start, j the level the last contact step chose. Where the solution is
+// smooth the sub-steps are second order, across an onset or a release first order: |coarse − fine|
+// bounds the finer result's error in both cases (Richardson: a third of it, resp. all of it) and is
+// its estimate. While it exceeds the step's target the level rises (the finer result becomes the
+// coarse one), up to the cap; the finer result is kept and the estimate accumulates. Every run is a
+// sequence of discrete-gradient sub-steps, so the energy identity holds at any level; the discarded
+// runs leave no trace but their work count.
+void FlowScheme::refine(double zNext, double pNext) {
+    CondensedState& s = state_;
+    const int top = static_cast<int>(levels_.size());
+    const auto level = [&](int j) -> const MidpointOperator& { return j == 0 ? full_ : *levels_[j - 1]; };
+    int j = std::clamp(s.refinementLevel, 1, top);
+    save(start_);
+    substeps(zNext, pNext, 1 << (j - 1), level(j - 1));
+    long long discardedSolves = s.lcpSolves - start_.state.lcpSolves;
+    save(coarse_);
+    double error = 0.0;
+    for (;;) {
+        restore(start_);
+        substeps(zNext, pNext, 1 << j, level(j));
+        error = separation(coarse_.state, s);
+        if (error <= stepTarget_ || j == top) break;
+        discardedSolves += s.lcpSolves - start_.state.lcpSolves;
+        save(coarse_);
+        ++j;
+    }
+    s.lcpSolves += discardedSolves;
+    s.errorEstimate += error;
+    s.cappedSteps += error > stepTarget_;
+    // One level lower next time when the pair one level down would still be well inside the target
+    // (a level down multiplies the error by about 4 where the sub-steps are second order).
+    s.refinementLevel = (j > 1 && kLowerBelow * error < stepTarget_) ? j - 1 : j;
+}
+
+std::string FlowScheme::name() const {
+    const CondensedPlate& c = *plate_;
+    return c.modes() == c.massiveCount ? "flow-complete" : "flow-" + std::to_string(c.modes());
+}
+
+// How far two states at the same t_n can part at any row afterwards: mode k's difference
+// (δq, δq̇) is an oscillation of amplitude √(δq² + (δq̇/ω)²) in free flight (less when damped), and
+// a row moves by Σ_k |G_ik| times it (the bound reached when the phases agree).
+double FlowScheme::separation(const CondensedState& a, const CondensedState& b) {
+    amplitude_.array() = ((a.q - b.q).array().square() +
+                          ((a.momentum - b.momentum).array() * inverseOmega_.array()).square())
+                             .sqrt();
+    rowBound_.noalias() = rowModesAbs_.transpose() * amplitude_;
+    return rowBound_.size() > 0 ? rowBound_.maxCoeff() : 0.0;
 }
 
 }  // namespace plate

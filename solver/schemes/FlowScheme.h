@@ -3,27 +3,47 @@
 // its exact flow (the base linear and the load linear over the step, the damping exact); a step
 // in which a row is or becomes active is taken as m midpoint sub-steps of Δt/m, each with its
 // discrete gradient (CondensedScheme). Free flight has no phase error, the contact phases are
-// resolved, and the energy identity (T.17d) holds step by step.
+// resolved, and the energy identity (T.17d) holds step by step. With a tolerance (§22) each contact
+// step chooses its sub-steps from an error estimate of its own.
 #include <Eigen/Core>
 #include <memory>
+#include <vector>
 
 #include "schemes/CondensedScheme.h"
 
 namespace plate {
 
+// How the flow law divides a contact step (docs/theory.md §21–22).
+struct ContactRefinement {
+    int substeps = 16;  // tolerance = 0: every contact step in this many sub-steps
+    // > 0 (m): each contact step as many sub-steps as its error estimate asks (step doubling),
+    // at most maxSubsteps (a power of two); the estimate accumulates in errorEstimate.
+    double tolerance = 0.0;
+    int maxSubsteps = 128;
+};
+
 class FlowScheme final : public CondensedScheme {
 public:
-    // contactSubsteps = m ≥ 1: the sub-steps of a contact step.
-    FlowScheme(std::shared_ptr<const CondensedPlate> plate, Obstacles obstacles, double dt, int contactSubsteps,
-               double dampingMass = 0.0, double dampingStiffness = 0.0, OutputRows rows = {});
+    FlowScheme(std::shared_ptr<const CondensedPlate> plate, Obstacles obstacles, double dt,
+               ContactRefinement refinement, double dampingMass = 0.0, double dampingStiffness = 0.0,
+               OutputRows rows = {});
 
     void step(double zNext, double pNext) override;  // exact free flight, or the sub-steps on contact
+    std::string name() const override;
 
 private:
-    void substeps(double zNext, double pNext);
+    void substeps(double zNext, double pNext, int m, const MidpointOperator& op);
+    void refine(double zNext, double pNext);  // tolerance > 0: step doubling (§22)
+    double separation(const CondensedState& a, const CondensedState& b);  // bound on their rows' parting, m
 
-    MidpointOperator sub_;  // sub-steps of Δt/m
-    int substeps_;  // m
+    ContactRefinement refinement_;
+    MidpointOperator sub_;  // sub-steps of Δt/m (tolerance = 0)
+    // tolerance > 0: level j takes 2^j sub-steps of Δt/2^j (level 0 is full_); the local target.
+    std::vector<std::unique_ptr<MidpointOperator>> levels_;
+    double stepTarget_ = 0.0;
+    Snapshot start_, coarse_;
+    Eigen::MatrixXd rowModesAbs_;  // |G|: rows' response to each mode's amplitude
+    Eigen::VectorXd inverseOmega_, amplitude_, rowBound_;
     // The exact flow over Δt of each mode's u = q − q_particular (§21): (u, u̇)⁺ = Φ (u, u̇).
     Eigen::VectorXd flow11_, flow12_, flow21_, flow22_;
     Eigen::VectorXd inverseOmega2_;  // 1/ω²

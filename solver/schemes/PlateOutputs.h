@@ -24,6 +24,9 @@ struct PlateOutputs {
     double contactForce[2] = {0, 0}, contactImpulse[2] = {0, 0};  // lower, upper: N, N·s
     double impacts[2] = {0, 0};  // counts: contact onsets per obstacle
     double velocity[3] = {0, 0, 0}, acceleration[3] = {0, 0, 0};  // corner1, corner2, freeEdgeMid
+    // time_scheme = flow with a tolerance (docs/theory.md §22): the accumulated estimate of the
+    // displacement error (m) and the contact steps whose sub-steps the cap bounded (count).
+    double errorEstimate = 0, cappedSteps = 0;
 };
 
 // What every scheme reports alike, written once: the ledger and counters of its state at t_n.
@@ -109,6 +112,8 @@ inline constexpr OutputField kOutputFields[] = {
     {"qpIterationsMax",   Between::Held,         fieldOf<&PlateOutputs::qpIterationsMax>},
     {"impacts[0]",        Between::Held,         fieldOf<&PlateOutputs::impacts, 0>},
     {"impacts[1]",        Between::Held,         fieldOf<&PlateOutputs::impacts, 1>},
+    {"errorEstimate",     Between::Held,         fieldOf<&PlateOutputs::errorEstimate>},
+    {"cappedSteps",       Between::Held,         fieldOf<&PlateOutputs::cappedSteps>},
 };
 // clang-format on
 constexpr std::size_t kOutputCount = std::size(kOutputFields);

@@ -22,7 +22,7 @@ namespace {
 // time_scheme = conserving (substeps = 0) or flow (substeps = m > 0), as makeScheme makes them.
 std::unique_ptr<CondensedScheme> condensedScheme(std::shared_ptr<const CondensedPlate> plate, Obstacles obstacles,
                                                  double dt, double a, double b, int substeps) {
-    if (substeps > 0) return std::make_unique<FlowScheme>(std::move(plate), obstacles, dt, substeps, a, b);
+    if (substeps > 0) return std::make_unique<FlowScheme>(std::move(plate), obstacles, dt, ContactRefinement{substeps}, a, b);
     return std::make_unique<MidpointScheme>(std::move(plate), obstacles, dt, a, b);
 }
 
