@@ -131,8 +131,7 @@ std::unique_ptr<Scheme> PlateSimulation::makeScheme(const Obstacles& obstacles, 
     if (p.timeScheme == TimeScheme::Flow)
         scheme = std::make_unique<FlowScheme>(condensed, obstacles, p.dt,
                                               ContactRefinement{p.contactSubsteps, p.tolerance, p.maxContactSubsteps},
-                                              p.dampingMass,
-                                              p.dampingStiffness, std::move(rows));
+                                              p.dampingMass, p.dampingStiffness, std::move(rows));
     else
         scheme = std::make_unique<MidpointScheme>(condensed, obstacles, p.dt, p.dampingMass, p.dampingStiffness,
                                                   std::move(rows));

@@ -343,9 +343,10 @@ private:
     void warnOfUnusedTolerance() {
         const plate::PlateParameters& p = values_.parameters;
         if (p.tolerance > 0.0 && p.timeScheme != plate::TimeScheme::Flow)
-            warn(format("tolerance = %g m is used by time_scheme = flow only (3): this run's scheme ignores it, and "
-                        "error_estimate stays 0",
-                        p.tolerance, 0.0));
+            warn(
+                format("tolerance = %g m is used by time_scheme = flow only (3): this run's scheme ignores it, and "
+                       "error_estimate stays 0",
+                       p.tolerance, 0.0));
     }
     // tolerance > 0 (docs/theory.md §22): the contact steps' accumulated error estimate passing the
     // tolerance, or a contact step the cap bounded, is said once per build.
@@ -355,8 +356,8 @@ private:
         if (errorWarned_ || p.tolerance <= 0.0 || p.timeScheme != plate::TimeScheme::Flow) return;
         if (o.errorEstimate > p.tolerance) {
             errorWarned_ = true;
-            warn(format("error_estimate = %.3g m passed tolerance = %.3g m at t = %.17g", o.errorEstimate,
-                        p.tolerance, simulation_->time()) +
+            warn(format("error_estimate = %.3g m passed tolerance = %.3g m at t = %.17g", o.errorEstimate, p.tolerance,
+                        simulation_->time()) +
                  ": the contact phases so far add up to more than the tolerance (it bounds what about 3 ms of "
                  "contact adds); later outputs are this much less certain (docs/performance.md)");
         } else if (o.cappedSteps > 0) {

@@ -54,8 +54,7 @@ constexpr double kLowerBelow = 8.0;
 }  // namespace
 
 FlowScheme::FlowScheme(std::shared_ptr<const CondensedPlate> plate, Obstacles obstacles, double dt,
-                       ContactRefinement refinement, double dampingMass, double dampingStiffness,
-                       OutputRows outputRows)
+                       ContactRefinement refinement, double dampingMass, double dampingStiffness, OutputRows outputRows)
     : CondensedScheme(std::move(plate), obstacles, dt, dampingMass, dampingStiffness, std::move(outputRows)),
       refinement_(refinement) {
     const CondensedPlate& c = *plate_;
@@ -264,9 +263,8 @@ std::string FlowScheme::name() const {
 // (δq, δq̇) is an oscillation of amplitude √(δq² + (δq̇/ω)²) in free flight (less when damped), and
 // a row moves by Σ_k |G_ik| times it (the bound reached when the phases agree).
 double FlowScheme::separation(const CondensedState& a, const CondensedState& b) {
-    amplitude_.array() = ((a.q - b.q).array().square() +
-                          ((a.momentum - b.momentum).array() * inverseOmega_.array()).square())
-                             .sqrt();
+    amplitude_.array() =
+        ((a.q - b.q).array().square() + ((a.momentum - b.momentum).array() * inverseOmega_.array()).square()).sqrt();
     rowBound_.noalias() = rowModesAbs_.transpose() * amplitude_;
     return rowBound_.size() > 0 ? rowBound_.maxCoeff() : 0.0;
 }
