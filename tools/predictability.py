@@ -536,6 +536,7 @@ def main(argv=None):
         ),
     )
     out = args.out or args.repo / "docs" / "predictability.json"
+    out.parent.mkdir(parents=True, exist_ok=True)
     out.write_text(json.dumps(data, indent=1))
     print(
         f"wrote {out} ({data['run']['wall_s']:.0f} s wall, {data['run']['cpu_s']:.0f} s CPU); "
