@@ -162,7 +162,7 @@ public:
         const plate::PlateParameters& p = values_.parameters;
         trace(format("simulation built (nx = %g, ny = %g, dt = %g s)", p.nx, p.ny, p.dt));
         warnOfCoarseStep();
-        driveSet_ = interpolationWarned_ = errorWarned_ = false;
+        driveSet_ = interpolationWarned_ = errorWarned_ = cappedWarned_ = false;
         warnOfUnusedTolerance();
     }
     void terminate() override {
@@ -349,21 +349,22 @@ private:
                        p.tolerance, 0.0));
     }
     // tolerance > 0 (docs/theory.md §22): the contact steps' accumulated error estimate passing the
-    // tolerance, or a contact step the cap bounded, is said once per build.
+    // tolerance, and a contact step the cap bounded, are each said once per build.
     void warnOfErrorEstimate() {
         const plate::PlateParameters& p = values_.parameters;
         const plate::PlateOutputs& o = values_.outputs;
-        if (errorWarned_ || p.tolerance <= 0.0 || p.timeScheme != plate::TimeScheme::Flow) return;
-        if (o.errorEstimate > p.tolerance) {
+        if (p.tolerance <= 0.0 || p.timeScheme != plate::TimeScheme::Flow) return;
+        if (!errorWarned_ && o.errorEstimate > p.tolerance) {
             errorWarned_ = true;
             warn(format("error_estimate = %.3g m passed tolerance = %.3g m at t = %.17g", o.errorEstimate, p.tolerance,
                         simulation_->time()) +
                  ": the contact phases so far add up to more than the tolerance (it bounds what about 3 ms of "
                  "contact adds); later outputs are this much less certain (docs/performance.md)");
-        } else if (o.cappedSteps > 0) {
-            errorWarned_ = true;
-            warn(format("a contact step at t = %.17g needed more than max_contact_substeps = %g sub-steps for its "
-                        "target",
+        }
+        if (!cappedWarned_ && o.cappedSteps > 0) {
+            cappedWarned_ = true;
+            warn(format("a contact step before t = %.17g needed more than max_contact_substeps = %g sub-steps for "
+                        "its target",
                         simulation_->time(), double(p.maxContactSubsteps)) +
                  "; raise max_contact_substeps (capped_steps counts such steps; error_estimate includes them)");
         }
@@ -481,6 +482,7 @@ private:
     bool driveSet_ = false;  // the drive input was set during the run (warned at terminate otherwise)
     bool interpolationWarned_ = false;  // the warning of steps shorter than two grid steps, once
     bool errorWarned_ = false;  // the warning of the error estimate past the tolerance, once
+    bool cappedWarned_ = false;  // the warning of a contact step the sub-step cap bounded, once
     bool stopAtContactChange_ = false;  // inside doStepUntilEvent
     bool endedAtEvent_ = false;  // the last step of doStepUntilEvent ended at a contact change
     bool returnRequested_ = false;  // ... or where the master's intermediate update asked
