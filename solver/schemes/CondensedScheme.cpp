@@ -498,6 +498,7 @@ const auto condensedMembers = [](auto& s, auto& v) {
     v.count(s.contactRows, "contact rows", static_cast<double>(v.size(kRows)));
     for (auto* x : {&s.rowState, &s.midState}) v.states(*x, kRows);
     v.real(s.errorEstimate, "error estimate");
+    v.real(s.stepError, "step error estimate");
     v.count(s.cappedSteps, "capped steps");
     v.count(s.refinementLevel, "refinement level", 30.0);
 };

@@ -59,6 +59,7 @@ struct CondensedState {
     // displacement error, the contact steps the sub-step cap bounded and the controller's level
     // (the next contact step takes 2^level sub-steps). Unused by the other schemes.
     double errorEstimate = 0;
+    double stepError = -1;  // the last estimate at refinementLevel (< 0: none yet)
     long long cappedSteps = 0;
     int refinementLevel = 1;
 };

@@ -224,22 +224,42 @@ void FlowScheme::substeps(double zNext, double pNext, int m, const MidpointOpera
 // smooth the sub-steps are second order, across an onset or a release first order: |coarse − fine|
 // bounds the finer result's error in both cases (Richardson: a third of it, resp. all of it) and is
 // its estimate. While it exceeds the step's target the level rises (the finer result becomes the
-// coarse one), up to the cap; the finer result is kept and the estimate accumulates. Every run is a
-// sequence of discrete-gradient sub-steps, so the energy identity holds at any level; the discarded
-// runs leave no trace but their work count.
+// coarse one), up to the cap; the finer result is kept and the estimate accumulates. A step that
+// starts held, at the level whose estimate the last step measured well inside the target, runs the
+// fine level first: if no row changed sides (the same active set at both ends: the smooth case)
+// it books that estimate again and needs no coarse run. Every run is a sequence of
+// discrete-gradient sub-steps, so the energy identity holds at any level; the discarded runs leave
+// no trace but their work count.
 void FlowScheme::refine(double zNext, double pNext) {
     CondensedState& s = state_;
     const int top = static_cast<int>(levels_.size());
     const auto level = [&](int j) -> const MidpointOperator& { return j == 0 ? full_ : *levels_[j - 1]; };
     int j = std::clamp(s.refinementLevel, 1, top);
     save(start_);
+    bool fineDone = false;
+    if (s.contactRows > 0 && s.stepError >= 0.0 && 2.0 * s.stepError <= stepTarget_) {
+        const double booked = s.stepError;
+        substeps(zNext, pNext, 1 << j, level(j));
+        if (s.contactRows > 0 && s.rowState == start_.state.rowState) {
+            s.errorEstimate += booked;
+            return;
+        }
+        save(fine_);
+        fineDone = true;
+        restore(start_);
+    }
     substeps(zNext, pNext, 1 << (j - 1), level(j - 1));
     long long discardedSolves = s.lcpSolves - start_.state.lcpSolves;
     save(coarse_);
     double error = 0.0;
     for (;;) {
-        restore(start_);
-        substeps(zNext, pNext, 1 << j, level(j));
+        if (fineDone) {
+            restore(fine_);
+            fineDone = false;
+        } else {
+            restore(start_);
+            substeps(zNext, pNext, 1 << j, level(j));
+        }
         error = separation(coarse_.state, s);
         if (error <= stepTarget_ || j == top) break;
         discardedSolves += s.lcpSolves - start_.state.lcpSolves;
@@ -250,8 +270,11 @@ void FlowScheme::refine(double zNext, double pNext) {
     s.errorEstimate += error;
     s.cappedSteps += error > stepTarget_;
     // One level lower next time when the pair one level down would still be well inside the target
-    // (a level down multiplies the error by about 4 where the sub-steps are second order).
-    s.refinementLevel = (j > 1 && kLowerBelow * error < stepTarget_) ? j - 1 : j;
+    // (a level down multiplies the error by about 4 where the sub-steps are second order); the
+    // estimate is then unknown at the new level.
+    const bool lower = j > 1 && kLowerBelow * error < stepTarget_;
+    s.refinementLevel = lower ? j - 1 : j;
+    s.stepError = lower ? -1.0 : error;
 }
 
 std::string FlowScheme::name() const {

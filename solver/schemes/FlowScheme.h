@@ -41,7 +41,7 @@ private:
     // tolerance > 0: level j takes 2^j sub-steps of Δt/2^j (level 0 is full_); the local target.
     std::vector<std::unique_ptr<MidpointOperator>> levels_;
     double stepTarget_ = 0.0;
-    Snapshot start_, coarse_;
+    Snapshot start_, coarse_, fine_;
     Eigen::MatrixXd rowModesAbs_;  // |G|: rows' response to each mode's amplitude
     Eigen::VectorXd inverseOmega_, amplitude_, rowBound_;
     // The exact flow over Δt of each mode's u = q − q_particular (§21): (u, u̇)⁺ = Φ (u, u̇).
