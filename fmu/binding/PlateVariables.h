@@ -77,6 +77,14 @@ struct PlateValues {
         portValid = simulation != nullptr;
         return simulation ? portOutputs : outputs;
     }
+    // Likewise the probes and the plate's largest stress (docs/theory.md §22): field() on the first read.
+    mutable plate::PlateOutputs fieldOutputs;
+    mutable bool fieldValid = false;
+    const plate::PlateOutputs& field() const {
+        if (!fieldValid && simulation) fieldOutputs = simulation->outputs(false, true);
+        fieldValid = simulation != nullptr;
+        return simulation ? fieldOutputs : outputs;
+    }
     InputPort* inputPort(fmu::ValueReference vr);  // nullptr: not an input
 };
 
@@ -155,6 +163,32 @@ enum PlateVr : fmu::ValueReference {
     kVrTlmWaveOut = 110,
     kVrTlmTransit = 111,
     kVrTlmLineLoss = 112,
+    // Stress and probes (docs/theory.md §22).
+    kVrRootStress = 200,
+    kVrRootStressPeak = 201,
+    kVrMaxStress = 202,
+    kVrMaxStressX = 203,
+    kVrMaxStressY = 204,
+    kVrProbe1X = 210,  // probe k: x at 210 + 2(k − 1), y at 211 + 2(k − 1)
+    kVrProbe1Y = 211,
+    kVrProbe2X = 212,
+    kVrProbe2Y = 213,
+    kVrProbe3X = 214,
+    kVrProbe3Y = 215,
+    kVrProbe4X = 216,
+    kVrProbe4Y = 217,
+    kVrProbe1 = 220,  // probe k: w at 220 + 3(k − 1), its velocity and acceleration after it
+    kVrProbe1Velocity = 221,
+    kVrProbe1Acceleration = 222,
+    kVrProbe2 = 223,
+    kVrProbe2Velocity = 224,
+    kVrProbe2Acceleration = 225,
+    kVrProbe3 = 226,
+    kVrProbe3Velocity = 227,
+    kVrProbe3Acceleration = 228,
+    kVrProbe4 = 229,
+    kVrProbe4Velocity = 230,
+    kVrProbe4Acceleration = 231,
 };
 
 // Bounds of the clamp's velocity and acceleration inputs: far beyond any shaker (1 km/s,

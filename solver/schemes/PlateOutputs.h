@@ -24,6 +24,11 @@ struct PlateOutputs {
     double contactForce[2] = {0, 0}, contactImpulse[2] = {0, 0};  // lower, upper: N, N·s
     double impacts[2] = {0, 0};  // counts: contact onsets per obstacle
     double velocity[3] = {0, 0, 0}, acceleration[3] = {0, 0, 0};  // corner1, corner2, freeEdgeMid
+    // Stress and probes (docs/theory.md §22). The root's stress and its peak are tracked every step
+    // (PlateSimulation); the rest is computed only when asked for (PlateSimulation::outputs(…, field)).
+    double rootStress = 0, rootStressPeak = 0;  // largest von Mises stress on x = 0 now, since t = 0, Pa
+    double maxStress = 0, maxStressX = 0, maxStressY = 0;  // largest over the plate's vertices, Pa, and where, m
+    double probe[4] = {0, 0, 0, 0}, probeVelocity[4] = {0, 0, 0, 0}, probeAcceleration[4] = {0, 0, 0, 0};
 };
 
 // What every scheme reports alike, written once: the ledger and counters of its state at t_n.
@@ -104,11 +109,28 @@ inline constexpr OutputField kOutputFields[] = {
     {"acceleration[0]",   Between::Interpolated, fieldOf<&PlateOutputs::acceleration, 0>},
     {"acceleration[1]",   Between::Interpolated, fieldOf<&PlateOutputs::acceleration, 1>},
     {"acceleration[2]",   Between::Interpolated, fieldOf<&PlateOutputs::acceleration, 2>},
+    {"rootStress",        Between::Interpolated, fieldOf<&PlateOutputs::rootStress>},
+    {"rootStressPeak",    Between::Interpolated, fieldOf<&PlateOutputs::rootStressPeak>},
+    {"maxStress",         Between::Interpolated, fieldOf<&PlateOutputs::maxStress>},
+    {"probe[0]",          Between::Interpolated, fieldOf<&PlateOutputs::probe, 0>},
+    {"probe[1]",          Between::Interpolated, fieldOf<&PlateOutputs::probe, 1>},
+    {"probe[2]",          Between::Interpolated, fieldOf<&PlateOutputs::probe, 2>},
+    {"probe[3]",          Between::Interpolated, fieldOf<&PlateOutputs::probe, 3>},
+    {"probeVelocity[0]",  Between::Interpolated, fieldOf<&PlateOutputs::probeVelocity, 0>},
+    {"probeVelocity[1]",  Between::Interpolated, fieldOf<&PlateOutputs::probeVelocity, 1>},
+    {"probeVelocity[2]",  Between::Interpolated, fieldOf<&PlateOutputs::probeVelocity, 2>},
+    {"probeVelocity[3]",  Between::Interpolated, fieldOf<&PlateOutputs::probeVelocity, 3>},
+    {"probeAcceleration[0]", Between::Interpolated, fieldOf<&PlateOutputs::probeAcceleration, 0>},
+    {"probeAcceleration[1]", Between::Interpolated, fieldOf<&PlateOutputs::probeAcceleration, 1>},
+    {"probeAcceleration[2]", Between::Interpolated, fieldOf<&PlateOutputs::probeAcceleration, 2>},
+    {"probeAcceleration[3]", Between::Interpolated, fieldOf<&PlateOutputs::probeAcceleration, 3>},
     {"contactVertices",   Between::Held,         fieldOf<&PlateOutputs::contactVertices>},
     {"qpIterationsTotal", Between::Held,         fieldOf<&PlateOutputs::qpIterationsTotal>},
     {"qpIterationsMax",   Between::Held,         fieldOf<&PlateOutputs::qpIterationsMax>},
     {"impacts[0]",        Between::Held,         fieldOf<&PlateOutputs::impacts, 0>},
     {"impacts[1]",        Between::Held,         fieldOf<&PlateOutputs::impacts, 1>},
+    {"maxStressX",        Between::Held,         fieldOf<&PlateOutputs::maxStressX>},  // a place, not a quantity
+    {"maxStressY",        Between::Held,         fieldOf<&PlateOutputs::maxStressY>},
 };
 // clang-format on
 constexpr std::size_t kOutputCount = std::size(kOutputFields);

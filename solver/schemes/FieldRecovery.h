@@ -1,0 +1,51 @@
+#pragma once
+// Stress and probes recovered from the discrete field (docs/theory.md §22): the functionals the
+// schemes evaluate — w at the probes, w_xx at the clamped edge's samples, the three curvatures at
+// every vertex's samples — and what PlateSimulation makes of their values: von Mises surface
+// stresses, their largest values and where, the probes' absolute motion. Built once; reading
+// allocates nothing but the vertex field it returns.
+#include <Eigen/Core>
+#include <vector>
+
+#include "fe/Assembly.h"
+#include "fe/PointEvaluation.h"
+#include "plate/LinearRows.h"
+#include "plate/PlateParameters.h"
+#include "schemes/PlateOutputs.h"
+
+namespace plate {
+
+class Scheme;
+
+class FieldRecovery {
+public:
+    FieldRecovery(const FiniteElementSpace& space, const ClampedPlate& clamped, const PlateParameters& p);
+
+    // Every functional over the free dofs: the probes, the root's samples, then 3 per vertex sample.
+    const SparseRows& functionals() const { return functionals_; }
+
+    // The largest von Mises stress over the clamped edge's samples at the output level (every step:
+    // one small product, no allocation).
+    double rootStress(const Scheme& scheme) const;
+    // The probes (absolute w, velocity, acceleration as the port's points: setPortKinematics) and
+    // the largest von Mises stress over the plate's samples (vertices, the root's) with its position.
+    void fill(const Scheme& scheme, double dt, PlateOutputs& o) const;
+    // The von Mises stress at every mesh vertex (the largest over its samples).
+    std::vector<double> vertexStress(const Scheme& scheme) const;
+
+    // σ_vm = 6D/t² · √(a² − ab + b² + 3c²), a = w_xx + ν w_yy, b = w_yy + ν w_xx, c = (1 − ν) w_xy (§22).
+    double vonMises(double wxx, double wyy, double wxy) const;
+
+private:
+    void fieldValues(const Scheme& scheme) const;  // the vertex samples' curvatures into field_
+
+    double moment_ = 0.0, nu_ = 0.0;  // 6D/t², ν
+    Eigen::Index rootFirst_ = 0, fieldFirst_ = 0;
+    std::vector<PointLocation> rootSamples_, fieldSamples_;
+    std::vector<int> fieldVertex_;
+    int vertexCount_ = 0;
+    SparseRows functionals_;
+    mutable Eigen::VectorXd root_, probes_, field_;  // scratch of the reads
+};
+
+}  // namespace plate
