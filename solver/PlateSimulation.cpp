@@ -69,14 +69,11 @@ struct PlateSimulation::Impl {
     std::shared_ptr<const DiscretePlate> discrete;
     mutable std::unique_ptr<SparseCholesky> floorFactor;  // sparse A, for the floor measurement
     std::unique_ptr<Scheme> scheme;
-    // Stress and probes (docs/theory.md §22): the functionals, and the root's stress at the output
-    // level with its peak since t = 0 (tracked every step; the peak is part of the state).
+    // Stress and probes (docs/theory.md §22): the functionals, and the peak since t = 0 of the root's
+    // largest |w_xx|, tracked every step (part of the state).
     std::unique_ptr<FieldRecovery> recovery;
-    double rootStress = 0.0, rootPeak = 0.0;
-    void trackRoot() {
-        rootStress = recovery->rootStress(*scheme);
-        rootPeak = std::max(rootPeak, rootStress);
-    }
+    double rootPeak = 0.0;
+    void trackRoot() { rootPeak = std::max(rootPeak, recovery->rootCurvature(*scheme)); }
     // Between grid points (docs/theory.md §15): the communication time, and the outputs at the
     // grid point before it (the one after it is the scheme's state).
     double commTime = 0.0;
@@ -448,8 +445,7 @@ PlateOutputs PlateSimulation::outputs(bool port, bool field) const {
 PlateOutputs PlateSimulation::gridOutputs(bool port, bool field) const {
     const Impl& s = *impl_;
     PlateOutputs o = s.scheme->outputs(port);
-    o.rootStress = s.rootStress;
-    o.rootStressPeak = s.rootPeak;
+    o.rootStressPeak = s.recovery->rootStress(s.rootPeak);
     if (field) s.recovery->fill(*s.scheme, s.parameters.dt, o);
     return o;
 }
@@ -504,7 +500,7 @@ std::vector<double> PlateSimulation::saveState() const {
     std::vector<double> out = impl_->scheme->saveState();
     out.push_back(impl_->commTime);
     out.push_back(impl_->onGrid ? 1.0 : 0.0);
-    out.push_back(impl_->rootPeak);  // the root's peak since t = 0 (§22)
+    out.push_back(impl_->rootPeak);  // the root's peak |w_xx| since t = 0 (§22)
     for (const OutputField& f : kOutputFields) out.push_back(f.value(impl_->before));
     if (const Armature* carrier = impl_->scheme->carrier()) {  // last (§18)
         for (const auto& f : kCarrierFields) out.push_back(f.value(carrier->state()));
@@ -548,7 +544,7 @@ void PlateSimulation::restoreState(const std::vector<double>& all) {
     // On the grid the time is the grid point's; between, within one step before it.
     const bool timeFits = (tail[1] == 0.0 || onGrid) && std::isfinite(tail[0]) &&
                           (onGrid ? tail[0] == gridTime : (tail[0] < gridTime && tail[0] > gridTime - dt));
-    if (!corrupt && !(tail[2] >= 0.0 && std::isfinite(tail[2]))) corrupt = "rootStressPeak";
+    if (!corrupt && !(tail[2] >= 0.0 && std::isfinite(tail[2]))) corrupt = "the root's peak";
     if (corrupt || !timeFits) {
         engine.restoreState(current);
         throw std::invalid_argument(corrupt ? std::string("corrupt state: non-finite output ") + corrupt
@@ -559,7 +555,6 @@ void PlateSimulation::restoreState(const std::vector<double>& all) {
     impl_->onGrid = onGrid;
     impl_->before = before;
     impl_->rootPeak = tail[2];
-    impl_->rootStress = impl_->recovery->rootStress(engine);  // a function of the restored state
 }
 
 }  // namespace plate

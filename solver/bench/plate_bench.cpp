@@ -150,7 +150,7 @@ int staticStress(plate::PlateParameters p, double pressure) {
         "\"clamp_moment\": %.17g, \"root_stress\": %.17g, \"poisson_ratio\": %.17g}\n",
         p.element == plate::ElementType::Fvs ? "fvs" : "argyris", p.nx, p.ny, static_cast<long>(w.size()), pressure,
         6.0 * D * curvature(middle) / (t * t), 6.0 * D * curvature(corner) / (t * t), strip, moment,
-        0.5 * pressure * p.width * p.length * p.length, sim.outputs().rootStress, p.poissonRatio);
+        0.5 * pressure * p.width * p.length * p.length, sim.outputs(false, true).rootStress, p.poissonRatio);
     return 0;
 }
 

@@ -24,6 +24,7 @@ void addRow(const PointFunctional& f, const ClampedPlate& clamped, Eigen::Index 
 FieldRecovery::FieldRecovery(const FiniteElementSpace& space, const ClampedPlate& clamped, const PlateParameters& p)
     : moment_(6.0 * p.bendingStiffness() / (p.thickness * p.thickness)),
       nu_(p.poissonRatio),
+      rootFactor_(moment_ * std::sqrt(1.0 - nu_ + nu_ * nu_)),
       vertexCount_(space.mesh().vertexCount()) {
     rootSamples_ = clampedEdgeSamples(space);
     const std::vector<PointLocation>& root = rootSamples_;
@@ -55,12 +56,10 @@ double FieldRecovery::vonMises(double wxx, double wyy, double wxy) const {
     return moment_ * std::sqrt(a * a - a * b + b * b + 3.0 * c * c);
 }
 
-double FieldRecovery::rootStress(const Scheme& scheme) const {
-    // On x = 0 the clamp makes w and w_x vanish identically, so w_yy = w_xy = 0 there: the root's
-    // stress is the uniaxial-curvature case, σ_vm = 6D/t² |w_xx| √(1 − ν + ν²) (§22).
+double FieldRecovery::rootCurvature(const Scheme& scheme) const {
     if (root_.size() == 0) return 0.0;
     scheme.recover(rootFirst_, 0, root_);
-    return moment_ * std::sqrt(1.0 - nu_ + nu_ * nu_) * root_.cwiseAbs().maxCoeff();
+    return root_.cwiseAbs().maxCoeff();
 }
 
 void FieldRecovery::fieldValues(const Scheme& scheme) const { scheme.recover(fieldFirst_, 0, field_); }
@@ -82,9 +81,10 @@ void FieldRecovery::fill(const Scheme& scheme, double dt, PlateOutputs& o) const
     fieldValues(scheme);
     // The root's samples too: its middles are no vertices, and the largest stress is often there.
     scheme.recover(rootFirst_, 0, root_);
+    o.rootStress = rootStress(root_.size() > 0 ? root_.cwiseAbs().maxCoeff() : 0.0);
     double largest = -1.0;
     for (Eigen::Index i = 0; i < root_.size(); ++i) {
-        const double s = vonMises(root_[i], 0.0, 0.0);
+        const double s = rootStress(std::abs(root_[i]));
         if (s > largest) {
             largest = s;
             o.maxStress = s;

@@ -24,11 +24,15 @@ public:
     // Every functional over the free dofs: the probes, the root's samples, then 3 per vertex sample.
     const SparseRows& functionals() const { return functionals_; }
 
-    // The largest von Mises stress over the clamped edge's samples at the output level (every step:
-    // one small product, no allocation).
-    double rootStress(const Scheme& scheme) const;
-    // The probes (absolute w, velocity, acceleration as the port's points: setPortKinematics) and
-    // the largest von Mises stress over the plate's samples (vertices, the root's) with its position.
+    // The largest |w_xx| over the clamped edge's samples at the output level: the root's peak, tracked
+    // every step (one product of (2 ny + 1) rows, no allocation).
+    double rootCurvature(const Scheme& scheme) const;
+    // The root's von Mises stress of the curvature w_xx: on x = 0 the clamp makes w and w_x vanish
+    // identically, so w_yy = w_xy = 0 there and σ_vm = 6D/t² |w_xx| √(1 − ν + ν²) (§22).
+    double rootStress(double curvature) const { return rootFactor_ * curvature; }
+    // The root's stress now, the probes (absolute w, velocity, acceleration as the port's points:
+    // setPortKinematics) and the largest von Mises stress over the plate's samples (vertices, the
+    // root's) with its position.
     void fill(const Scheme& scheme, double dt, PlateOutputs& o) const;
     // The von Mises stress at every mesh vertex (the largest over its samples).
     std::vector<double> vertexStress(const Scheme& scheme) const;
@@ -39,7 +43,7 @@ public:
 private:
     void fieldValues(const Scheme& scheme) const;  // the vertex samples' curvatures into field_
 
-    double moment_ = 0.0, nu_ = 0.0;  // 6D/t², ν
+    double moment_ = 0.0, nu_ = 0.0, rootFactor_ = 0.0;  // 6D/t², ν, 6D/t² √(1 − ν + ν²)
     Eigen::Index rootFirst_ = 0, fieldFirst_ = 0;
     std::vector<PointLocation> rootSamples_, fieldSamples_;
     std::vector<int> fieldVertex_;
