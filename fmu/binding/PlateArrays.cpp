@@ -30,8 +30,10 @@ const std::vector<fmu::ArrayOutput>& plateArrayOutputs() {
          {kVrVertexOutput, kVrVerticesX, kVrVerticesY}},
         {kVrVertexStress,
          "vertex_stress",
-         "Von Mises surface bending stress at every mesh vertex (the largest over the elements that hold it), "
-         "as vertex_displacement: [vertex_output][vertices_x][vertices_y]",
+         "Von Mises surface bending stress at every mesh vertex (fvs: its curvatures jump between elements, the "
+         "value is that of one element holding it, the one above and right of it where there is one), as "
+         "vertex_displacement: "
+         "[vertex_output][vertices_x][vertices_y]",
          "Pa",
          {kVrVertexOutput, kVrVerticesX, kVrVerticesY}},
     };

@@ -341,8 +341,8 @@ const Row kRows[] = {
     output(kVrRootStressPeak,          "root_stress_peak",           "Pa",   OUTPUT(rootStressPeak),
         "Largest root_stress since t = 0, tracked at every internal step (read or not)"),
     output(kVrMaxStress,               "max_stress",                 "Pa",   FIELD(maxStress),
-        "Largest von Mises surface bending stress over the plate now: at its mesh vertices (each in every element "
-        "that holds it) and root_stress's points"),
+        "Largest von Mises surface bending stress over the plate now: at its mesh vertices (as vertex_stress) and "
+        "root_stress's points"),
     output(kVrMaxStressX,              "max_stress_x",               "m",    FIELD(maxStressX),
         "x of the point where max_stress is (held between grid points)"),
     output(kVrMaxStressY,              "max_stress_y",               "m",    FIELD(maxStressY),

@@ -51,28 +51,8 @@ std::vector<PointLocation> vertexSamples(const FiniteElementSpace& space, std::v
     std::vector<PointLocation> samples;
     vertexOf.clear();
     for (int v = 0; v < mesh.vertexCount(); ++v) {
-        const Eigen::Vector2d x = mesh.point(v);
-        if (space.type() == ElementType::Argyris) {
-            samples.push_back(locate(space, x));
-            vertexOf.push_back(v);
-            continue;
-        }
-        // FVS: the cells around the vertex; corner k of a cell lies in its pieces k and k − 1.
-        const int i = mesh.vertexColumn(v), j = mesh.vertexRow(v);
-        for (int ci = i - 1; ci <= i; ++ci) {
-            for (int cj = j - 1; cj <= j; ++cj) {
-                if (ci < 0 || cj < 0 || ci >= mesh.nx() || cj >= mesh.ny()) continue;
-                const int c = mesh.cell(ci, cj);
-                const std::array<int, 4> corners = mesh.cellVertices(c);
-                for (int k = 0; k < 4; ++k) {
-                    if (corners[std::size_t(k)] != v) continue;
-                    for (int piece : {k, (k + 3) % 4}) {
-                        samples.push_back({c, piece, x});
-                        vertexOf.push_back(v);
-                    }
-                }
-            }
-        }
+        samples.push_back(locate(space, mesh.point(v)));
+        vertexOf.push_back(v);
     }
     return samples;
 }

@@ -36,9 +36,11 @@ PointFunctional pointFunctional(const FiniteElementSpace& space, const PointLoca
 // each vertex once). Ordered by y.
 std::vector<PointLocation> clampedEdgeSamples(const FiniteElementSpace& space);
 
-// The stress samples of every mesh vertex: Argyris is C2 at its vertices (the curvatures are dofs):
-// one location; the FVS curvatures jump between elements and sub-triangles: every (element, piece)
-// meeting at the vertex. `vertexOf[k]` is the vertex of sample k.
+// The stress samples of every mesh vertex, one each: the element and piece `locate` gives. Argyris is
+// C2 at its vertices (the curvatures are dofs: every element agrees); the FVS curvatures jump
+// between elements and sub-triangles, so its vertex values are those of that one piece (every piece
+// would cost eight times the rows, dense over every mode in the modal and condensed engines).
+// `vertexOf[k]` is the vertex of sample k.
 std::vector<PointLocation> vertexSamples(const FiniteElementSpace& space, std::vector<int>& vertexOf);
 
 }  // namespace plate
