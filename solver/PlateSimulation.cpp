@@ -354,7 +354,7 @@ bool PlateSimulation::stepThrough(const StepPlan& plan, const InputSignal& base,
     if (carrier) carrier->beginCommunication();
     for (long long k = 1; k <= plan.steps; ++k) {
         // The last step of one that ends between grid points: keep the grid point before it.
-        if (k == plan.steps && !plan.endsOnGrid) s.before = gridOutputs(true, true);
+        if (k == plan.steps && !plan.endsOnGrid) s.before = gridOutputs(true, FieldOutputs::Plate);
         const double t = plan.offset + k * dt;
         s.scheme->step(base.at(t), load.at(t));
         s.trackRoot();
@@ -427,7 +427,7 @@ bool PlateSimulation::communicateUntilContactChange(const StepPlan& plan, const 
                        }));
 }
 
-PlateOutputs PlateSimulation::outputs(bool port, bool field) const {
+PlateOutputs PlateSimulation::outputs(bool port, FieldOutputs field) const {
     PlateOutputs o = gridOutputs(port, field);
     if (impl_->onGrid) return o;
     // t_c in (t_{n−1}, t_n): linear interpolation, each ledger term alike so the ledger closes.
@@ -442,11 +442,11 @@ PlateOutputs PlateSimulation::outputs(bool port, bool field) const {
     return o;
 }
 
-PlateOutputs PlateSimulation::gridOutputs(bool port, bool field) const {
+PlateOutputs PlateSimulation::gridOutputs(bool port, FieldOutputs field) const {
     const Impl& s = *impl_;
     PlateOutputs o = s.scheme->outputs(port);
     o.rootStressPeak = s.recovery->rootStress(s.rootPeak);
-    if (field) s.recovery->fill(*s.scheme, s.parameters.dt, o);
+    if (field != FieldOutputs::None) s.recovery->fill(*s.scheme, s.parameters.dt, o, field == FieldOutputs::Plate);
     return o;
 }
 

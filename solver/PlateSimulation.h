@@ -78,8 +78,8 @@ public:
 
     // At the communication time: on the grid the scheme's values; between grid points the linear
     // interpolation of the two neighbours (counts: the earlier one). `port` adds the port's fields.
-    // `field` adds the probes and the plate's largest stress (docs/theory.md §22).
-    PlateOutputs outputs(bool port = false, bool field = false) const;
+    // `field` adds the probes and the root's stress, or those and the plate's largest stress (§22).
+    PlateOutputs outputs(bool port = false, FieldOutputs field = FieldOutputs::None) const;
 
     // Vertex values of the absolute displacement at t_n (for plots and checks).
     std::vector<double> vertexDisplacements() const;
@@ -119,7 +119,7 @@ private:
     void initializeState(NewmarkScheme& scheme, const Obstacles& obstacles, double baseDisplacement0,
                          double loadAtStart, const Eigen::SparseMatrix<double>& couplingFree);
     void setInitialReaction(NewmarkScheme& scheme, const Eigen::VectorXd& contactForce);
-    PlateOutputs gridOutputs(bool port, bool field = false) const;
+    PlateOutputs gridOutputs(bool port, FieldOutputs field = FieldOutputs::None) const;
     struct Impl;
     template <class StopAfter>
     bool stepThrough(const StepPlan& plan, const InputSignal& base, const InputSignal& load, StopAfter&& stopAfter);

@@ -1,7 +1,7 @@
 """What the stress and the probes (docs/theory.md §22) cost per step, measured in one run: plate_bench
 on a scene reading the ordinary outputs every communication step of 1e-4 s (field=0: the root's
-stress and peak are tracked every step regardless) and everything — the stress outputs, the probes
-and the vertex_stress array — too (field=1), beside a plate_bench built from a commit before them
+peak is tracked every step regardless), the probes and root_stress too (field=1: "points read"),
+and everything — max_stress and the vertex_stress array as well (field=2: "all read") — beside a plate_bench built from a commit before them
 (--baseline), interleaved rounds, the best of each. Prints the numbers and the ratios.
 
     .venv/bin/python tools/stress_cost.py --bench build/solver/bench/plate_bench \\
@@ -24,7 +24,11 @@ def main(argv=None):
     ap.add_argument("--scene", nargs="*", default=[], help="plate_bench key=value pairs of the scene")
     args = ap.parse_args(argv)
     scene = tuple(args.scene)
-    runs = {"nothing read": (args.bench, scene), "all read": (args.bench, (*scene, "field=1"))}
+    runs = {
+        "nothing read": (args.bench, scene),
+        "points read": (args.bench, (*scene, "field=1")),
+        "all read": (args.bench, (*scene, "field=2")),
+    }
     if args.baseline:
         runs = {"before": (args.baseline, scene), **runs}
     best = {name: float("inf") for name in runs}

@@ -304,6 +304,7 @@ private:
         values_.simulation = simulation_.get();
         values_.portValid = false;
         values_.fieldValid = false;
+        values_.plateFieldValid = false;
     }
 
     std::array<InputPort*, 6> ports() {

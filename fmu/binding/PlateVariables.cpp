@@ -153,6 +153,7 @@ double getQpIterationsTotal(const PlateValues& v) { return saturate(v.outputs.qp
 #define OUTPUT(field) [](const PlateValues& v) { return double(v.outputs.field); }
 #define PORT(field) [](const PlateValues& v) { return v.port().field; }
 #define FIELD(member) [](const PlateValues& v) { return v.field().member; }
+#define PLATE_FIELD(member) [](const PlateValues& v) { return v.plateField().member; }
 #define PROBE(axis, k)                                         \
     [](const PlateValues& v) { return v.parameters.axis[k]; }, \
         [](PlateValues& v, double x) { v.parameters.axis[k] = x; }
@@ -340,12 +341,12 @@ const Row kRows[] = {
         "curvatures: 6D/t^2 |w_xx| sqrt(1 - nu + nu^2) there), over each clamped element edge's ends and middle"),
     output(kVrRootStressPeak,          "root_stress_peak",           "Pa",   OUTPUT(rootStressPeak),
         "Largest root_stress since t = 0, tracked at every internal step (read or not)"),
-    output(kVrMaxStress,               "max_stress",                 "Pa",   FIELD(maxStress),
+    output(kVrMaxStress,               "max_stress",                 "Pa",   PLATE_FIELD(maxStress),
         "Largest von Mises surface bending stress over the plate now: at its mesh vertices (as vertex_stress) and "
         "root_stress's points"),
-    output(kVrMaxStressX,              "max_stress_x",               "m",    FIELD(maxStressX),
+    output(kVrMaxStressX,              "max_stress_x",               "m",    PLATE_FIELD(maxStressX),
         "x of the point where max_stress is (held between grid points)"),
-    output(kVrMaxStressY,              "max_stress_y",               "m",    FIELD(maxStressY),
+    output(kVrMaxStressY,              "max_stress_y",               "m",    PLATE_FIELD(maxStressY),
         "y of the point where max_stress is (held between grid points)"),
     parameter(kVrProbe1X, "probe_1_x", "m", kProbeCoordinate, PROBE(probeX, 0),
         "x of probe 1 (0 <= probe_1_x <= length; outputs probe_1, _velocity, _acceleration)"),
@@ -390,6 +391,7 @@ const Row kRows[] = {
 #undef PORT
 #undef CARRIER
 #undef FIELD
+#undef PLATE_FIELD
 #undef PROBE
 
 const Row& rowOf(const fmu::Variable& v) {

@@ -77,13 +77,19 @@ struct PlateValues {
         portValid = simulation != nullptr;
         return simulation ? portOutputs : outputs;
     }
-    // Likewise the probes and the plate's largest stress (docs/theory.md §22): field() on the first read.
-    mutable plate::PlateOutputs fieldOutputs;
-    mutable bool fieldValid = false;
+    // Likewise the probes and the root's stress (field()), and the plate's largest stress
+    // (plateField(): rows at every vertex), docs/theory.md §22, each on its first read.
+    mutable plate::PlateOutputs fieldOutputs, plateFieldOutputs;
+    mutable bool fieldValid = false, plateFieldValid = false;
     const plate::PlateOutputs& field() const {
-        if (!fieldValid && simulation) fieldOutputs = simulation->outputs(false, true);
+        if (!fieldValid && simulation) fieldOutputs = simulation->outputs(false, plate::FieldOutputs::Points);
         fieldValid = simulation != nullptr;
         return simulation ? fieldOutputs : outputs;
+    }
+    const plate::PlateOutputs& plateField() const {
+        if (!plateFieldValid && simulation) plateFieldOutputs = simulation->outputs(false, plate::FieldOutputs::Plate);
+        plateFieldValid = simulation != nullptr;
+        return simulation ? plateFieldOutputs : outputs;
     }
     InputPort* inputPort(fmu::ValueReference vr);  // nullptr: not an input
 };

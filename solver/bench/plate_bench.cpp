@@ -9,7 +9,8 @@
 //                                 substeps=N (contact_substeps of scheme=flow)
 //                                 engine=auto|sparse|modal (how exact mode runs)
 //                                 port=1 (read the port's outputs too, every communication step)
-//                                 field=1 (read the stress outputs, the probes and vertex_stress too)
+//                                 field=1 (read the probes and root_stress too; 2: also max_stress,
+//                                 vertex_stress)
 //                                 static_stress=P (the clamp's stress under a static pressure P: JSON)
 //                                 series=FILE (CSV of the outputs every communication step;
 //                                 its writing is outside the timed loop's cost only roughly)
@@ -150,7 +151,8 @@ int staticStress(plate::PlateParameters p, double pressure) {
         "\"clamp_moment\": %.17g, \"root_stress\": %.17g, \"poisson_ratio\": %.17g}\n",
         p.element == plate::ElementType::Fvs ? "fvs" : "argyris", p.nx, p.ny, static_cast<long>(w.size()), pressure,
         6.0 * D * curvature(middle) / (t * t), 6.0 * D * curvature(corner) / (t * t), strip, moment,
-        0.5 * pressure * p.width * p.length * p.length, sim.outputs(false, true).rootStress, p.poissonRatio);
+        0.5 * pressure * p.width * p.length * p.length, sim.outputs(false, plate::FieldOutputs::Points).rootStress,
+        p.poissonRatio);
     return 0;
 }
 
@@ -278,8 +280,12 @@ int main(int argc, char** argv) {
         // Communication step 1e-4 s (or dt if larger), input derivatives as the FMU gets them.
         const long long perComm = std::max(1LL, std::llround(num("comm", 1e-4) / p.dt));
         const bool readPort = num("port", 0.0) != 0.0;
-        // field=1: read the stress and the probes too, every communication step (docs/theory.md §22).
-        const bool readField = num("field", 0.0) != 0.0;
+        // field=1: read the probes and the root's stress too, every communication step; field=2 also
+        // the plate's largest stress and vertex_stress (docs/theory.md §22).
+        const int fieldLevel = static_cast<int>(num("field", 0.0));
+        const plate::FieldOutputs readField = fieldLevel >= 2   ? plate::FieldOutputs::Plate
+                                              : fieldLevel == 1 ? plate::FieldOutputs::Points
+                                                                : plate::FieldOutputs::None;
         std::FILE* series = args.count("series") ? std::fopen(args["series"].c_str(), "w") : nullptr;
         if (series)
             std::fprintf(series,
@@ -303,7 +309,7 @@ int main(int argc, char** argv) {
             sim.advance(std::min(perComm, steps - done), base, plate::InputSignal{});
             // Outputs are read every communication step; port=1 reads the port's too (§14).
             energySum += sim.outputs(readPort, readField).energy;
-            if (readField) energySum += 1e-300 * sim.vertexStress()[0];  // the FMI 3.0 array as well
+            if (fieldLevel >= 2) energySum += 1e-300 * sim.vertexStress()[0];  // the FMI 3.0 array as well
             record(amplitude * std::sin(omega * sim.time()));
         }
         if (series) std::fclose(series);

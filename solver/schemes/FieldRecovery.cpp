@@ -64,7 +64,7 @@ double FieldRecovery::rootCurvature(const Scheme& scheme) const {
 
 void FieldRecovery::fieldValues(const Scheme& scheme) const { scheme.recover(fieldFirst_, 0, field_); }
 
-void FieldRecovery::fill(const Scheme& scheme, double dt, PlateOutputs& o) const {
+void FieldRecovery::fill(const Scheme& scheme, double dt, PlateOutputs& o, bool plate) const {
     // The probes' absolute heights at the three levels; velocity and acceleration as the corners'.
     double heights[3][kProbeCount];
     for (int level = 0; level < 3; ++level) {
@@ -78,10 +78,12 @@ void FieldRecovery::fill(const Scheme& scheme, double dt, PlateOutputs& o) const
         o.probeVelocity[k] = (3.0 * now - 4.0 * prev + prev2) / (2.0 * dt);
         o.probeAcceleration[k] = (now - 2.0 * prev + prev2) / dt2;
     }
-    fieldValues(scheme);
-    // The root's samples too: its middles are no vertices, and the largest stress is often there.
     scheme.recover(rootFirst_, 0, root_);
     o.rootStress = rootStress(root_.size() > 0 ? root_.cwiseAbs().maxCoeff() : 0.0);
+    if (!plate) return;
+    // The largest over the vertices and the root's samples (its middles are no vertices, and the
+    // largest stress is often there).
+    fieldValues(scheme);
     double largest = -1.0;
     for (Eigen::Index i = 0; i < root_.size(); ++i) {
         const double s = rootStress(std::abs(root_[i]));

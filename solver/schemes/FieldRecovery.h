@@ -33,7 +33,8 @@ public:
     // The root's stress now, the probes (absolute w, velocity, acceleration as the port's points:
     // setPortKinematics) and the largest von Mises stress over the plate's samples (vertices, the
     // root's) with its position.
-    void fill(const Scheme& scheme, double dt, PlateOutputs& o) const;
+    // `plate`: the largest over the plate too (rows at every vertex), else the points' only.
+    void fill(const Scheme& scheme, double dt, PlateOutputs& o, bool plate) const;
     // The von Mises stress at every mesh vertex (the largest over its samples).
     std::vector<double> vertexStress(const Scheme& scheme) const;
 

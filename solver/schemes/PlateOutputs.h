@@ -31,6 +31,11 @@ struct PlateOutputs {
     double probe[4] = {0, 0, 0, 0}, probeVelocity[4] = {0, 0, 0, 0}, probeAcceleration[4] = {0, 0, 0, 0};
 };
 
+// Which of the stress and probe outputs (docs/theory.md §22) to compute: none, those at points (the
+// probes and the root's stress: a few rows), or the plate's too (its largest stress and where: rows
+// at every vertex).
+enum class FieldOutputs { None, Points, Plate };
+
 // What every scheme reports alike, written once: the ledger and counters of its state at t_n.
 struct Ledger {
     double energyInput, energyDamped, maxKktResidual;

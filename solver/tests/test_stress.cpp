@@ -94,9 +94,9 @@ TEST(StaticStress, RootStressOutputIsTheUniaxialVonMisesOfTheLargestRootCurvatur
     const double expected = 6.0 * par.bendingStiffness() / (t * t) * s.wxxMax * std::sqrt(1.0 - nu + nu * nu);
     // Two solves of the same static problem (the modal engine's against a sparse LDLᵀ): roundoff
     // of cond(K) ≈ 1e8 times eps.
-    EXPECT_NEAR(sim.outputs(false, true).rootStress, expected, 1e-7 * expected);
-    EXPECT_EQ(sim.outputs(false, true).rootStressPeak,
-              sim.outputs(false, true).rootStress);  // t = 0 belongs to the peak
+    EXPECT_NEAR(sim.outputs(false, FieldOutputs::Points).rootStress, expected, 1e-7 * expected);
+    EXPECT_EQ(sim.outputs(false, FieldOutputs::Points).rootStressPeak,
+              sim.outputs(false, FieldOutputs::Points).rootStress);  // t = 0 belongs to the peak
 }
 
 // Below the first resonance (f = f1/2) without obstacles, damped (C = aM on the relative motion,
@@ -121,7 +121,7 @@ TEST(HarmonicStress, RootStressAmplitudeIsTheModalSolution) {
     };
     while (sim.time() < end) {
         sim.advance(1, InputSignal{z(sim.time() + par.dt)}, InputSignal{});  // the scheme sees z at t_{n+1}
-        if (sim.time() >= measureFrom) largest = std::max(largest, sim.outputs(false, true).rootStress);
+        if (sim.time() >= measureFrom) largest = std::max(largest, sim.outputs(false, FieldOutputs::Points).rootStress);
     }
     // The frequency-domain solution and its root stress (the same samples as the FMU's).
     const Mesh mesh(par.length, par.width, par.nx, par.ny);
