@@ -34,6 +34,7 @@ def base(t, amplitude=0.002, f=5.0):
 
 
 def record(run, steps, h=1e-3):
+    """Communication steps of h from run.time with the base of base(); the outputs after each."""
     return [run.step(h, base=base(run.time)) for _ in range(steps)]
 
 
@@ -91,17 +92,29 @@ def test_the_root_peak_is_the_running_maximum_of_every_step_read_or_not(fmu_path
     assert max(o["root_stress"] for o in read) < running[-1]
 
 
-def test_the_peak_continues_bit_identically_from_an_fmu_state(fmu_path):
-    with PlateRun(fmu_path, **CLOSE) as run:
-        record(run, 10)
+@pytest.mark.parametrize("h", [1e-3, 1.234e-3])  # on the grid, and between grid points (interpolated)
+def test_the_stress_and_probes_continue_bit_identically_from_an_fmu_state(fmu_path, h):
+    names = ("root_stress", "root_stress_peak", "max_stress", "max_stress_x", "probe_1", "probe_1_acceleration")
+    with PlateRun(fmu_path, **CLOSE, probe_1_x=0.7, probe_1_y=0.1) as run:
+        record(run, 10, h)
         state = run.fmu.getFMUstate()
         t = run.time
-        first = record(run, 15)
+        first = record(run, 15, h)
         run.fmu.setFMUstate(state)
         run.time = t
-        again = record(run, 15)
-    assert [o["root_stress_peak"] for o in first] == [o["root_stress_peak"] for o in again]
-    assert [o["probe_1_acceleration"] for o in first] == [o["probe_1_acceleration"] for o in again]
+        again = record(run, 15, h)
+    for name in names:
+        assert [o[name] for o in first] == [o[name] for o in again], name
+
+
+def test_between_grid_points_a_probe_at_a_corner_is_still_the_corner(fmu_path):
+    """Off the grid both are the same linear interpolation of their grid values (docs/theory.md §15)."""
+    with PlateRun(fmu_path, **CLOSE, probe_1_x=1.2, probe_1_y=0.4) as run:
+        outs = record(run, 40, 1.37e-3)
+    scale = max(abs(o["corner_2"]) for o in outs)
+    for o in outs:
+        assert abs(o["probe_1"] - o["corner_2"]) <= 1e3 * EPS * scale
+        assert o["max_stress"] >= o["root_stress"] and o["root_stress_peak"] >= o["root_stress"]
 
 
 def test_fmi3_vertex_stress_agrees_with_the_scalar_stresses(fmu_path, tmp_path):
