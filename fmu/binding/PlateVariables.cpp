@@ -338,7 +338,8 @@ const Row kRows[] = {
     // Stress and probes (docs/theory.md §22).
     output(kVrRootStress,              "root_stress",                "Pa",   FIELD(rootStress),
         "Largest von Mises surface bending stress along the clamped edge x = 0 now (plane stress from the "
-        "curvatures: 6D/t^2 |w_xx| sqrt(1 - nu + nu^2) there), over each clamped element edge's ends and middle"),
+        "curvatures: 6D/t^2 |w_xx| sqrt(1 - nu + nu^2) there), over each clamped element edge's ends (and middle: "
+        "argyris)"),
     output(kVrRootStressPeak,          "root_stress_peak",           "Pa",   OUTPUT(rootStressPeak),
         "Largest root_stress since t = 0, tracked at every internal step (read or not)"),
     output(kVrMaxStress,               "max_stress",                 "Pa",   PLATE_FIELD(maxStress),

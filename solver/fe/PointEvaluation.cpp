@@ -38,6 +38,7 @@ std::vector<PointLocation> clampedEdgeSamples(const FiniteElementSpace& space) {
         const PointLocation middle = locate(space, {0.0, 0.5 * (y0 + y1)});
         for (double y : {y0, 0.5 * (y0 + y1), y1}) {
             if (c2AtVertices && j > 0 && y == y0) continue;  // the vertex the edge below gave
+            if (!c2AtVertices && y != y0 && y != y1) continue;  // FVS: w_xx linear there, largest at an end
             PointLocation at = middle;
             at.point = {0.0, y};
             samples.push_back(at);

@@ -32,8 +32,9 @@ PointLocation locate(const FiniteElementSpace& space, const Eigen::Vector2d& x);
 PointFunctional pointFunctional(const FiniteElementSpace& space, const PointLocation& at, PointQuantity quantity);
 
 // The stress samples of the clamped edge x = 0 (docs/theory.md §22): each element edge on it
-// evaluated in the element it bounds, at its ends and its middle (Argyris, C2 at the vertices:
-// each vertex once). Ordered by y.
+// evaluated in the element it bounds — Argyris (w_xx a cubic in y there, C2 at the vertices): its
+// ends, each vertex once, and its middle; FVS (w_xx linear along it, jumping between cells): its two
+// ends. Ordered by y.
 std::vector<PointLocation> clampedEdgeSamples(const FiniteElementSpace& space);
 
 // The stress samples of every mesh vertex, one each: the element and piece `locate` gives. Argyris is
