@@ -2,7 +2,7 @@
 (the SineSweep controller through input derivatives, as examples/sine_sweep.py) across the first
 natural frequency, with the obstacles close enough for impacts and Rayleigh damping: the root's
 von Mises stress envelope against frequency (and its running peak, tracked by the FMU at every
-internal step: docs/theory.md §22), and the transmissibility of a probe — its absolute
+internal step: docs/theory.md §23), and the transmissibility of a probe — its absolute
 displacement amplitude over the base's — at the accelerometer's point (--probe X Y).
 
 Writes <out>/stress_sweep.csv (every communication point: time, frequency, base, root_stress,

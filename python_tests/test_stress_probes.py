@@ -1,4 +1,4 @@
-"""Stress and probes (docs/theory.md §22) through fmpy: a probe at corner_1's point is corner_1 (value,
+"""Stress and probes (docs/theory.md §23) through fmpy: a probe at corner_1's point is corner_1 (value,
 velocity, acceleration) and a probe on the clamped edge is the clamp, in every scheme, through
 impacts; a probe outside the plate is refused naming the allowed range; root_stress_peak is the
 running maximum of root_stress at every internal step, whether read or not, and survives FMU states;

@@ -69,7 +69,7 @@ struct PlateSimulation::Impl {
     std::shared_ptr<const DiscretePlate> discrete;
     mutable std::unique_ptr<SparseCholesky> floorFactor;  // sparse A, for the floor measurement
     std::unique_ptr<Scheme> scheme;
-    // Stress and probes (docs/theory.md §22): the functionals, and the peak since t = 0 of the root's
+    // Stress and probes (docs/theory.md §23): the functionals, and the peak since t = 0 of the root's
     // largest |w_xx|, tracked every step (part of the state).
     std::unique_ptr<FieldRecovery> recovery;
     double rootPeak = 0.0;
@@ -500,7 +500,7 @@ std::vector<double> PlateSimulation::saveState() const {
     std::vector<double> out = impl_->scheme->saveState();
     out.push_back(impl_->commTime);
     out.push_back(impl_->onGrid ? 1.0 : 0.0);
-    out.push_back(impl_->rootPeak);  // the root's peak |w_xx| since t = 0 (§22)
+    out.push_back(impl_->rootPeak);  // the root's peak |w_xx| since t = 0 (§23)
     for (const OutputField& f : kOutputFields) out.push_back(f.value(impl_->before));
     if (const Armature* carrier = impl_->scheme->carrier()) {  // last (§18)
         for (const auto& f : kCarrierFields) out.push_back(f.value(carrier->state()));

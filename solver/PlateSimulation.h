@@ -78,12 +78,12 @@ public:
 
     // At the communication time: on the grid the scheme's values; between grid points the linear
     // interpolation of the two neighbours (counts: the earlier one). `port` adds the port's fields.
-    // `field` adds the probes and the root's stress, or those and the plate's largest stress (§22).
+    // `field` adds the probes and the root's stress, or those and the plate's largest stress (§23).
     PlateOutputs outputs(bool port = false, FieldOutputs field = FieldOutputs::None) const;
 
     // Vertex values of the absolute displacement at t_n (for plots and checks).
     std::vector<double> vertexDisplacements() const;
-    // The von Mises surface stress at every mesh vertex at t_n, Pa (docs/theory.md §22).
+    // The von Mises surface stress at every mesh vertex at t_n, Pa (docs/theory.md §23).
     std::vector<double> vertexStress() const;
 
     // What this instance was estimated to cost before it was built (ResourceEstimate.h).

@@ -1,4 +1,4 @@
-"""The clamp's stress under a static pressure (docs/theory.md §22) under mesh refinement, both
+"""The clamp's stress under a static pressure (docs/theory.md §23) under mesh refinement, both
 elements: plate_bench static_stress=P on 7×3, 14×5, 28×10, 56×20 (h_x halves each time; from 14×5
 on h_y too). Writes docs/stress_convergence.json: per element and mesh σ_xx at mid-edge and at the
 corner, the root moment ∫ D w_xx dy against the exact clamp moment P W L²/2, the FMU's root_stress;
@@ -65,7 +65,7 @@ def main(argv=None):
     ap = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
     ap.add_argument("--bench", default="build/solver/bench/plate_bench")
     ap.add_argument("--out", default="docs/stress_convergence.json")
-    # (the docs quote these numbers in theory.md §22)
+    # (the docs quote these numbers in theory.md §23)
     args = ap.parse_args(argv)
     result = study(args.bench)
     Path(args.out).write_text(json.dumps(result, indent=1) + "\n")

@@ -1,4 +1,4 @@
-"""What the stress and the probes (docs/theory.md §22) cost per step, measured in one run: plate_bench
+"""What the stress and the probes (docs/theory.md §23) cost per step, measured in one run: plate_bench
 on a scene reading the ordinary outputs every communication step of 1e-4 s (field=0: the root's
 peak is tracked every step regardless), the probes and root_stress too (field=1: "points read"),
 and everything — max_stress and the vertex_stress array as well (field=2: "all read") — beside a plate_bench built from a commit before them

@@ -335,7 +335,7 @@ const Row kRows[] = {
         "Energy of the wave this end launched in the last step, stored in the line until the partner receives it"),
     output(kVrTlmLineLoss,             "tlm_line_loss",              "J",    CARRIER(lineLoss),
         "Energy this end launched that the mean wave does not carry, since t = 0 (>= 0: the line is passive)"),
-    // Stress and probes (docs/theory.md §22).
+    // Stress and probes (docs/theory.md §23).
     output(kVrRootStress,              "root_stress",                "Pa",   FIELD(rootStress),
         "Largest von Mises surface bending stress along the clamped edge x = 0 now (plane stress from the "
         "curvatures: 6D/t^2 |w_xx| sqrt(1 - nu + nu^2) there), over each clamped element edge's ends (and middle: "

@@ -78,7 +78,7 @@ struct PlateValues {
         return simulation ? portOutputs : outputs;
     }
     // Likewise the probes and the root's stress (field()), and the plate's largest stress
-    // (plateField(): rows at every vertex), docs/theory.md §22, each on its first read.
+    // (plateField(): rows at every vertex), docs/theory.md §23, each on its first read.
     mutable plate::PlateOutputs fieldOutputs, plateFieldOutputs;
     mutable bool fieldValid = false, plateFieldValid = false;
     const plate::PlateOutputs& field() const {
@@ -169,7 +169,7 @@ enum PlateVr : fmu::ValueReference {
     kVrTlmWaveOut = 110,
     kVrTlmTransit = 111,
     kVrTlmLineLoss = 112,
-    // Stress and probes (docs/theory.md §22).
+    // Stress and probes (docs/theory.md §23).
     kVrRootStress = 200,
     kVrRootStressPeak = 201,
     kVrMaxStress = 202,

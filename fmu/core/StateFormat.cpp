@@ -20,7 +20,7 @@ namespace {
 // Version 6: per input whether its value was set since the last step and the time its signal
 // starts (inputs are samples at the times the master set them).
 // Version 7: the root stress's peak since t = 0 and the stress and probe outputs of the grid point
-// before an off-grid communication time (docs/theory.md §22).
+// before an off-grid communication time (docs/theory.md §23).
 constexpr std::uint32_t kFormatVersion = 7;
 constexpr std::size_t kGuidField = 48;
 constexpr std::size_t kChecksumOffset = 8 + 4 + 4 + kGuidField + 8;

@@ -84,7 +84,7 @@ COMMON = (
     "root_stress_peak",
     "max_stress",
 )
-# A probe inside the plate (the forced scene): its absolute motion as the corners' (docs/theory.md §22).
+# A probe inside the plate (the forced scene): its absolute motion as the corners' (docs/theory.md §23).
 PROBE = {"probe_1_x": 0.9, "probe_1_y": 0.1}
 PROBE_OUTPUTS = ("probe_1", "probe_1_velocity", "probe_1_acceleration")
 

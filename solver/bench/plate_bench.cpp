@@ -101,7 +101,7 @@ double floorCpuSeconds(const plate::PlateParameters& p, int repeats) {
     return batches[batches.size() / 2];
 }
 
-// static_stress=P (docs/theory.md §22, tools/stress_convergence.py): the static shape under a uniform
+// static_stress=P (docs/theory.md §23, tools/stress_convergence.py): the static shape under a uniform
 // pressure P without obstacles, and the stress at the clamp x = 0 its curvatures give: σ_xx = 6D w_xx/t²
 // at mid-edge (0, W/2) and at the corner (0, 0) (w_yy = w_xy = 0 on the clamp), the root moment
 // ∫ D w_xx dy over x = 0 (5 Gauss points per element edge: exact for the cubic w_xx of Argyris and the
@@ -281,7 +281,7 @@ int main(int argc, char** argv) {
         const long long perComm = std::max(1LL, std::llround(num("comm", 1e-4) / p.dt));
         const bool readPort = num("port", 0.0) != 0.0;
         // field=1: read the probes and the root's stress too, every communication step; field=2 also
-        // the plate's largest stress and vertex_stress (docs/theory.md §22).
+        // the plate's largest stress and vertex_stress (docs/theory.md §23).
         const int fieldLevel = static_cast<int>(num("field", 0.0));
         const plate::FieldOutputs readField = fieldLevel >= 2   ? plate::FieldOutputs::Plate
                                               : fieldLevel == 1 ? plate::FieldOutputs::Points

@@ -1,6 +1,6 @@
 #pragma once
 // Where a point of the plate lies in the space and the linear functionals of the field there: w and
-// its second derivatives (the curvatures of docs/theory.md §22), over the space's global dofs. The
+// its second derivatives (the curvatures of docs/theory.md §23), over the space's global dofs. The
 // probes and the stress recovery are built from these; nothing here knows a scheme.
 #include <Eigen/Core>
 #include <vector>
@@ -31,7 +31,7 @@ PointLocation locate(const FiniteElementSpace& space, const Eigen::Vector2d& x);
 // The quantity at the location, evaluated with the element's own shape functions.
 PointFunctional pointFunctional(const FiniteElementSpace& space, const PointLocation& at, PointQuantity quantity);
 
-// The stress samples of the clamped edge x = 0 (docs/theory.md §22): each element edge on it
+// The stress samples of the clamped edge x = 0 (docs/theory.md §23): each element edge on it
 // evaluated in the element it bounds — Argyris (w_xx a cubic in y there, C2 at the vertices): its
 // ends, each vertex once, and its middle; FVS (w_xx linear along it, jumping between cells): its two
 // ends. Ordered by y.

@@ -65,7 +65,7 @@ CondensedPlate condense(const ClampedPlate& plate, const Eigen::SparseMatrix<dou
     Eigen::VectorXd b(n), x(n);
 
     // T = Rᵀ K⁻¹ R (massive flexibility) and C K⁻¹ R, one solve per column of R.
-    // The recovery functionals L ride along on the same solves (docs/theory.md §22).
+    // The recovery functionals L ride along on the same solves (docs/theory.md §23).
     const Eigen::Index nl = recovery.rows();
     Eigen::MatrixXd flexibility(nq, nq), rowsOfMassive(rows, nq), recoveryOfMassive(nl, nq);
     for (Eigen::Index j = 0; j < nq; ++j) {

@@ -38,7 +38,7 @@ struct CondensedPlate {
     int contactRows = 0;  // the first rows: the contact vertices of ClampedPlate, in its order
     std::vector<double> rowAbscissae;  // x of each row (its lever arm about the clamp line)
     double rowModeNormMax = 0.0;  // max_i ‖G_i‖₂ (the free-flight bound)
-    // The recovery functionals L (probes, stress samples: docs/theory.md §22) of
+    // The recovery functionals L (probes, stress samples: docs/theory.md §23) of
     // w = V q + Q0 S⁻¹ Q0ᵀ (p F + Cᵀλ): L w = recoveryModes q + p recoveryLoad + recoveryRows λ.
     DenseRows recoveryModes, recoveryRows;  // L V (L × modes), L Q0 S⁻¹ Q0ᵀ Cᵀ (L × rows)
     Eigen::VectorXd recoveryLoad;  // L Q0 S⁻¹ Q0ᵀ F

@@ -52,7 +52,7 @@ public:
 
     // Point evaluation of w (relative to the base) in these coordinates.
     virtual PointProbe probe(double x, double y) const = 0;
-    // Functionals L over the free dofs (probes, stress samples: docs/theory.md §22) in these coordinates.
+    // Functionals L over the free dofs (probes, stress samples: docs/theory.md §23) in these coordinates.
     virtual LinearRows rows(const SparseRows& functionals) const = 0;
 
 protected:

@@ -1,7 +1,7 @@
 #pragma once
 // Linear functionals of a plate's coordinates, y = L x, as whichever coordinates make them cheap:
 // sparse rows over the free dofs (the sparse engine), dense rows over modal coordinates (the
-// modal engine, the condensed plate). The probes and the stress samples (docs/theory.md §22) are
+// modal engine, the condensed plate). The probes and the stress samples (docs/theory.md §23) are
 // read through them; a range of rows is evaluated without allocating (the root's samples every step).
 #include <Eigen/Core>
 #include <Eigen/Sparse>

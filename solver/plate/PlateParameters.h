@@ -9,7 +9,7 @@
 
 namespace plate {
 
-// Probe slots (docs/theory.md §22): points of the plate whose motion is an output.
+// Probe slots (docs/theory.md §23): points of the plate whose motion is an output.
 inline constexpr int kProbeCount = 4;
 
 // The plate's mass matrix (docs/theory.md §11): the consistent one of (3.4), or a singular
@@ -70,7 +70,7 @@ struct PlateParameters {
     double armatureStiffness = 3158.0;  // N/m (2 Hz with 20 kg)
     double armatureDamping = 50.0;  // N·s/m
     double tlmImpedance = 2.0e4;  // N·s/m, the line's characteristic impedance
-    // The probes (docs/theory.md §22): points (x, y) of the plate, m; each within
+    // The probes (docs/theory.md §23): points (x, y) of the plate, m; each within
     // [0, length] × [0, width] (validate). At the clamp's corner (0, 0) unless set.
     std::array<double, kProbeCount> probeX{}, probeY{};
 

@@ -248,7 +248,7 @@ ResourceEstimate estimateResources(const PlateParameters& p, const ProblemSize& 
             phases = std::max(phases, e.matricesMB * kMB + engineBytes + 2 * factorBytes(s) + lower);
         }
     }
-    // Stress and probes (docs/theory.md §22): about three functionals per vertex (the vertices'
+    // Stress and probes (docs/theory.md §23): about three functionals per vertex (the vertices'
     // curvatures; the root's and the probes' are a few more), sparse rows over an element's dofs, then
     // in the engine's coordinates: dense over the modes (modal), over the massive modes and the
     // constraint rows with the temporaries of their condensation (conserving), or a sparse copy.

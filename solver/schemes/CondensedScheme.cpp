@@ -374,7 +374,7 @@ double CondensedScheme::rowHeight(int i, int level) const {
     return c.rowModesT.col(i).dot(q) + p * c.rowLoad[i] + z + heldBack;
 }
 
-// The recovery functionals of w = V q + Q0 S⁻¹ Q0ᵀ (p F + Cᵀλ) (docs/theory.md §22): the modes,
+// The recovery functionals of w = V q + Q0 S⁻¹ Q0ᵀ (p F + Cᵀλ) (docs/theory.md §23): the modes,
 // the massless part's response to the load and to the contact forces (skipped while they are zero).
 void CondensedScheme::recover(Eigen::Index first, int level, Eigen::Ref<Eigen::VectorXd> out) const {
     const CondensedPlate& c = *plate_;

@@ -1,5 +1,5 @@
 #pragma once
-// Stress and probes recovered from the discrete field (docs/theory.md §22): the functionals the
+// Stress and probes recovered from the discrete field (docs/theory.md §23): the functionals the
 // schemes evaluate — w at the probes, w_xx at the clamped edge's samples, the three curvatures at
 // every vertex's samples — and what PlateSimulation makes of their values: von Mises surface
 // stresses, their largest values and where, the probes' absolute motion. Built once; reading
@@ -28,7 +28,7 @@ public:
     // every step (one product of 2 ny + 1 rows, 2 ny with FVS; no allocation).
     double rootCurvature(const Scheme& scheme) const;
     // The root's von Mises stress of the curvature w_xx: on x = 0 the clamp makes w and w_x vanish
-    // identically, so w_yy = w_xy = 0 there and σ_vm = 6D/t² |w_xx| √(1 − ν + ν²) (§22).
+    // identically, so w_yy = w_xy = 0 there and σ_vm = 6D/t² |w_xx| √(1 − ν + ν²) (§23).
     double rootStress(double curvature) const { return rootFactor_ * curvature; }
     // The root's stress now, the probes (absolute w, velocity, acceleration as the port's points:
     // setPortKinematics) and the largest von Mises stress over the plate's samples (vertices, the
@@ -38,7 +38,7 @@ public:
     // The von Mises stress at every mesh vertex (the largest over its samples).
     std::vector<double> vertexStress(const Scheme& scheme) const;
 
-    // σ_vm = 6D/t² · √(a² − ab + b² + 3c²), a = w_xx + ν w_yy, b = w_yy + ν w_xx, c = (1 − ν) w_xy (§22).
+    // σ_vm = 6D/t² · √(a² − ab + b² + 3c²), a = w_xx + ν w_yy, b = w_yy + ν w_xx, c = (1 − ν) w_xy (§23).
     double vonMises(double wxx, double wyy, double wxy) const;
 
 private:

@@ -90,7 +90,7 @@ public:
         const NewmarkState& st = state_;
         recovery_.apply(first, level == 0 ? st.w : level == 1 ? st.wPrev : st.wPrev2, out);
     }
-    // The recovery functionals in the plate's coordinates (DiscretePlate::rows; docs/theory.md §22).
+    // The recovery functionals in the plate's coordinates (DiscretePlate::rows; docs/theory.md §23).
     void setRecovery(LinearRows rows) { recovery_ = std::move(rows); }
     std::vector<double> saveState() const override { return serialize(state_); }
     void restoreState(const std::vector<double>& state) override;
@@ -159,7 +159,7 @@ private:
     // step read and κ_h once computed.
     int vertexCount_;
     PointProbe corner1_, corner2_, freeEdgeMid_;
-    LinearRows recovery_;  // probes and stress samples (§22)
+    LinearRows recovery_;  // probes and stress samples (§23)
     double initialForce_ = 0.0, initialMoment_ = 0.0;
     mutable long long energyStep_ = -1;
     mutable double energyCache_ = 0.0, kappa_ = -1.0;

@@ -24,14 +24,14 @@ struct PlateOutputs {
     double contactForce[2] = {0, 0}, contactImpulse[2] = {0, 0};  // lower, upper: N, N·s
     double impacts[2] = {0, 0};  // counts: contact onsets per obstacle
     double velocity[3] = {0, 0, 0}, acceleration[3] = {0, 0, 0};  // corner1, corner2, freeEdgeMid
-    // Stress and probes (docs/theory.md §22). The root's peak is tracked every step (PlateSimulation);
+    // Stress and probes (docs/theory.md §23). The root's peak is tracked every step (PlateSimulation);
     // the rest is computed only when asked for (PlateSimulation::outputs(…, field)).
     double rootStress = 0, rootStressPeak = 0;  // largest von Mises stress on x = 0 now, since t = 0, Pa
     double maxStress = 0, maxStressX = 0, maxStressY = 0;  // largest over the plate's vertices, Pa, and where, m
     double probe[4] = {0, 0, 0, 0}, probeVelocity[4] = {0, 0, 0, 0}, probeAcceleration[4] = {0, 0, 0, 0};
 };
 
-// Which of the stress and probe outputs (docs/theory.md §22) to compute: none, those at points (the
+// Which of the stress and probe outputs (docs/theory.md §23) to compute: none, those at points (the
 // probes and the root's stress: a few rows), or the plate's too (its largest stress and where: rows
 // at every vertex).
 enum class FieldOutputs { None, Points, Plate };

@@ -34,7 +34,7 @@ public:
     // Absolute height of every mesh vertex at t_n.
     virtual std::vector<double> vertexDisplacements() const = 0;
     // The recovery functionals [first, first + out.size()) — the probes and stress samples
-    // PlateSimulation gave the scheme at construction (docs/theory.md §22) — of the displacement
+    // PlateSimulation gave the scheme at construction (docs/theory.md §23) — of the displacement
     // relative to the clamp at the output level (0) or one of the two before it (1, 2).
     virtual void recover(Eigen::Index first, int level, Eigen::Ref<Eigen::VectorXd> out) const = 0;
 

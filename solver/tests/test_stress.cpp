@@ -1,4 +1,4 @@
-// Stress recovery (docs/theory.md §22) against facts of the plate: at the clamp w_yy = w_xy = 0, so
+// Stress recovery (docs/theory.md §23) against facts of the plate: at the clamp w_yy = w_xy = 0, so
 // σ_yy = ν σ_xx and the root's von Mises stress is √(1 − ν + ν²) σ_xx; the root moment ∫ D w_xx dy of a
 // static pressure converges to the exact clamp moment p W L²/2 (the refinement study up to 56×20 is
 // tools/stress_convergence.py; here its two cheapest meshes); and the root stress amplitude of a
