@@ -235,6 +235,21 @@ def test_dask_map_equals_serial_loop(fmu):
             assert s[c] == p[c], (c, s, p)  # exact equality, not approximate
 
 
+def test_stress_sweep_quick(fmu, tmp_path):
+    run_example("stress_sweep.py", fmu, tmp_path)
+    series = ("time", "frequency", "base", "root_stress", "root_stress_peak", "probe_1", "probe_1_acceleration")
+    rows = read_csv(tmp_path / "stress_sweep.csv", series)
+    assert_finite(rows, series)
+    assert len(rows) == 50  # 0.05 s at 1 ms
+    peaks = [float(r["root_stress_peak"]) for r in rows]
+    assert peaks == sorted(peaks) and all(float(r["root_stress"]) <= p for r, p in zip(rows, peaks))
+    env = read_csv(
+        tmp_path / "stress_envelope.csv", ("frequency", "root_stress_max", "root_stress_peak", "transmissibility")
+    )
+    assert_finite(env, ("frequency", "root_stress_max", "root_stress_peak", "transmissibility"))
+    assert (tmp_path / "stress_sweep.png").stat().st_size > 10_000
+
+
 # -- every example takes the options the README promises ----------------------------------------
 @pytest.mark.parametrize("script", sorted(p.name for p in EXAMPLES.glob("*.py")))
 def test_every_example_takes_fmu_out_and_quick(script):

@@ -95,11 +95,12 @@ def test_same_variables_and_defaults(fmu2, fmu3):
         assert (v3.valueReference, v3.causality, v3.type) == (v2.valueReference, v2.causality, types[v2.type])
         assert (v3.start, v3.unit, v3.declaredType is None) == (v2.start, v2.unit, v2.declaredType is None)
     extra = {v.name for v in md3.modelVariables} - {v.name for v in md2.modelVariables}
-    assert extra == {"time", "vertex_output", "vertices_x", "vertices_y", "vertex_displacement"}
+    assert extra == {"time", "vertex_output", "vertices_x", "vertices_y", "vertex_displacement", "vertex_stress"}
     assert by_name3["time"].causality == "independent"
     assert (by_name3["vertices_x"].start, by_name3["vertices_y"].start) == ("15", "6")  # nx + 1, ny + 1
     assert by_name3["vertices_x"].causality == "structuralParameter"
     assert by_name3["vertex_displacement"].shape == (1, 15, 6)
+    assert by_name3["vertex_stress"].shape == (1, 15, 6)
     assert (by_name3["vertex_output"].causality, by_name3["vertex_output"].start) == ("structuralParameter", "1")
     xml = zipfile.ZipFile(fmu3).read("modelDescription.xml").decode()
     assert re.search(r'name="vertex_output"[^>]* min="0" max="1"', xml)  # (fmpy reads no UInt64 range)

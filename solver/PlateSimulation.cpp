@@ -6,6 +6,7 @@
 #include <cmath>
 #include <sstream>
 
+#include "schemes/FieldRecovery.h"
 #include "fe/Assembly.h"
 #include "plate/BoxQP.h"
 #include "plate/SparseCholesky.h"
@@ -68,6 +69,11 @@ struct PlateSimulation::Impl {
     std::shared_ptr<const DiscretePlate> discrete;
     mutable std::unique_ptr<SparseCholesky> floorFactor;  // sparse A, for the floor measurement
     std::unique_ptr<Scheme> scheme;
+    // Stress and probes (docs/theory.md §23): the functionals, and the peak since t = 0 of the root's
+    // largest |w_xx|, tracked every step (part of the state).
+    std::unique_ptr<FieldRecovery> recovery;
+    double rootPeak = 0.0;
+    void trackRoot() { rootPeak = std::max(rootPeak, recovery->rootCurvature(*scheme)); }
     // Between grid points (docs/theory.md §15): the communication time, and the outputs at the
     // grid point before it (the one after it is the scheme's state).
     double commTime = 0.0;
@@ -102,6 +108,7 @@ PlateSimulation::PlateSimulation(const PlateParameters& p, double baseDisplaceme
         root = std::move(singular.root);
     }
     s.clamped = std::make_shared<const ClampedPlate>(clamp(*s.space, matrices));
+    s.recovery = std::make_unique<FieldRecovery>(*s.space, *s.clamped, p);
     matrices = PlateMatrices{};  // the unclamped matrices are not needed past the clamp
     Eigen::SparseMatrix<double> couplingFree;
     if (p.singularMass()) {
@@ -112,6 +119,7 @@ PlateSimulation::PlateSimulation(const PlateParameters& p, double baseDisplaceme
     const Eigen::SparseMatrix<double> rootFree =
         p.condensed() ? freeRows(root, *s.clamped) : Eigen::SparseMatrix<double>();
     s.scheme = makeScheme(obstacles, baseDisplacement0, loadAtStart, couplingFree, rootFree, progress);
+    s.trackRoot();  // the initial state's (t = 0 belongs to the peak)
     progress.done(s.resources.peakMB);
 }
 
@@ -174,6 +182,7 @@ std::unique_ptr<Scheme> PlateSimulation::makeNewmark(const Obstacles& obstacles,
     if (options.carried) options.carrier = carrierOptions(p, baseDisplacement0);
     auto scheme = std::make_unique<NewmarkScheme>(s.discrete, obstacles, options,
                                                   OutputPoints{p.length, p.width, s.space->mesh().vertexCount()});
+    scheme->setRecovery(s.discrete->rows(s.recovery->functionals()));
     progress.phase("static initial state (factor of K)", s.resources.staticSeconds + 0.5 * s.resources.factorSeconds);
     initializeState(*scheme, obstacles, baseDisplacement0, loadAtStart, couplingFree);
     return scheme;
@@ -200,7 +209,8 @@ std::shared_ptr<const CondensedPlate> PlateSimulation::condensedPlate(const Eige
     }
     rows.probes = probeRows;
     rows.vertices = std::move(vertexRows);
-    return std::make_shared<const CondensedPlate>(condense(*s.clamped, rootFree, extra, p.modes));
+    return std::make_shared<const CondensedPlate>(
+        condense(*s.clamped, rootFree, extra, p.modes, s.recovery->functionals()));
 }
 
 void PlateSimulation::requireBaseBetween(const Obstacles& obstacles, double baseDisplacement0) {
@@ -345,9 +355,10 @@ bool PlateSimulation::stepThrough(const StepPlan& plan, const InputSignal& base,
     if (carrier) carrier->beginCommunication();
     for (long long k = 1; k <= plan.steps; ++k) {
         // The last step of one that ends between grid points: keep the grid point before it.
-        if (k == plan.steps && !plan.endsOnGrid) s.before = gridOutputs(true);
+        if (k == plan.steps && !plan.endsOnGrid) s.before = gridOutputs(true, FieldOutputs::Plate);
         const double t = plan.offset + k * dt;
         s.scheme->step(base.at(t), load.at(t));
+        s.trackRoot();
         if (k == plan.steps && !plan.endsOnGrid) break;
         if (!stopAfter.wanted) continue;
         const double commTime = s.commTime;
@@ -417,8 +428,8 @@ bool PlateSimulation::communicateUntilContactChange(const StepPlan& plan, const 
                        }));
 }
 
-PlateOutputs PlateSimulation::outputs(bool port) const {
-    PlateOutputs o = gridOutputs(port);
+PlateOutputs PlateSimulation::outputs(bool port, FieldOutputs field) const {
+    PlateOutputs o = gridOutputs(port, field);
     if (impl_->onGrid) return o;
     // t_c in (t_{n−1}, t_n): linear interpolation, each ledger term alike so the ledger closes.
     const double dt = impl_->parameters.dt;
@@ -432,7 +443,15 @@ PlateOutputs PlateSimulation::outputs(bool port) const {
     return o;
 }
 
-PlateOutputs PlateSimulation::gridOutputs(bool port) const { return impl_->scheme->outputs(port); }
+PlateOutputs PlateSimulation::gridOutputs(bool port, FieldOutputs field) const {
+    const Impl& s = *impl_;
+    PlateOutputs o = s.scheme->outputs(port);
+    o.rootStressPeak = s.recovery->rootStress(s.rootPeak);
+    if (field != FieldOutputs::None) s.recovery->fill(*s.scheme, s.parameters.dt, o, field == FieldOutputs::Plate);
+    return o;
+}
+
+std::vector<double> PlateSimulation::vertexStress() const { return impl_->recovery->vertexStress(*impl_->scheme); }
 
 std::vector<double> PlateSimulation::vertexDisplacements() const { return impl_->scheme->vertexDisplacements(); }
 
@@ -482,6 +501,7 @@ std::vector<double> PlateSimulation::saveState() const {
     std::vector<double> out = impl_->scheme->saveState();
     out.push_back(impl_->commTime);
     out.push_back(impl_->onGrid ? 1.0 : 0.0);
+    out.push_back(impl_->rootPeak);  // the root's peak |w_xx| since t = 0 (§23)
     for (const OutputField& f : kOutputFields) out.push_back(f.value(impl_->before));
     if (const Armature* carrier = impl_->scheme->carrier()) {  // last (§18)
         for (const auto& f : kCarrierFields) out.push_back(f.value(carrier->state()));
@@ -504,7 +524,7 @@ void PlateSimulation::restoreState(const std::vector<double>& all) {
         }
         in.resize(in.size() - kCarrierStateSize);
     }
-    constexpr std::size_t kTail = 2 + kOutputCount;
+    constexpr std::size_t kTail = 3 + kOutputCount;
     if (in.size() < kTail) throw std::invalid_argument("state does not belong to this plate (too short)");
     const std::size_t head = in.size() - kTail;
     const std::vector<double> engineState(in.begin(), in.begin() + std::ptrdiff_t(head));
@@ -519,12 +539,13 @@ void PlateSimulation::restoreState(const std::vector<double>& all) {
     const char* corrupt = nullptr;  // the first non-finite output
     for (std::size_t i = 0; i < kOutputCount; ++i) {
         const OutputField& f = kOutputFields[i];
-        if (!corrupt && !std::isfinite(tail[2 + i])) corrupt = f.name;
-        f.field(before) = tail[2 + i];
+        if (!corrupt && !std::isfinite(tail[3 + i])) corrupt = f.name;
+        f.field(before) = tail[3 + i];
     }
     // On the grid the time is the grid point's; between, within one step before it.
     const bool timeFits = (tail[1] == 0.0 || onGrid) && std::isfinite(tail[0]) &&
                           (onGrid ? tail[0] == gridTime : (tail[0] < gridTime && tail[0] > gridTime - dt));
+    if (!corrupt && !(tail[2] >= 0.0 && std::isfinite(tail[2]))) corrupt = "the root's peak";
     if (corrupt || !timeFits) {
         engine.restoreState(current);
         throw std::invalid_argument(corrupt ? std::string("corrupt state: non-finite output ") + corrupt
@@ -534,6 +555,7 @@ void PlateSimulation::restoreState(const std::vector<double>& all) {
     impl_->commTime = tail[0];
     impl_->onGrid = onGrid;
     impl_->before = before;
+    impl_->rootPeak = tail[2];
 }
 
 }  // namespace plate

@@ -78,10 +78,13 @@ public:
 
     // At the communication time: on the grid the scheme's values; between grid points the linear
     // interpolation of the two neighbours (counts: the earlier one). `port` adds the port's fields.
-    PlateOutputs outputs(bool port = false) const;
+    // `field` adds the probes and the root's stress, or those and the plate's largest stress (§23).
+    PlateOutputs outputs(bool port = false, FieldOutputs field = FieldOutputs::None) const;
 
     // Vertex values of the absolute displacement at t_n (for plots and checks).
     std::vector<double> vertexDisplacements() const;
+    // The von Mises surface stress at every mesh vertex at t_n, Pa (docs/theory.md §23).
+    std::vector<double> vertexStress() const;
 
     // What this instance was estimated to cost before it was built (ResourceEstimate.h).
     const ResourceEstimate& resources() const;
@@ -116,7 +119,7 @@ private:
     void initializeState(NewmarkScheme& scheme, const Obstacles& obstacles, double baseDisplacement0,
                          double loadAtStart, const Eigen::SparseMatrix<double>& couplingFree);
     void setInitialReaction(NewmarkScheme& scheme, const Eigen::VectorXd& contactForce);
-    PlateOutputs gridOutputs(bool port) const;
+    PlateOutputs gridOutputs(bool port, FieldOutputs field = FieldOutputs::None) const;
     struct Impl;
     template <class StopAfter>
     bool stepThrough(const StepPlan& plan, const InputSignal& base, const InputSignal& load, StopAfter&& stopAfter);

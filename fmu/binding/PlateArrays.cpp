@@ -28,13 +28,23 @@ const std::vector<fmu::ArrayOutput>& plateArrayOutputs() {
          "(i length/nx, j width/ny); a vertex on an obstacle sits at its height; empty when vertex_output = 0",
          "m",
          {kVrVertexOutput, kVrVerticesX, kVrVerticesY}},
+        {kVrVertexStress,
+         "vertex_stress",
+         "Von Mises surface bending stress at every mesh vertex (fvs: its curvatures jump between elements, the "
+         "value is that of one element holding it, the one above and right of it where there is one), as "
+         "vertex_displacement: "
+         "[vertex_output][vertices_x][vertices_y]",
+         "Pa",
+         {kVrVertexOutput, kVrVerticesX, kVrVerticesY}},
     };
     return table;
 }
 
 void getPlateArray(const plate::PlateSimulation& simulation, const fmu::ArrayOutput& a, double* out, std::size_t n) {
-    if (a.vr != kVrVertexDisplacement) throw fmu::ModelError(std::string(a.name) + " is not an array of the plate");
-    const std::vector<double> u = simulation.vertexDisplacements();
+    if (a.vr != kVrVertexDisplacement && a.vr != kVrVertexStress)
+        throw fmu::ModelError(std::string(a.name) + " is not an array of the plate");
+    const std::vector<double> u =
+        a.vr == kVrVertexStress ? simulation.vertexStress() : simulation.vertexDisplacements();
     if (u.size() != n)
         throw fmu::ModelError(std::string(a.name) + ": nValues gives " + std::to_string(n) + " values, the mesh has " +
                               std::to_string(u.size()) + " vertices");

@@ -17,6 +17,7 @@ enum PlateArrayVr : fmu::ValueReference {
     kVrVerticesY = 1002,
     kVrVertexDisplacement = 1003,
     kVrVertexOutput = 1004,
+    kVrVertexStress = 1005,
 };
 
 const std::vector<fmu::StructuralParameter>& plateStructuralParameters();

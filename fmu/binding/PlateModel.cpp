@@ -305,6 +305,8 @@ private:
         values_.outputs = simulation_ ? simulation_->outputs() : plate::PlateOutputs{};
         values_.simulation = simulation_.get();
         values_.portValid = false;
+        values_.fieldValid = false;
+        values_.plateFieldValid = false;
     }
 
     std::array<InputPort*, 6> ports() {

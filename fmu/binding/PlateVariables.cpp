@@ -152,6 +152,11 @@ double getQpIterationsTotal(const PlateValues& v) { return saturate(v.outputs.qp
     [](const PlateValues& v) { return v.member.signal.value; }, [](PlateValues& v, double x) { v.member.setValue(x); }
 #define OUTPUT(field) [](const PlateValues& v) { return double(v.outputs.field); }
 #define PORT(field) [](const PlateValues& v) { return v.port().field; }
+#define FIELD(member) [](const PlateValues& v) { return v.field().member; }
+#define PLATE_FIELD(member) [](const PlateValues& v) { return v.plateField().member; }
+#define PROBE(axis, k)                                         \
+    [](const PlateValues& v) { return v.parameters.axis[k]; }, \
+        [](PlateValues& v, double x) { v.parameters.axis[k] = x; }
 #define CARRIER(field) [](const PlateValues& v) { return v.simulation ? v.simulation->carrierOutputs().field : 0.0; }
 
 using namespace plate::ranges;  // the parameters' ranges: kLength, kCells, ...
@@ -344,6 +349,54 @@ const Row kRows[] = {
         "Energy of the wave this end launched in the last step, stored in the line until the partner receives it"),
     output(kVrTlmLineLoss,             "tlm_line_loss",              "J",    CARRIER(lineLoss),
         "Energy this end launched that the mean wave does not carry, since t = 0 (>= 0: the line is passive)"),
+    // Stress and probes (docs/theory.md §23).
+    output(kVrRootStress,              "root_stress",                "Pa",   FIELD(rootStress),
+        "Largest von Mises surface bending stress along the clamped edge x = 0 now (plane stress from the "
+        "curvatures: 6D/t^2 |w_xx| sqrt(1 - nu + nu^2) there), over each clamped element edge's ends (and middle: "
+        "argyris)"),
+    output(kVrRootStressPeak,          "root_stress_peak",           "Pa",   OUTPUT(rootStressPeak),
+        "Largest root_stress since t = 0, tracked at every internal step (read or not)"),
+    output(kVrMaxStress,               "max_stress",                 "Pa",   PLATE_FIELD(maxStress),
+        "Largest von Mises surface bending stress over the plate now: at its mesh vertices (as vertex_stress) and "
+        "root_stress's points"),
+    output(kVrMaxStressX,              "max_stress_x",               "m",    PLATE_FIELD(maxStressX),
+        "x of the point where max_stress is (held between grid points)"),
+    output(kVrMaxStressY,              "max_stress_y",               "m",    PLATE_FIELD(maxStressY),
+        "y of the point where max_stress is (held between grid points)"),
+    parameter(kVrProbe1X, "probe_1_x", "m", kProbeCoordinate, PROBE(probeX, 0),
+        "x of probe 1 (0 <= probe_1_x <= length; outputs probe_1, _velocity, _acceleration)"),
+    parameter(kVrProbe1Y, "probe_1_y", "m", kProbeCoordinate, PROBE(probeY, 0),
+        "y of probe 1 (0 <= probe_1_y <= width)"),
+    parameter(kVrProbe2X, "probe_2_x", "m", kProbeCoordinate, PROBE(probeX, 1), "x of probe 2 (0 ... length)"),
+    parameter(kVrProbe2Y, "probe_2_y", "m", kProbeCoordinate, PROBE(probeY, 1), "y of probe 2 (0 ... width)"),
+    parameter(kVrProbe3X, "probe_3_x", "m", kProbeCoordinate, PROBE(probeX, 2), "x of probe 3 (0 ... length)"),
+    parameter(kVrProbe3Y, "probe_3_y", "m", kProbeCoordinate, PROBE(probeY, 2), "y of probe 3 (0 ... width)"),
+    parameter(kVrProbe4X, "probe_4_x", "m", kProbeCoordinate, PROBE(probeX, 3), "x of probe 4 (0 ... length)"),
+    parameter(kVrProbe4Y, "probe_4_y", "m", kProbeCoordinate, PROBE(probeY, 3), "y of probe 4 (0 ... width)"),
+    output(kVrProbe1,                  "probe_1",                    "m",    FIELD(probe[0]),
+        "Absolute displacement w at probe 1 (probe_1_x, probe_1_y), from the element's shape functions"),
+    output(kVrProbe1Velocity,          "probe_1_velocity",           "m/s",  FIELD(probeVelocity[0]),
+        "Absolute velocity at probe 1 (second-order backward difference, as corner_1_velocity)"),
+    output(kVrProbe1Acceleration,      "probe_1_acceleration",       "m/s2", FIELD(probeAcceleration[0]),
+        "Absolute acceleration at probe 1 at t - dt (the scheme's central difference, as corner_1_acceleration)"),
+    output(kVrProbe2,                  "probe_2",                    "m",    FIELD(probe[1]),
+        "Absolute displacement w at probe 2"),
+    output(kVrProbe2Velocity,          "probe_2_velocity",           "m/s",  FIELD(probeVelocity[1]),
+        "Absolute velocity at probe 2"),
+    output(kVrProbe2Acceleration,      "probe_2_acceleration",       "m/s2", FIELD(probeAcceleration[1]),
+        "Absolute acceleration at probe 2 at t - dt"),
+    output(kVrProbe3,                  "probe_3",                    "m",    FIELD(probe[2]),
+        "Absolute displacement w at probe 3"),
+    output(kVrProbe3Velocity,          "probe_3_velocity",           "m/s",  FIELD(probeVelocity[2]),
+        "Absolute velocity at probe 3"),
+    output(kVrProbe3Acceleration,      "probe_3_acceleration",       "m/s2", FIELD(probeAcceleration[2]),
+        "Absolute acceleration at probe 3 at t - dt"),
+    output(kVrProbe4,                  "probe_4",                    "m",    FIELD(probe[3]),
+        "Absolute displacement w at probe 4"),
+    output(kVrProbe4Velocity,          "probe_4_velocity",           "m/s",  FIELD(probeVelocity[3]),
+        "Absolute velocity at probe 4"),
+    output(kVrProbe4Acceleration,      "probe_4_acceleration",       "m/s2", FIELD(probeAcceleration[3]),
+        "Absolute acceleration at probe 4 at t - dt"),
 };
 // clang-format on
 
@@ -352,6 +405,9 @@ const Row kRows[] = {
 #undef OUTPUT
 #undef PORT
 #undef CARRIER
+#undef FIELD
+#undef PLATE_FIELD
+#undef PROBE
 
 const Row& rowOf(const fmu::Variable& v) {
     // `v` is an element of plateVariables(), which lists the rows' variables in the same order.

@@ -77,6 +77,20 @@ struct PlateValues {
         portValid = simulation != nullptr;
         return simulation ? portOutputs : outputs;
     }
+    // Likewise the probes and the root's stress (field()), and the plate's largest stress
+    // (plateField(): rows at every vertex), docs/theory.md §23, each on its first read.
+    mutable plate::PlateOutputs fieldOutputs, plateFieldOutputs;
+    mutable bool fieldValid = false, plateFieldValid = false;
+    const plate::PlateOutputs& field() const {
+        if (!fieldValid && simulation) fieldOutputs = simulation->outputs(false, plate::FieldOutputs::Points);
+        fieldValid = simulation != nullptr;
+        return simulation ? fieldOutputs : outputs;
+    }
+    const plate::PlateOutputs& plateField() const {
+        if (!plateFieldValid && simulation) plateFieldOutputs = simulation->outputs(false, plate::FieldOutputs::Plate);
+        plateFieldValid = simulation != nullptr;
+        return simulation ? plateFieldOutputs : outputs;
+    }
     InputPort* inputPort(fmu::ValueReference vr);  // nullptr: not an input
 };
 
@@ -159,6 +173,32 @@ enum PlateVr : fmu::ValueReference {
     kVrTlmWaveOut = 110,
     kVrTlmTransit = 111,
     kVrTlmLineLoss = 112,
+    // Stress and probes (docs/theory.md §23).
+    kVrRootStress = 200,
+    kVrRootStressPeak = 201,
+    kVrMaxStress = 202,
+    kVrMaxStressX = 203,
+    kVrMaxStressY = 204,
+    kVrProbe1X = 210,  // probe k: x at 210 + 2(k − 1), y at 211 + 2(k − 1)
+    kVrProbe1Y = 211,
+    kVrProbe2X = 212,
+    kVrProbe2Y = 213,
+    kVrProbe3X = 214,
+    kVrProbe3Y = 215,
+    kVrProbe4X = 216,
+    kVrProbe4Y = 217,
+    kVrProbe1 = 220,  // probe k: w at 220 + 3(k − 1), its velocity and acceleration after it
+    kVrProbe1Velocity = 221,
+    kVrProbe1Acceleration = 222,
+    kVrProbe2 = 223,
+    kVrProbe2Velocity = 224,
+    kVrProbe2Acceleration = 225,
+    kVrProbe3 = 226,
+    kVrProbe3Velocity = 227,
+    kVrProbe3Acceleration = 228,
+    kVrProbe4 = 229,
+    kVrProbe4Velocity = 230,
+    kVrProbe4Acceleration = 231,
 };
 
 // Bounds of the clamp's velocity and acceleration inputs: far beyond any shaker (1 km/s,

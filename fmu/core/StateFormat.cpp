@@ -19,7 +19,9 @@ namespace {
 // communication time between grid points; docs/theory.md §14–16).
 // Version 6: per input whether its value was set since the last step and the time its signal
 // starts (inputs are samples at the times the master set them).
-constexpr std::uint32_t kFormatVersion = 6;
+// Version 7: the root stress's peak since t = 0 and the stress and probe outputs of the grid point
+// before an off-grid communication time (docs/theory.md §23).
+constexpr std::uint32_t kFormatVersion = 7;
 constexpr std::size_t kGuidField = 48;
 constexpr std::size_t kChecksumOffset = 8 + 4 + 4 + kGuidField + 8;
 constexpr std::size_t kHeaderBytes = kChecksumOffset + 8;

@@ -69,7 +69,7 @@ AMPLITUDE, FREQUENCY = 0.09, 10.0  # the paper's §5.1 base, m and Hz
 W = 2.0 * math.pi * FREQUENCY
 
 # The outputs every experiment compares: the three observation points, the energy ledger, the
-# clamp port and the obstacles' impulses.
+# clamp port, the obstacles' impulses and the stresses (the root now and its peak, the plate's largest).
 COMMON = (
     "corner_1",
     "corner_2",
@@ -80,7 +80,13 @@ COMMON = (
     "clamp_force",
     "contact_impulse_lower",
     "contact_impulse_upper",
+    "root_stress",
+    "root_stress_peak",
+    "max_stress",
 )
+# A probe inside the plate (the forced scene): its absolute motion as the corners' (docs/theory.md §23).
+PROBE = {"probe_1_x": 0.9, "probe_1_y": 0.1}
+PROBE_OUTPUTS = ("probe_1", "probe_1_velocity", "probe_1_acceleration")
 
 
 def forced_base(t):
@@ -119,11 +125,13 @@ EXPERIMENTS = (
         "forced",
         "validation",
         "The paper's section 5.1 forced oscillation (figure 6): 14x5 Argyris cells, dt = 1e-4 s, base 0.09 "
-        "sin(2 pi 10 t) m, obstacles at +-0.1 m, 0.1 s communicated every 1e-3 s: impacts on both obstacles",
+        "sin(2 pi 10 t) m, obstacles at +-0.1 m, 0.1 s communicated every 1e-3 s: impacts on both obstacles; "
+        "probe_1 at (0.9, 0.1) m",
         0.1,
         1e-3,
-        dict(QUADRATIC, nx=14, ny=5, dt=1e-4),
+        dict(QUADRATIC, nx=14, ny=5, dt=1e-4, **PROBE),
         {"base_displacement": forced_base},
+        outputs=COMMON + PROBE_OUTPUTS,
     ),
     Experiment(
         "release",

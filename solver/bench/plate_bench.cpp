@@ -10,6 +10,9 @@
 //                                 tolerance=M max_substeps=N (scheme=flow: adaptive contact sub-steps)
 //                                 engine=auto|sparse|modal (how exact mode runs)
 //                                 port=1 (read the port's outputs too, every communication step)
+//                                 field=1 (read the probes and root_stress too; 2: also max_stress,
+//                                 vertex_stress)
+//                                 static_stress=P (the clamp's stress under a static pressure P: JSON)
 //                                 series=FILE (CSV of the outputs every communication step;
 //                                 its writing is outside the timed loop's cost only roughly)
 //                                 comm=SECONDS (communication step, default 1e-4)
@@ -40,6 +43,7 @@
 #include <unsupported/Eigen/SparseExtra>
 
 #include "fe/Assembly.h"
+#include "fe/PointEvaluation.h"
 #include "plate/SparseCholesky.h"
 #include "PlateSimulation.h"
 
@@ -96,6 +100,61 @@ double floorCpuSeconds(const plate::PlateParameters& p, int repeats) {
     }
     std::nth_element(batches.begin(), batches.begin() + batches.size() / 2, batches.end());
     return batches[batches.size() / 2];
+}
+
+// static_stress=P (docs/theory.md §23, tools/stress_convergence.py): the static shape under a uniform
+// pressure P without obstacles, and the stress at the clamp x = 0 its curvatures give: σ_xx = 6D w_xx/t²
+// at mid-edge (0, W/2) and at the corner (0, 0) (w_yy = w_xy = 0 on the clamp), the root moment
+// ∫ D w_xx dy over x = 0 (5 Gauss points per element edge: exact for the cubic w_xx of Argyris and the
+// linear one of FVS) against the exact clamp moment P W L²/2, and the FMU's root_stress of that state.
+int staticStress(plate::PlateParameters p, double pressure) {
+    const plate::Mesh mesh(p.length, p.width, p.nx, p.ny);
+    const auto space = plate::makeSpace(p.element, mesh);
+    const auto matrices = plate::assemble(*space, p.surfaceDensity(), p.bendingStiffness(), p.poissonRatio);
+    const auto clamped = plate::clamp(*space, matrices);
+    const plate::SparseCholesky stiffness(clamped.stiffness);
+    Eigen::VectorXd b = pressure * clamped.pressureLoad, w(b.size());
+    stiffness.solve(b, w);
+    Eigen::VectorXd u = Eigen::VectorXd::Zero(space->dofCount());  // clamped dofs stay 0
+    for (Eigen::Index i = 0; i < w.size(); ++i) u[clamped.freeDofs[std::size_t(i)]] = w[i];
+    const auto curvature = [&](const plate::PointLocation& at) {
+        const plate::PointFunctional f = plate::pointFunctional(*space, at, plate::PointQuantity::Dxx);
+        double sum = 0.0;
+        for (std::size_t k = 0; k < f.dofs.size(); ++k) sum += f.coefficients[k] * u[f.dofs[k]];
+        return sum;
+    };
+    const double D = p.bendingStiffness(), t = p.thickness;
+    // The samples nearest the middle and the corner of the clamped edge: the edge's own elements.
+    plate::PointLocation middle = plate::locate(*space, {0.0, 0.5 * p.width - 1e-9 * p.width});
+    middle.point = {0.0, 0.5 * p.width};
+    plate::PointLocation corner = plate::locate(*space, {0.0, 1e-9 * p.width});
+    corner.point = {0.0, 0.0};
+    const double gauss[5] = {-0.9061798459386640, -0.5384693101056831, 0.0, 0.5384693101056831, 0.9061798459386640};
+    const double weight[5] = {0.2369268850561891, 0.4786286704993665, 0.5688888888888889, 0.4786286704993665,
+                              0.2369268850561891};
+    double moment = 0.0;
+    for (int j = 0; j < p.ny; ++j) {
+        const double y0 = j * mesh.hy(), y1 = (j + 1) * mesh.hy();
+        plate::PointLocation at = plate::locate(*space, {0.0, 0.5 * (y0 + y1)});
+        for (int g = 0; g < 5; ++g) {
+            at.point = {0.0, 0.5 * (y0 + y1) + 0.5 * (y1 - y0) * gauss[g]};
+            moment += 0.5 * (y1 - y0) * weight[g] * D * curvature(at);
+        }
+    }
+    p.initialLoad = pressure;
+    p.obstacleLowerEnabled = p.obstacleUpperEnabled = false;
+    p.memoryLimit = 0.0;
+    const plate::PlateSimulation sim(p, 0.0, pressure);
+    const double strip = 3.0 * pressure * p.length * p.length / (t * t);  // 6 M/t², M = p L²/2
+    std::printf(
+        "{\"element\": \"%s\", \"nx\": %d, \"ny\": %d, \"dofs\": %ld, \"pressure\": %.17g, "
+        "\"sigma_xx_mid\": %.17g, \"sigma_xx_corner\": %.17g, \"sigma_strip\": %.17g, \"root_moment\": %.17g, "
+        "\"clamp_moment\": %.17g, \"root_stress\": %.17g, \"poisson_ratio\": %.17g}\n",
+        p.element == plate::ElementType::Fvs ? "fvs" : "argyris", p.nx, p.ny, static_cast<long>(w.size()), pressure,
+        6.0 * D * curvature(middle) / (t * t), 6.0 * D * curvature(corner) / (t * t), strip, moment,
+        0.5 * pressure * p.width * p.length * p.length, sim.outputs(false, plate::FieldOutputs::Points).rootStress,
+        p.poissonRatio);
+    return 0;
 }
 
 // The clamped plate's matrices for independent checks and the plain Python/SciPy baseline.
@@ -201,6 +260,7 @@ int main(int argc, char** argv) {
     p.memoryLimit = num("memory_limit", 0.0);
     if (args.count("export")) return exportMatrices(p, args["export"]);
     if (num("estimate_only", 0) != 0) return printEstimate(p);
+    if (args.count("static_stress")) return staticStress(p, num("static_stress", 1000.0));
     const long long steps = static_cast<long long>(num("steps", 100000));
     const double amplitude = num("amplitude", 0.09), frequency = num("frequency", 10.0);
     try {
@@ -223,6 +283,12 @@ int main(int argc, char** argv) {
         // Communication step 1e-4 s (or dt if larger), input derivatives as the FMU gets them.
         const long long perComm = std::max(1LL, std::llround(num("comm", 1e-4) / p.dt));
         const bool readPort = num("port", 0.0) != 0.0;
+        // field=1: read the probes and the root's stress too, every communication step; field=2 also
+        // the plate's largest stress and vertex_stress (docs/theory.md §23).
+        const int fieldLevel = static_cast<int>(num("field", 0.0));
+        const plate::FieldOutputs readField = fieldLevel >= 2   ? plate::FieldOutputs::Plate
+                                              : fieldLevel == 1 ? plate::FieldOutputs::Points
+                                                                : plate::FieldOutputs::None;
         std::FILE* series = args.count("series") ? std::fopen(args["series"].c_str(), "w") : nullptr;
         if (series)
             std::fprintf(series,
@@ -245,7 +311,8 @@ int main(int argc, char** argv) {
                                           -amplitude * omega * omega * std::sin(omega * t)};
             sim.advance(std::min(perComm, steps - done), base, plate::InputSignal{});
             // Outputs are read every communication step; port=1 reads the port's too (§14).
-            energySum += sim.outputs(readPort).energy;
+            energySum += sim.outputs(readPort, readField).energy;
+            if (fieldLevel >= 2) energySum += 1e-300 * sim.vertexStress()[0];  // the FMI 3.0 array as well
             record(amplitude * std::sin(omega * sim.time()));
         }
         if (series) std::fclose(series);

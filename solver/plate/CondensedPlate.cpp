@@ -57,7 +57,7 @@ void requireDelassusPositive(const Eigen::MatrixXd& delassus, Eigen::Index rows)
 }  // namespace
 
 CondensedPlate condense(const ClampedPlate& plate, const Eigen::SparseMatrix<double>& root,
-                        const std::vector<ConstraintRow>& extraRows, int modes) {
+                        const std::vector<ConstraintRow>& extraRows, int modes, const SparseRows& recovery) {
     const Eigen::Index n = plate.stiffness.rows(), nq = root.cols();
     const auto m = static_cast<Eigen::Index>(plate.contactDofs.size());
     const Eigen::Index rows = m + static_cast<Eigen::Index>(extraRows.size());
@@ -65,19 +65,23 @@ CondensedPlate condense(const ClampedPlate& plate, const Eigen::SparseMatrix<dou
     Eigen::VectorXd b(n), x(n);
 
     // T = Rᵀ K⁻¹ R (massive flexibility) and C K⁻¹ R, one solve per column of R.
-    Eigen::MatrixXd flexibility(nq, nq), rowsOfMassive(rows, nq);
+    // The recovery functionals L ride along on the same solves (docs/theory.md §23).
+    const Eigen::Index nl = recovery.rows();
+    Eigen::MatrixXd flexibility(nq, nq), rowsOfMassive(rows, nq), recoveryOfMassive(nl, nq);
     for (Eigen::Index j = 0; j < nq; ++j) {
         b = root.col(j);
         stiffness.solve(b, x);
         flexibility.col(j).noalias() = root.transpose() * x;
         gatherRows(plate, extraRows, x, rowsOfMassive.col(j).data());
+        if (nl > 0) recoveryOfMassive.col(j).noalias() = recovery * x;
     }
     // C K⁻¹ Cᵀ, one solve per row.
-    Eigen::MatrixXd rowFlexibility(rows, rows);
+    Eigen::MatrixXd rowFlexibility(rows, rows), recoveryFlexibility(nl, rows);
     for (Eigen::Index i = 0; i < rows; ++i) {
         rowDirection(plate, extraRows, static_cast<std::size_t>(i), b);
         stiffness.solve(b, x);
         gatherRows(plate, extraRows, x, rowFlexibility.col(i).data());
+        if (nl > 0) recoveryFlexibility.col(i).noalias() = recovery * x;
     }
     // The massive stiffness T⁻¹ = Φ Ω² Φᵀ: T's eigenvalues are 1/ω², largest first = lowest mode.
     flexibility = 0.5 * (flexibility + flexibility.transpose()).eval();
@@ -115,6 +119,13 @@ CondensedPlate condense(const ClampedPlate& plate, const Eigen::SparseMatrix<dou
     const double loadFlexibilityFull = modal(plate.pressureLoad, massive, c.rowLoad.data());
     c.rowLoad.noalias() -= rowsPhi * omega2All.cwiseProduct(massive);
     c.loadFlexibility = loadFlexibilityFull - massive.dot(omega2All.cwiseProduct(massive));
+    if (nl > 0) {
+        // L V = (L K⁻¹ R) Φ Ω², and the massless parts as D and c_p above with L in place of C.
+        const Eigen::MatrixXd recoveryPhi = recoveryOfMassive * phi;
+        c.recoveryModes = recoveryPhi.leftCols(kept) * c.omega2.asDiagonal();
+        c.recoveryRows = recoveryFlexibility - recoveryPhi * omega2All.asDiagonal() * rowsPhi.transpose();
+        c.recoveryLoad = recovery * x - recoveryPhi * omega2All.cwiseProduct(massive);  // x = K⁻¹ F still
+    }
     c.modalLoad = omega2All.head(kept).cwiseProduct(massive.head(kept));
     modal(plate.baseInertia, massive, nullptr);
     c.modalBaseInertia = omega2All.head(kept).cwiseProduct(massive.head(kept));

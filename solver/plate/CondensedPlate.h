@@ -16,6 +16,7 @@
 #include <vector>
 
 #include "fe/Assembly.h"
+#include "plate/LinearRows.h"
 
 namespace plate {
 
@@ -37,6 +38,10 @@ struct CondensedPlate {
     int contactRows = 0;  // the first rows: the contact vertices of ClampedPlate, in its order
     std::vector<double> rowAbscissae;  // x of each row (its lever arm about the clamp line)
     double rowModeNormMax = 0.0;  // max_i ‖G_i‖₂ (the free-flight bound)
+    // The recovery functionals L (probes, stress samples: docs/theory.md §23) of
+    // w = V q + Q0 S⁻¹ Q0ᵀ (p F + Cᵀλ): L w = recoveryModes q + p recoveryLoad + recoveryRows λ.
+    DenseRows recoveryModes, recoveryRows;  // L V (L × modes), L Q0 S⁻¹ Q0ᵀ Cᵀ (L × rows)
+    Eigen::VectorXd recoveryLoad;  // L Q0 S⁻¹ Q0ᵀ F
 
     int rows() const { return static_cast<int>(rowLoad.size()); }
     int modes() const { return static_cast<int>(omega2.size()); }
@@ -52,7 +57,8 @@ struct ConstraintRow {
 // points added as constraint rows after the contact vertices, `modes` the massive modes kept
 // (≤ 0 or ≥ the massive dimension: all). Throws ParameterError when the massless space cannot
 // move every row independently (D not positive definite) or the massive flexibility is singular.
+// `recovery`: functionals over the free dofs read through the same flexibilities (none by default).
 CondensedPlate condense(const ClampedPlate& plate, const Eigen::SparseMatrix<double>& root,
-                        const std::vector<ConstraintRow>& extraRows, int modes);
+                        const std::vector<ConstraintRow>& extraRows, int modes, const SparseRows& recovery = {});
 
 }  // namespace plate

@@ -5,6 +5,7 @@
 #include <functional>
 
 #include "fe/Assembly.h"
+#include "plate/LinearRows.h"
 
 namespace plate {
 
@@ -51,6 +52,8 @@ public:
 
     // Point evaluation of w (relative to the base) in these coordinates.
     virtual PointProbe probe(double x, double y) const = 0;
+    // Functionals L over the free dofs (probes, stress samples: docs/theory.md §23) in these coordinates.
+    virtual LinearRows rows(const SparseRows& functionals) const = 0;
 
 protected:
     DiscretePlate(double dt, double beta) : dt_(dt), beta_(beta) {}

@@ -29,6 +29,7 @@ public:
     const Eigen::VectorXd& rotationInertia() const override { return plate_->rotationInertia; }
     const ClampedPlate& clamped() const override { return *plate_; }
     PointProbe probe(double x, double y) const override { return plate_->probe(*space_, x, y); }
+    LinearRows rows(const SparseRows& functionals) const override { return {functionals, {}}; }
 
     const SparseCholesky& stepFactor() const { return stepFactor_; }
 

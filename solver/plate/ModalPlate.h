@@ -39,6 +39,7 @@ public:
     const Eigen::VectorXd& rotationInertia() const override { return rotationInertia_; }
     const ClampedPlate& clamped() const override { return *plate_; }
     PointProbe probe(double x, double y) const override;
+    LinearRows rows(const SparseRows& functionals) const override { return {{}, DenseRows(functionals * phi_)}; }
 
     bool complete() const { return complete_; }
     // Squared circular frequencies ω_k² of the retained modes, ascending.

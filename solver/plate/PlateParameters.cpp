@@ -112,6 +112,16 @@ void validate(const PlateParameters& p) {
         reject("mass", static_cast<int>(p.mass),
                "1 (consistent) when base_drive = force or tlm (a carried clamp with a singular mass is not "
                "implemented)");
+    // The probes (docs/theory.md §23): inside the plate, whose size the table's range cannot know.
+    for (int k = 0; k < kProbeCount; ++k) {
+        const std::string x = "probe_" + std::to_string(k + 1) + "_x", y = "probe_" + std::to_string(k + 1) + "_y";
+        const Range along{0.0, p.length}, across{0.0, p.width};
+        const std::size_t i = std::size_t(k);
+        if (!along.contains(p.probeX[i]))
+            reject(x.c_str(), p.probeX[i], (rangeText(x.c_str(), along) + " = length: a point of the plate").c_str());
+        if (!across.contains(p.probeY[i]))
+            reject(y.c_str(), p.probeY[i], (rangeText(y.c_str(), across) + " = width: a point of the plate").c_str());
+    }
 }
 
 }  // namespace plate

@@ -1,5 +1,6 @@
 #pragma once
 // Physical and numerical parameters of one PlateImpact run, with their validation.
+#include <array>
 #include <stdexcept>
 #include <string>
 
@@ -7,6 +8,9 @@
 #include "fe/FiniteElementSpace.h"
 
 namespace plate {
+
+// Probe slots (docs/theory.md §23): points of the plate whose motion is an output.
+inline constexpr int kProbeCount = 4;
 
 // The plate's mass matrix (docs/theory.md §11): the consistent one of (3.4), or a singular
 // (redistributed) mass B C⁻¹ Bᵀ projected on piecewise constants (P0) or on discontinuous
@@ -71,6 +75,9 @@ struct PlateParameters {
     double armatureStiffness = 3158.0;  // N/m (2 Hz with 20 kg)
     double armatureDamping = 50.0;  // N·s/m
     double tlmImpedance = 2.0e4;  // N·s/m, the line's characteristic impedance
+    // The probes (docs/theory.md §23): points (x, y) of the plate, m; each within
+    // [0, length] × [0, width] (validate). At the clamp's corner (0, 0) unless set.
+    std::array<double, kProbeCount> probeX{}, probeY{};
 
     double bendingStiffness() const {
         return youngsModulus * thickness * thickness * thickness / (12.0 * (1.0 - poissonRatio * poissonRatio));
@@ -116,6 +123,8 @@ constexpr Range kMemoryLimit{0.0, 1e9};  // MB; 0 = no limit
 // The carrier (§18–19): a mass > 0 (a massless armature is a line end or no carrier at all).
 constexpr Range kArmatureMass{0.0, 1e9, true}, kArmatureStiffness{0.0, 1e12}, kArmatureDamping{0.0, 1e12};
 constexpr Range kTlmImpedance{0.0, 1e12, true};
+// A probe's coordinate: what the table can declare; validate() checks it against length and width.
+constexpr Range kProbeCoordinate{0.0, 1e4};
 }  // namespace ranges
 
 // Checks everything that can be checked without assembling (throws ParameterError).

@@ -252,6 +252,21 @@ ResourceEstimate estimateResources(const PlateParameters& p, const ProblemSize& 
             phases = std::max(phases, e.matricesMB * kMB + engineBytes + 2 * factorBytes(s) + lower);
         }
     }
+    // Stress and probes (docs/theory.md §23): about three functionals per vertex (the vertices'
+    // curvatures; the root's and the probes' are a few more), sparse rows over an element's dofs, then
+    // in the engine's coordinates: dense over the modes (modal), over the massive modes and the
+    // constraint rows with the temporaries of their condensation (conserving), or a sparse copy.
+    const double recoveryRows = 3.0 * double(s.contactVertices + p.ny + 1) + 2.0 * p.ny + 5.0;
+    const double perRow = p.element == ElementType::Fvs ? 12.0 : 21.0;
+    double recovery = (kTriplet + kEntry) * recoveryRows * perRow;
+    if (e.engine == EngineKind::Conserving)
+        recovery += kDouble * recoveryRows * (3.0 * massive + 2.0 * rows);
+    else if (e.engine == EngineKind::Sparse)
+        recovery += kEntry * recoveryRows * perRow;
+    else
+        recovery += kDouble * recoveryRows * (e.engine == EngineKind::CompleteModal ? n : double(p.modes));
+    engineBytes += recovery;
+    phases += recovery;
     e.engineMB = engineBytes / kMB;
     // The pattern walk and the symbolic analysis (AMD's copy of the pattern and its workspace).
     phases = std::max(phases, 4.0 * (3.0 * z + 8.0 * nFull));

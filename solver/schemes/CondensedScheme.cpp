@@ -374,6 +374,20 @@ double CondensedScheme::rowHeight(int i, int level) const {
     return c.rowModesT.col(i).dot(q) + p * c.rowLoad[i] + z + heldBack;
 }
 
+// The recovery functionals of w = V q + Q0 S⁻¹ Q0ᵀ (p F + Cᵀλ) (docs/theory.md §23): the modes,
+// the massless part's response to the load and to the contact forces (skipped while they are zero).
+void CondensedScheme::recover(Eigen::Index first, int level, Eigen::Ref<Eigen::VectorXd> out) const {
+    const CondensedPlate& c = *plate_;
+    const CondensedState& s = state_;
+    const Eigen::VectorXd& q = level == 0 ? s.q : level == 1 ? s.qPrev : s.qPrev2;
+    const Eigen::VectorXd& f = level == 0 ? s.force : level == 1 ? s.forcePrev : s.forcePrev2;
+    const double p = level == 0 ? s.p : level == 1 ? s.pPrev : s.pPrev2;
+    const Eigen::Index n = out.size();
+    out.noalias() = c.recoveryModes.middleRows(first, n) * q;
+    out += p * c.recoveryLoad.segment(first, n);
+    if (!f.isZero(0.0)) out.noalias() += c.recoveryRows.middleRows(first, n) * f;
+}
+
 void CondensedScheme::initialReaction(double& force, double& moment) const {
     const CondensedPlate& c = *plate_;
     const CondensedState& s = state_;

@@ -86,6 +86,10 @@ public:
     int contactVertices() const override { return state_.contactRows; }
     PlateOutputs outputs(bool port) const override;
     std::vector<double> vertexDisplacements() const override;
+    void recover(Eigen::Index first, int level, Eigen::Ref<Eigen::VectorXd> out) const override;  // §23
+    double clampHeight(int level) const override {
+        return level == 0 ? state_.z : level == 1 ? state_.zPrev : state_.zPrev2;
+    }
     std::vector<double> saveState() const override { return serialize(); }
     void restoreState(const std::vector<double>& state) override { setState(deserialize(state)); }
     std::string name() const override;

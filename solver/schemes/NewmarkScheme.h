@@ -83,6 +83,15 @@ public:
     int contactVertices() const override { return state_.contactVertices; }
     PlateOutputs outputs(bool port) const override;
     std::vector<double> vertexDisplacements() const override;
+    double clampHeight(int level) const override {
+        return level == 0 ? state_.z : level == 1 ? state_.zPrev : state_.zPrev2;
+    }
+    void recover(Eigen::Index first, int level, Eigen::Ref<Eigen::VectorXd> out) const override {
+        const NewmarkState& st = state_;
+        recovery_.apply(first, level == 0 ? st.w : level == 1 ? st.wPrev : st.wPrev2, out);
+    }
+    // The recovery functionals in the plate's coordinates (DiscretePlate::rows; docs/theory.md §23).
+    void setRecovery(LinearRows rows) { recovery_ = std::move(rows); }
     std::vector<double> saveState() const override { return serialize(state_); }
     void restoreState(const std::vector<double>& state) override;
     std::string name() const override;
@@ -150,6 +159,7 @@ private:
     // step read and κ_h once computed.
     int vertexCount_;
     PointProbe corner1_, corner2_, freeEdgeMid_;
+    LinearRows recovery_;  // probes and stress samples (§23)
     double initialForce_ = 0.0, initialMoment_ = 0.0;
     mutable long long energyStep_ = -1;
     mutable double energyCache_ = 0.0, kappa_ = -1.0;

@@ -27,7 +27,17 @@ struct PlateOutputs {
     // time_scheme = flow with a tolerance (docs/theory.md §22): the accumulated estimate of the
     // displacement error (m) and the contact steps whose sub-steps the cap bounded (count).
     double errorEstimate = 0, cappedSteps = 0;
+    // Stress and probes (docs/theory.md §23). The root's peak is tracked every step (PlateSimulation);
+    // the rest is computed only when asked for (PlateSimulation::outputs(…, field)).
+    double rootStress = 0, rootStressPeak = 0;  // largest von Mises stress on x = 0 now, since t = 0, Pa
+    double maxStress = 0, maxStressX = 0, maxStressY = 0;  // largest over the plate's vertices, Pa, and where, m
+    double probe[4] = {0, 0, 0, 0}, probeVelocity[4] = {0, 0, 0, 0}, probeAcceleration[4] = {0, 0, 0, 0};
 };
+
+// Which of the stress and probe outputs (docs/theory.md §23) to compute: none, those at points (the
+// probes and the root's stress: a few rows), or the plate's too (its largest stress and where: rows
+// at every vertex).
+enum class FieldOutputs { None, Points, Plate };
 
 // What every scheme reports alike, written once: the ledger and counters of its state at t_n.
 struct Ledger {
@@ -107,6 +117,21 @@ inline constexpr OutputField kOutputFields[] = {
     {"acceleration[0]",   Between::Interpolated, fieldOf<&PlateOutputs::acceleration, 0>},
     {"acceleration[1]",   Between::Interpolated, fieldOf<&PlateOutputs::acceleration, 1>},
     {"acceleration[2]",   Between::Interpolated, fieldOf<&PlateOutputs::acceleration, 2>},
+    {"rootStress",        Between::Interpolated, fieldOf<&PlateOutputs::rootStress>},
+    {"rootStressPeak",    Between::Interpolated, fieldOf<&PlateOutputs::rootStressPeak>},
+    {"maxStress",         Between::Interpolated, fieldOf<&PlateOutputs::maxStress>},
+    {"probe[0]",          Between::Interpolated, fieldOf<&PlateOutputs::probe, 0>},
+    {"probe[1]",          Between::Interpolated, fieldOf<&PlateOutputs::probe, 1>},
+    {"probe[2]",          Between::Interpolated, fieldOf<&PlateOutputs::probe, 2>},
+    {"probe[3]",          Between::Interpolated, fieldOf<&PlateOutputs::probe, 3>},
+    {"probeVelocity[0]",  Between::Interpolated, fieldOf<&PlateOutputs::probeVelocity, 0>},
+    {"probeVelocity[1]",  Between::Interpolated, fieldOf<&PlateOutputs::probeVelocity, 1>},
+    {"probeVelocity[2]",  Between::Interpolated, fieldOf<&PlateOutputs::probeVelocity, 2>},
+    {"probeVelocity[3]",  Between::Interpolated, fieldOf<&PlateOutputs::probeVelocity, 3>},
+    {"probeAcceleration[0]", Between::Interpolated, fieldOf<&PlateOutputs::probeAcceleration, 0>},
+    {"probeAcceleration[1]", Between::Interpolated, fieldOf<&PlateOutputs::probeAcceleration, 1>},
+    {"probeAcceleration[2]", Between::Interpolated, fieldOf<&PlateOutputs::probeAcceleration, 2>},
+    {"probeAcceleration[3]", Between::Interpolated, fieldOf<&PlateOutputs::probeAcceleration, 3>},
     {"contactVertices",   Between::Held,         fieldOf<&PlateOutputs::contactVertices>},
     {"qpIterationsTotal", Between::Held,         fieldOf<&PlateOutputs::qpIterationsTotal>},
     {"qpIterationsMax",   Between::Held,         fieldOf<&PlateOutputs::qpIterationsMax>},
@@ -114,6 +139,8 @@ inline constexpr OutputField kOutputFields[] = {
     {"impacts[1]",        Between::Held,         fieldOf<&PlateOutputs::impacts, 1>},
     {"errorEstimate",     Between::Held,         fieldOf<&PlateOutputs::errorEstimate>},
     {"cappedSteps",       Between::Held,         fieldOf<&PlateOutputs::cappedSteps>},
+    {"maxStressX",        Between::Held,         fieldOf<&PlateOutputs::maxStressX>},  // a place, not a quantity
+    {"maxStressY",        Between::Held,         fieldOf<&PlateOutputs::maxStressY>},
 };
 // clang-format on
 constexpr std::size_t kOutputCount = std::size(kOutputFields);

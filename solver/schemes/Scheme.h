@@ -5,6 +5,7 @@
 // communication grid, the inputs and the interpolation between grid points; a scheme owns its
 // state, its outputs at the grid point it stands on, and that state's flat form. Schemes are
 // made in one place: makeScheme (PlateSimulation.cpp).
+#include <Eigen/Core>
 #include <string>
 #include <vector>
 
@@ -26,11 +27,16 @@ public:
 
     virtual long long stepCount() const = 0;
     virtual double baseDisplacement() const = 0;  // z(t_n)
+    virtual double clampHeight(int level) const = 0;  // z at the output level (0) or one of the two before it
     virtual int contactVertices() const = 0;  // points held by an obstacle at t_n
     // The outputs at t_n; `port` adds the port's fields (docs/theory.md §14).
     virtual PlateOutputs outputs(bool port) const = 0;
     // Absolute height of every mesh vertex at t_n.
     virtual std::vector<double> vertexDisplacements() const = 0;
+    // The recovery functionals [first, first + out.size()) — the probes and stress samples
+    // PlateSimulation gave the scheme at construction (docs/theory.md §23) — of the displacement
+    // relative to the clamp at the output level (0) or one of the two before it (1, 2).
+    virtual void recover(Eigen::Index first, int level, Eigen::Ref<Eigen::VectorXd> out) const = 0;
 
     virtual std::vector<double> saveState() const = 0;
     virtual void restoreState(const std::vector<double>& state) = 0;  // throws std::invalid_argument

@@ -68,6 +68,7 @@ public:
     const Eigen::VectorXd& rotationInertia() const override { return zero_; }
     const ClampedPlate& clamped() const override { return clamped_; }
     PointProbe probe(double, double) const override { return {}; }
+    LinearRows rows(const SparseRows& functionals) const override { return {functionals, {}}; }
 
 private:
     Eigen::Index n_;

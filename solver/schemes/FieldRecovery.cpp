@@ -1,0 +1,120 @@
+#include "schemes/FieldRecovery.h"
+
+#include <algorithm>
+#include <cmath>
+
+#include "schemes/Scheme.h"
+
+namespace plate {
+
+namespace {
+
+// Appends a functional over the global dofs as a row over the free dofs (clamped dofs are zero).
+void addRow(const PointFunctional& f, const ClampedPlate& clamped, Eigen::Index row,
+            std::vector<Eigen::Triplet<double>>& entries) {
+    for (std::size_t k = 0; k < f.dofs.size(); ++k) {
+        const auto it = std::lower_bound(clamped.freeDofs.begin(), clamped.freeDofs.end(), f.dofs[k]);
+        if (it != clamped.freeDofs.end() && *it == f.dofs[k])
+            entries.emplace_back(row, Eigen::Index(it - clamped.freeDofs.begin()), f.coefficients[k]);
+    }
+}
+
+}  // namespace
+
+FieldRecovery::FieldRecovery(const FiniteElementSpace& space, const ClampedPlate& clamped, const PlateParameters& p)
+    : moment_(6.0 * p.bendingStiffness() / (p.thickness * p.thickness)),
+      nu_(p.poissonRatio),
+      rootFactor_(moment_ * std::sqrt(1.0 - nu_ + nu_ * nu_)),
+      vertexCount_(space.mesh().vertexCount()) {
+    rootSamples_ = clampedEdgeSamples(space);
+    const std::vector<PointLocation>& root = rootSamples_;
+    fieldSamples_ = vertexSamples(space, fieldVertex_);
+    rootFirst_ = kProbeCount;
+    fieldFirst_ = rootFirst_ + Eigen::Index(root.size());
+    const Eigen::Index rows = fieldFirst_ + 3 * Eigen::Index(fieldSamples_.size());
+    std::vector<Eigen::Triplet<double>> entries;
+    for (int k = 0; k < kProbeCount; ++k)
+        addRow(pointFunctional(space, locate(space, {p.probeX[std::size_t(k)], p.probeY[std::size_t(k)]}),
+                               PointQuantity::Value),
+               clamped, k, entries);
+    for (std::size_t i = 0; i < root.size(); ++i)
+        addRow(pointFunctional(space, root[i], PointQuantity::Dxx), clamped, rootFirst_ + Eigen::Index(i), entries);
+    const PointQuantity curvatures[3] = {PointQuantity::Dxx, PointQuantity::Dyy, PointQuantity::Dxy};
+    for (std::size_t i = 0; i < fieldSamples_.size(); ++i)
+        for (int c = 0; c < 3; ++c)
+            addRow(pointFunctional(space, fieldSamples_[i], curvatures[c]), clamped,
+                   fieldFirst_ + 3 * Eigen::Index(i) + c, entries);
+    functionals_.resize(rows, Eigen::Index(clamped.freeDofs.size()));
+    functionals_.setFromTriplets(entries.begin(), entries.end());
+    root_.resize(Eigen::Index(root.size()));
+    probes_.resize(kProbeCount);
+    field_.resize(3 * Eigen::Index(fieldSamples_.size()));
+}
+
+double FieldRecovery::vonMises(double wxx, double wyy, double wxy) const {
+    const double a = wxx + nu_ * wyy, b = wyy + nu_ * wxx, c = (1.0 - nu_) * wxy;
+    return moment_ * std::sqrt(a * a - a * b + b * b + 3.0 * c * c);
+}
+
+double FieldRecovery::rootCurvature(const Scheme& scheme) const {
+    if (root_.size() == 0) return 0.0;
+    scheme.recover(rootFirst_, 0, root_);
+    return root_.cwiseAbs().maxCoeff();
+}
+
+void FieldRecovery::fieldValues(const Scheme& scheme) const { scheme.recover(fieldFirst_, 0, field_); }
+
+void FieldRecovery::fill(const Scheme& scheme, double dt, PlateOutputs& o, bool plate) const {
+    // The probes' absolute heights at the three levels; velocity and acceleration as the corners'.
+    double heights[3][kProbeCount];
+    for (int level = 0; level < 3; ++level) {
+        scheme.recover(0, level, probes_);
+        for (int k = 0; k < kProbeCount; ++k) heights[level][k] = scheme.clampHeight(level) + probes_[k];
+    }
+    const double dt2 = dt * dt;
+    for (int k = 0; k < kProbeCount; ++k) {
+        const double now = heights[0][k], prev = heights[1][k], prev2 = heights[2][k];
+        o.probe[k] = now;
+        o.probeVelocity[k] = (3.0 * now - 4.0 * prev + prev2) / (2.0 * dt);
+        o.probeAcceleration[k] = (now - 2.0 * prev + prev2) / dt2;
+    }
+    scheme.recover(rootFirst_, 0, root_);
+    o.rootStress = rootStress(root_.size() > 0 ? root_.cwiseAbs().maxCoeff() : 0.0);
+    if (!plate) return;
+    // The largest over the vertices and the root's samples (its middles are no vertices, and the
+    // largest stress is often there).
+    fieldValues(scheme);
+    double largest = -1.0;
+    for (Eigen::Index i = 0; i < root_.size(); ++i) {
+        const double s = rootStress(std::abs(root_[i]));
+        if (s > largest) {
+            largest = s;
+            o.maxStress = s;
+            o.maxStressX = 0.0;
+            o.maxStressY = rootSamples_[std::size_t(i)].point.y();
+        }
+    }
+    for (std::size_t i = 0; i < fieldSamples_.size(); ++i) {
+        const Eigen::Index r = 3 * Eigen::Index(i);
+        const double s = vonMises(field_[r], field_[r + 1], field_[r + 2]);
+        if (s > largest) {
+            largest = s;
+            o.maxStress = s;
+            o.maxStressX = fieldSamples_[i].point.x();
+            o.maxStressY = fieldSamples_[i].point.y();
+        }
+    }
+}
+
+std::vector<double> FieldRecovery::vertexStress(const Scheme& scheme) const {
+    fieldValues(scheme);
+    std::vector<double> s(std::size_t(vertexCount_), 0.0);
+    for (std::size_t i = 0; i < fieldSamples_.size(); ++i) {
+        const Eigen::Index r = 3 * Eigen::Index(i);
+        double& v = s[std::size_t(fieldVertex_[i])];
+        v = std::max(v, vonMises(field_[r], field_[r + 1], field_[r + 2]));
+    }
+    return s;
+}
+
+}  // namespace plate
