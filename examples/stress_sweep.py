@@ -32,6 +32,8 @@ ENVELOPE = ("frequency", "root_stress_max", "root_stress_peak", "transmissibilit
 def run(fmu, sweep, stop, step, probe, gap, zeta, **extra):
     a, b = rayleigh_for_band(zeta, sweep.f0, sweep.f1)
     parameters = dict(
+        stress_outputs=True,  # the stresses are computed on request (docs/theory.md §23)
+        probe_count=1,
         probe_1_x=probe[0],
         probe_1_y=probe[1],
         obstacle_lower=-gap,

@@ -18,7 +18,8 @@ from plateimpact import PlateImpactFMU
 EPS = np.finfo(float).eps
 DT = 1e-5
 # Close obstacles and a 2 mm base motion at 5 Hz: the corners hit within 60 ms.
-CLOSE = {"obstacle_lower": -0.0021, "obstacle_upper": 0.0021}
+# The recovery is on request (stress_outputs, probe_count): these tests ask for all of it.
+CLOSE = {"obstacle_lower": -0.0021, "obstacle_upper": 0.0021, "stress_outputs": True, "probe_count": 4}
 SCHEMES = {
     "newmark-argyris": {},
     "newmark-fvs": {"element": 2},
@@ -130,6 +131,7 @@ def test_fmi3_vertex_stress_agrees_with_the_scalar_stresses(fmu_path, tmp_path):
     s.instantiate()
     s.enterInitializationMode(startTime=0.0)
     s.setFloat64([vr["initial_load"]], [-500.0])
+    s.setBoolean([vr["stress_outputs"]], [True])
     s.exitInitializationMode()
     s.doStep(0.0, 2e-3)
     field = np.array(s.getFloat64([vr["vertex_stress"]], nValues=15 * 6)).reshape(15, 6)
@@ -142,3 +144,27 @@ def test_fmi3_vertex_stress_agrees_with_the_scalar_stresses(fmu_path, tmp_path):
     assert field[0].max() <= root * (1 + 1e-12)  # the clamped vertices are root samples
     if y in np.linspace(0.0, 0.4, 6) and x in np.linspace(0.0, 1.2, 15):  # the largest at a vertex
         assert field[round(x / 1.2 * 14), round(y / 0.4 * 5)] == pytest.approx(largest, rel=1e-12)
+
+
+def test_what_is_not_asked_for_reads_nan_and_the_rest_is_unchanged(fmu_path):
+    """Off by default (a master recording every output pays nothing): the stresses and the probes past
+    probe_count read NaN — no number a reader could take for a stress — and asking for them changes
+    no other output, bit for bit."""
+    off_prefixes = ("root_stress", "max_stress", "probe_2", "probe_3", "probe_4")
+    with PlateRun(fmu_path, **{**CLOSE, "stress_outputs": False, "probe_count": 1}, probe_1_x=0.9) as off:
+        a = record(off, 30)
+    with PlateRun(fmu_path, **CLOSE, probe_1_x=0.9) as on:
+        b = record(on, 30)
+    asked = [n for n in a[0] if n.startswith(off_prefixes)]
+    assert len(asked) == 14  # root_stress(_peak), max_stress(_x, _y), probes 2-4 with their rates
+    assert all(np.isnan(o[n]) for o in a for n in asked)
+    assert all(np.isfinite(o[n]) for o in b for n in asked)
+    shared = [n for n in a[0] if n not in asked]
+    assert all(x[n] == y[n] for x, y in zip(a, b) for n in shared)
+
+
+def test_a_probe_count_out_of_range_is_refused(fmu_path):
+    messages = []
+    with pytest.raises(FMICallException):
+        PlateImpactFMU(fmu_path, logger=lambda s, c, m: messages.append(m), probe_count=5)
+    assert "0 <= probe_count <= 4" in " ".join(messages), messages

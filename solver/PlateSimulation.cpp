@@ -4,6 +4,7 @@
 #include <chrono>
 #include <cfloat>
 #include <cmath>
+#include <limits>
 #include <sstream>
 
 #include "schemes/FieldRecovery.h"
@@ -358,7 +359,7 @@ bool PlateSimulation::stepThrough(const StepPlan& plan, const InputSignal& base,
         if (k == plan.steps && !plan.endsOnGrid) s.before = gridOutputs(true, FieldOutputs::Plate);
         const double t = plan.offset + k * dt;
         s.scheme->step(base.at(t), load.at(t));
-        s.trackRoot();
+        if (s.parameters.stressOutputs) s.trackRoot();
         if (k == plan.steps && !plan.endsOnGrid) break;
         if (!stopAfter.wanted) continue;
         const double commTime = s.commTime;
@@ -446,7 +447,8 @@ PlateOutputs PlateSimulation::outputs(bool port, FieldOutputs field) const {
 PlateOutputs PlateSimulation::gridOutputs(bool port, FieldOutputs field) const {
     const Impl& s = *impl_;
     PlateOutputs o = s.scheme->outputs(port);
-    o.rootStressPeak = s.recovery->rootStress(s.rootPeak);
+    o.rootStressPeak =
+        s.parameters.stressOutputs ? s.recovery->rootStress(s.rootPeak) : std::numeric_limits<double>::quiet_NaN();
     if (field != FieldOutputs::None) s.recovery->fill(*s.scheme, s.parameters.dt, o, field == FieldOutputs::Plate);
     return o;
 }

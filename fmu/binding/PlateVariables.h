@@ -187,6 +187,8 @@ enum PlateVr : fmu::ValueReference {
     kVrProbe3Y = 215,
     kVrProbe4X = 216,
     kVrProbe4Y = 217,
+    kVrStressOutputs = 205,
+    kVrProbeCount = 218,
     kVrProbe1 = 220,  // probe k: w at 220 + 3(k − 1), its velocity and acceleration after it
     kVrProbe1Velocity = 221,
     kVrProbe1Acceleration = 222,

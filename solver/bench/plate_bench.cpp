@@ -11,7 +11,7 @@
 //                                 engine=auto|sparse|modal (how exact mode runs)
 //                                 port=1 (read the port's outputs too, every communication step)
 //                                 field=1 (read the probes and root_stress too; 2: also max_stress,
-//                                 vertex_stress)
+//                                 vertex_stress; with stress=1 probes=4 for them to be computed)
 //                                 static_stress=P (the clamp's stress under a static pressure P: JSON)
 //                                 series=FILE (CSV of the outputs every communication step;
 //                                 its writing is outside the timed loop's cost only roughly)
@@ -144,6 +144,7 @@ int staticStress(plate::PlateParameters p, double pressure) {
     p.initialLoad = pressure;
     p.obstacleLowerEnabled = p.obstacleUpperEnabled = false;
     p.memoryLimit = 0.0;
+    p.stressOutputs = true;
     const plate::PlateSimulation sim(p, 0.0, pressure);
     const double strip = 3.0 * pressure * p.length * p.length / (t * t);  // 6 M/t², M = p L²/2
     std::printf(
@@ -258,6 +259,9 @@ int main(int argc, char** argv) {
     p.tolerance = num("tolerance", p.tolerance);
     p.maxContactSubsteps = static_cast<int>(num("max_substeps", p.maxContactSubsteps));
     p.memoryLimit = num("memory_limit", 0.0);
+    // stress=1 (stress_outputs: the root's peak tracked every step), probes=N (probe_count)
+    p.stressOutputs = num("stress", 0.0) != 0.0;
+    p.probeCount = static_cast<int>(num("probes", 0.0));
     if (args.count("export")) return exportMatrices(p, args["export"]);
     if (num("estimate_only", 0) != 0) return printEstimate(p);
     if (args.count("static_stress")) return staticStress(p, num("static_stress", 1000.0));

@@ -112,6 +112,7 @@ void validate(const PlateParameters& p) {
         reject("mass", static_cast<int>(p.mass),
                "1 (consistent) when base_drive = force or tlm (a carried clamp with a singular mass is not "
                "implemented)");
+    requireRange("probe_count", p.probeCount, kProbeCountRange);
     // The probes (docs/theory.md §23): inside the plate, whose size the table's range cannot know.
     for (int k = 0; k < kProbeCount; ++k) {
         const std::string x = "probe_" + std::to_string(k + 1) + "_x", y = "probe_" + std::to_string(k + 1) + "_y";

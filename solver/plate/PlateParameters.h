@@ -78,6 +78,11 @@ struct PlateParameters {
     // The probes (docs/theory.md §23): points (x, y) of the plate, m; each within
     // [0, length] × [0, width] (validate). At the clamp's corner (0, 0) unless set.
     std::array<double, kProbeCount> probeX{}, probeY{};
+    // What the recovery computes (§23), off by default so that a master that records every output
+    // (fmpy's default) pays nothing for it: the stress outputs (the root's peak then tracked every
+    // step), and the first probeCount probes. What is off reads as NaN.
+    bool stressOutputs = false;
+    int probeCount = 0;
 
     double bendingStiffness() const {
         return youngsModulus * thickness * thickness * thickness / (12.0 * (1.0 - poissonRatio * poissonRatio));
@@ -124,7 +129,7 @@ constexpr Range kMemoryLimit{0.0, 1e9};  // MB; 0 = no limit
 constexpr Range kArmatureMass{0.0, 1e9, true}, kArmatureStiffness{0.0, 1e12}, kArmatureDamping{0.0, 1e12};
 constexpr Range kTlmImpedance{0.0, 1e12, true};
 // A probe's coordinate: what the table can declare; validate() checks it against length and width.
-constexpr Range kProbeCoordinate{0.0, 1e4};
+constexpr Range kProbeCoordinate{0.0, 1e4}, kProbeCountRange{0, kProbeCount};
 }  // namespace ranges
 
 // Checks everything that can be checked without assembling (throws ParameterError).

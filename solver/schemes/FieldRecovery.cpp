@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
 
 #include "schemes/Scheme.h"
 
@@ -25,6 +26,8 @@ FieldRecovery::FieldRecovery(const FiniteElementSpace& space, const ClampedPlate
     : moment_(6.0 * p.bendingStiffness() / (p.thickness * p.thickness)),
       nu_(p.poissonRatio),
       rootFactor_(moment_ * std::sqrt(1.0 - nu_ + nu_ * nu_)),
+      stress_(p.stressOutputs),
+      probeCount_(p.probeCount),
       vertexCount_(space.mesh().vertexCount()) {
     rootSamples_ = clampedEdgeSamples(space);
     const std::vector<PointLocation>& root = rootSamples_;
@@ -57,7 +60,7 @@ double FieldRecovery::vonMises(double wxx, double wyy, double wxy) const {
 }
 
 double FieldRecovery::rootCurvature(const Scheme& scheme) const {
-    if (root_.size() == 0) return 0.0;
+    if (!stress_ || root_.size() == 0) return 0.0;
     scheme.recover(rootFirst_, 0, root_);
     return root_.cwiseAbs().maxCoeff();
 }
@@ -65,19 +68,24 @@ double FieldRecovery::rootCurvature(const Scheme& scheme) const {
 void FieldRecovery::fieldValues(const Scheme& scheme) const { scheme.recover(fieldFirst_, 0, field_); }
 
 void FieldRecovery::fill(const Scheme& scheme, double dt, PlateOutputs& o, bool plate) const {
+    // What is off reads NaN: not computed, and no value a reader could take for one.
+    constexpr double off = std::numeric_limits<double>::quiet_NaN();
+    for (int k = probeCount_; k < kProbeCount; ++k) o.probe[k] = o.probeVelocity[k] = o.probeAcceleration[k] = off;
+    if (!stress_) o.rootStress = o.maxStress = o.maxStressX = o.maxStressY = off;
     // The probes' absolute heights at the three levels; velocity and acceleration as the corners'.
     double heights[3][kProbeCount];
-    for (int level = 0; level < 3; ++level) {
+    for (int level = 0; level < 3 && probeCount_ > 0; ++level) {
         scheme.recover(0, level, probes_);
         for (int k = 0; k < kProbeCount; ++k) heights[level][k] = scheme.clampHeight(level) + probes_[k];
     }
     const double dt2 = dt * dt;
-    for (int k = 0; k < kProbeCount; ++k) {
+    for (int k = 0; k < probeCount_; ++k) {
         const double now = heights[0][k], prev = heights[1][k], prev2 = heights[2][k];
         o.probe[k] = now;
         o.probeVelocity[k] = (3.0 * now - 4.0 * prev + prev2) / (2.0 * dt);
         o.probeAcceleration[k] = (now - 2.0 * prev + prev2) / dt2;
     }
+    if (!stress_) return;
     scheme.recover(rootFirst_, 0, root_);
     o.rootStress = rootStress(root_.size() > 0 ? root_.cwiseAbs().maxCoeff() : 0.0);
     if (!plate) return;
@@ -107,6 +115,7 @@ void FieldRecovery::fill(const Scheme& scheme, double dt, PlateOutputs& o, bool 
 }
 
 std::vector<double> FieldRecovery::vertexStress(const Scheme& scheme) const {
+    if (!stress_) return std::vector<double>(std::size_t(vertexCount_), std::numeric_limits<double>::quiet_NaN());
     fieldValues(scheme);
     std::vector<double> s(std::size_t(vertexCount_), 0.0);
     for (std::size_t i = 0; i < fieldSamples_.size(); ++i) {

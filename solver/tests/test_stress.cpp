@@ -86,6 +86,7 @@ INSTANTIATE_TEST_SUITE_P(BothElements, StaticStress, ::testing::Values(ElementTy
 
 TEST(StaticStress, RootStressOutputIsTheUniaxialVonMisesOfTheLargestRootCurvature) {
     PlateParameters par;
+    par.stressOutputs = true;
     par.initialLoad = 1000.0;
     par.obstacleLowerEnabled = par.obstacleUpperEnabled = false;
     const PlateSimulation sim(par, 0.0, par.initialLoad);
@@ -105,6 +106,7 @@ TEST(StaticStress, RootStressOutputIsTheUniaxialVonMisesOfTheLargestRootCurvatur
 // (K − ω²M + iωaM) W = ω² Z M·1 (w = Im(W e^{iωt})), which is the modal solution with every mode.
 TEST(HarmonicStress, RootStressAmplitudeIsTheModalSolution) {
     PlateParameters par;
+    par.stressOutputs = true;
     par.obstacleLowerEnabled = par.obstacleUpperEnabled = false;
     par.dt = 1e-4;
     par.dampingMass = 20.0;  // 1/s: ζ1 ≈ 0.27, the first mode's transient decays like e^{−10 t}
