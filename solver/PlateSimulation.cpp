@@ -447,8 +447,7 @@ PlateOutputs PlateSimulation::outputs(bool port, FieldOutputs field) const {
 PlateOutputs PlateSimulation::gridOutputs(bool port, FieldOutputs field) const {
     const Impl& s = *impl_;
     PlateOutputs o = s.scheme->outputs(port);
-    o.rootStressPeak =
-        s.parameters.stressOutputs ? s.recovery->rootStress(s.rootPeak) : std::numeric_limits<double>::quiet_NaN();
+    o.rootStressPeak = s.recovery->rootStress(s.rootPeak);  // 0 unless stress_outputs (never tracked)
     if (field != FieldOutputs::None) s.recovery->fill(*s.scheme, s.parameters.dt, o, field == FieldOutputs::Plate);
     return o;
 }

@@ -33,7 +33,7 @@ const std::vector<fmu::ArrayOutput>& plateArrayOutputs() {
          "Von Mises surface bending stress at every mesh vertex (fvs: its curvatures jump between elements, the "
          "value is that of one element holding it, the one above and right of it where there is one), as "
          "vertex_displacement: "
-         "[vertex_output][vertices_x][vertices_y]; NaN unless stress_outputs = true",
+         "[vertex_output][vertices_x][vertices_y]; 0 unless stress_outputs = true",
          "Pa",
          {kVrVertexOutput, kVrVerticesX, kVrVerticesY}},
     };

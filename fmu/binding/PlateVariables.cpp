@@ -352,19 +352,19 @@ const Row kRows[] = {
     // Stress and probes (docs/theory.md §23).
     booleanParameter(kVrStressOutputs, "stress_outputs", PARAMETER(stressOutputs),
         "Compute the stress outputs (root_stress, root_stress_peak, max_stress and its place, vertex_stress): the "
-        "root's peak is then tracked at every internal step; off (default) they read NaN and cost nothing"),
+        "root's peak is then tracked at every internal step; off (default) they read 0 and cost nothing"),
     integerParameter(kVrProbeCount, "probe_count", kProbeCountRange, PARAMETER(probeCount),
-        "How many probes (probe_1 ... probe_4, at probe_k_x, probe_k_y) are computed; the others read NaN"),
+        "How many probes (probe_1 ... probe_4, at probe_k_x, probe_k_y) are computed; the others read 0"),
     output(kVrRootStress,              "root_stress",                "Pa",   FIELD(rootStress),
         "Largest von Mises surface bending stress along the clamped edge x = 0 now (plane stress from the "
         "curvatures: 6D/t^2 |w_xx| sqrt(1 - nu + nu^2) there), over each clamped element edge's ends (and middle: "
-        "argyris); NaN unless stress_outputs = true"),
+        "argyris); 0 unless stress_outputs = true"),
     output(kVrRootStressPeak,          "root_stress_peak",           "Pa",   OUTPUT(rootStressPeak),
         "Largest root_stress since t = 0, tracked at every internal step (read or not) when stress_outputs = true; "
-        "NaN otherwise"),
+        "0 otherwise"),
     output(kVrMaxStress,               "max_stress",                 "Pa",   PLATE_FIELD(maxStress),
         "Largest von Mises surface bending stress over the plate now: at its mesh vertices (as vertex_stress) and "
-        "root_stress's points; NaN unless stress_outputs = true"),
+        "root_stress's points; 0 unless stress_outputs = true"),
     output(kVrMaxStressX,              "max_stress_x",               "m",    PLATE_FIELD(maxStressX),
         "x of the point where max_stress is (held between grid points)"),
     output(kVrMaxStressY,              "max_stress_y",               "m",    PLATE_FIELD(maxStressY),
@@ -380,7 +380,7 @@ const Row kRows[] = {
     parameter(kVrProbe4X, "probe_4_x", "m", kProbeCoordinate, PROBE(probeX, 3), "x of probe 4 (0 ... length)"),
     parameter(kVrProbe4Y, "probe_4_y", "m", kProbeCoordinate, PROBE(probeY, 3), "y of probe 4 (0 ... width)"),
     output(kVrProbe1,                  "probe_1",                    "m",    FIELD(probe[0]),
-        "Absolute displacement w at probe 1 (probe_1_x, probe_1_y), from the element's shape functions; NaN unless "
+        "Absolute displacement w at probe 1 (probe_1_x, probe_1_y), from the element's shape functions; 0 unless "
         "probe_count >= 1"),
     output(kVrProbe1Velocity,          "probe_1_velocity",           "m/s",  FIELD(probeVelocity[0]),
         "Absolute velocity at probe 1 (second-order backward difference, as corner_1_velocity)"),

@@ -80,7 +80,7 @@ struct PlateParameters {
     std::array<double, kProbeCount> probeX{}, probeY{};
     // What the recovery computes (§23), off by default so that a master that records every output
     // (fmpy's default) pays nothing for it: the stress outputs (the root's peak then tracked every
-    // step), and the first probeCount probes. What is off reads as NaN.
+    // step), and the first probeCount probes. What is off reads 0.
     bool stressOutputs = false;
     int probeCount = 0;
 

@@ -45,8 +45,8 @@ private:
     void fieldValues(const Scheme& scheme) const;  // the vertex samples' curvatures into field_
 
     double moment_ = 0.0, nu_ = 0.0, rootFactor_ = 0.0;  // 6D/t², ν, 6D/t² √(1 − ν + ν²)
-    bool stress_ = false;  // stress_outputs: else the stresses read NaN, the root's peak stays 0
-    int probeCount_ = 0;  // probe_count: the probes past it read NaN
+    bool stress_ = false;  // stress_outputs: else the stresses read 0 (not computed)
+    int probeCount_ = 0;  // probe_count: the probes past it read 0 (not computed)
     Eigen::Index rootFirst_ = 0, fieldFirst_ = 0;
     std::vector<PointLocation> rootSamples_, fieldSamples_;
     std::vector<int> fieldVertex_;
