@@ -129,7 +129,8 @@ protected:
     };
     void buildOperator(MidpointOperator& op, double h) const;
     // The state with what the next step's solves start from (their warm starts): a step can be
-    // taken again from a snapshot, bit for bit as the first time (FlowScheme's step doubling).
+    // taken again from a snapshot, bit for bit as the first time (FlowScheme's step doubling). The
+    // first save sizes a snapshot (the first contact step); later ones copy into its storage.
     struct Snapshot {
         CondensedState state;
         Eigen::VectorXd midForce, endForce, rowsCached;

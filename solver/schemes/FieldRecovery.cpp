@@ -59,7 +59,7 @@ double FieldRecovery::vonMises(double wxx, double wyy, double wxy) const {
 }
 
 double FieldRecovery::rootCurvature(const Scheme& scheme) const {
-    if (!stress_ || root_.size() == 0) return 0.0;
+    if (root_.size() == 0) return 0.0;
     scheme.recover(rootFirst_, 0, root_);
     return root_.cwiseAbs().maxCoeff();
 }

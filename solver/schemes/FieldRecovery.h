@@ -25,7 +25,7 @@ public:
     const SparseRows& functionals() const { return functionals_; }
 
     // The largest |w_xx| over the clamped edge's samples at the output level: the root's peak, tracked
-    // every step (one product of 2 ny + 1 rows, 2 ny with FVS; no allocation).
+    // every step with stress_outputs (PlateSimulation) (one product of 2 ny + 1 rows, 2 ny with FVS; no allocation).
     double rootCurvature(const Scheme& scheme) const;
     // The root's von Mises stress of the curvature w_xx: on x = 0 the clamp makes w and w_x vanish
     // identically, so w_yy = w_xy = 0 there and σ_vm = 6D/t² |w_xx| √(1 − ν + ν²) (§23).
