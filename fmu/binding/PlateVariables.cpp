@@ -141,7 +141,7 @@ void setBaseDrive(PlateValues& v, double x) {
 }
 
 double saturate(double n) { return n > INT_MAX ? double(INT_MAX) : n; }  // counts are >= 0
-double getQpIterationsTotal(const PlateValues& v) { return saturate(v.outputs.qpIterationsTotal); }
+double getQpIterationsTotal(const PlateValues& v) { return saturate(v.outputs.contactSolves); }
 
 // The accessors of the rows that read (and set) a field: of the parameters, of an input port, of
 // the cheap outputs, of the port's outputs (computed on the first read), of the carrier's.
@@ -272,9 +272,11 @@ const Row kRows[] = {
     output(kVrQpKktResidualMax,        "qp_kkt_residual_max",        "1",    OUTPUT(maxKktResidual),
         "Largest relative KKT residual of the per-step contact QPs so far"),
     integerOutput(kVrQpIterationsTotal, "qp_iterations_total", getQpIterationsTotal,
-        "Active-set iterations of all per-step QPs so far (saturates at 2147483647)"),
-    integerOutput(kVrQpIterationsMax,   "qp_iterations_max",   OUTPUT(qpIterationsMax),
-        "Largest number of active-set iterations of one per-step QP so far"),
+        "Contact solves so far: active-set iterations of the per-step QPs (time_scheme = newmark), solves of the "
+        "contact problems (conserving, flow); saturates at 2147483647"),
+    integerOutput(kVrQpIterationsMax,   "qp_iterations_max",   OUTPUT(contactIterationsMax),
+        "Largest number of iterations of one step's contact solve so far: active-set iterations (newmark), "
+        "discrete-gradient iterations (conserving, flow)"),
     output(kVrErrorEstimate,           "error_estimate",             "m",    OUTPUT(errorEstimate),
         "time_scheme = flow with tolerance > 0: the accumulated estimate of the displacement error the contact "
         "steps added since t = 0 (the sum of each step's |coarse - fine| bound; free flight is exact); 0 otherwise"),

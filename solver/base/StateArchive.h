@@ -107,6 +107,15 @@ struct Layout : Sizes<N> {
     void states(const std::vector<signed char>&, std::size_t k) { add("contact state", this->size(k)); }
 };
 
+// The length of the flat form (header included) of a state `members` describes.
+template <class State, std::size_t N, class Members>
+std::size_t length(const std::array<std::size_t, N>& sizes, Members members) {
+    State state;
+    Sizer<N> sizer{{sizes}};
+    members(state, sizer);
+    return 1 + N + sizer.length;
+}
+
 // The flat form of `state`: format, sizes, then its members as `members` names them.
 template <class State, std::size_t N, class Members>
 std::vector<double> save(const State& state, double format, const std::array<std::size_t, N>& sizes, Members members) {
@@ -142,7 +151,7 @@ State load(const std::vector<double>& in, double format, const std::array<std::s
 template <class State, std::size_t N, class Members>
 std::vector<std::pair<std::string, std::size_t>> layout(const std::array<std::size_t, N>& sizes, Members members) {
     State state;
-    Layout<N> layout{{sizes}};
+    Layout<N> layout{{sizes}, {}, 0};
     members(state, layout);
     return layout.fields;
 }

@@ -44,7 +44,7 @@ void CondensedScheme::buildOperator(MidpointOperator& op, double h) const {
 
 CondensedScheme::CondensedScheme(std::shared_ptr<const CondensedPlate> plate, Obstacles obstacles, double dt,
                                  double dampingMass, double dampingStiffness, OutputRows outputRows)
-    : plate_(std::move(plate)), obstacles_(obstacles), dt_(dt), rows_(std::move(outputRows)) {
+    : Scheme(obstacles, dt), plate_(std::move(plate)), rows_(std::move(outputRows)) {
     const CondensedPlate& c = *plate_;
     const Eigen::Index m = c.modes(), rows = c.rows();
     damping_ = (dampingMass + dampingStiffness * c.omega2.array()).matrix();
@@ -88,12 +88,7 @@ void CondensedScheme::solveContact(BoxQP& qp, const Eigen::VectorXd& free, std::
     const QPResult r = qp.solve(free, lower_, upper_, state, force, y);
     ++solves;
     kkt_ = std::max(kkt_, r.kktResidual);
-    if (!r.converged || !(r.kktResidual <= kKktTolerance)) {
-        std::ostringstream msg;
-        msg << "contact solve did not converge at t = " << double(state_.step + 1) * op_->h << " (" << r.iterations
-            << " iterations, relative KKT residual " << r.kktResidual << ")";
-        throw StepError(msg.str());
-    }
+    if (!r.converged || !(r.kktResidual <= kKktTolerance)) refuseUnsolved("contact solve", r.iterations, r.kktResidual);
 }
 
 // The static problem of the condensed plate (§17): Ω² q = p0 F_m + Gᵀλ with the rows
@@ -133,7 +128,7 @@ void CondensedScheme::initialize(double z0, double p0) {
     s.forcePrev = s.forcePrev2 = s.force;
     s.z = s.zPrev = s.zPrev2 = z0;
     s.p = s.pPrev = s.pPrev2 = p0;
-    s.contactRows =
+    s.contactPoints =
         static_cast<int>(std::count_if(s.rowState.begin(), s.rowState.end(), [](signed char x) { return x != 0; }));
     refreshDerived();
     margin_ = -1.0;
@@ -150,29 +145,11 @@ void CondensedScheme::setLoadAtStart(double p0) {
         s.force = endForce_;
         s.boundary = 0.5 * s.force.dot(y_ - r0_);
         s.forcePrev = s.forcePrev2 = s.force;
-        s.contactRows =
+        s.contactPoints =
             static_cast<int>(std::count_if(s.rowState.begin(), s.rowState.end(), [](signed char x) { return x != 0; }));
     }
     refreshDerived();
     margin_ = -1.0;
-}
-
-void CondensedScheme::refuseInputs(double zNext, double pNext, bool finite, bool inRange) const {
-    const double t = double(state_.step + 1) * dt_;
-    std::ostringstream msg;
-    msg.precision(15);
-    if (!finite) {
-        msg << "non-finite input at t = " << t << ": base_displacement = " << zNext << ", load = " << pNext;
-    } else if (!inRange) {
-        msg << "input out of range at t = " << t << ": base_displacement = " << zNext << ", load = " << pNext
-            << " (allowed: |base_displacement| <= " << kMaxDisplacement << " m, |load| <= " << kMaxLoad << " Pa)";
-    } else {
-        msg << "base_displacement = " << zNext << " at t = " << t << " puts the clamped edge past "
-            << (zNext < obstacles_.lower ? "obstacle_lower = " : "obstacle_upper = ")
-            << (zNext < obstacles_.lower ? obstacles_.lower : obstacles_.upper)
-            << " (allowed: obstacle_lower <= base_displacement <= obstacle_upper)";
-    }
-    throw StepError(msg.str());
 }
 
 // The rows r1_ at the trial's end looked at: Contact when a row is held at the start or past an
@@ -184,7 +161,7 @@ CondensedScheme::Look CondensedScheme::lookAtRowsNow(double zNext, double pNext)
     for (Eigen::Index i = 0; i < r1_.size(); ++i)
         margin = std::min(margin, std::min(r1_[i] - obstacles_.lower, obstacles_.upper - r1_[i]));
     margin_ = -1.0;
-    if (s.contactRows > 0 || margin < 0.0) return Look::Contact;
+    if (s.contactPoints > 0 || margin < 0.0) return Look::Contact;
     qCheck_ = qNext_;
     zCheck_ = zNext;
     pCheck_ = pNext;
@@ -195,7 +172,6 @@ CondensedScheme::Look CondensedScheme::lookAtRowsNow(double zNext, double pNext)
 void CondensedScheme::midpointStep(double zNext, double pNext) {
     const CondensedPlate& c = *plate_;
     const CondensedState& s = state_;
-    checkInputs(zNext, pNext);
     const double dt = op_->h, dz = zNext - s.z, dp = pNext - s.p, pMid = 0.5 * (s.p + pNext);
     // The free midpoint step (T.17b with Λ = 0): H Δq = Δt P − b_m Δz + ½Δt²(p̄ F_m − Ω² q).
     rhs_.noalias() = dt * s.momentum - dz * c.modalBaseInertia;
@@ -226,7 +202,7 @@ void CondensedScheme::midpointStep(double zNext, double pNext) {
         modalForce_.setZero();
     }
     momentumNext_.noalias() = (2.0 / dt) * (dq_ + dz * c.modalBaseInertia) - s.momentum;
-    if (!std::isfinite(momentumNext_.sum()) || !std::isfinite(qNext_.sum())) throwNonFinite();
+    if (!std::isfinite(momentumNext_.sum()) || !std::isfinite(qNext_.sum())) refuseNonFinite();
     // The step's forces on the massive modes at the midpoint (T.17b) and the work (T.17d).
     const double damped = dq_.dot(damping_.cwiseProduct(dq_)) / dt;
     rhs_.noalias() =
@@ -251,11 +227,7 @@ void CondensedScheme::midpointStep(double zNext, double pNext) {
         }
         st.clampMoment -= st.stepContactMoment;
     }
-    for (int k = 0; k < 2; ++k) {
-        st.impactCount[k] += sums[k] != 0.0 && st.stepContactForce[k] == 0.0;
-        st.stepContactForce[k] = sums[k];
-        st.contactImpulseSum[k] += sums[k] * dt;
-    }
+    bookContact(st, sums, dt);
     commit(zNext, pNext, work, damped, iterations_);
     // FlowScheme: the rows at this step's end start the next sub-step (r1 is G q⁺ + … when the
     // rows were looked at, r0 + Δr after a contact solve).
@@ -341,15 +313,15 @@ void CondensedScheme::commit(double zNext, double pNext, double work, double dam
     if (solves_ > 0) {
         s.rowState.swap(rowTrial_);
         s.midState.swap(midTrial_);
-        s.contactRows =
+        s.contactPoints =
             static_cast<int>(std::count_if(s.rowState.begin(), s.rowState.end(), [](signed char x) { return x != 0; }));
-    } else if (s.contactRows > 0) {
+    } else if (s.contactPoints > 0) {
         std::fill(s.rowState.begin(), s.rowState.end(), 0);
-        s.contactRows = 0;
+        s.contactPoints = 0;
     }
-    s.lcpSolves += solves_;
-    s.gradientIterationsLast = iterations;
-    s.gradientIterationsMax = std::max(s.gradientIterationsMax, iterations);
+    s.contactSolves += solves_;
+    s.contactIterationsLast = iterations;
+    s.contactIterationsMax = std::max(s.contactIterationsMax, iterations);
     s.maxKktResidual = std::max(s.maxKktResidual, kkt_);
 }
 
@@ -366,10 +338,10 @@ double CondensedScheme::energy() const {
 double CondensedScheme::rowHeight(int i, int level) const {
     const CondensedPlate& c = *plate_;
     const CondensedState& s = state_;
-    const Eigen::VectorXd& q = level == 0 ? s.q : level == 1 ? s.qPrev : s.qPrev2;
-    const Eigen::VectorXd& f = level == 0 ? s.force : level == 1 ? s.forcePrev : s.forcePrev2;
-    const double z = level == 0 ? s.z : level == 1 ? s.zPrev : s.zPrev2;
-    const double p = level == 0 ? s.p : level == 1 ? s.pPrev : s.pPrev2;
+    const Eigen::VectorXd& q = atLevel(level, s.q, s.qPrev, s.qPrev2);
+    const Eigen::VectorXd& f = atLevel(level, s.force, s.forcePrev, s.forcePrev2);
+    const double z = atLevel(level, s.z, s.zPrev, s.zPrev2);
+    const double p = atLevel(level, s.p, s.pPrev, s.pPrev2);
     const double heldBack = f.isZero(0.0) ? 0.0 : c.delassus.col(i).dot(f);  // D symmetric: column = row
     return c.rowModesT.col(i).dot(q) + p * c.rowLoad[i] + z + heldBack;
 }
@@ -379,9 +351,9 @@ double CondensedScheme::rowHeight(int i, int level) const {
 void CondensedScheme::recover(Eigen::Index first, int level, Eigen::Ref<Eigen::VectorXd> out) const {
     const CondensedPlate& c = *plate_;
     const CondensedState& s = state_;
-    const Eigen::VectorXd& q = level == 0 ? s.q : level == 1 ? s.qPrev : s.qPrev2;
-    const Eigen::VectorXd& f = level == 0 ? s.force : level == 1 ? s.forcePrev : s.forcePrev2;
-    const double p = level == 0 ? s.p : level == 1 ? s.pPrev : s.pPrev2;
+    const Eigen::VectorXd& q = atLevel(level, s.q, s.qPrev, s.qPrev2);
+    const Eigen::VectorXd& f = atLevel(level, s.force, s.forcePrev, s.forcePrev2);
+    const double p = atLevel(level, s.p, s.pPrev, s.pPrev2);
     const Eigen::Index n = out.size();
     out.noalias() = c.recoveryModes.middleRows(first, n) * q;
     out += p * c.recoveryLoad.segment(first, n);
@@ -405,6 +377,25 @@ void CondensedScheme::setState(const CondensedState& s) {
     state_ = s;
     margin_ = -1.0;  // the free-flight bound restarts from a full look
     refreshDerived();
+}
+
+std::vector<double> CondensedScheme::saveState() const {
+    std::vector<double> out = serialize();
+    const std::vector<double> own = saveOwn();
+    out.insert(out.end(), own.begin(), own.end());
+    return out;
+}
+
+void CondensedScheme::restoreState(const std::vector<double>& data) {
+    const std::size_t length = std::min(data.size(), serializedLength());
+    const auto split = data.begin() + std::ptrdiff_t(length);
+    const CondensedState s = deserialize(std::vector<double>(data.begin(), split));  // throws: nothing set
+    restoreOwn(std::vector<double>(split, data.end()));  // throws: nothing set; else the own part is set
+    setState(s);
+}
+
+void CondensedScheme::restoreOwn(const std::vector<double>& own) {
+    if (!own.empty()) throw std::invalid_argument("state does not belong to this plate (size or format differs)");
 }
 
 void CondensedScheme::save(Snapshot& to) const {
@@ -433,39 +424,15 @@ void CondensedScheme::refreshDerived() {
     multiplier_.setZero();
     multiplierUsed_ = false;
     rowsCachedValid_ = false;
+    stateReplaced();
 }
 
-void CondensedScheme::throwNonFinite() const {
-    std::ostringstream msg;
-    msg << "the step to t = " << double(state_.step + 1) * op_->h << " produced a non-finite displacement";
-    throw StepError(msg.str());
-}
-
-PlateOutputs CondensedScheme::outputs(bool port) const {
-    const CondensedState& st = state_;
-    PlateOutputs o;
-    o.corner1 = rowHeight(rows_.probes[0]);
-    o.corner2 = rowHeight(rows_.probes[1]);
-    o.freeEdgeMid = rowHeight(rows_.probes[2]);
-    o.energy = energy();
-    o.energyDissipated = 0.0;  // the scheme loses nothing at impacts (T.17d)
-    setLedger(o, {st.energyInput, st.energyDamped, st.maxKktResidual, st.contactRows, st.lcpSolves,
-                  st.gradientIterationsMax, st.impactCount});
-    o.errorEstimate = st.errorEstimate;
-    o.cappedSteps = double(st.cappedSteps);
-    if (!port) return o;
-    // The port at t_{n−½} (§17): what the plate exerts on the clamp is the opposite of the clamp's
-    // force on it. Velocities at t_n (second-order backward), accelerations at t_{n−1}.
-    o.clampForce = -st.clampForce;
-    o.clampMoment = -st.clampMoment;
-    if (st.step == 0) initialReaction(o.clampForce, o.clampMoment);  // no step yet (§17)
-    const double z[3] = {st.z, st.zPrev, st.zPrev2};
-    setPortKinematics(o, dt(), [&](int k, int level) { return k < 3 ? rowHeight(rows_.probes[k], level) : z[level]; });
-    for (int k = 0; k < 2; ++k) {
-        o.contactForce[k] = st.stepContactForce[k];
-        o.contactImpulse[k] = st.contactImpulseSum[k];
-    }
-    return o;
+// The port at t_{n−½} (§17): what the plate exerts on the clamp is the opposite of the clamp's
+// force on it; before the first step, the initial state's reaction.
+void CondensedScheme::clampLoad(double& force, double& moment) const {
+    if (state_.step == 0) return initialReaction(force, moment);
+    force = -state_.clampForce;
+    moment = -state_.clampMoment;
 }
 
 std::vector<double> CondensedScheme::vertexDisplacements() const {
@@ -488,7 +455,7 @@ double CondensedScheme::firstFrequency() const { return std::sqrt(plate_->omega2
 // line here, with kFormat raised.
 namespace {
 
-constexpr double kFormat = 18.0;  // the condensed schemes' state, version 2 (the flow law's tolerance)
+constexpr double kFormat = 19.0;  // the condensed schemes' state, version 3 (the flow law's own part apart)
 constexpr std::size_t kModes = 0, kRows = 1;
 
 const auto condensedMembers = [](auto& s, auto& v) {
@@ -506,15 +473,11 @@ const auto condensedMembers = [](auto& s, auto& v) {
     v.real(s.stepContactMoment, "contact moment");
     for (auto* x : {&s.contactImpulseSum[0], &s.contactImpulseSum[1]}) v.real(*x, "contact impulse");
     v.count(s.step, "step");
-    v.count(s.lcpSolves, "contact solves");
+    v.count(s.contactSolves, "contact solves");
     for (auto* k : {&s.impactCount[0], &s.impactCount[1]}) v.count(*k, "impacts");
-    for (auto* k : {&s.gradientIterationsMax, &s.gradientIterationsLast}) v.count(*k, "gradient iterations");
-    v.count(s.contactRows, "contact rows", static_cast<double>(v.size(kRows)));
+    for (auto* k : {&s.contactIterationsMax, &s.contactIterationsLast}) v.count(*k, "gradient iterations");
+    v.count(s.contactPoints, "contact rows", static_cast<double>(v.size(kRows)));
     for (auto* x : {&s.rowState, &s.midState}) v.states(*x, kRows);
-    v.real(s.errorEstimate, "error estimate");
-    v.real(s.stepError, "step error estimate");
-    v.count(s.cappedSteps, "capped steps");
-    v.count(s.refinementLevel, "refinement level", 30.0);
 };
 
 }  // namespace
@@ -528,6 +491,10 @@ CondensedState CondensedScheme::deserialize(const std::vector<double>& data) con
     if (s.z < obstacles_.lower || s.z > obstacles_.upper)
         throw std::invalid_argument("corrupt state: clamp past an obstacle");
     return s;
+}
+
+std::size_t CondensedScheme::serializedLength() const {
+    return archive::length<CondensedState>(sizes(), condensedMembers);
 }
 
 std::array<std::size_t, 2> CondensedScheme::sizes() const {

@@ -33,35 +33,16 @@
 
 namespace plate {
 
-// The scheme's whole mutable state; saving and restoring it continues bit-identically.
-struct CondensedState {
+// The scheme's whole mutable state: the base's share (SchemeState) and the condensed plate's.
+// Saving and restoring it continues bit-identically.
+struct CondensedState : SchemeState {
     Eigen::VectorXd q, qPrev, qPrev2;  // massive modal coordinates at t_n, t_{n−1}, t_{n−2}
     Eigen::VectorXd momentum;  // P_n = q̇_n + b_m ż_n
     Eigen::VectorXd force, forcePrev, forcePrev2;  // λ*(r) at t_n, t_{n−1}, t_{n−2} (per row, N)
     double boundary = 0;  // ψ(r_n) = ½ λ_nᵀ D λ_n, the massless part's contact energy at t_n
-    double z = 0, zPrev = 0, zPrev2 = 0;  // base at t_n, t_{n−1}, t_{n−2}
-    double p = 0, pPrev = 0, pPrev2 = 0;  // pressure at t_n, t_{n−1}, t_{n−2}
-    long long step = 0;
-    double energyInput = 0, energyDamped = 0;
-    double maxKktResidual = 0;
-    long long lcpSolves = 0;  // contact solves so far
-    int gradientIterationsMax = 0, gradientIterationsLast = 0;
-    int contactRows = 0;  // rows held by an obstacle at t_n (λ_n ≠ 0)
     std::vector<signed char> rowState, midState;  // warm starts: end point and midpoint solves
-    // The port (§14, §17) over the last step, at t_{n−½}: the clamp's force and moment on the
-    // plate, and the contact force per obstacle (0 lower, 1 upper), its moment, the cumulative
-    // impulses and the contact onsets.
+    // The clamp's force and moment on the plate over the last step, at t_{n−½} (§14, §17).
     double clampForce = 0, clampMoment = 0;
-    double stepContactForce[2] = {0, 0}, stepContactMoment = 0;
-    double contactImpulseSum[2] = {0, 0};
-    long long impactCount[2] = {0, 0};
-    // time_scheme = flow with a tolerance (docs/theory.md §22): the accumulated estimate of the
-    // displacement error, the contact steps the sub-step cap bounded and the controller's level
-    // (the next contact step takes 2^level sub-steps). Unused by the other schemes.
-    double errorEstimate = 0;
-    double stepError = -1;  // the last estimate at refinementLevel (< 0: none yet)
-    long long cappedSteps = 0;
-    int refinementLevel = 1;
 };
 
 // Which rows the outputs read: corner_1, corner_2 and free_edge_mid, and the row of each mesh
@@ -81,17 +62,11 @@ public:
     // once, the massive part keeps the initial state (docs/theory.md §11, §17).
     void setLoadAtStart(double p0) override;
 
-    long long stepCount() const override { return state_.step; }
-    double baseDisplacement() const override { return state_.z; }
-    int contactVertices() const override { return state_.contactRows; }
-    PlateOutputs outputs(bool port) const override;
     std::vector<double> vertexDisplacements() const override;
     void recover(Eigen::Index first, int level, Eigen::Ref<Eigen::VectorXd> out) const override;  // §23
-    double clampHeight(int level) const override {
-        return level == 0 ? state_.z : level == 1 ? state_.zPrev : state_.zPrev2;
-    }
-    std::vector<double> saveState() const override { return serialize(); }
-    void restoreState(const std::vector<double>& state) override { setState(deserialize(state)); }
+    // The flat form: the base's members (serialize), then a subclass's own (saveOwn).
+    std::vector<double> saveState() const override;
+    void restoreState(const std::vector<double>& state) override;
     std::string name() const override;
     double firstFrequency() const override;
     double kappa() const override { return plate_->omega2.maxCoeff(); }
@@ -107,14 +82,26 @@ public:
     const CondensedState& state() const { return state_; }
     void setState(const CondensedState& s);
     const CondensedPlate& plate() const { return *plate_; }
-    double dt() const { return dt_; }
 
     std::vector<double> serialize() const;
     // Throws std::invalid_argument when the data does not fit this plate or is corrupt.
     CondensedState deserialize(const std::vector<double>& data) const;
     std::array<std::size_t, 2> sizes() const;  // of the flat form: massive modes, constraint rows
+    std::size_t serializedLength() const;  // of serialize()'s flat form
 
 protected:
+    const SchemeState& shared() const override { return state_; }
+    double pointHeight(int k, int level) const override { return rowHeight(rows_.probes[k], level); }
+    double outputEnergy() const override { return energy(); }
+    void clampLoad(double& force, double& moment) const override;
+    // A subclass's own state after the base's in the flat form; restoreOwn checks it whole before
+    // it sets anything (throws std::invalid_argument).
+    virtual std::vector<double> saveOwn() const { return {}; }
+    virtual void restoreOwn(const std::vector<double>& own);
+    // The one hook for "the state was replaced" (setState, a snapshot restored): what a subclass
+    // derives from the state.
+    virtual void stateReplaced() {}
+
     CondensedScheme(std::shared_ptr<const CondensedPlate> plate, Obstacles obstacles, double dt, double dampingMass,
                     double dampingStiffness, OutputRows rows);
 
@@ -139,15 +126,6 @@ protected:
     void save(Snapshot& to) const;
     void restore(const Snapshot& from);
     void midpointStep(double zNext, double pNext);  // one step of op_->h (T.17b–c)
-    // The inputs of a step: finite, in range, the clamp between the obstacles (inline: every step of
-    // both schemes asks; refuseInputs builds the message only for a refusal).
-    void checkInputs(double zNext, double pNext) const {
-        const bool finite = std::isfinite(zNext) && std::isfinite(pNext);
-        const bool inRange = std::fabs(zNext) <= kMaxDisplacement && std::fabs(pNext) <= kMaxLoad;
-        const bool between = zNext >= obstacles_.lower && zNext <= obstacles_.upper;
-        if (!(finite && inRange && between)) refuseInputs(zNext, pNext, finite, inRange);
-    }
-    [[noreturn]] void refuseInputs(double zNext, double pNext, bool finite, bool inRange) const;
     // Free flight without looking at the rows: since the last look they can have moved by at most
     // ‖G_i‖ ‖q⁺ − q_check‖ + |Δz| + |Δp| max|c_p| (1e-12 m: roundoff of what it is compared with).
     bool farFromObstacles(double zNext, double pNext) const {
@@ -160,7 +138,7 @@ protected:
     // bound holds (inline: the common case of both schemes), else lookAtRowsNow.
     enum class Look { Skipped, Free, Contact };
     Look lookAtRows(double zNext, double pNext) {
-        if (!obstacles_.any() || plate_->rows() == 0 || (state_.contactRows == 0 && farFromObstacles(zNext, pNext)))
+        if (!obstacles_.any() || plate_->rows() == 0 || (state_.contactPoints == 0 && farFromObstacles(zNext, pNext)))
             return Look::Skipped;
         return lookAtRowsNow(zNext, pNext);
     }
@@ -172,11 +150,8 @@ protected:
                       Eigen::VectorXd& y, int& solves);
     void commit(double zNext, double pNext, double work, double damped, int iterations);
     void refreshDerived();  // what is derived from the state (which force levels are zero)
-    void throwNonFinite() const;
 
     std::shared_ptr<const CondensedPlate> plate_;
-    Obstacles obstacles_;
-    double dt_;
     Eigen::VectorXd damping_;  // c_k = a + b ω_k² (Rayleigh on the massive modes, §17)
     OutputRows rows_;
     MidpointOperator full_;  // steps of Δt

@@ -82,8 +82,8 @@ void FieldRecovery::fill(const Scheme& scheme, double dt, PlateOutputs& o, bool 
     for (int k = 0; k < probeCount_; ++k) {
         const double now = heights[0][k], prev = heights[1][k], prev2 = heights[2][k];
         o.probe[k] = now;
-        o.probeVelocity[k] = (3.0 * now - 4.0 * prev + prev2) / (2.0 * dt);
-        o.probeAcceleration[k] = (now - 2.0 * prev + prev2) / dt2;
+        o.probeVelocity[k] = backwardVelocity(now, prev, prev2, dt);
+        o.probeAcceleration[k] = centralAcceleration(now, prev, prev2, dt2);
     }
     if (!stress_) return;
     scheme.recover(rootFirst_, 0, root_);

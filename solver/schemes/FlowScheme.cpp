@@ -4,6 +4,7 @@
 #include <cmath>
 
 #include "base/PortableMath.h"
+#include "base/StateArchive.h"
 
 namespace plate {
 
@@ -93,10 +94,9 @@ FlowScheme::FlowScheme(std::shared_ptr<const CondensedPlate> plate, Obstacles ob
 //   damped  Σ (−Δe + F([p q] − ṗ ∫q)),  e = ½ q̇² + ½ ω² q²  (per damped mode),
 // so that the ledger (T.17d) closes as in a midpoint step. A row past an obstacle at the end: the
 // step is taken again as m discrete-gradient sub-steps instead.
-void FlowScheme::step(double zNext, double pNext) {
+void FlowScheme::advance(double zNext, double pNext) {
     const CondensedPlate& c = *plate_;
     const CondensedState& s = state_;
-    checkInputs(zNext, pNext);
     const double h = dt_, dz = zNext - s.z, v = dz / h, pDot = (pNext - s.p) / h, pMid = 0.5 * (s.p + pNext);
     // (F.1) for every mode at once: q_p = offset + slope·s, u = q − q_p flows by Φ.
     const auto F = c.modalLoad.array();
@@ -137,7 +137,7 @@ void FlowScheme::step(double zNext, double pNext) {
     }
     rowsCachedValid_ = look == Look::Free;
     if (rowsCachedValid_) rowsCached_ = r1_;
-    if (!std::isfinite(momentumNext_.sum()) || !std::isfinite(qNext_.sum())) throwNonFinite();
+    if (!std::isfinite(momentumNext_.sum()) || !std::isfinite(qNext_.sum())) refuseNonFinite();
     if (multiplierUsed_) multiplier_.setZero();
     multiplierUsed_ = false;
     if (!forceNextZero_) forceNext_.setZero();
@@ -162,7 +162,7 @@ void FlowScheme::step(double zNext, double pNext) {
     st.clampForce = onRigid - pMid * c.loadResultant;
     st.clampMoment = c.modalRotationInertia.dot(rhs_) - pMid * c.loadMoment;
     st.stepContactMoment = 0.0;
-    st.stepContactForce[0] = st.stepContactForce[1] = 0.0;
+    st.stepContactForce[0] = st.stepContactForce[1] = 0.0;  // (no onset: bookContact needs no call)
     commit(zNext, pNext, loadWork + dz * onRigid, dampedWork, 0);
 }
 
@@ -213,7 +213,7 @@ void FlowScheme::substeps(double zNext, double pNext, int m, const MidpointOpera
     s.stepContactForce[0] = contact[0] / m;
     s.stepContactForce[1] = contact[1] / m;
     s.stepContactMoment = contactMoment / m;
-    s.gradientIterationsLast = iterationsMax;
+    s.contactIterationsLast = iterationsMax;
     forceZero_ = {s.force.isZero(0.0), s.forcePrev.isZero(0.0), s.forcePrev2.isZero(0.0)};
     forceNextZero_ = false;
     margin_ = -1.0;
@@ -234,14 +234,14 @@ void FlowScheme::refine(double zNext, double pNext) {
     CondensedState& s = state_;
     const int top = static_cast<int>(levels_.size());
     const auto level = [&](int j) -> const MidpointOperator& { return j == 0 ? full_ : *levels_[j - 1]; };
-    int j = std::clamp(s.refinementLevel, 1, top);
+    int j = std::clamp(flow_.refinementLevel, 1, top);
     save(start_);
     bool fineDone = false;
-    if (s.contactRows > 0 && s.stepError >= 0.0 && 2.0 * s.stepError <= stepTarget_) {
-        const double booked = s.stepError;
+    if (s.contactPoints > 0 && flow_.stepError >= 0.0 && 2.0 * flow_.stepError <= stepTarget_) {
+        const double booked = flow_.stepError;
         substeps(zNext, pNext, 1 << j, level(j));
-        if (s.contactRows > 0 && s.rowState == start_.state.rowState) {
-            s.errorEstimate += booked;
+        if (s.contactPoints > 0 && s.rowState == start_.state.rowState) {
+            flow_.errorEstimate += booked;
             return;
         }
         save(fine_);
@@ -249,7 +249,7 @@ void FlowScheme::refine(double zNext, double pNext) {
         restore(start_);
     }
     substeps(zNext, pNext, 1 << (j - 1), level(j - 1));
-    long long discardedSolves = s.lcpSolves - start_.state.lcpSolves;
+    long long discardedSolves = s.contactSolves - start_.state.contactSolves;
     save(coarse_);
     double error = 0.0;
     for (;;) {
@@ -262,19 +262,19 @@ void FlowScheme::refine(double zNext, double pNext) {
         }
         error = separation(coarse_.state, s);
         if (error <= stepTarget_ || j == top) break;
-        discardedSolves += s.lcpSolves - start_.state.lcpSolves;
+        discardedSolves += s.contactSolves - start_.state.contactSolves;
         save(coarse_);
         ++j;
     }
-    s.lcpSolves += discardedSolves;
-    s.errorEstimate += error;
-    s.cappedSteps += error > stepTarget_;
+    s.contactSolves += discardedSolves;
+    flow_.errorEstimate += error;
+    flow_.cappedSteps += error > stepTarget_;
     // One level lower next time when the pair one level down would still be well inside the target
     // (a level down multiplies the error by about 4 where the sub-steps are second order); the
     // estimate is then unknown at the new level.
     const bool lower = j > 1 && kLowerBelow * error < stepTarget_;
-    s.refinementLevel = lower ? j - 1 : j;
-    s.stepError = lower ? -1.0 : error;
+    flow_.refinementLevel = lower ? j - 1 : j;
+    flow_.stepError = lower ? -1.0 : error;
 }
 
 std::string FlowScheme::name() const {
@@ -290,6 +290,31 @@ double FlowScheme::separation(const CondensedState& a, const CondensedState& b) 
         ((a.q - b.q).array().square() + ((a.momentum - b.momentum).array() * inverseOmega_.array()).square()).sqrt();
     rowBound_.noalias() = rowModesAbs_.transpose() * amplitude_;
     return rowBound_.size() > 0 ? rowBound_.maxCoeff() : 0.0;
+}
+
+void FlowScheme::addOutputs(PlateOutputs& o) const {
+    o.errorEstimate = flow_.errorEstimate;
+    o.cappedSteps = double(flow_.cappedSteps);
+}
+
+namespace {
+
+constexpr double kFlowFormat = 1.0;  // the flow law's own part of the flat form, version 1
+const auto flowMembers = [](auto& s, auto& v) {
+    v.real(s.errorEstimate, "error estimate");
+    v.real(s.stepError, "step error estimate");
+    v.count(s.cappedSteps, "capped steps");
+    v.count(s.refinementLevel, "refinement level", 30.0);
+};
+
+}  // namespace
+
+std::vector<double> FlowScheme::saveOwn() const {
+    return archive::save(flow_, kFlowFormat, std::array<std::size_t, 0>{}, flowMembers);
+}
+
+void FlowScheme::restoreOwn(const std::vector<double>& own) {
+    flow_ = archive::load<FlowState>(own, kFlowFormat, std::array<std::size_t, 0>{}, flowMembers);
 }
 
 }  // namespace plate

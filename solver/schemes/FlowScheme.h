@@ -22,21 +22,38 @@ struct ContactRefinement {
     int maxSubsteps = 128;
 };
 
+// The flow law's own state (after the condensed schemes' in the flat form): with a tolerance
+// (docs/theory.md §22), the accumulated estimate of the displacement error, the last step's
+// estimate, the contact steps the sub-step cap bounded and the controller's level (the next
+// contact step takes 2^level sub-steps).
+struct FlowState {
+    double errorEstimate = 0;
+    double stepError = -1;  // the last estimate at refinementLevel (< 0: none yet)
+    long long cappedSteps = 0;
+    int refinementLevel = 1;
+};
+
 class FlowScheme final : public CondensedScheme {
 public:
     FlowScheme(std::shared_ptr<const CondensedPlate> plate, Obstacles obstacles, double dt,
                ContactRefinement refinement, double dampingMass = 0.0, double dampingStiffness = 0.0,
                OutputRows rows = {});
 
-    void step(double zNext, double pNext) override;  // exact free flight, or the sub-steps on contact
     std::string name() const override;
+    const FlowState& flowState() const { return flow_; }
 
 private:
+    void advance(double zNext, double pNext) override;  // exact free flight, or the sub-steps on contact
+    void addOutputs(PlateOutputs& o) const override;
+    std::vector<double> saveOwn() const override;
+    void restoreOwn(const std::vector<double>& own) override;
+
     void substeps(double zNext, double pNext, int m, const MidpointOperator& op);
     void refine(double zNext, double pNext);  // tolerance > 0: step doubling (§22)
     double separation(const CondensedState& a, const CondensedState& b);  // bound on their rows' parting, m
 
     ContactRefinement refinement_;
+    FlowState flow_;
     MidpointOperator sub_;  // sub-steps of Δt/m (tolerance = 0)
     // tolerance > 0: level j takes 2^j sub-steps of Δt/2^j (level 0 is full_); the local target.
     std::vector<std::unique_ptr<MidpointOperator>> levels_;

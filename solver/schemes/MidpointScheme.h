@@ -14,7 +14,8 @@ public:
                    double dampingMass = 0.0, double dampingStiffness = 0.0, OutputRows rows = {})
         : CondensedScheme(std::move(plate), obstacles, dt, dampingMass, dampingStiffness, std::move(rows)) {}
 
-    void step(double zNext, double pNext) override { midpointStep(zNext, pNext); }
+private:
+    void advance(double zNext, double pNext) override { midpointStep(zNext, pNext); }
 };
 
 }  // namespace plate

@@ -14,8 +14,8 @@ namespace plate {
 
 NewmarkScheme::NewmarkScheme(std::shared_ptr<const DiscretePlate> plate, Obstacles obstacles, SchemeOptions options,
                              OutputPoints points)
-    : plate_(std::move(plate)),
-      obstacles_(obstacles),
+    : Scheme(obstacles, plate->dt()),
+      plate_(std::move(plate)),
       options_(options),
       vertexCount_(points.vertexCount),
       corner1_(plate_->probe(points.length, 0.0)),
@@ -33,6 +33,7 @@ NewmarkScheme::NewmarkScheme(std::shared_ptr<const DiscretePlate> plate, Obstacl
         massVelocityNext_.resize(n);
     }
     if (options_.carried) armature_ = std::make_unique<Armature>(*plate_, options_.carrier);
+    setCarried(options_.carried);  // the carrier checks its own drive (stepCarried)
     if (obstacles_.any()) {
         const DiscretePlate* p = plate_.get();
         columns_ = std::make_unique<ContactColumns>(
@@ -75,7 +76,7 @@ void NewmarkScheme::initialize(const Eigen::VectorXd& w0, double z0, double p0) 
             const double u = y[i] + z0;
             if (u <= obstacles_.lower) s.contactState[i] = -1;
             if (u >= obstacles_.upper) s.contactState[i] = +1;
-            s.contactVertices += s.contactState[i] != 0;
+            s.contactPoints += s.contactState[i] != 0;
         }
     }
 }
@@ -95,20 +96,15 @@ NewmarkScheme::SolvedStep NewmarkScheme::finishSolve() {
     const double damped = dampingWork();
     const double sNext = plate_->pressureLoad().dot(wNext_);
     const double tNext = plate_->baseInertia().dot(wNext_);
-    if (!std::isfinite(sNext) || !std::isfinite(tNext)) {
-        std::ostringstream msg;
-        msg << "the step to t = " << (state_.step + 1) * dt() << " produced a non-finite displacement";
-        throw StepError(msg.str());
-    }
+    if (!std::isfinite(sNext) || !std::isfinite(tNext)) refuseNonFinite();
     return {damped, sNext, tNext};
 }
 
 // The step of (3.6) = docs/theory.md (T.1) in w = u − z·1 (§3–4): the free solution, the law's
 // contact phase, then the ledger (§6) of what the step did.
-void NewmarkScheme::step(double zNext, double pNext) {
+void NewmarkScheme::advance(double zNext, double pNext) {
     if (armature_) return stepCarried(zNext, pNext);  // zNext is the drive force (§18)
     const NewmarkState& s = state_;
-    checkInputs(zNext, pNext);
     const double baseJump = zNext - 2.0 * s.z + s.zPrev;  // Δt² z̈_n
     const double pBeta = beta() * pNext + (1.0 - 2.0 * beta()) * s.p + beta() * s.pPrev;  // f^{nβ}
     assembleRightHandSide(baseJump, pBeta);
@@ -121,32 +117,6 @@ void NewmarkScheme::step(double zNext, double pNext) {
     const auto [damped, sNext, tNext] = finishSolve();
     const double work = inputWork(zNext, baseJump, pBeta, sNext, tNext, contact);
     commit(zNext, pNext, sNext, tNext, contact, damped, work, iterations, kkt, contactCount);
-}
-
-void NewmarkScheme::checkInputs(double zNext, double pNext) const {
-    const NewmarkState& s = state_;
-    if (!std::isfinite(zNext) || !std::isfinite(pNext)) {
-        std::ostringstream msg;
-        msg << "non-finite input at t = " << (s.step + 1) * dt() << ": base_displacement = " << zNext
-            << ", load = " << pNext;
-        throw StepError(msg.str());
-    }
-    if (!(std::fabs(zNext) <= kMaxDisplacement && std::fabs(pNext) <= kMaxLoad)) {
-        std::ostringstream msg;
-        msg << "input out of range at t = " << (s.step + 1) * dt() << ": base_displacement = " << zNext
-            << ", load = " << pNext << " (allowed: |base_displacement| <= " << kMaxDisplacement
-            << " m, |load| <= " << kMaxLoad << " Pa)";
-        throw StepError(msg.str());
-    }
-    if (zNext < obstacles_.lower || zNext > obstacles_.upper) {
-        std::ostringstream msg;
-        msg.precision(15);  // round-trips what users type (0.7, not 0.69999999999999996)
-        msg << "base_displacement = " << zNext << " at t = " << (s.step + 1) * dt() << " puts the clamped edge past "
-            << (zNext < obstacles_.lower ? "obstacle_lower = " : "obstacle_upper = ")
-            << (zNext < obstacles_.lower ? obstacles_.lower : obstacles_.upper)
-            << " (allowed: obstacle_lower <= base_displacement <= obstacle_upper)";
-        throw StepError(msg.str());
-    }
 }
 
 // (3.6) as A d = Δt²(f^{nβ} − K w) − (M·1) Δt² z̈ (+ damping, + what the law carries) for
@@ -181,12 +151,7 @@ ContactWork NewmarkScheme::resolveContact(double zNext, int& iterations, double&
             qp_->solve(contact_.yFree, contact_.lower, contact_.upper, trialState_, contact_.mu, contact_.y);
         iterations = r.iterations;
         kkt = r.kktResidual;
-        if (!r.converged || !(kkt <= 1e-10)) {
-            std::ostringstream msg;
-            msg << "contact QP did not converge at t = " << (s.step + 1) * dt() << " (" << r.iterations
-                << " iterations, relative KKT residual " << kkt << ")";
-            throw StepError(msg.str());
-        }
+        if (!r.converged || !(kkt <= 1e-10)) refuseUnsolved("contact QP", r.iterations, kkt);
         if (armature_)
             carrierShift_ = armature_->correct(*columns_, qp_->active(), contact_.mu, wNext_, contact_.y);
         else
@@ -245,12 +210,8 @@ void NewmarkScheme::commit(double zNext, double pNext, double sNext, double tNex
     s.pressureWorkPrev = s.pressureWork;
     s.pressureWork = sNext;
     advanceLevels(s.baseCoupling, s.baseCouplingPrev, s.baseCouplingPrev2, tNext);
-    for (int k = 0; k < 2; ++k) {  // the port (§14)
-        const double force = contact.sum[k] / dt2;
-        s.impactCount[k] += force != 0.0 && s.stepContactForce[k] == 0.0;  // a contact onset
-        s.stepContactForce[k] = force;
-        s.contactImpulseSum[k] += force * dt;
-    }
+    const double force[2] = {contact.sum[0] / dt2, contact.sum[1] / dt2};  // the port (§14)
+    bookContact(s, force, dt);
     s.stepContactMoment = contact.moment / dt2;
     ++s.step;
     s.energyInput += work;  // the ledger (T.6): energy = E0 + input − dissipated − damped
@@ -259,10 +220,10 @@ void NewmarkScheme::commit(double zNext, double pNext, double sNext, double tNex
     if (options_.dampingMass > 0.0) massVelocity_.swap(massVelocityNext_);
     if (law_) law_->commit(s);
     if (qp_) s.contactState.swap(trialState_);
-    s.contactVertices = contactCount;
-    s.qpIterationsLast = iterations;
-    s.qpIterationsTotal += iterations;
-    s.qpIterationsMax = std::max(s.qpIterationsMax, iterations);
+    s.contactPoints = contactCount;
+    s.contactIterationsLast = iterations;
+    s.contactSolves += iterations;
+    s.contactIterationsMax = std::max(s.contactIterationsMax, iterations);
     s.maxKktResidual = std::max(s.maxKktResidual, kkt);
 }
 
@@ -283,29 +244,30 @@ double NewmarkScheme::energy() const {
 
 // --- Outputs (docs/theory.md §14) ---
 
-PlateOutputs NewmarkScheme::outputs(bool port) const {
+double NewmarkScheme::pointHeight(int k, int level) const {
     const NewmarkState& st = state_;
-    PlateOutputs o;
-    o.corner1 = st.z + corner1_(st.w);
-    o.corner2 = st.z + corner2_(st.w);
-    o.freeEdgeMid = st.z + freeEdgeMid_(st.w);
-    if (energyStep_ != st.step) {
-        energyCache_ = energy();
-        energyStep_ = st.step;
-    }
-    o.energy = energyCache_;
-    o.energyDissipated = st.energyDissipated;
-    setLedger(o, {st.energyInput, st.energyDamped, st.maxKktResidual, st.contactVertices, st.qpIterationsTotal,
-                  st.qpIterationsMax, st.impactCount});
-    if (port) portOutputs(o);
-    return o;
+    const PointProbe* probes[3] = {&corner1_, &corner2_, &freeEdgeMid_};
+    return atLevel(level, st.z, st.zPrev, st.zPrev2) + (*probes[k])(atLevel(level, st.w, st.wPrev, st.wPrev2));
 }
 
-void NewmarkScheme::portOutputs(PlateOutputs& o) const {
+double NewmarkScheme::outputEnergy() const {
+    if (energyStep_ != state_.step) {
+        energyCache_ = energy();
+        energyStep_ = state_.step;
+    }
+    return energyCache_;
+}
+
+void NewmarkScheme::clampLoad(double& force, double& moment) const {
     // docs/theory.md §14, (T.14a, b): the step from t_n to t_{n+1} summed against the rigid motions 1 and X
     // (K·1 = K·X = 0) gives the clamp's force and moment on the plate at t_n; the plate exerts
     // their opposites on the clamp. Levels: w = w_{n+1}, wPrev = w_n, wPrev2 = w_{n−1}.
     const NewmarkState& st = state_;
+    if (st.step == 0) {  // no step yet: the initial static state's reaction (§14)
+        force = initialForce_;
+        moment = initialMoment_;
+        return;
+    }
     const ClampedPlate& clamped = plate_->clamped();
     const double dt = plate_->dt(), beta = plate_->beta(), dt2 = dt * dt;
     const Eigen::VectorXd& rotation = plate_->rotationInertia();
@@ -314,22 +276,8 @@ void NewmarkScheme::portOutputs(PlateOutputs& o) const {
     const double rotationAcc = (rotation.dot(st.w) - 2.0 * rotation.dot(st.wPrev) + rotation.dot(st.wPrev2)) / dt2;
     const double pBeta = beta * st.p + (1.0 - 2.0 * beta) * st.pPrev + beta * st.pPrev2;  // f^{nβ}
     const double contact = st.stepContactForce[0] + st.stepContactForce[1];
-    o.clampForce = -(clamped.totalMass * zAcc + translationAcc - pBeta * clamped.loadResultant - contact);
-    o.clampMoment = -(clamped.totalMassMoment * zAcc + rotationAcc - pBeta * clamped.loadMoment - st.stepContactMoment);
-    // Velocities at t_{n+1} (second order, backward: the outputs' time), accelerations at t_n
-    // (the scheme's own central difference, the level of the forces).
-    const PointProbe* probes[3] = {&corner1_, &corner2_, &freeEdgeMid_};
-    const double z[3] = {st.z, st.zPrev, st.zPrev2};
-    const Eigen::VectorXd* w[3] = {&st.w, &st.wPrev, &st.wPrev2};
-    setPortKinematics(o, dt, [&](int k, int level) { return k < 3 ? z[level] + (*probes[k])(*w[level]) : z[level]; });
-    if (st.step == 0) {  // no step yet: the initial static state's reaction (§14)
-        o.clampForce = initialForce_;
-        o.clampMoment = initialMoment_;
-    }
-    for (int k = 0; k < 2; ++k) {
-        o.contactForce[k] = st.stepContactForce[k];
-        o.contactImpulse[k] = st.contactImpulseSum[k];
-    }
+    force = -(clamped.totalMass * zAcc + translationAcc - pBeta * clamped.loadResultant - contact);
+    moment = -(clamped.totalMassMoment * zAcc + rotationAcc - pBeta * clamped.loadMoment - st.stepContactMoment);
 }
 
 std::vector<double> NewmarkScheme::vertexDisplacements() const {

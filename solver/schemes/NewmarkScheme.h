@@ -74,21 +74,10 @@ public:
         initialMoment_ = moment;
     }
 
-    // One step to t_{n+1} with the base at zNext and the pressure at pNext there.
-    // Throws StepError without changing the state if the step cannot be taken.
-    void step(double zNext, double pNext) override;
-
-    long long stepCount() const override { return state_.step; }
-    double baseDisplacement() const override { return state_.z; }
-    int contactVertices() const override { return state_.contactVertices; }
-    PlateOutputs outputs(bool port) const override;
     std::vector<double> vertexDisplacements() const override;
-    double clampHeight(int level) const override {
-        return level == 0 ? state_.z : level == 1 ? state_.zPrev : state_.zPrev2;
-    }
     void recover(Eigen::Index first, int level, Eigen::Ref<Eigen::VectorXd> out) const override {
         const NewmarkState& st = state_;
-        recovery_.apply(first, level == 0 ? st.w : level == 1 ? st.wPrev : st.wPrev2, out);
+        recovery_.apply(first, atLevel(level, st.w, st.wPrev, st.wPrev2), out);
     }
     // The recovery functionals in the plate's coordinates (DiscretePlate::rows; docs/theory.md §23).
     void setRecovery(LinearRows rows) { recovery_ = std::move(rows); }
@@ -109,17 +98,19 @@ public:
         energyStep_ = -1;
     }
     const DiscretePlate& plate() const { return *plate_; }
-    double dt() const { return plate_->dt(); }
     double beta() const { return plate_->beta(); }
     const SchemeOptions& options() const { return options_; }
-    const Obstacles& obstacles() const { return obstacles_; }
     Armature* carrier() override { return armature_.get(); }  // nullptr unless options().carried
     using Scheme::carrier;
     CarrierOutputs carrierOutputs() const override;
 
 private:
-    void portOutputs(PlateOutputs& o) const;
-    void checkInputs(double zNext, double pNext) const;
+    // The step of (3.6) (docs/theory.md §3–4): the free solution, the law's contact phase, the ledger.
+    void advance(double zNext, double pNext) override;
+    const SchemeState& shared() const override { return state_; }
+    double pointHeight(int k, int level) const override;
+    double outputEnergy() const override;  // energy(), once per step
+    void clampLoad(double& force, double& moment) const override;  // (T.14a, b)
     void stepCarried(double fNext, double pNext);  // step() with the carrier (Armature.cpp)
     void assembleRightHandSide(double baseJump, double pBeta);  // rhs_ of (3.6) for d
     // The contact phase (§3.4 + the law): the QP where an obstacle is violated, wNext_ corrected.
@@ -137,7 +128,6 @@ private:
                 double work, int iterations, double kkt, int contactCount);
 
     std::shared_ptr<const DiscretePlate> plate_;
-    Obstacles obstacles_;
     SchemeOptions options_;
     NewmarkState state_;
     // Contact machinery exists only when an obstacle does (no obstacle → no QP, no law).

@@ -31,10 +31,10 @@ const auto newmarkMembers = [](auto& s, auto& v) {
     v.real(s.energyInput, "energy input");
     v.real(s.energyDissipated, "energy dissipated");
     v.real(s.maxKktResidual, "KKT residual");
-    v.count(s.qpIterationsTotal, "QP iterations");
-    v.count(s.qpIterationsMax, "QP iterations");
-    v.count(s.qpIterationsLast, "QP iterations");
-    v.count(s.contactVertices, "contact vertices", static_cast<double>(v.size(kContacts)));
+    v.count(s.contactSolves, "QP iterations");
+    v.count(s.contactIterationsMax, "QP iterations");
+    v.count(s.contactIterationsLast, "QP iterations");
+    v.count(s.contactPoints, "contact vertices", static_cast<double>(v.size(kContacts)));
     v.real(s.energyDamped, "energy damped");
     v.real(s.zPrev2, "z_prev2");
     v.real(s.pPrev2, "p_prev2");

@@ -5,34 +5,22 @@
 #include <utility>
 #include <vector>
 
+#include "schemes/Scheme.h"
+
 namespace plate {
 
-// The full mutable state of the scheme: two time levels plus the bookkeeping that makes the
-// energy ledger and the warm start exact. Saving and restoring it continues bit-identically.
-struct NewmarkState {
+// The full mutable state of the scheme: the base's share (SchemeState: the inputs' levels, the
+// ledger, the port's sums) and the plate's levels with what makes the ledger and the warm start
+// exact. Saving and restoring it continues bit-identically.
+struct NewmarkState : SchemeState {
     Eigen::VectorXd w, wPrev, wPrev2;  // w_n, w_{n−1}, w_{n−2} (the last: the port's level, §14)
     Eigen::VectorXd kw, kwPrev;  // K w_n, K w_{n−1} (reused by the next step and the energy)
-    double z = 0, zPrev = 0, zPrev2 = 0;  // base z_n, z_{n−1}, z_{n−2}
-    double p = 0, pPrev = 0, pPrev2 = 0;  // pressure p_n, p_{n−1}, p_{n−2}
     double pressureWork = 0, pressureWorkPrev = 0;  // Fᵀw_n, Fᵀw_{n−1} (work of the pressure)
     double baseCoupling = 0, baseCouplingPrev = 0, baseCouplingPrev2 = 0;  // (M·1)ᵀw: base–plate inertia
-    long long step = 0;
-    double energyInput = 0, energyDissipated = 0;
-    double energyDamped = 0;  // cumulative work of the Rayleigh damping (docs/theory.md §13)
-    double maxKktResidual = 0;
-    long long qpIterationsTotal = 0;
-    int qpIterationsMax = 0, qpIterationsLast = 0;
-    int contactVertices = 0;
     std::vector<signed char> contactState;  // −1 on lower, +1 on upper, 0 free (warm start)
     // Singular mass only (empty otherwise): the contact impulses μ_n, μ_{n−1} of the last two
     // steps, which keep the massless part in equilibrium (docs/theory.md §11).
     Eigen::VectorXd contactImpulse, contactImpulsePrev;
-    // The port (docs/theory.md §14), per obstacle (0 lower, 1 upper): the contact force of the
-    // last step (the whole impulse τ/Δt² of the step's equation, N), its moment about the clamp
-    // line (both obstacles, N·m), the cumulative impulse (N·s) and the contact onsets so far.
-    double stepContactForce[2] = {0, 0}, stepContactMoment = 0;
-    double contactImpulseSum[2] = {0, 0};
-    long long impactCount[2] = {0, 0};
 };
 
 // Flat form (base/StateArchive.h): format version, sizes, then the members in the order of their one

@@ -17,7 +17,7 @@ struct PlateOutputs {
     double energyDamped = 0;  // cumulative work of the Rayleigh damping, J
     double maxKktResidual = 0;  // largest relative KKT residual of all QPs so far
     double contactVertices = 0;  // count: vertices on an obstacle after the last step
-    double qpIterationsTotal = 0, qpIterationsMax = 0;  // counts
+    double contactSolves = 0, contactIterationsMax = 0;  // counts (qp_iterations_total, qp_iterations_max)
     // The port (docs/theory.md §14), computed only when asked for (outputs(true)).
     double clampForce = 0, clampMoment = 0;  // what the plate exerts on the clamp, N, N·m
     double clampDisplacement = 0, clampVelocity = 0, clampAcceleration = 0;  // z, ż, z̈
@@ -39,23 +39,14 @@ struct PlateOutputs {
 // at every vertex).
 enum class FieldOutputs { None, Points, Plate };
 
-// What every scheme reports alike, written once: the ledger and counters of its state at t_n.
-struct Ledger {
-    double energyInput, energyDamped, maxKktResidual;
-    int contacts;
-    long long solves;  // QP iterations (Newmark) or contact solves (the condensed schemes)
-    int iterationsMax;
-    const long long (&impacts)[2];
-};
-inline void setLedger(PlateOutputs& o, const Ledger& l) {
-    o.energyInput = l.energyInput;
-    o.energyDamped = l.energyDamped;
-    o.maxKktResidual = l.maxKktResidual;
-    o.contactVertices = l.contacts;
-    o.qpIterationsTotal = double(l.solves);
-    o.qpIterationsMax = l.iterationsMax;
-    o.impacts[0] = double(l.impacts[0]);
-    o.impacts[1] = double(l.impacts[1]);
+// A point's velocity at the newest level (second-order backward difference) and its acceleration
+// at the level before (central difference) from its heights at the three levels: the port's points
+// and the probes alike.
+inline double backwardVelocity(double now, double prev, double prev2, double dt) {
+    return (3.0 * now - 4.0 * prev + prev2) / (2.0 * dt);
+}
+inline double centralAcceleration(double now, double prev, double prev2, double dt2) {
+    return (now - 2.0 * prev + prev2) / dt2;
 }
 
 // The port's kinematics (docs/theory.md §14, §17), written once: `height(k, level)` is the height
@@ -69,8 +60,8 @@ void setPortKinematics(PlateOutputs& o, double dt, Height&& height) {
     double* acceleration[4] = {&o.acceleration[0], &o.acceleration[1], &o.acceleration[2], &o.clampAcceleration};
     for (int k = 0; k < 4; ++k) {
         const double now = height(k, 0), prev = height(k, 1), prev2 = height(k, 2);
-        *velocity[k] = (3.0 * now - 4.0 * prev + prev2) / (2.0 * dt);
-        *acceleration[k] = (now - 2.0 * prev + prev2) / dt2;
+        *velocity[k] = backwardVelocity(now, prev, prev2, dt);
+        *acceleration[k] = centralAcceleration(now, prev, prev2, dt2);
     }
     o.clampDisplacement = height(3, 0);
 }
@@ -133,8 +124,8 @@ inline constexpr OutputField kOutputFields[] = {
     {"probeAcceleration[2]", Between::Interpolated, fieldOf<&PlateOutputs::probeAcceleration, 2>},
     {"probeAcceleration[3]", Between::Interpolated, fieldOf<&PlateOutputs::probeAcceleration, 3>},
     {"contactVertices",   Between::Held,         fieldOf<&PlateOutputs::contactVertices>},
-    {"qpIterationsTotal", Between::Held,         fieldOf<&PlateOutputs::qpIterationsTotal>},
-    {"qpIterationsMax",   Between::Held,         fieldOf<&PlateOutputs::qpIterationsMax>},
+    {"contactSolves",     Between::Held,         fieldOf<&PlateOutputs::contactSolves>},
+    {"contactIterationsMax",Between::Held,         fieldOf<&PlateOutputs::contactIterationsMax>},
     {"impacts[0]",        Between::Held,         fieldOf<&PlateOutputs::impacts, 0>},
     {"impacts[1]",        Between::Held,         fieldOf<&PlateOutputs::impacts, 1>},
     {"errorEstimate",     Between::Held,         fieldOf<&PlateOutputs::errorEstimate>},

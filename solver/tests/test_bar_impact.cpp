@@ -102,7 +102,7 @@ BarImpact simulate(int elements, double dt, bool singular) {
     const long long steps = std::llround(3.0 / dt);
     for (long long n = 1; n <= steps; ++n) {
         stepper.step(0.0, 0.0);
-        if (stepper.state().contactVertices > 0) {
+        if (stepper.state().contactPoints > 0) {
             if (r.contactStart < 0) r.contactStart = n * dt;
             r.contactEnd = n * dt;
         }

@@ -75,6 +75,6 @@ TEST(LongRun, MillionStepsOfTheSineSceneStayFiniteBoundedAndBalanced) {
         "E_max %.6g J, input %.6g J, dissipated %.6g J, communication steps in contact %lld, worst "
         "ledger %.1e, worst (E - E0 - input)/E_max %.1e, max KKT %.1e, QP iterations %.0f (max %.0f)\n",
         sim.engine().c_str(), kSteps, seconds, 1e6 * seconds / kSteps, e0, end.energy, maxEnergy, end.energyInput,
-        end.energyDissipated, impactSteps, worstLedger, worstExcess, end.maxKktResidual, end.qpIterationsTotal,
-        end.qpIterationsMax);
+        end.energyDissipated, impactSteps, worstLedger, worstExcess, end.maxKktResidual, end.contactSolves,
+        end.contactIterationsMax);
 }

@@ -67,8 +67,8 @@ NewmarkState sampleState(Eigen::Index n, std::size_t m, Eigen::Index k) {
     s.baseCoupling = 1.25, s.baseCouplingPrev = 1.5, s.baseCouplingPrev2 = 1.75;
     s.step = 123456789012LL;
     s.energyInput = 3.5, s.energyDissipated = 0.125, s.energyDamped = 0.0625, s.maxKktResidual = 1e-13;
-    s.qpIterationsTotal = 98765432109LL, s.qpIterationsMax = 17, s.qpIterationsLast = 3;
-    s.contactVertices = 2;
+    s.contactSolves = 98765432109LL, s.contactIterationsMax = 17, s.contactIterationsLast = 3;
+    s.contactPoints = 2;
     s.stepContactForce[0] = 4.0, s.stepContactForce[1] = -5.0, s.stepContactMoment = 0.75;
     s.contactImpulseSum[0] = 6.0, s.contactImpulseSum[1] = -7.0;
     s.impactCount[0] = 8, s.impactCount[1] = 9;
@@ -82,7 +82,7 @@ TEST(StateTables, NewmarkStateRoundTripIsIdentical) {
     const NewmarkState back = plate::deserialize(flat, 4, 3, 3);
     EXPECT_EQ(plate::serialize(back), flat);
     EXPECT_EQ(back.step, s.step);
-    EXPECT_EQ(back.qpIterationsTotal, s.qpIterationsTotal);
+    EXPECT_EQ(back.contactSolves, s.contactSolves);
     EXPECT_EQ(back.impactCount[1], 9);
     EXPECT_EQ(back.contactState, s.contactState);
     EXPECT_EQ(back.wPrev2, s.wPrev2);
@@ -109,7 +109,7 @@ TEST(StateTables, NewmarkStateLayoutIsWhereTheValuesStand) {
     EXPECT_EQ(offset("displacement"), 4u);
     EXPECT_EQ(flat[offset("z")], s.z);
     EXPECT_EQ(flat[offset("step")], double(s.step));
-    EXPECT_EQ(flat[offset("contact vertices")], double(s.contactVertices));
+    EXPECT_EQ(flat[offset("contact vertices")], double(s.contactPoints));
     EXPECT_EQ(flat[offset("contact state")], double(s.contactState[0]));
     EXPECT_EQ(layout.back().first, "contact impulse");  // the last member: its second level, 3 values
     EXPECT_EQ(4 + layout.back().second + 3, flat.size());

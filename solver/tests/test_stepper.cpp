@@ -81,7 +81,7 @@ TEST(Stepper, TimeStepDoesNotAllocate) {
         p.dampingStiffness = c.b;
         plate::PlateSimulation sim(p, 0.0);
         run(sim, 20000);  // warm up through several impacts (contact columns get computed)
-        ASSERT_GT(sim.outputs().qpIterationsTotal, 0);
+        ASSERT_GT(sim.outputs().contactSolves, 0);
         allocations = 0;
         counting = true;
         run(sim, 5000);
