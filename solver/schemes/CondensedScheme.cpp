@@ -52,7 +52,7 @@ CondensedScheme::CondensedScheme(std::shared_ptr<const CondensedPlate> plate, Ob
     endMatrix_ = c.delassus;
     endColumns_ = denseColumns(endMatrix_);
     endQP_ = std::make_unique<BoxQP>(*endColumns_);
-    for (Eigen::VectorXd* v : {&rhs_, &dq_, &qNext_, &momentumNext_, &modalForce_, &qCheck_, &modalScratch_})
+    for (Eigen::VectorXd* v : {&rhs_, &dq_, &qNext_, &momentumNext_, &modalForce_, &modalScratch_})
         v->resize(m);
     w2v_.resize(rows);
     for (Eigen::VectorXd* v : {&forceNext_, &multiplier_, &r0_, &r1_, &drFree_, &dr_, &base_, &e_, &y_})
@@ -60,7 +60,7 @@ CondensedScheme::CondensedScheme(std::shared_ptr<const CondensedPlate> plate, Ob
     midForce_ = endForce_ = Eigen::VectorXd::Zero(rows);
     lower_ = Eigen::VectorXd::Constant(rows, obstacles_.lower);
     upper_ = Eigen::VectorXd::Constant(rows, obstacles_.upper);
-    if (rows > 0) rowLoadMax_ = c.rowLoad.cwiseAbs().maxCoeff();
+    freeFlight_.setup(m, c.rowModeNormMax, rows > 0 ? c.rowLoad.cwiseAbs().maxCoeff() : 0.0);
 }
 
 // W₂ v = ½Δt² G H⁻¹ Gᵀ v: through the modes when they are fewer than half the rows (a reduced
@@ -131,7 +131,7 @@ void CondensedScheme::initialize(double z0, double p0) {
     s.contactPoints =
         static_cast<int>(std::count_if(s.rowState.begin(), s.rowState.end(), [](signed char x) { return x != 0; }));
     refreshDerived();
-    margin_ = -1.0;
+    freeFlight_.reset();
 }
 
 void CondensedScheme::setLoadAtStart(double p0) {
@@ -149,7 +149,7 @@ void CondensedScheme::setLoadAtStart(double p0) {
             static_cast<int>(std::count_if(s.rowState.begin(), s.rowState.end(), [](signed char x) { return x != 0; }));
     }
     refreshDerived();
-    margin_ = -1.0;
+    freeFlight_.reset();
 }
 
 // The rows r1_ at the trial's end looked at: Contact when a row is held at the start or past an
@@ -160,12 +160,9 @@ CondensedScheme::Look CondensedScheme::lookAtRowsNow(double zNext, double pNext)
     double margin = std::numeric_limits<double>::infinity();
     for (Eigen::Index i = 0; i < r1_.size(); ++i)
         margin = std::min(margin, std::min(r1_[i] - obstacles_.lower, obstacles_.upper - r1_[i]));
-    margin_ = -1.0;
+    freeFlight_.reset();
     if (s.contactPoints > 0 || margin < 0.0) return Look::Contact;
-    qCheck_ = qNext_;
-    zCheck_ = zNext;
-    pCheck_ = pNext;
-    margin_ = margin;
+    freeFlight_.restart(qNext_, zNext, pNext, margin);
     return Look::Free;
 }
 
@@ -375,7 +372,7 @@ void CondensedScheme::initialReaction(double& force, double& moment) const {
 
 void CondensedScheme::setState(const CondensedState& s) {
     state_ = s;
-    margin_ = -1.0;  // the free-flight bound restarts from a full look
+    freeFlight_.reset();  // the free-flight bound restarts from a full look
     refreshDerived();
 }
 
@@ -413,7 +410,7 @@ void CondensedScheme::restore(const Snapshot& from) {
     endForce_ = from.endForce;
     rowsCached_ = from.rowsCached;
     rowsCachedValid_ = from.rowsCachedValid;
-    margin_ = -1.0;
+    freeFlight_.reset();
 }
 
 void CondensedScheme::refreshDerived() {

@@ -29,6 +29,7 @@
 #include "plate/CondensedPlate.h"
 #include "plate/Obstacles.h"
 #include "plate/PlateParameters.h"
+#include "schemes/FreeFlightBound.h"
 #include "schemes/Scheme.h"
 
 namespace plate {
@@ -126,19 +127,11 @@ protected:
     void save(Snapshot& to) const;
     void restore(const Snapshot& from);
     void midpointStep(double zNext, double pNext);  // one step of op_->h (T.17b–c)
-    // Free flight without looking at the rows: since the last look they can have moved by at most
-    // ‖G_i‖ ‖q⁺ − q_check‖ + |Δz| + |Δp| max|c_p| (1e-12 m: roundoff of what it is compared with).
-    bool farFromObstacles(double zNext, double pNext) const {
-        if (margin_ <= 0.0) return false;
-        const double moved = plate_->rowModeNormMax * (qNext_ - qCheck_).norm() + std::abs(zNext - zCheck_) +
-                             std::abs(pNext - pCheck_) * rowLoadMax_;
-        return moved + 1e-12 < margin_;
-    }
     // The contact check after a trial step to (qNext_, zNext, pNext): Skipped while the free-flight
     // bound holds (inline: the common case of both schemes), else lookAtRowsNow.
     enum class Look { Skipped, Free, Contact };
     Look lookAtRows(double zNext, double pNext) {
-        if (!obstacles_.any() || plate_->rows() == 0 || (state_.contactPoints == 0 && farFromObstacles(zNext, pNext)))
+        if (!obstacles_.any() || plate_->rows() == 0 || (state_.contactPoints == 0 && freeFlight_.holds(qNext_, zNext, pNext)))
             return Look::Skipped;
         return lookAtRowsNow(zNext, pNext);
     }
@@ -180,10 +173,7 @@ protected:
     std::array<bool, 3> forceZero_{{true, true, true}};
     bool forceNextZero_ = true, multiplierUsed_ = false;
     double kkt_ = 0.0;
-    // Free-flight bound: at the last look the rows were margin_ inside the obstacles with the
-    // plate at qCheck_, the base at zCheck_ and the load at pCheck_.
-    Eigen::VectorXd qCheck_;
-    double zCheck_ = 0.0, pCheck_ = 0.0, margin_ = -1.0, rowLoadMax_ = 0.0;
+    FreeFlightBound freeFlight_;  // in the massive modes (ρ = max ‖G_i‖), the base and the load
 };
 
 }  // namespace plate

@@ -216,7 +216,7 @@ void FlowScheme::substeps(double zNext, double pNext, int m, const MidpointOpera
     s.contactIterationsLast = iterationsMax;
     forceZero_ = {s.force.isZero(0.0), s.forcePrev.isZero(0.0), s.forcePrev2.isZero(0.0)};
     forceNextZero_ = false;
-    margin_ = -1.0;
+    freeFlight_.reset();
 }
 
 // tolerance > 0 (docs/theory.md §22): the contact step from t_n taken at 2^(j−1) and at 2^j

@@ -1,5 +1,7 @@
 #include "schemes/ImpactLaw.h"
 
+#include "schemes/FreeFlightBound.h"
+
 #include <algorithm>
 #include <cmath>
 #include <limits>
@@ -10,34 +12,26 @@ namespace {
 
 // The paper's law (§4–5): the constraint on u⁺ itself, contact work only where the QP ran.
 // Free flight without looking at every vertex (complete modal basis: the look is a dense
-// product): at the last full look the vertices were at least margin_ from the obstacles with the
-// plate at wCheck_ and the base at zCheck_; while ‖C_i‖ ‖w⁺ − wCheck_‖ + |z⁺ − zCheck_| stays
-// below that margin no vertex can touch, so the look (which would find nothing) is skipped.
-// Results are identical either way.
+// product): FreeFlightBound.
 class InelasticImpact final : public ImpactLaw {
 public:
     InelasticImpact(const DiscretePlate& plate, const Obstacles& obstacles)
-        : plate_(plate), obstacles_(obstacles), rowNormBound_(plate.contactRowNormBound()) {
-        if (rowNormBound_ > 0.0) wCheck_.resize(plate.size());
+        : plate_(plate), obstacles_(obstacles) {
+        freeFlight_.setup(plate.size(), plate.contactRowNormBound());
     }
 
     bool bounds(const NewmarkState&, const Eigen::VectorXd& wFree, double zNext, ContactBuffers& b) override {
         const double lo = obstacles_.lower - zNext, hi = obstacles_.upper - zNext;
         bool violated = false;
-        // 1e-12 m: roundoff of the values the bound is compared with.
-        if (margin_ <= 0.0 || rowNormBound_ * (wFree - wCheck_).norm() + std::abs(zNext - zCheck_) + 1e-12 >= margin_) {
+        if (!freeFlight_.holds(wFree, zNext)) {
             plate_.gatherContact(wFree, b.yFree);
             double margin = std::numeric_limits<double>::infinity();
             for (int i = 0; i < b.yFree.size(); ++i) {
-                violated |= (b.yFree[i] < lo) | (b.yFree[i] > hi);
+                violated = violated || b.yFree[i] < lo || b.yFree[i] > hi;
                 margin = std::min(margin, std::min(b.yFree[i] - lo, hi - b.yFree[i]));
             }
-            margin_ = -1.0;
-            if (!violated && rowNormBound_ > 0.0) {
-                wCheck_ = wFree;  // same size: no allocation
-                zCheck_ = zNext;
-                margin_ = margin;
-            }
+            freeFlight_.reset();
+            if (!violated) freeFlight_.restart(wFree, zNext, 0.0, margin);
         }
         if (violated) {
             b.lower.setConstant(lo);
@@ -70,14 +64,12 @@ public:
         return w;
     }
 
-    void reset() override { margin_ = -1.0; }
+    void reset() override { freeFlight_.reset(); }
 
 private:
     const DiscretePlate& plate_;
     Obstacles obstacles_;
-    double rowNormBound_;
-    Eigen::VectorXd wCheck_;
-    double zCheck_ = 0.0, margin_ = -1.0;
+    FreeFlightBound freeFlight_;
 };
 
 // What the laws that look at every vertex, every step share: the constraint on
@@ -101,7 +93,7 @@ public:
             b.upper.setConstant(obstacles_.upper - zNext);
         }
         bool violated = false;
-        for (int i = 0; i < b.yFree.size(); ++i) violated |= (b.yFree[i] < b.lower[i]) | (b.yFree[i] > b.upper[i]);
+        for (int i = 0; i < b.yFree.size(); ++i) violated = violated || b.yFree[i] < b.lower[i] || b.yFree[i] > b.upper[i];
         return violated;
     }
 
