@@ -1,25 +1,19 @@
 #include "PlateSimulation.h"
 
 #include <algorithm>
-#include <chrono>
 #include <cfloat>
 #include <cmath>
 #include <limits>
 #include <sstream>
 
-#include "schemes/FieldRecovery.h"
-#include "fe/Assembly.h"
-#include "plate/BoxQP.h"
-#include "plate/SparseCholesky.h"
-#include "plate/FullOrderPlate.h"
-#include "plate/ModalPlate.h"
-#include "schemes/FlowScheme.h"
-#include "schemes/MidpointScheme.h"
-#include "schemes/NewmarkScheme.h"
+#include "MakeScheme.h"
 #include "base/PortableMath.h"
+#include "fe/Assembly.h"
 #include "fe/SingularMass.h"
 #include "plate/Spectrum.h"
-#include "plate/StaticEquilibrium.h"
+#include "schemes/Armature.h"
+#include "schemes/FieldRecovery.h"
+#include "schemes/Scheme.h"
 
 namespace plate {
 
@@ -39,36 +33,12 @@ Obstacles obstaclesOf(const PlateParameters& p) {
     return o;
 }
 
-// Exact mode (modes = 0) runs the complete modal basis where it is cheaper per step than the
-// sparse factor of A (both are the same scheme (3.6) in other coordinates): a modal step is
-// about one pass over the dense CΦ (contact vertices × dofs), a sparse step several indexed
-// passes over about nnz(K) entries at ~5 times the cost per entry. The threshold and the
-// measurements behind it: docs/theory.md §7.
-bool completeModalPays(const ClampedPlate& plate) {
-    return plate::completeModalPays(plate.mass.rows(), static_cast<long long>(plate.contactDofs.size()),
-                                    plate.stiffness.nonZeros());
-}
-
-// The clamp's carrier (docs/theory.md §18–19): an armature, or a line end (massless, the line's
-// impedance as its damper); the suspension is relaxed where the clamp starts.
-CarrierOptions carrierOptions(const PlateParameters& p, double baseDisplacement0) {
-    CarrierOptions c;
-    c.line = p.carrier == PlateParameters::Carrier::Line;
-    c.mass = c.line ? 0.0 : p.armatureMass;
-    c.stiffness = c.line ? 0.0 : p.armatureStiffness;
-    c.damping = c.line ? p.tlmImpedance : p.armatureDamping;
-    c.restPosition = baseDisplacement0;
-    return c;
-}
-
 }  // namespace
 
 struct PlateSimulation::Impl {
     PlateParameters parameters;
     std::shared_ptr<const FiniteElementSpace> space;
     std::shared_ptr<const ClampedPlate> clamped;
-    std::shared_ptr<const DiscretePlate> discrete;
-    mutable std::unique_ptr<SparseCholesky> floorFactor;  // sparse A, for the floor measurement
     std::unique_ptr<Scheme> scheme;
     // Stress and probes (docs/theory.md §23): the functionals, and the peak since t = 0 of the root's
     // largest |w_xx|, tracked every step (part of the state).
@@ -122,99 +92,11 @@ PlateSimulation::PlateSimulation(const PlateParameters& p, double baseDisplaceme
     }
     const Eigen::SparseMatrix<double> rootFree =
         p.condensed() ? freeRows(root, *s.clamped) : Eigen::SparseMatrix<double>();
-    s.scheme = makeScheme(obstacles, baseDisplacement0, loadAtStart, couplingFree, rootFree, progress);
+    s.scheme = makeScheme(SchemeSetup{p, s.space, s.clamped, *s.recovery, s.resources, couplingFree, rootFree, obstacles,
+                                      baseDisplacement0, loadAtStart},
+                          progress);
     s.trackRoot();  // the initial state's (t = 0 belongs to the peak)
     progress.done(s.resources.peakMB);
-}
-
-// The one place a scheme is made: time_scheme chooses (docs/architecture.md).
-std::unique_ptr<Scheme> PlateSimulation::makeScheme(const Obstacles& obstacles, double baseDisplacement0,
-                                                    double loadAtStart, const Eigen::SparseMatrix<double>& couplingFree,
-                                                    const Eigen::SparseMatrix<double>& rootFree,
-                                                    InitProgress& progress) {
-    const PlateParameters& p = impl_->parameters;
-    if (p.timeScheme == TimeScheme::Newmark)
-        return makeNewmark(obstacles, baseDisplacement0, loadAtStart, couplingFree, progress);
-    progress.phase("condensed singular plate (massive modes, massless Delassus operator)",
-                   impl_->resources.spectrumSeconds + impl_->resources.factorSeconds);
-    OutputRows rows;
-    auto condensed = condensedPlate(rootFree, rows);
-    std::unique_ptr<CondensedScheme> scheme;
-    if (p.timeScheme == TimeScheme::Flow)
-        scheme = std::make_unique<FlowScheme>(condensed, obstacles, p.dt,
-                                              ContactRefinement{p.contactSubsteps, p.tolerance, p.maxContactSubsteps},
-                                              p.dampingMass, p.dampingStiffness, std::move(rows));
-    else
-        scheme = std::make_unique<MidpointScheme>(condensed, obstacles, p.dt, p.dampingMass, p.dampingStiffness,
-                                                  std::move(rows));
-    scheme->initialize(baseDisplacement0, p.initialLoad);
-    scheme->setLoadAtStart(loadAtStart);
-    return scheme;
-}
-
-// time_scheme = newmark: the plate in modal coordinates or on the sparse factor of A (docs/theory.md §7),
-// the scheme with its impact law, and the static initial state.
-std::unique_ptr<Scheme> PlateSimulation::makeNewmark(const Obstacles& obstacles, double baseDisplacement0,
-                                                     double loadAtStart,
-                                                     const Eigen::SparseMatrix<double>& couplingFree,
-                                                     InitProgress& progress) {
-    Impl& s = *impl_;
-    const PlateParameters& p = s.parameters;
-    if (p.beta < 0.25) {
-        progress.phase("kappa_h by power iteration with the factor of M", s.resources.spectrumSeconds);
-        requireStableStep();
-    }
-    using Engine = PlateParameters::Engine;
-    // A singular mass has no M-orthonormal modal basis: it runs on the sparse factor.
-    const bool modal = !p.singularMass() && (p.modes > 0 || p.engine == Engine::CompleteModal ||
-                                             (p.engine == Engine::Auto && completeModalPays(*s.clamped)));
-    progress.phase(modal ? "modal basis (generalized eigenproblem)" : "factorization of A = M + beta dt^2 K",
-                   modal ? s.resources.spectrumSeconds : 0.5 * s.resources.factorSeconds);
-    if (modal)
-        s.discrete = std::make_shared<const ModalPlate>(s.space, s.clamped, p.dt, p.beta, p.modes, p.dampingMass,
-                                                        p.dampingStiffness);
-    else
-        s.discrete =
-            std::make_shared<const FullOrderPlate>(s.space, s.clamped, p.dt, p.beta, p.dampingMass, p.dampingStiffness);
-    SchemeOptions options;
-    options.restitution = p.restitution;
-    options.dampingMass = p.dampingMass;
-    options.dampingStiffness = p.dampingStiffness;
-    options.singularMass = p.singularMass();  // carry the impulses (§11; the tests of the plain
-        // step build their NewmarkScheme directly)
-    options.carried = p.carrier != PlateParameters::Carrier::None;  // §18–19
-    if (options.carried) options.carrier = carrierOptions(p, baseDisplacement0);
-    auto scheme = std::make_unique<NewmarkScheme>(s.discrete, obstacles, options,
-                                                  OutputPoints{p.length, p.width, s.space->mesh().vertexCount()});
-    scheme->setRecovery(s.discrete->rows(s.recovery->functionals()));
-    progress.phase("static initial state (factor of K)", s.resources.staticSeconds + 0.5 * s.resources.factorSeconds);
-    initializeState(*scheme, obstacles, baseDisplacement0, loadAtStart, couplingFree);
-    return scheme;
-}
-
-// time_scheme = conserving (docs/theory.md §17): the output points become constraint rows — a
-// corner, or a free_edge_mid on a vertex, is its contact vertex's row; a free_edge_mid between
-// vertices (ny odd) a row of its own.
-std::shared_ptr<const CondensedPlate> PlateSimulation::condensedPlate(const Eigen::SparseMatrix<double>& rootFree,
-                                                                      OutputRows& rows) const {
-    const Impl& s = *impl_;
-    const PlateParameters& p = s.parameters;
-    const Mesh& mesh = s.space->mesh();
-    std::vector<int> vertexRows(static_cast<std::size_t>(mesh.vertexCount()), -1);
-    for (std::size_t i = 0; i < s.clamped->contactVertices.size(); ++i)
-        vertexRows[static_cast<std::size_t>(s.clamped->contactVertices[i])] = static_cast<int>(i);
-    std::vector<ConstraintRow> extra;
-    std::array<int, 3> probeRows{vertexRows[mesh.vertex(p.nx, 0)], vertexRows[mesh.vertex(p.nx, p.ny)], -1};
-    if (p.ny % 2 == 0) {
-        probeRows[2] = vertexRows[mesh.vertex(p.nx, p.ny / 2)];
-    } else {
-        extra.push_back({s.clamped->probe(*s.space, p.length, 0.5 * p.width), p.length});
-        probeRows[2] = static_cast<int>(s.clamped->contactVertices.size());
-    }
-    rows.probes = probeRows;
-    rows.vertices = std::move(vertexRows);
-    return std::make_shared<const CondensedPlate>(
-        condense(*s.clamped, rootFree, extra, p.modes, s.recovery->functionals()));
 }
 
 void PlateSimulation::requireBaseBetween(const Obstacles& obstacles, double baseDisplacement0) {
@@ -227,69 +109,6 @@ void PlateSimulation::requireBaseBetween(const Obstacles& obstacles, double base
             << " <= base_displacement <= obstacle_upper = " << obstacles.upper << ")";
         throw ParameterError(msg.str());
     }
-}
-
-// Stability of γ = ½, β < ¼ (docs/theory.md §4): Δt < 2 / √((1 − 4β) κ_h).
-void PlateSimulation::requireStableStep() const {
-    const PlateParameters& p = impl_->parameters;
-    const double kappaH = kappa();  // a power iteration: once
-    const double bound = 2.0 / std::sqrt((1.0 - 4.0 * p.beta) * kappaH);
-    if (!(p.dt < bound)) {
-        std::ostringstream msg;
-        msg.precision(6);
-        msg << "invalid parameter dt = " << p.dt << " for beta = " << p.beta
-            << " (allowed: dt < 2/sqrt((1-4 beta) kappa_h) = " << bound << " s, kappa_h = " << kappaH
-            << " s^-2; or beta >= 0.25)";
-        throw ParameterError(msg.str());
-    }
-}
-
-// The initial state (docs/theory.md §3, §11): the static equilibrium under initial_load between
-// the obstacles, at rest; with a singular mass its massless part in equilibrium with the load at
-// t = 0 and the contact forces that hold it.
-void PlateSimulation::initializeState(NewmarkScheme& scheme, const Obstacles& obstacles, double baseDisplacement0,
-                                      double loadAtStart, const Eigen::SparseMatrix<double>& couplingFree) {
-    Impl& s = *impl_;
-    const PlateParameters& p = s.parameters;
-    Eigen::VectorXd w0, force;
-    const auto* modalPlate = dynamic_cast<const ModalPlate*>(s.discrete.get());
-    if (modalPlate && modalPlate->complete()) {
-        // Exact mode in modal coordinates: solve the static problem with the sparse factor of
-        // K (roundoff ~eps·cond(K) rather than the dense eigen solution's eps·λ_max/λ_1) and
-        // change coordinates, α0 = ΦᵀM w0, exact for the complete basis.
-        const FullOrderPlate full(s.space, s.clamped, p.dt, p.beta);
-        w0 = modalPlate->fromFullSpace(staticEquilibrium(full, obstacles, baseDisplacement0, p.initialLoad, &force));
-    } else if (!p.singularMass()) {
-        w0 = staticEquilibrium(*s.discrete, obstacles, baseDisplacement0, p.initialLoad, &force);
-    }
-    if (!p.singularMass()) {
-        setInitialReaction(scheme, force);
-        scheme.initialize(w0, baseDisplacement0, 0.0);
-    } else {
-        // §11: only the part of w0 the singular mass sees is initial data; the massless part
-        // is in equilibrium with the load at t = 0 (unless the static state already is).
-        w0 = staticEquilibrium(*s.discrete, obstacles, baseDisplacement0, p.initialLoad, &force);
-        setInitialReaction(scheme, force);
-        scheme.initialize(w0, baseDisplacement0, loadAtStart);
-        if (loadAtStart != p.initialLoad) {
-            w0 = masslessEquilibrium(*s.clamped, couplingFree, obstacles, baseDisplacement0, loadAtStart, w0, force);
-            scheme.initialize(w0, baseDisplacement0, loadAtStart);
-        }
-        scheme.setInitialContactForce(force);
-    }
-}
-
-// The port at t = 0 (docs/theory.md §14): the plate at rest in the static state of initial_load
-// exerts on the clamp what the load and the obstacles put on it, p0·|Ω| + Σλ and p0·∫x + Σλ_i x_i.
-void PlateSimulation::setInitialReaction(NewmarkScheme& scheme, const Eigen::VectorXd& contactForce) {
-    Impl& s = *impl_;
-    const ClampedPlate& plate = *s.clamped;
-    double force = s.parameters.initialLoad * plate.loadResultant, moment = s.parameters.initialLoad * plate.loadMoment;
-    for (Eigen::Index i = 0; i < contactForce.size(); ++i) {
-        force += contactForce[i];
-        moment += contactForce[i] * plate.contactAbscissae[static_cast<std::size_t>(i)];
-    }
-    scheme.setInitialReaction(force, moment);
 }
 
 PlateSimulation::~PlateSimulation() = default;
@@ -473,30 +292,6 @@ double PlateSimulation::kappa() const {
     // Before the engine exists (the β < ¼ check of the constructor) from the clamped plate itself.
     if (!impl_->scheme) return largestEigenvalue(*impl_->clamped);
     return impl_->scheme->kappa();
-}
-
-double PlateSimulation::measureFloorSolveSeconds(int repeats) const {
-    // The floor is one solve with the sparse factor of A = M + βΔt²K (docs/theory.md), whatever
-    // coordinates the stepper runs in.
-    const Impl& s = *impl_;
-    if (!s.floorFactor)
-        s.floorFactor = std::make_unique<SparseCholesky>(Eigen::SparseMatrix<double>(
-            s.clamped->mass + (s.parameters.beta * s.parameters.dt * s.parameters.dt) * s.clamped->stiffness));
-    const SparseCholesky& factor = *s.floorFactor;
-    Eigen::VectorXd b = s.clamped->pressureLoad, x(b.size());
-    std::vector<double> batches;
-    const int perBatch = std::max(1, repeats / 20);
-    for (int batch = 0; batch < 21; ++batch) {
-        const auto t0 = std::chrono::steady_clock::now();
-        for (int r = 0; r < perBatch; ++r) {
-            factor.solve(b, x);
-            b[0] += 1e-300 * x[0];  // keep the solves dependent so none is optimized away
-        }
-        const auto t1 = std::chrono::steady_clock::now();
-        if (batch > 0) batches.push_back(std::chrono::duration<double>(t1 - t0).count() / perBatch);
-    }
-    std::nth_element(batches.begin(), batches.begin() + batches.size() / 2, batches.end());
-    return batches[batches.size() / 2];
 }
 
 // The scheme's state, then the communication time, whether it is on the grid and the outputs

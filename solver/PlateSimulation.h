@@ -1,6 +1,7 @@
 #pragma once
-// The plate as a co-simulation component: parameters in, the Newmark–contact scheme (3.3)
-// advanced at a fixed Δt, probe values and energies out. No FMI knowledge here.
+// The plate as a co-simulation component: the communication grid. Parameters in, the scheme
+// `time_scheme` chose (made once, MakeScheme.h) advanced at its fixed Δt, the inputs as signals
+// over each communication step, the outputs at and between grid points. No FMI knowledge here.
 #include <Eigen/Core>
 #include <Eigen/Sparse>
 #include <array>
@@ -18,9 +19,6 @@
 namespace plate {
 
 class Scheme;
-class NewmarkScheme;
-struct CondensedPlate;
-struct OutputRows;
 
 // How one communication step of length h maps onto the scheme's fixed grid t_k = k Δt
 // (docs/theory.md §15): the internal steps to take, where the inputs' time s starts at the
@@ -99,8 +97,6 @@ public:
 
     // Largest eigenvalue of M^{-1} K of the clamped plate (κ_h, docs/theory.md), s^-2.
     double kappa() const;
-    // Time of one solve with the factor of A, measured now (median of repeats), s.
-    double measureFloorSolveSeconds(int repeats = 2000) const;
 
     // Full mutable state: serialize for FMU states (bit-identical continuation).
     std::vector<double> saveState() const;
@@ -108,17 +104,6 @@ public:
 
 private:
     static void requireBaseBetween(const Obstacles& obstacles, double baseDisplacement0);
-    void requireStableStep() const;
-    std::unique_ptr<Scheme> makeScheme(const Obstacles& obstacles, double baseDisplacement0, double loadAtStart,
-                                       const Eigen::SparseMatrix<double>& couplingFree,
-                                       const Eigen::SparseMatrix<double>& rootFree, InitProgress& progress);
-    std::unique_ptr<Scheme> makeNewmark(const Obstacles& obstacles, double baseDisplacement0, double loadAtStart,
-                                        const Eigen::SparseMatrix<double>& couplingFree, InitProgress& progress);
-    std::shared_ptr<const CondensedPlate> condensedPlate(const Eigen::SparseMatrix<double>& rootFree,
-                                                         OutputRows& rows) const;
-    void initializeState(NewmarkScheme& scheme, const Obstacles& obstacles, double baseDisplacement0,
-                         double loadAtStart, const Eigen::SparseMatrix<double>& couplingFree);
-    void setInitialReaction(NewmarkScheme& scheme, const Eigen::VectorXd& contactForce);
     PlateOutputs gridOutputs(bool port, FieldOutputs field = FieldOutputs::None) const;
     struct Impl;
     template <class StopAfter>

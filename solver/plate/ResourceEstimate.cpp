@@ -169,7 +169,7 @@ bool completeModalPays(long long n, long long m, long long stiffnessNonZeros) {
 
 EngineKind engineFor(const PlateParameters& p, const ProblemSize& size) {
     using Engine = PlateParameters::Engine;
-    if (p.condensed()) return EngineKind::Conserving;
+    if (p.condensed()) return EngineKind::Condensed;
     const bool modal =
         !p.singularMass() &&
         (p.modes > 0 || p.engine == Engine::CompleteModal ||
@@ -228,7 +228,7 @@ ResourceEstimate estimateResources(const PlateParameters& p, const ProblemSize& 
     // W₂, the two contact matrices and their QP columns, the static problem's).
     const double massive = double(s.elements) * (p.mass == MassModel::SingularP1dg ? 3.0 : 1.0);
     const double rows = double(s.contactVertices) + 1.0;
-    if (e.engine == EngineKind::Conserving) {
+    if (e.engine == EngineKind::Condensed) {
         e.factorsMB = factorBytes(s) / kMB;
         engineBytes = kDouble * (4 * massive * massive + 2 * rows * massive + 16 * rows * rows);
         // time_scheme = flow with a tolerance (FlowScheme.h): the midpoint matrices of every
@@ -259,7 +259,7 @@ ResourceEstimate estimateResources(const PlateParameters& p, const ProblemSize& 
     const double recoveryRows = 3.0 * double(s.contactVertices + p.ny + 1) + 2.0 * p.ny + 5.0;
     const double perRow = p.element == ElementType::Fvs ? 12.0 : 21.0;
     double recovery = (kTriplet + kEntry) * recoveryRows * perRow;
-    if (e.engine == EngineKind::Conserving)
+    if (e.engine == EngineKind::Condensed)
         recovery += kDouble * recoveryRows * (3.0 * massive + 2.0 * rows);
     else if (e.engine == EngineKind::Sparse)
         recovery += kEntry * recoveryRows * perRow;
@@ -278,7 +278,7 @@ ResourceEstimate estimateResources(const PlateParameters& p, const ProblemSize& 
     e.assemblySeconds = perEntry * t * (p.singularMass() ? 2.0 : 1.0) + kPerPatternEntry * (t + zFull);
     const double oneFactor = kPerAnalysisEntry * z + kPerFactorFlop * s.factorFlops;
     if (e.engine != EngineKind::ReducedModal) e.factorSeconds = 2 * oneFactor;
-    if (e.engine == EngineKind::Conserving) {
+    if (e.engine == EngineKind::Condensed) {
         // One factor of K; a solve per massive coordinate and per row; the dense eigen solution of T.
         e.factorSeconds = oneFactor;
         e.spectrumSeconds =
@@ -287,7 +287,7 @@ ResourceEstimate estimateResources(const PlateParameters& p, const ProblemSize& 
     if (p.beta < 0.25) e.spectrumSeconds += oneFactor + kPowerIterations * kPerFactorFlop * 4.0 * (l + z);
     e.staticSeconds = kPerAnalysisEntry * z;  // the QP of the static state is small without contact
     e.initSeconds = e.assemblySeconds + e.factorSeconds + e.spectrumSeconds + e.staticSeconds;
-    if (e.engine == EngineKind::Conserving) {
+    if (e.engine == EngineKind::Condensed) {
         const double m = p.modes > 0 && p.modes < massive ? double(p.modes) : massive;
         e.stepSeconds = kPerModalStepEntry * (8 * m + m * rows / 10);  // a look at the rows every ~10 steps
     } else if (e.engine == EngineKind::Sparse) {
@@ -303,7 +303,7 @@ std::string ResourceEstimate::describe() const {
     const ProblemSize& s = size;
     const char* name = engine == EngineKind::Sparse          ? "sparse"
                        : engine == EngineKind::CompleteModal ? "modal-complete"
-                       : engine == EngineKind::Conserving    ? "conserving"
+                       : engine == EngineKind::Condensed    ? "conserving"
                                                              : "modal-reduced";
     char text[600];
     if (!complete) {
