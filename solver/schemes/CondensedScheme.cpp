@@ -22,14 +22,14 @@ constexpr int kGradientIterations = 200;
 // The contact solves' relative KKT residual (BoxQP) must reach this.
 constexpr double kKktTolerance = 1e-10;
 
-std::unique_ptr<ContactColumns> denseColumns(const Eigen::MatrixXd& matrix) {
+}  // namespace
+
+std::unique_ptr<ContactColumns> CondensedScheme::denseColumns(const Eigen::MatrixXd& matrix) {
     const Eigen::MatrixXd* m = &matrix;
     return std::make_unique<ContactColumns>(
         static_cast<int>(matrix.cols()), [m](int j, Eigen::VectorXd& z) { z = m->col(j); },
         [](const Eigen::VectorXd& z, Eigen::VectorXd& y) { y = z; });
 }
-
-}  // namespace
 
 void CondensedScheme::buildOperator(MidpointOperator& op, double h) const {
     const CondensedPlate& c = *plate_;
@@ -52,6 +52,7 @@ CondensedScheme::CondensedScheme(std::shared_ptr<const CondensedPlate> plate, Ob
     endMatrix_ = c.delassus;
     endColumns_ = denseColumns(endMatrix_);
     endQP_ = std::make_unique<BoxQP>(*endColumns_);
+    space_ = {&c.rowModesT, &c.rowLoad, &c.rowAbscissae, endQP_.get()};
     for (Eigen::VectorXd* v : {&rhs_, &dq_, &qNext_, &momentumNext_, &modalForce_, &modalScratch_})
         v->resize(m);
     w2v_.resize(rows);
@@ -60,7 +61,8 @@ CondensedScheme::CondensedScheme(std::shared_ptr<const CondensedPlate> plate, Ob
     midForce_ = endForce_ = Eigen::VectorXd::Zero(rows);
     lower_ = Eigen::VectorXd::Constant(rows, obstacles_.lower);
     upper_ = Eigen::VectorXd::Constant(rows, obstacles_.upper);
-    freeFlight_.setup(m, c.rowModeNormMax, rows > 0 ? c.rowLoad.cwiseAbs().maxCoeff() : 0.0);
+    if (rows > 0) rowLoadMax_ = c.rowLoad.cwiseAbs().maxCoeff();
+    freeFlight_.setup(m, c.rowModeNormMax, rowLoadMax_);
 }
 
 // W₂ v = ½Δt² G H⁻¹ Gᵀ v: through the modes when they are fewer than half the rows (a reduced
@@ -68,18 +70,18 @@ CondensedScheme::CondensedScheme(std::shared_ptr<const CondensedPlate> plate, Ob
 void CondensedScheme::applyW2(const Eigen::VectorXd& v, Eigen::VectorXd& out) {
     const CondensedPlate& c = *plate_;
     const double h = op_->h;
-    if (2 * c.modes() >= c.rows()) {
+    if (2 * Eigen::Index(c.modes()) >= v.size()) {
         out.noalias() = op_->w2 * v;
         return;
     }
-    modalScratch_.noalias() = c.rowModesT * v;
+    modalScratch_.noalias() = *space_.modes * v;
     modalScratch_.array() *= (0.5 * h * h) * op_->inverseH.array();
-    out.noalias() = c.rowModesT.transpose() * modalScratch_;
+    out.noalias() = space_.modes->transpose() * modalScratch_;
 }
 
 void CondensedScheme::gatherRows(const Eigen::VectorXd& q, double p, double z, Eigen::VectorXd& r) const {
-    r.noalias() = plate_->rowModesT.transpose() * q;
-    r.noalias() += p * plate_->rowLoad;
+    r.noalias() = space_.modes->transpose() * q;
+    r.noalias() += p * *space_.load;
     r.array() += z;
 }
 
@@ -192,7 +194,7 @@ void CondensedScheme::midpointStep(double zNext, double pNext) {
         drFree_ = r1_ - r0_;
         discreteGradient(s.boundary);
         // Δq = Δq_free + ½Δt² H⁻¹ Gᵀ Λ.
-        modalForce_.noalias() = c.rowModesT * multiplier_;
+        modalForce_.noalias() = *space_.modes * multiplier_;
         dq_.noalias() += (0.5 * dt * dt) * op_->inverseH.cwiseProduct(modalForce_);
         qNext_.noalias() = s.q + dq_;
     } else {
@@ -204,7 +206,7 @@ void CondensedScheme::midpointStep(double zNext, double pNext) {
     const double damped = dq_.dot(damping_.cwiseProduct(dq_)) / dt;
     rhs_.noalias() =
         pMid * c.modalLoad - 0.5 * c.omega2.cwiseProduct(s.q + qNext_) + modalForce_ - damping_.cwiseProduct(dq_) / dt;
-    const double contactSum = contact ? multiplier_.sum() : 0.0, onLoad = contact ? multiplier_.dot(c.rowLoad) : 0.0;
+    const double contactSum = contact ? multiplier_.sum() : 0.0, onLoad = contact ? multiplier_.dot(*space_.load) : 0.0;
     const double onRigid = c.modalBaseInertia.dot(rhs_) - contactSum;  // clamp + load on the plate
     const double work = pMid * c.modalLoad.dot(dq_) - dp * onLoad + dz * onRigid;
     CondensedState& st = state_;
@@ -220,7 +222,7 @@ void CondensedScheme::midpointStep(double zNext, double pNext) {
             if (multiplier_[i] == 0.0) continue;
             // Each row's force goes to the obstacle nearer to it at the midpoint.
             sums[0.5 * (r0_[i] + r1_[i]) >= middle] += multiplier_[i];
-            st.stepContactMoment += multiplier_[i] * c.rowAbscissae[static_cast<std::size_t>(i)];
+            st.stepContactMoment += multiplier_[i] * (*space_.x)[static_cast<std::size_t>(i)];
         }
         st.clampMoment -= st.stepContactMoment;
     }
@@ -257,7 +259,7 @@ void CondensedScheme::discreteGradient(double psi0) {
         applyW2(lambda, w2v_);
         dr_.noalias() = drFree_ + w2v_;
         r1_.noalias() = r0_ + dr_;
-        solveContact(*endQP_, r1_, rowTrial_, endForce_, y_, solves_);
+        solveContact(*space_.endQP, r1_, rowTrial_, endForce_, y_, solves_);
         forceNext_ = endForce_;
         const double psi1 = 0.5 * forceNext_.dot(y_ - r1_);  // ½ λ1ᵀ D λ1
         boundaryNext_ = psi1;
@@ -286,8 +288,8 @@ void CondensedScheme::commit(double zNext, double pNext, double work, double dam
     const double zDot = (s.z - s.zPrev) / dt, zDotNext = (zNext - s.z) / dt;
     const bool nextZero = solves_ == 0;  // a free step leaves λ_{n+1} = 0
     const double loadTerms =
-        (nextZero ? 0.0 : pNext * forceNext_.dot(c.rowLoad)) + 0.5 * pNext * pNext * c.loadFlexibility -
-        ((forceZero_[0] ? 0.0 : s.p * s.force.dot(c.rowLoad)) + 0.5 * s.p * s.p * c.loadFlexibility);
+        (nextZero ? 0.0 : pNext * forceNext_.dot(*space_.load)) + 0.5 * pNext * pNext * c.loadFlexibility -
+        ((forceZero_[0] ? 0.0 : s.p * s.force.dot(*space_.load)) + 0.5 * s.p * s.p * c.loadFlexibility);
     s.energyInput += work + 0.5 * c.clampMass * (zDotNext * zDotNext - zDot * zDot) + loadTerms;
     s.energyDamped += damped;
     // The clamp-carried mass's inertia at t_n (its work pairs with (z⁺ − z⁻)/2, §17).

@@ -116,6 +116,7 @@ protected:
         std::unique_ptr<BoxQP> midQP;
     };
     void buildOperator(MidpointOperator& op, double h) const;
+    static std::unique_ptr<ContactColumns> denseColumns(const Eigen::MatrixXd& matrix);  // its columns, as they are
     // The state with what the next step's solves start from (their warm starts): a step can be
     // taken again from a snapshot, bit for bit as the first time (FlowScheme's step doubling). The
     // first save sizes a snapshot (the first contact step); later ones copy into its storage.
@@ -158,6 +159,17 @@ protected:
     Eigen::MatrixXd endMatrix_;  // D
     std::unique_ptr<ContactColumns> endColumns_;
     std::unique_ptr<BoxQP> endQP_;
+    // The constraint rows the midpoint step resolves contact in (docs/theory.md §24): every row
+    // (the conserving law, and the state between steps), or the rows FlowScheme found can touch
+    // during a contact step. The row-sized buffers below and the state's row vectors are then of
+    // that space's size.
+    struct RowSpace {
+        const Eigen::MatrixXd* modes;  // Gᵀ (massive modes × the space's rows)
+        const Eigen::VectorXd* load;  // c_p at those rows
+        const std::vector<double>* x;  // their lever arms about the clamp line
+        BoxQP* endQP;  // the contact problem with their D
+    };
+    RowSpace space_{};
     CondensedState state_;
     // Step buffers, allocated once.
     Eigen::VectorXd rhs_, dq_, qNext_, momentumNext_, forceNext_, multiplier_, modalForce_;
@@ -174,6 +186,7 @@ protected:
     bool forceNextZero_ = true, multiplierUsed_ = false;
     double kkt_ = 0.0;
     FreeFlightBound freeFlight_;  // in the massive modes (ρ = max ‖G_i‖), the base and the load
+    double rowLoadMax_ = 0.0;  // max |c_p|
 };
 
 }  // namespace plate

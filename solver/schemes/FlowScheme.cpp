@@ -129,6 +129,7 @@ void FlowScheme::advance(double zNext, double pNext) {
     // The contact check of the midpoint step (its free-flight bound included).
     const Look look = lookAtRows(zNext, pNext);
     if (look == Look::Contact) {
+        selectRows(zNext, pNext);
         if (refinement_.tolerance > 0.0)
             refine(zNext, pNext);
         else
@@ -167,42 +168,71 @@ void FlowScheme::advance(double zNext, double pNext) {
 }
 
 // The step from t_n as m midpoint sub-steps of Δt/m, the base and the load linear in between (as
-// the exact step assumes). Each sub-step keeps its energy identity; the levels t_n, t_{n−1} and the
-// port's values over the step are those of one step of Δt afterwards.
+// the exact step assumes), in the rows that can touch (docs/theory.md §24): a sub-step costs what
+// those rows cost, not what every row does. Each sub-step keeps its energy identity; the levels
+// t_n, t_{n−1} and the port's values over the step are those of one step of Δt afterwards. Should a
+// row outside them end the step past an obstacle, the step is taken again in every row.
 void FlowScheme::substeps(double zNext, double pNext, int m, const MidpointOperator& op) {
+    const bool inRows = !allRows_ && !touch_.index.empty();
+    if (inRows) save(retry_);
+    qAtStart_ = state_.q;
+    qBeforeStart_ = state_.qPrev;
+    forceAtStart_ = state_.force;
+    forceBeforeStart_ = state_.forcePrev;
+    try {
+        if (inRows) {
+            buildRowOperator(op);
+            enterRows();
+        } else {
+            op_ = &op;
+        }
+        midpointSubsteps(zNext, pNext, m);
+    } catch (...) {
+        if (inRows_) leaveRows();
+        op_ = &full_;
+        if (inRows) restore(retry_);
+        throw;
+    }
+    if (inRows_) leaveRows();
+    op_ = &full_;
     CondensedState& s = state_;
-    qAtStart_ = s.q;
-    qBeforeStart_ = s.qPrev;
-    forceAtStart_ = s.force;
-    forceBeforeStart_ = s.forcePrev;
+    s.qPrev2 = qBeforeStart_;
+    s.qPrev = qAtStart_;
+    s.forcePrev2 = forceBeforeStart_;
+    s.forcePrev = forceAtStart_;
+    forceZero_ = {s.force.isZero(0.0), s.forcePrev.isZero(0.0), s.forcePrev2.isZero(0.0)};
+    forceNextZero_ = false;
+    multiplierUsed_ = true;
+    freeFlight_.reset();
+    if (!inRows) return;
+    ++rowSpaceSteps_;
+    if (rowsOutsideStayFree()) return;
+    ++rowSpaceRetries_;  // a row outside C touched: the step again, in every row
+    restore(retry_);
+    allRows_ = true;
+    substeps(zNext, pNext, m, op);
+}
+
+// The m sub-steps of op_ from the state's t_n to zNext, pNext at t_{n+1}.
+void FlowScheme::midpointSubsteps(double zNext, double pNext, int m) {
+    CondensedState& s = state_;
     const double z0 = s.z, zBefore = s.zPrev, p0 = s.p, pBefore = s.pPrev;
     const long long step0 = s.step;
     // ż at t_n as one step of Δt had it (the clamp-carried mass's terms in commit).
     s.zPrev = z0 - (z0 - zBefore) / m;
     double force = 0.0, moment = 0.0, contact[2] = {0.0, 0.0}, contactMoment = 0.0;
     int iterationsMax = 0;
-    op_ = &op;
-    try {
-        for (int j = 1; j <= m; ++j) {
-            const double z = j == m ? zNext : z0 + (zNext - z0) * (double(j) / m);
-            const double p = j == m ? pNext : p0 + (pNext - p0) * (double(j) / m);
-            midpointStep(z, p);
-            force += s.clampForce;
-            moment += s.clampMoment;
-            contact[0] += s.stepContactForce[0];
-            contact[1] += s.stepContactForce[1];
-            contactMoment += s.stepContactMoment;
-            iterationsMax = std::max(iterationsMax, iterations_);
-        }
-    } catch (...) {
-        op_ = &full_;
-        throw;
+    for (int j = 1; j <= m; ++j) {
+        const double z = j == m ? zNext : z0 + (zNext - z0) * (double(j) / m);
+        const double p = j == m ? pNext : p0 + (pNext - p0) * (double(j) / m);
+        midpointStep(z, p);
+        force += s.clampForce;
+        moment += s.clampMoment;
+        contact[0] += s.stepContactForce[0];
+        contact[1] += s.stepContactForce[1];
+        contactMoment += s.stepContactMoment;
+        iterationsMax = std::max(iterationsMax, iterations_);
     }
-    op_ = &full_;
-    s.qPrev2 = qBeforeStart_;
-    s.qPrev = qAtStart_;
-    s.forcePrev2 = forceBeforeStart_;
-    s.forcePrev = forceAtStart_;
     s.zPrev2 = zBefore;
     s.zPrev = z0;
     s.pPrev2 = pBefore;
@@ -214,9 +244,145 @@ void FlowScheme::substeps(double zNext, double pNext, int m, const MidpointOpera
     s.stepContactForce[1] = contact[1] / m;
     s.stepContactMoment = contactMoment / m;
     s.contactIterationsLast = iterationsMax;
-    forceZero_ = {s.force.isZero(0.0), s.forcePrev.isZero(0.0), s.forcePrev2.isZero(0.0)};
+}
+
+// The rows that can touch during the contact step from t_n (docs/theory.md §24): those held at its
+// start, and those an obstacle is within reach of at its start or at the end of the free trial
+// (qNext_, r1_). Reach: twice what any row can move with the plate, the base and the load over the
+// step in free flight (FreeFlightBound's sum); the contact forces' own effect on the other rows is
+// checked at the step's end (rowsOutsideStayFree).
+bool FlowScheme::selectRows(double zNext, double pNext) {
+    const CondensedPlate& c = *plate_;
+    const CondensedState& s = state_;
+    allRows_ = false;
+    touch_.index.clear();
+    if (rowsCachedValid_)
+        rowsStart_ = rowsCached_;
+    else
+        gatherRows(s.q, s.p, s.z, rowsStart_);
+    const double reach = 2.0 * (c.rowModeNormMax * (qNext_ - s.q).norm() + std::abs(zNext - s.z) +
+                                std::abs(pNext - s.p) * rowLoadMax_);
+    const auto gap = [this](double r) { return std::min(r - obstacles_.lower, obstacles_.upper - r); };
+    const int rows = c.rows();
+    for (int i = 0; i < rows; ++i) {
+        const auto k = static_cast<std::size_t>(i);
+        if (s.rowState[k] != 0 || s.midState[k] != 0 || gap(rowsStart_[i]) < reach || gap(r1_[i]) < reach)
+            touch_.index.push_back(i);
+    }
+    if (int(touch_.index.size()) == rows) {
+        touch_.index.clear();
+        return false;
+    }
+    const Eigen::Index n = Eigen::Index(touch_.index.size());
+    touch_.modes = c.rowModesT(Eigen::all, touch_.index);
+    touch_.delassus = c.delassus(touch_.index, touch_.index);
+    touch_.load = c.rowLoad(touch_.index);
+    touch_.x.resize(touch_.index.size());
+    for (std::size_t k = 0; k < touch_.index.size(); ++k) touch_.x[k] = c.rowAbscissae[std::size_t(touch_.index[k])];
+    touch_.endColumns = denseColumns(touch_.delassus);
+    touch_.endQP = std::make_unique<BoxQP>(*touch_.endColumns);
+    touch_.from = nullptr;
+    touch_.lower = Eigen::VectorXd::Constant(n, obstacles_.lower);
+    touch_.upper = Eigen::VectorXd::Constant(n, obstacles_.upper);
+    for (Eigen::VectorXd* v : {&touch_.forceNext, &touch_.multiplier, &touch_.r0, &touch_.r1, &touch_.drFree,
+                               &touch_.dr, &touch_.base, &touch_.e, &touch_.y, &touch_.w2v, &touch_.midForce,
+                               &touch_.endForce, &touch_.rowsCached, &touch_.force, &touch_.forcePrev,
+                               &touch_.forcePrev2})
+        v->setZero(n);
+    for (auto* v : {&touch_.rowState, &touch_.midState, &touch_.rowTrial, &touch_.midTrial}) v->assign(touch_.index.size(), 0);
+    return true;
+}
+
+// W₂ and the midpoint contact problem ½W₂ + D of op's sub-step length, in C.
+void FlowScheme::buildRowOperator(const MidpointOperator& op) {
+    MidpointOperator& r = touch_.op;
+    if (touch_.from == &op) return;
+    touch_.from = &op;
+    r.h = op.h;
+    r.inverseH = op.inverseH;
+    r.w2 = op.w2(touch_.index, touch_.index);
+    r.midpointMatrix = 0.5 * r.w2 + touch_.delassus;
+    r.midColumns = denseColumns(r.midpointMatrix);
+    r.midQP = std::make_unique<BoxQP>(*r.midColumns);
+}
+
+// The state's row vectors and the step's row buffers exchanged with C's (the swaps move no data).
+void FlowScheme::swapRowBuffers() {
+    CondensedState& s = state_;
+    TouchRows& t = touch_;
+    for (auto [a, b] : {std::pair{&forceNext_, &t.forceNext}, {&multiplier_, &t.multiplier}, {&r0_, &t.r0},
+                        {&r1_, &t.r1}, {&drFree_, &t.drFree}, {&dr_, &t.dr}, {&base_, &t.base}, {&e_, &t.e},
+                        {&y_, &t.y}, {&w2v_, &t.w2v}, {&lower_, &t.lower}, {&upper_, &t.upper},
+                        {&midForce_, &t.midForce}, {&endForce_, &t.endForce}, {&rowsCached_, &t.rowsCached},
+                        {&s.force, &t.force}, {&s.forcePrev, &t.forcePrev}, {&s.forcePrev2, &t.forcePrev2}})
+        a->swap(*b);
+    for (auto [a, b] : {std::pair{&s.rowState, &t.rowState}, {&s.midState, &t.midState}, {&rowTrial_, &t.rowTrial},
+                        {&midTrial_, &t.midTrial}})
+        a->swap(*b);
+}
+
+// C's values of the state gathered and exchanged with the scheme's own: the step runs in C.
+void FlowScheme::enterRows() {
+    CondensedState& s = state_;
+    TouchRows& t = touch_;
+    for (std::size_t k = 0; k < t.index.size(); ++k) {
+        const auto i = t.index[k];
+        const auto j = Eigen::Index(k);
+        t.force[j] = s.force[i];
+        t.forcePrev[j] = s.forcePrev[i];
+        t.forcePrev2[j] = s.forcePrev2[i];
+        t.rowState[k] = s.rowState[std::size_t(i)];
+        t.midState[k] = s.midState[std::size_t(i)];
+        if (rowsCachedValid_) t.rowsCached[j] = rowsCached_[i];
+    }
+    for (Eigen::VectorXd* v : {&t.forceNext, &t.multiplier, &t.midForce, &t.endForce}) v->setZero();
+    forceNextZero_ = true;
+    multiplierUsed_ = false;
+    swapRowBuffers();
+    space_ = {&t.modes, &t.load, &t.x, t.endQP.get()};
+    op_ = &t.op;
+    inRows_ = true;
+}
+
+// Back in every row: C's results scattered (λ and the contact sets are zero outside C).
+void FlowScheme::leaveRows() {
+    CondensedState& s = state_;
+    TouchRows& t = touch_;
+    swapRowBuffers();
+    space_ = {&plate_->rowModesT, &plate_->rowLoad, &plate_->rowAbscissae, endQP_.get()};
+    inRows_ = false;
+    s.force.setZero();
+    std::fill(s.rowState.begin(), s.rowState.end(), 0);
+    std::fill(s.midState.begin(), s.midState.end(), 0);
+    for (std::size_t k = 0; k < t.index.size(); ++k) {
+        const auto i = t.index[k];
+        s.force[i] = t.force[Eigen::Index(k)];
+        s.rowState[std::size_t(i)] = t.rowState[k];
+        s.midState[std::size_t(i)] = t.midState[k];
+    }
     forceNextZero_ = false;
-    freeFlight_.reset();
+    rowsCachedValid_ = false;
+}
+
+// Every row outside C inside the obstacles at the step's end, held back by C's forces through D
+// (y = r + D λ); the rows at the end start the next step.
+bool FlowScheme::rowsOutsideStayFree() {
+    const CondensedPlate& c = *plate_;
+    const CondensedState& s = state_;
+    gatherRows(s.q, s.p, s.z, rowsCached_);
+    rowsCachedValid_ = true;
+    std::size_t k = 0;
+    for (int i = 0; i < c.rows(); ++i) {
+        if (k < touch_.index.size() && touch_.index[k] == i) {
+            ++k;
+            continue;
+        }
+        double y = rowsCached_[i];
+        for (std::size_t a = 0; a < touch_.index.size(); ++a)
+            if (s.force[touch_.index[a]] != 0.0) y += c.delassus(i, touch_.index[a]) * s.force[touch_.index[a]];
+        if (y < obstacles_.lower || y > obstacles_.upper) return false;
+    }
+    return true;
 }
 
 // tolerance > 0 (docs/theory.md §22): the contact step from t_n taken at 2^(j−1) and at 2^j

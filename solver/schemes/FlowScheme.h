@@ -41,6 +41,10 @@ public:
 
     std::string name() const override;
     const FlowState& flowState() const { return flow_; }
+    // Contact steps taken in the rows that can touch, and those taken again in every row because a
+    // row outside them ended past an obstacle (docs/theory.md §24).
+    long long rowSpaceSteps() const { return rowSpaceSteps_; }
+    long long rowSpaceRetries() const { return rowSpaceRetries_; }
 
 private:
     void advance(double zNext, double pNext) override;  // exact free flight, or the sub-steps on contact
@@ -49,11 +53,39 @@ private:
     void restoreOwn(const std::vector<double>& own) override;
 
     void substeps(double zNext, double pNext, int m, const MidpointOperator& op);
+    void midpointSubsteps(double zNext, double pNext, int m);  // m steps of op_->h, base and load linear
+    // The contact step's row space (docs/theory.md §24): the rows that can touch, their data, the
+    // midpoint operator of a sub-step length in them; entering swaps the row-sized buffers and the
+    // state's row vectors for theirs, leaving scatters the results back.
+    bool selectRows(double zNext, double pNext);  // false: every row can touch
+    void buildRowOperator(const MidpointOperator& op);
+    void enterRows();
+    void leaveRows();
+    void swapRowBuffers();
+    bool rowsOutsideStayFree();  // after leaving: the other rows inside the obstacles at the end
     void refine(double zNext, double pNext);  // tolerance > 0: step doubling (§22)
     double separation(const CondensedState& a, const CondensedState& b);  // bound on their rows' parting, m
 
     ContactRefinement refinement_;
     FlowState flow_;
+    struct TouchRows {
+        std::vector<int> index;  // C: the rows that can touch, ascending
+        Eigen::MatrixXd modes, delassus;  // G_Cᵀ, D_CC
+        Eigen::VectorXd load;
+        std::vector<double> x;
+        std::unique_ptr<ContactColumns> endColumns;
+        std::unique_ptr<BoxQP> endQP;
+        MidpointOperator op;  // in C, for the sub-step length of `from`
+        const MidpointOperator* from = nullptr;
+        // Swapped with the scheme's own while the step runs in C.
+        Eigen::VectorXd forceNext, multiplier, r0, r1, drFree, dr, base, e, y, w2v, lower, upper, midForce, endForce,
+            rowsCached, force, forcePrev, forcePrev2;
+        std::vector<signed char> rowState, midState, rowTrial, midTrial;
+    } touch_;
+    bool inRows_ = false, allRows_ = false;
+    long long rowSpaceSteps_ = 0, rowSpaceRetries_ = 0;
+    Snapshot retry_;
+    Eigen::VectorXd rowsStart_;
     MidpointOperator sub_;  // sub-steps of Δt/m (tolerance = 0)
     // tolerance > 0: level j takes 2^j sub-steps of Δt/2^j (level 0 is full_); the local target.
     std::vector<std::unique_ptr<MidpointOperator>> levels_;
