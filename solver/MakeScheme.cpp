@@ -165,7 +165,7 @@ std::unique_ptr<Scheme> makeScheme(const SchemeSetup& setup, InitProgress& progr
     std::unique_ptr<CondensedScheme> scheme;
     if (p.timeScheme == TimeScheme::Flow)
         scheme = std::make_unique<FlowScheme>(condensed, setup.obstacles, p.dt,
-                                              ContactRefinement{p.contactSubsteps, p.tolerance, p.maxContactSubsteps},
+                                              ContactRefinement{p.contactSubsteps, p.tolerance, p.maxContactSubsteps, p.contactRowSpace},
                                               p.dampingMass, p.dampingStiffness, std::move(rows));
     else
         scheme = std::make_unique<MidpointScheme>(condensed, setup.obstacles, p.dt, p.dampingMass,

@@ -8,6 +8,8 @@
 //                                 scheme=newmark|conserving|flow (time_scheme, docs/theory.md §17, §21)
 //                                 substeps=N (contact_substeps of scheme=flow)
 //                                 tolerance=M max_substeps=N (scheme=flow: adaptive contact sub-steps)
+//                                 rowspace=0 (scheme=flow: contact sub-steps in every row, the
+//                                 baseline of docs/theory.md §24)
 //                                 engine=auto|sparse|modal (how exact mode runs)
 //                                 port=1 (read the port's outputs too, every communication step)
 //                                 field=1 (read the probes and root_stress too; 2: also max_stress,
@@ -270,6 +272,7 @@ int main(int argc, char** argv) {
     p.contactSubsteps = static_cast<int>(num("substeps", p.contactSubsteps));
     p.tolerance = num("tolerance", p.tolerance);
     p.maxContactSubsteps = static_cast<int>(num("max_substeps", p.maxContactSubsteps));
+    p.contactRowSpace = num("rowspace", 1.0) != 0.0;
     p.memoryLimit = num("memory_limit", 0.0);
     // stress=1 (stress_outputs: the root's peak tracked every step), probes=N (probe_count)
     p.stressOutputs = num("stress", 0.0) != 0.0;

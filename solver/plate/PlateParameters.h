@@ -53,6 +53,9 @@ struct PlateParameters {
     // maxContactSubsteps; 0 = every contact step in contactSubsteps sub-steps.
     double tolerance = 0.0;
     int maxContactSubsteps = 128;
+    // Not an FMU parameter: false takes every flow contact sub-step in every row instead of the rows
+    // that can touch (docs/theory.md §24) — the baseline plate_bench rowspace=0 measures against.
+    bool contactRowSpace = true;
     bool condensed() const { return timeScheme == TimeScheme::Conserving || timeScheme == TimeScheme::Flow; }
     // Impact law (docs/theory.md §12): the contact constraint holds on (u⁺ + e u⁻)/(1 + e);
     // e = 0 is the paper's scheme.

@@ -256,6 +256,7 @@ bool FlowScheme::selectRows(double zNext, double pNext) {
     const CondensedState& s = state_;
     allRows_ = false;
     touch_.index.clear();
+    if (!refinement_.rowSpace) return false;
     if (rowsCachedValid_)
         rowsStart_ = rowsCached_;
     else

@@ -20,6 +20,7 @@ struct ContactRefinement {
     // at most maxSubsteps (a power of two); the estimate accumulates in errorEstimate.
     double tolerance = 0.0;
     int maxSubsteps = 128;
+    bool rowSpace = true;  // contact sub-steps in the rows that can touch (§24); false: in every row
 };
 
 // The flow law's own state (after the condensed schemes' in the flat form): with a tolerance
