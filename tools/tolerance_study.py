@@ -97,6 +97,14 @@ def main() -> None:
             rows = {}
             laws = {"conserving": ["scheme=conserving"], "flow 16": ["scheme=flow", "substeps=16"]}
             laws |= {f"flow tol={t:g}": ["scheme=flow", f"tolerance={t:g}"] for t in tolerances}
+            # The contact steps in every row (docs/theory.md §24: the baseline of the row space), and
+            # the reduced model, in the same interleaved runs.
+            laws |= {
+                "flow 16, every row": ["scheme=flow", "substeps=16", "rowspace=0"],
+                "flow tol=1e-05, every row": ["scheme=flow", "tolerance=1e-05", "rowspace=0"],
+                "conserving m=20": ["scheme=conserving", "modes=20"],
+                "flow 16 m=20": ["scheme=flow", "substeps=16", "modes=20"],
+            }
             for key, law in laws.items():
                 result, c = run(repo, scene, law, DT, tmp, key.replace(" ", "_"))
                 rows[key] = {
@@ -139,6 +147,7 @@ def main() -> None:
             "flow 16": {"mass": "singular_p0", "time_scheme": "flow"},
             "flow tol=1e-05": {"mass": "singular_p0", "time_scheme": "flow", "tolerance": 1e-5},
             "conserving m=20": {"mass": "singular_p0", "time_scheme": "conserving", "modes": 20},
+            "flow 16 m=20": {"mass": "singular_p0", "time_scheme": "flow", "modes": 20},
             "flow tol=1e-05 m=20": {"mass": "singular_p0", "time_scheme": "flow", "tolerance": 1e-5, "modes": 20},
             "flow tol=1e-05 cap 4": {
                 "mass": "singular_p0",
