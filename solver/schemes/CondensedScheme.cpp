@@ -454,28 +454,16 @@ double CondensedScheme::firstFrequency() const { return std::sqrt(plate_->omega2
 // line here, with kFormat raised.
 namespace {
 
-constexpr double kFormat = 19.0;  // the condensed schemes' state, version 3 (the flow law's own part apart)
+constexpr double kFormat = 20.0;  // the condensed schemes' state, version 4 (the base's share first, Scheme.h)
 constexpr std::size_t kModes = 0, kRows = 1;
 
 const auto condensedMembers = [](auto& s, auto& v) {
     for (auto* x : {&s.q, &s.qPrev, &s.qPrev2, &s.momentum}) v.vector(*x, kModes, "modal coordinate");
     for (auto* x : {&s.force, &s.forcePrev, &s.forcePrev2}) v.vector(*x, kRows, "contact force");
-    for (auto* x : {&s.z, &s.zPrev, &s.zPrev2}) v.real(*x, "z");
-    for (auto* x : {&s.p, &s.pPrev, &s.pPrev2}) v.real(*x, "p");
-    v.real(s.energyInput, "energy input");
-    v.real(s.energyDamped, "energy damped");
+    sharedMembers(s, v, static_cast<double>(v.size(kRows)));
     v.real(s.boundary, "boundary energy");
-    v.real(s.maxKktResidual, "KKT residual");
     v.real(s.clampForce, "clamp force");
     v.real(s.clampMoment, "clamp moment");
-    for (auto* x : {&s.stepContactForce[0], &s.stepContactForce[1]}) v.real(*x, "contact force");
-    v.real(s.stepContactMoment, "contact moment");
-    for (auto* x : {&s.contactImpulseSum[0], &s.contactImpulseSum[1]}) v.real(*x, "contact impulse");
-    v.count(s.step, "step");
-    v.count(s.contactSolves, "contact solves");
-    for (auto* k : {&s.impactCount[0], &s.impactCount[1]}) v.count(*k, "impacts");
-    for (auto* k : {&s.contactIterationsMax, &s.contactIterationsLast}) v.count(*k, "gradient iterations");
-    v.count(s.contactPoints, "contact rows", static_cast<double>(v.size(kRows)));
     for (auto* x : {&s.rowState, &s.midState}) v.states(*x, kRows);
 };
 

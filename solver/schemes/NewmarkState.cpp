@@ -7,8 +7,8 @@
 namespace plate {
 
 namespace {
-// Version 3: the third time level and the port's contact sums (docs/theory.md §14).
-constexpr double kFormatVersion = 3.0;
+// Version 4: the base's share first, in the order every scheme archives it (Scheme.h, sharedMembers).
+constexpr double kFormatVersion = 4.0;
 
 // The one description of the state (base/StateArchive.h): the flat form after the header (format
 // version, n, m, impulses) is every member in this order. A new member is one line here, with
@@ -19,30 +19,9 @@ constexpr std::size_t kCoordinates = 0, kContacts = 1, kImpulses = 2;
 
 const auto newmarkMembers = [](auto& s, auto& v) {
     for (auto* x : {&s.w, &s.wPrev, &s.kw, &s.kwPrev, &s.wPrev2}) v.vector(*x, kCoordinates, "displacement");
-    v.real(s.z, "z");
-    v.real(s.zPrev, "z_prev");
-    v.real(s.p, "p");
-    v.real(s.pPrev, "p_prev");
-    v.real(s.pressureWork, "pressure work");
-    v.real(s.pressureWorkPrev, "pressure work");
-    v.real(s.baseCoupling, "base coupling");
-    v.real(s.baseCouplingPrev, "base coupling");
-    v.count(s.step, "step");
-    v.real(s.energyInput, "energy input");
-    v.real(s.energyDissipated, "energy dissipated");
-    v.real(s.maxKktResidual, "KKT residual");
-    v.count(s.contactSolves, "QP iterations");
-    v.count(s.contactIterationsMax, "QP iterations");
-    v.count(s.contactIterationsLast, "QP iterations");
-    v.count(s.contactPoints, "contact vertices", static_cast<double>(v.size(kContacts)));
-    v.real(s.energyDamped, "energy damped");
-    v.real(s.zPrev2, "z_prev2");
-    v.real(s.pPrev2, "p_prev2");
-    v.real(s.baseCouplingPrev2, "base coupling");
-    for (auto* x : {&s.stepContactForce[0], &s.stepContactForce[1]}) v.real(*x, "contact force");
-    v.real(s.stepContactMoment, "contact moment");
-    for (auto* x : {&s.contactImpulseSum[0], &s.contactImpulseSum[1]}) v.real(*x, "contact impulse");
-    for (auto* k : {&s.impactCount[0], &s.impactCount[1]}) v.count(*k, "impacts");
+    sharedMembers(s, v, static_cast<double>(v.size(kContacts)));
+    for (auto* x : {&s.pressureWork, &s.pressureWorkPrev}) v.real(*x, "pressure work");
+    for (auto* x : {&s.baseCoupling, &s.baseCouplingPrev, &s.baseCouplingPrev2}) v.real(*x, "base coupling");
     v.states(s.contactState, kContacts);
     for (auto* x : {&s.contactImpulse, &s.contactImpulsePrev}) v.vector(*x, kImpulses, "contact impulse");
 };

@@ -50,6 +50,26 @@ struct SchemeState {
     long long impactCount[2] = {0, 0};
 };
 
+// The base's share of every scheme's flat form (base/StateArchive.h), first after the scheme's
+// vectors: one description for all schemes. `maxContacts`: the bound of contactPoints.
+template <class State, class Archive>
+void sharedMembers(State& s, Archive& v, double maxContacts) {
+    for (auto* x : {&s.z, &s.zPrev, &s.zPrev2}) v.real(*x, "z");
+    for (auto* x : {&s.p, &s.pPrev, &s.pPrev2}) v.real(*x, "p");
+    v.count(s.step, "step");
+    v.real(s.energyInput, "energy input");
+    v.real(s.energyDissipated, "energy dissipated");
+    v.real(s.energyDamped, "energy damped");
+    v.real(s.maxKktResidual, "KKT residual");
+    v.count(s.contactSolves, "contact solves");
+    for (auto* k : {&s.contactIterationsMax, &s.contactIterationsLast}) v.count(*k, "contact iterations");
+    v.count(s.contactPoints, "contact points", maxContacts);
+    for (auto* x : {&s.stepContactForce[0], &s.stepContactForce[1]}) v.real(*x, "contact force");
+    v.real(s.stepContactMoment, "contact moment");
+    for (auto* x : {&s.contactImpulseSum[0], &s.contactImpulseSum[1]}) v.real(*x, "contact impulse");
+    for (auto* k : {&s.impactCount[0], &s.impactCount[1]}) v.count(*k, "impacts");
+}
+
 class Scheme {
 public:
     virtual ~Scheme() = default;

@@ -78,7 +78,7 @@ NewmarkState sampleState(Eigen::Index n, std::size_t m, Eigen::Index k) {
 TEST(StateTables, NewmarkStateRoundTripIsIdentical) {
     const NewmarkState s = sampleState(4, 3, 3);
     const std::vector<double> flat = plate::serialize(s);
-    ASSERT_EQ(flat.size(), 4u + 5 * 4 + 27 + 3 + 2 * 3);  // the format version 3 layout
+    ASSERT_EQ(flat.size(), 4u + 5 * 4 + 27 + 3 + 2 * 3);  // the format version 4 layout
     const NewmarkState back = plate::deserialize(flat, 4, 3, 3);
     EXPECT_EQ(plate::serialize(back), flat);
     EXPECT_EQ(back.step, s.step);
@@ -109,7 +109,7 @@ TEST(StateTables, NewmarkStateLayoutIsWhereTheValuesStand) {
     EXPECT_EQ(offset("displacement"), 4u);
     EXPECT_EQ(flat[offset("z")], s.z);
     EXPECT_EQ(flat[offset("step")], double(s.step));
-    EXPECT_EQ(flat[offset("contact vertices")], double(s.contactPoints));
+    EXPECT_EQ(flat[offset("contact points")], double(s.contactPoints));
     EXPECT_EQ(flat[offset("contact state")], double(s.contactState[0]));
     EXPECT_EQ(layout.back().first, "contact impulse");  // the last member: its second level, 3 values
     EXPECT_EQ(4 + layout.back().second + 3, flat.size());
@@ -139,9 +139,9 @@ TEST(StateTables, NewmarkStateRefusesCorruptCountsAndSizes) {
     EXPECT_EQ(refused(step, 1.5), "corrupt state: step is not a count in range");
     EXPECT_EQ(refused(step, -1.0), "corrupt state: step is not a count in range");
     EXPECT_EQ(refused(step, 1e16), "corrupt state: step is not a count in range");
-    EXPECT_EQ(refused(total, std::nan("")), "corrupt state: QP iterations is not a count in range");
-    EXPECT_EQ(refused(most, 4294967296.0), "corrupt state: QP iterations is not a count in range");
-    EXPECT_EQ(refused(vertices, 4.0), "corrupt state: contact vertices is not a count in range");  // > m
+    EXPECT_EQ(refused(total, std::nan("")), "corrupt state: contact solves is not a count in range");
+    EXPECT_EQ(refused(most, 4294967296.0), "corrupt state: contact iterations is not a count in range");
+    EXPECT_EQ(refused(vertices, 4.0), "corrupt state: contact points is not a count in range");  // > m
     EXPECT_EQ(refused(impacts, HUGE_VAL), "corrupt state: impacts is not a count in range");
     EXPECT_EQ(refused(z, std::nan("")), "corrupt state: z is not finite");
     EXPECT_EQ(refused(at(-1.0), 2.0), "corrupt contact state");
