@@ -13,6 +13,7 @@
 // (tests/test_portable_math.cpp holds it to 2 ulp of the C library over 10^5 points).
 #include <Eigen/Core>
 #include <cmath>
+#include <cstddef>
 #include <stdexcept>
 
 namespace plate::portable {
@@ -27,35 +28,32 @@ constexpr double kPio2c = 2.02226624879595063154e-21;
 constexpr double kTwoOverPi = 6.36619772367581382433e-01;
 constexpr double kLargest = 1.6e6;  // |x| < 2^20 π/2
 
+// Horner's rule in z over the coefficients, highest first (the same operations, in the same order,
+// as the polynomial written out).
+template <std::size_t N>
+inline double horner(double z, const double (&c)[N]) {
+    double p = c[0];
+    for (std::size_t k = 1; k < N; ++k) p = p * z + c[k];
+    return p;
+}
+
 // sin r on |r| ≤ π/4: r − r³/3! + … − r¹⁹/19!.
 inline double sinKernel(double r) {
+    static constexpr double c[] = {-1.0 / 121645100408832000.0, 1.0 / 355687428096000.0, -1.0 / 1307674368000.0,
+                                   1.0 / 6227020800.0,          -1.0 / 39916800.0,        1.0 / 362880.0,
+                                   -1.0 / 5040.0,               1.0 / 120.0,              -1.0 / 6.0};  // 1/19! … 1/3!
     const double z = r * r;
-    double p = -1.0 / 121645100408832000.0;  // −1/19!
-    p = p * z + 1.0 / 355687428096000.0;  // 1/17!
-    p = p * z - 1.0 / 1307674368000.0;  // −1/15!
-    p = p * z + 1.0 / 6227020800.0;  // 1/13!
-    p = p * z - 1.0 / 39916800.0;  // −1/11!
-    p = p * z + 1.0 / 362880.0;  // 1/9!
-    p = p * z - 1.0 / 5040.0;  // −1/7!
-    p = p * z + 1.0 / 120.0;  // 1/5!
-    p = p * z - 1.0 / 6.0;  // −1/3!
-    return r + r * (z * p);
+    return r + r * (z * horner(z, c));
 }
 
 // cos r on |r| ≤ π/4: 1 − r²/2! + … + r²⁰/20!.
 inline double cosKernel(double r) {
+    static constexpr double c[] = {1.0 / 2432902008176640000.0, -1.0 / 6402373705728000.0, 1.0 / 20922789888000.0,
+                                   -1.0 / 87178291200.0,        1.0 / 479001600.0,         -1.0 / 3628800.0,
+                                   1.0 / 40320.0,               -1.0 / 720.0,              1.0 / 24.0};  // 1/20! … 1/4!
     const double z = r * r;
-    double p = 1.0 / 2432902008176640000.0;  // 1/20!
-    p = p * z - 1.0 / 6402373705728000.0;  // −1/18!
-    p = p * z + 1.0 / 20922789888000.0;  // 1/16!
-    p = p * z - 1.0 / 87178291200.0;  // −1/14!
-    p = p * z + 1.0 / 479001600.0;  // 1/12!
-    p = p * z - 1.0 / 3628800.0;  // −1/10!
-    p = p * z + 1.0 / 40320.0;  // 1/8!
-    p = p * z - 1.0 / 720.0;  // −1/6!
-    p = p * z + 1.0 / 24.0;  // 1/4!
     // 1 − z/2 + z² p, with the large terms last: 1 − (z/2 − z² p).
-    return 1.0 - (0.5 * z - z * (z * p));
+    return 1.0 - (0.5 * z - z * (z * horner(z, c)));
 }
 
 // x = k π/2 + r; returns r, sets the quadrant k mod 4.
