@@ -35,6 +35,46 @@ double PlateParameters::firstFrequencyEstimate() const {
     return 1.8751 * 1.8751 / (2.0 * M_PI * length * length) * std::sqrt(bendingStiffness() / surfaceDensity());
 }
 
+namespace {
+
+// Fewer than two steps per first period resolve nothing of the plate's motion (every output
+// would be the static state or noise): refused, whatever the scheme. Finer than T1/20 for an
+// accurate output: the FMU says so (fmu/binding/PlateModel.cpp).
+void requireFirstPeriodResolved(const PlateParameters& p) {
+    const double period = 1.0 / p.firstFrequencyEstimate();
+    if (p.dt > 0.5 * period) {
+        std::ostringstream allowed;
+        allowed.precision(6);
+        allowed << "dt <= " << 0.5 * period << " s, half the plate's first period T1 = " << period
+                << " s (first mode about " << 1.0 / period << " Hz); dt <= T1/20 = " << period / 20.0
+                << " s for accurate outputs";
+        reject("dt", p.dt, allowed.str().c_str());
+    }
+}
+
+// base_drive = force or tlm (docs/theory.md §18–19): the carrier's parameters, and the schemes and
+// masses it is built on.
+void validateCarrier(const PlateParameters& p) {
+    using namespace ranges;
+    if (p.carrier == PlateParameters::Carrier::Armature) {
+        requireRange("armature_mass", p.armatureMass, kArmatureMass, "when base_drive = force");
+        requireRange("armature_stiffness", p.armatureStiffness, kArmatureStiffness, "when base_drive = force");
+        requireRange("armature_damping", p.armatureDamping, kArmatureDamping, "when base_drive = force");
+    }
+    if (p.carrier == PlateParameters::Carrier::Line)
+        requireRange("tlm_impedance", p.tlmImpedance, kTlmImpedance, "when base_drive = tlm");
+    if (p.carrier != PlateParameters::Carrier::None && p.condensed())
+        reject("base_drive", p.carrier == PlateParameters::Carrier::Armature ? "force" : "tlm",
+               "displacement, velocity or acceleration with time_scheme = conserving (the carried clamp is built on "
+               "time_scheme = newmark)");
+    if (p.carrier != PlateParameters::Carrier::None && p.singularMass())
+        reject("mass", static_cast<int>(p.mass),
+               "1 (consistent) when base_drive = force or tlm (a carried clamp with a singular mass is not "
+               "implemented)");
+}
+
+}  // namespace
+
 void validate(const PlateParameters& p) {
     using namespace ranges;
     requireRange("length", p.length, kLength);
@@ -53,18 +93,7 @@ void validate(const PlateParameters& p) {
                      "when obstacle_upper_enabled (the plate starts at w = 0)");
     requireRange("dt", p.dt, kDt);
     requireRange("beta", p.beta, kBeta);
-    // Fewer than two steps per first period resolve nothing of the plate's motion (every output
-    // would be the static state or noise): refused, whatever the scheme. Finer than T1/20 for an
-    // accurate output: the FMU says so (fmu/binding/PlateModel.cpp).
-    const double period = 1.0 / p.firstFrequencyEstimate();
-    if (p.dt > 0.5 * period) {
-        std::ostringstream allowed;
-        allowed.precision(6);
-        allowed << "dt <= " << 0.5 * period << " s, half the plate's first period T1 = " << period
-                << " s (first mode about " << 1.0 / period << " Hz); dt <= T1/20 = " << period / 20.0
-                << " s for accurate outputs";
-        reject("dt", p.dt, allowed.str().c_str());
-    }
+    requireFirstPeriodResolved(p);
     requireRange("initial_load", p.initialLoad, kInitialLoad);
     requireRange("modes", p.modes, kModes, "(0 = full space)");
     if (p.mass != MassModel::Consistent && p.mass != MassModel::SingularP0 && p.mass != MassModel::SingularP1dg)
@@ -97,21 +126,7 @@ void validate(const PlateParameters& p) {
     requireRange("damping_mass", p.dampingMass, kDampingMass);
     requireRange("damping_stiffness", p.dampingStiffness, kDampingStiffness);
     requireRange("memory_limit", p.memoryLimit, kMemoryLimit);  // MB; 0 = no limit
-    if (p.carrier == PlateParameters::Carrier::Armature) {
-        requireRange("armature_mass", p.armatureMass, kArmatureMass, "when base_drive = force");
-        requireRange("armature_stiffness", p.armatureStiffness, kArmatureStiffness, "when base_drive = force");
-        requireRange("armature_damping", p.armatureDamping, kArmatureDamping, "when base_drive = force");
-    }
-    if (p.carrier == PlateParameters::Carrier::Line)
-        requireRange("tlm_impedance", p.tlmImpedance, kTlmImpedance, "when base_drive = tlm");
-    if (p.carrier != PlateParameters::Carrier::None && p.condensed())
-        reject("base_drive", p.carrier == PlateParameters::Carrier::Armature ? "force" : "tlm",
-               "displacement, velocity or acceleration with time_scheme = conserving (the carried clamp is built on "
-               "time_scheme = newmark)");
-    if (p.carrier != PlateParameters::Carrier::None && p.singularMass())
-        reject("mass", static_cast<int>(p.mass),
-               "1 (consistent) when base_drive = force or tlm (a carried clamp with a singular mass is not "
-               "implemented)");
+    validateCarrier(p);
     requireRange("probe_count", p.probeCount, kProbeCountRange);
     // The probes (docs/theory.md §23): inside the plate, whose size the table's range cannot know.
     for (int k = 0; k < kProbeCount; ++k) {

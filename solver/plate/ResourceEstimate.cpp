@@ -198,6 +198,53 @@ void modalCost(const PlateParameters& p, const ProblemSize& s, EngineKind engine
     bytes += kDouble * (n * m + m * c);  // Φ and (CΦ)ᵀ kept for the run
 }
 
+
+// Stress and probes (docs/theory.md §23): about three functionals per vertex (the vertices'
+// curvatures; the root's and the probes' are a few more), sparse rows over an element's dofs, then
+// in the engine's coordinates: dense over the modes (modal), over the massive modes and the
+// constraint rows with the temporaries of their condensation (conserving), or a sparse copy.
+double recoveryBytes(const PlateParameters& p, const ProblemSize& s, EngineKind engine, double massive, double rows) {
+    const double n = double(s.dofs);
+    const double recoveryRows = 3.0 * double(s.contactVertices + p.ny + 1) + 2.0 * p.ny + 5.0;
+    const double perRow = p.element == ElementType::Fvs ? 12.0 : 21.0;
+    double recovery = (kTriplet + kEntry) * recoveryRows * perRow;
+    if (engine == EngineKind::Condensed)
+        recovery += kDouble * recoveryRows * (3.0 * massive + 2.0 * rows);
+    else if (engine == EngineKind::Sparse)
+        recovery += kEntry * recoveryRows * perRow;
+    else
+        recovery += kDouble * recoveryRows * (engine == EngineKind::CompleteModal ? n : double(p.modes));
+    return recovery;
+}
+
+// The phases' times (s), from the sizes and the engine already in e.
+void estimateTimes(const PlateParameters& p, const ProblemSize& s, double massive, double rows, ResourceEstimate& e) {
+    const double n = double(s.dofs), t = double(s.elementEntries);
+    const double zFull = double(s.fullNonZeros), z = double(s.nonZeros), l = double(s.factorNonZeros);
+    const double perEntry = p.element == ElementType::Fvs ? kAssemblyPerEntryFvs : kAssemblyPerEntryArgyris;
+    e.assemblySeconds = perEntry * t * (p.singularMass() ? 2.0 : 1.0) + kPerPatternEntry * (t + zFull);
+    const double oneFactor = kPerAnalysisEntry * z + kPerFactorFlop * s.factorFlops;
+    if (e.engine != EngineKind::ReducedModal) e.factorSeconds = 2 * oneFactor;
+    if (e.engine == EngineKind::Condensed) {
+        // One factor of K; a solve per massive coordinate and per row; the dense eigen solution of T.
+        e.factorSeconds = oneFactor;
+        e.spectrumSeconds =
+            (massive + rows) * 4.0 * (l + z) * kPerFactorFlop + kPerDenseEigenCube * massive * massive * massive;
+    }
+    if (p.beta < 0.25) e.spectrumSeconds += oneFactor + kPowerIterations * kPerFactorFlop * 4.0 * (l + z);
+    e.staticSeconds = kPerAnalysisEntry * z;  // the QP of the static state is small without contact
+    e.initSeconds = e.assemblySeconds + e.factorSeconds + e.spectrumSeconds + e.staticSeconds;
+    if (e.engine == EngineKind::Condensed) {
+        const double m = p.modes > 0 && p.modes < massive ? double(p.modes) : massive;
+        e.stepSeconds = kPerModalStepEntry * (8 * m + m * rows / 10);  // a look at the rows every ~10 steps
+    } else if (e.engine == EngineKind::Sparse) {
+        e.stepSeconds = kPerSparseStepEntry * (2 * l + 2 * z);
+    } else {
+        const double m = e.engine == EngineKind::CompleteModal ? n : double(p.modes);
+        e.stepSeconds = kPerModalStepEntry * (m * double(s.contactVertices) + 8 * m);
+    }
+}
+
 }  // namespace
 
 ResourceEstimate estimateResources(const PlateParameters& p, const ProblemSize& s) {
@@ -206,7 +253,7 @@ ResourceEstimate estimateResources(const PlateParameters& p, const ProblemSize& 
     e.complete = s.factorNonZeros > 0;
     e.engine = e.complete ? engineFor(p, s) : EngineKind::Sparse;
     const double n = double(s.dofs), nFull = double(s.fullDofs), t = double(s.elementEntries);
-    const double zFull = double(s.fullNonZeros), z = double(s.nonZeros), l = double(s.factorNonZeros);
+    const double zFull = double(s.fullNonZeros), z = double(s.nonZeros);
     // Assembly.cpp: the triplets of M and K, setFromTriplets' temporary, both assembled matrices.
     const double assembly = 2 * kTriplet * t + kEntry * t + 2 * kEntry * zFull + 6 * kDouble * nFull;
     if (p.singularMass())
@@ -252,19 +299,7 @@ ResourceEstimate estimateResources(const PlateParameters& p, const ProblemSize& 
             phases = std::max(phases, e.matricesMB * kMB + engineBytes + 2 * factorBytes(s) + lower);
         }
     }
-    // Stress and probes (docs/theory.md §23): about three functionals per vertex (the vertices'
-    // curvatures; the root's and the probes' are a few more), sparse rows over an element's dofs, then
-    // in the engine's coordinates: dense over the modes (modal), over the massive modes and the
-    // constraint rows with the temporaries of their condensation (conserving), or a sparse copy.
-    const double recoveryRows = 3.0 * double(s.contactVertices + p.ny + 1) + 2.0 * p.ny + 5.0;
-    const double perRow = p.element == ElementType::Fvs ? 12.0 : 21.0;
-    double recovery = (kTriplet + kEntry) * recoveryRows * perRow;
-    if (e.engine == EngineKind::Condensed)
-        recovery += kDouble * recoveryRows * (3.0 * massive + 2.0 * rows);
-    else if (e.engine == EngineKind::Sparse)
-        recovery += kEntry * recoveryRows * perRow;
-    else
-        recovery += kDouble * recoveryRows * (e.engine == EngineKind::CompleteModal ? n : double(p.modes));
+    const double recovery = recoveryBytes(p, s, e.engine, massive, rows);
     engineBytes += recovery;
     phases += recovery;
     e.engineMB = engineBytes / kMB;
@@ -274,28 +309,7 @@ ResourceEstimate estimateResources(const PlateParameters& p, const ProblemSize& 
         double(s.elements) * (p.element == ElementType::Fvs ? kSpacePerElementFvs : kSpacePerElementArgyris);
     e.peakMB = (space + phases + kBaseMB * kMB) / kMB;
     if (!e.complete) e.peakMB = (space + 2 * kTriplet * t) / kMB;  // stage 1: the certain part only
-    const double perEntry = p.element == ElementType::Fvs ? kAssemblyPerEntryFvs : kAssemblyPerEntryArgyris;
-    e.assemblySeconds = perEntry * t * (p.singularMass() ? 2.0 : 1.0) + kPerPatternEntry * (t + zFull);
-    const double oneFactor = kPerAnalysisEntry * z + kPerFactorFlop * s.factorFlops;
-    if (e.engine != EngineKind::ReducedModal) e.factorSeconds = 2 * oneFactor;
-    if (e.engine == EngineKind::Condensed) {
-        // One factor of K; a solve per massive coordinate and per row; the dense eigen solution of T.
-        e.factorSeconds = oneFactor;
-        e.spectrumSeconds =
-            (massive + rows) * 4.0 * (l + z) * kPerFactorFlop + kPerDenseEigenCube * massive * massive * massive;
-    }
-    if (p.beta < 0.25) e.spectrumSeconds += oneFactor + kPowerIterations * kPerFactorFlop * 4.0 * (l + z);
-    e.staticSeconds = kPerAnalysisEntry * z;  // the QP of the static state is small without contact
-    e.initSeconds = e.assemblySeconds + e.factorSeconds + e.spectrumSeconds + e.staticSeconds;
-    if (e.engine == EngineKind::Condensed) {
-        const double m = p.modes > 0 && p.modes < massive ? double(p.modes) : massive;
-        e.stepSeconds = kPerModalStepEntry * (8 * m + m * rows / 10);  // a look at the rows every ~10 steps
-    } else if (e.engine == EngineKind::Sparse) {
-        e.stepSeconds = kPerSparseStepEntry * (2 * l + 2 * z);
-    } else {
-        const double m = e.engine == EngineKind::CompleteModal ? n : double(p.modes);
-        e.stepSeconds = kPerModalStepEntry * (m * double(s.contactVertices) + 8 * m);
-    }
+    estimateTimes(p, s, massive, rows, e);
     return e;
 }
 
