@@ -19,8 +19,9 @@ write it first (`--write-base` does, at CoFmuPy's own communication times, see b
     .deps/cofmupy/bin/python examples/masters/cofmupy_run.py examples/masters/cofmupy_default_scene.json \
         1e-4 1.0 --write-base out/cofmupy/base_displacement.csv
 
+(CONFIG STEP STOP repeated: several runs in one process.)
 The storage named in the configuration gets every step's outputs (CoFmuPy empties its folder
-first: give it a folder of its own); `--out FILE.csv` also writes CoFmuPy's own table, whose time
+first: give it a folder of its own); `--out DIR` also writes CoFmuPy's own table (DIR/<config>.csv), whose time
 column is each step's start time (the outputs are those at the step's end).
 """
 
@@ -73,30 +74,48 @@ def cofmupy_times(step, count):
 def write_base(path, step, count):
     """The default scene's base 0.09 sin(2 pi 10 t) at t = k*step, written at CoFmuPy's times."""
     path.parent.mkdir(parents=True, exist_ok=True)
-    rows = [f"{t!r},{0.09 * math.sin(2 * math.pi * 10 * (k * step))!r}" for k, t in enumerate(cofmupy_times(step, count))]
+    rows = [
+        f"{t!r},{0.09 * math.sin(2 * math.pi * 10 * (k * step))!r}" for k, t in enumerate(cofmupy_times(step, count))
+    ]
     path.write_text("t,base_displacement\n" + "\n".join(rows) + "\n")
+
+
+def run(config, step, stop, out=None):
+    """Start CoFmuPy on one configuration and take round(stop/step) steps of `step`."""
+    count = round(stop / step)
+    coordinator = Coordinator()
+    coordinator.start(str(config))
+    for _ in range(count):  # not run_simulation: its `while t < stop` may take one step more
+        coordinator.do_step(step, save_data=True)
+    if out:
+        out.mkdir(parents=True, exist_ok=True)
+        coordinator.save_results(str(out / f"{Path(config).stem}.csv"))
+    print(f"cofmupy_run: {config}: {count} steps of {step} s, CoFmuPy's clock at {coordinator.master.current_time!r} s")
 
 
 def main():
     parser = argparse.ArgumentParser(description=__doc__.split("\n\n")[0])
-    parser.add_argument("config", type=Path, help="a CoFmuPy JSON configuration")
-    parser.add_argument("step", type=float, help="communication step, s")
-    parser.add_argument("stop", type=float, help="stop time, s")
-    parser.add_argument("--write-base", type=Path, help="write the default scene's base CSV here first")
-    parser.add_argument("--out", type=Path, help="also write CoFmuPy's result table (CSV) here")
+    parser.add_argument(
+        "runs",
+        nargs="+",
+        metavar="CONFIG STEP STOP",
+        help="a CoFmuPy JSON configuration, its step and stop time (s); repeat for more runs in one process",
+    )
+    parser.add_argument(
+        "--write-base", type=Path, help="first write the default scene's base CSV here (the first run's step and stop)"
+    )
+    parser.add_argument(
+        "--out", type=Path, help="also write CoFmuPy's result table of each run here (DIR/<config>.csv)"
+    )
     args = parser.parse_args()
-    count = round(args.stop / args.step)
+    if len(args.runs) % 3:
+        parser.error("give CONFIG STEP STOP, as many times as runs")
+    runs = [(Path(c), float(h), float(t)) for c, h, t in zip(*[iter(args.runs)] * 3)]
     if args.write_base:
-        write_base(args.write_base, args.step, count)
+        write_base(args.write_base, runs[0][1], round(runs[0][2] / runs[0][1]))
     type_aware()
-    coordinator = Coordinator()
-    coordinator.start(str(args.config))
-    for _ in range(count):  # not run_simulation: its `while t < stop` may take one step more
-        coordinator.do_step(args.step, save_data=True)
-    if args.out:
-        args.out.parent.mkdir(parents=True, exist_ok=True)
-        coordinator.save_results(str(args.out))
-    print(f"cofmupy_run: {count} steps of {args.step} s, CoFmuPy's clock at {coordinator.master.current_time!r} s")
+    for config, step, stop in runs:
+        run(config, step, stop, args.out)
 
 
 if __name__ == "__main__":
