@@ -56,6 +56,7 @@ if [ -z "$oms" ] && [ -z "$third" ]; then
   need_source "no source given and OMSimulator is not built yet."
 fi
 [ -n "$oms" ] && [ -n "$third" ] || need_source "give both OMSIMULATOR_SRC and OMSIMULATOR_3RDPARTY_SRC."
+command -v git >/dev/null || { echo "build-omsimulator: git is needed to read the clones (apt-get install git)" >&2; exit 2; }
 oms_git="$(git_dir_of "$oms")" || need_source "$oms is not a git clone."
 third_git="$(git_dir_of "$third")" || need_source "$third is not a git clone."
 git --git-dir="$oms_git" cat-file -e "$commit^{commit}" 2>/dev/null || need_source "$oms does not hold commit $commit."
@@ -68,17 +69,8 @@ if [ -x "$bin" ] && [ "$(cat "$dest/stamp" 2>/dev/null)" = "$(printf 'script=%s\
   exit 0
 fi
 
-# -- Debian packages, only the missing ones ----------------------------------------------------
-need_apt=()
-for pkg in g++ make cmake git python3; do
-  dpkg-query -W -f='${Status}' "$pkg" 2>/dev/null | grep -q 'install ok installed' || need_apt+=("$pkg")
-done
-if [ ${#need_apt[@]} -gt 0 ]; then
-  echo "build-omsimulator: installing Debian packages: ${need_apt[*]}"
-  export DEBIAN_FRONTEND=noninteractive
-  apt-get update -qq
-  apt-get install -y -qq "${need_apt[@]}" >/dev/null
-fi
+# -- Debian packages (cmake, g++, make, python3: the base group), only the missing ones ----------
+bash "$repo/scripts/packages.sh" base
 
 # -- the two trees: OMSimulator at $commit with its 3rdParty in place --------------------------
 src="$dest/src"
@@ -86,7 +78,7 @@ rm -rf "$src" "$dest/build" "$install"
 mkdir -p "$src/3rdParty" "$dest/build"
 # (not testsuite/: its largest files, which a shallow or partial clone may lack, and the build does not use it)
 mapfile -t top < <(git --git-dir="$oms_git" ls-tree --name-only "$commit" | grep -vx testsuite)
-git --git-dir="$oms_git" archive "$commit" -- "${top[@]}" | tar -x -C "$src"
+git --git-dir="$oms_git" archive "$commit" -- "${top[@]}" 2>"$dest/archive.log" | tar -x -C "$src"
 git --git-dir="$third_git" archive "$third_commit" | tar -x -C "$src/3rdParty"
 # No .git in an archive: the version its CMake would take from `git describe`.
 echo "$version" >"$src/version.txt"
