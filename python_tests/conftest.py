@@ -51,6 +51,7 @@ SLOW = {
     "test_fmi3.py::test_animate_example_quick",
     "test_golden_emulated.py",  # the C golden driver under qemu-x86_64 (Nehalem, Haswell: 79 s)
     "test_experiments_platforms.py",  # the experiments under Wine and qemu-aarch64 (53 s)
+    "test_master_cofmupy.py",  # CoFmuPy's own interpreter, where it is installed (11 s)
 }
 
 
