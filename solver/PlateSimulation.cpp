@@ -1,12 +1,14 @@
 #include "PlateSimulation.h"
 
 #include <algorithm>
+#include <array>
 #include <cfloat>
 #include <cmath>
 #include <limits>
 #include <sstream>
 
 #include "MakeScheme.h"
+#include "base/StateArchive.h"
 #include "base/PortableMath.h"
 #include "fe/Assembly.h"
 #include "fe/SingularMass.h"
@@ -294,24 +296,46 @@ double PlateSimulation::kappa() const {
     return impl_->scheme->kappa();
 }
 
-// The scheme's state, then the communication time, whether it is on the grid and the outputs
-// at the grid point before it (§15).
+namespace {
+
+// The grid's part of the flat form, after the scheme's (base/StateArchive.h): the communication
+// time, whether it is on the grid, the root's peak |w_xx| since t = 0 (§23) and the outputs at the
+// grid point before the communication time (§15).
+struct GridState {
+    double commTime = 0.0;
+    int onGrid = 1;
+    double rootPeak = 0.0;
+    PlateOutputs before;
+};
+constexpr double kGridFormat = 1.0;
+const auto gridMembers = [](auto& g, auto& v) {
+    v.real(g.commTime, "communication time");
+    v.count(g.onGrid, "on the grid", 1.0);
+    v.real(g.rootPeak, "the root's peak");
+    for (const OutputField& f : kOutputFields) v.real(f.field(const_cast<PlateOutputs&>(g.before)), f.name);
+};
+constexpr std::array<std::size_t, 0> kNoSizes{};
+
+}  // namespace
+
+// The scheme's state, then the grid's (GridState), then the carrier's fields (§18).
 std::vector<double> PlateSimulation::saveState() const {
-    std::vector<double> out = impl_->scheme->saveState();
-    out.push_back(impl_->commTime);
-    out.push_back(impl_->onGrid ? 1.0 : 0.0);
-    out.push_back(impl_->rootPeak);  // the root's peak |w_xx| since t = 0 (§23)
-    for (const OutputField& f : kOutputFields) out.push_back(f.value(impl_->before));
-    if (const Armature* carrier = impl_->scheme->carrier()) {  // last (§18)
+    const Impl& s = *impl_;
+    std::vector<double> out = s.scheme->saveState();
+    const std::vector<double> grid =
+        archive::save(GridState{s.commTime, s.onGrid ? 1 : 0, s.rootPeak, s.before}, kGridFormat, kNoSizes, gridMembers);
+    out.insert(out.end(), grid.begin(), grid.end());
+    if (const Armature* carrier = s.scheme->carrier()) {  // last (§18)
         for (const auto& f : kCarrierFields) out.push_back(f.value(carrier->state()));
     }
     return out;
 }
 
 void PlateSimulation::restoreState(const std::vector<double>& all) {
+    Impl& s = *impl_;
     std::vector<double> in = all;
     CarrierState carried;
-    Armature* carrier = impl_->scheme->carrier();
+    Armature* carrier = s.scheme->carrier();
     if (carrier) {  // the carrier's state last (§18)
         if (in.size() < kCarrierStateSize)
             throw std::invalid_argument("state does not belong to this plate (too short)");
@@ -323,38 +347,27 @@ void PlateSimulation::restoreState(const std::vector<double>& all) {
         }
         in.resize(in.size() - kCarrierStateSize);
     }
-    constexpr std::size_t kTail = 3 + kOutputCount;
-    if (in.size() < kTail) throw std::invalid_argument("state does not belong to this plate (too short)");
-    const std::size_t head = in.size() - kTail;
-    const std::vector<double> engineState(in.begin(), in.begin() + std::ptrdiff_t(head));
-    const double* tail = in.data() + head;
-    const double dt = impl_->parameters.dt;
-    const bool onGrid = tail[1] == 1.0;
-    Scheme& engine = *impl_->scheme;
-    const std::vector<double> current = engine.saveState();
-    engine.restoreState(engineState);  // checks the engine's part (throws, the state unchanged)
-    const double gridTime = double(engine.stepCount()) * dt;
-    PlateOutputs before;
-    const char* corrupt = nullptr;  // the first non-finite output
-    for (std::size_t i = 0; i < kOutputCount; ++i) {
-        const OutputField& f = kOutputFields[i];
-        if (!corrupt && !std::isfinite(tail[3 + i])) corrupt = f.name;
-        f.field(before) = tail[3 + i];
-    }
+    const std::size_t gridLength = archive::length<GridState>(kNoSizes, gridMembers);
+    if (in.size() < gridLength) throw std::invalid_argument("state does not belong to this plate (too short)");
+    const auto split = in.end() - std::ptrdiff_t(gridLength);
+    const GridState grid = archive::load<GridState>(std::vector<double>(split, in.end()), kGridFormat, kNoSizes,
+                                                    gridMembers);  // throws: nothing set
+    if (!(grid.rootPeak >= 0.0)) throw std::invalid_argument("corrupt state: the root's peak is negative");
+    Scheme& scheme = *s.scheme;
+    const std::vector<double> current = scheme.saveState();
+    scheme.restoreState(std::vector<double>(in.begin(), split));  // throws, the state unchanged
     // On the grid the time is the grid point's; between, within one step before it.
-    const bool timeFits = (tail[1] == 0.0 || onGrid) && std::isfinite(tail[0]) &&
-                          (onGrid ? tail[0] == gridTime : (tail[0] < gridTime && tail[0] > gridTime - dt));
-    if (!corrupt && !(tail[2] >= 0.0 && std::isfinite(tail[2]))) corrupt = "the root's peak";
-    if (corrupt || !timeFits) {
-        engine.restoreState(current);
-        throw std::invalid_argument(corrupt ? std::string("corrupt state: non-finite output ") + corrupt
-                                            : "corrupt state: communication time does not fit the grid");
+    const double dt = s.parameters.dt, gridTime = double(scheme.stepCount()) * dt;
+    const bool onGrid = grid.onGrid == 1;
+    if (!(onGrid ? grid.commTime == gridTime : (grid.commTime < gridTime && grid.commTime > gridTime - dt))) {
+        scheme.restoreState(current);
+        throw std::invalid_argument("corrupt state: communication time does not fit the grid");
     }
     if (carrier) carrier->setState(carried);
-    impl_->commTime = tail[0];
-    impl_->onGrid = onGrid;
-    impl_->before = before;
-    impl_->rootPeak = tail[2];
+    s.commTime = grid.commTime;
+    s.onGrid = onGrid;
+    s.before = grid.before;
+    s.rootPeak = grid.rootPeak;
 }
 
 }  // namespace plate
