@@ -1,5 +1,6 @@
 #include "InputSignal.h"
 
+#include <algorithm>
 #include <cmath>
 #include <stdexcept>
 
@@ -54,16 +55,21 @@ bool staysWithin(const InputSignal& s, double h, double lower, double upper) {
 
 }  // namespace
 
-InputSignal InputHistory::continueStep(InputMode mode, double now, double h, double lower, double upper) {
+InputSignal InputHistory::continueStep(InputMode mode, double now, double h, double lower, double upper,
+                                       double reach) {
     const double since = count_ > 0 ? now - t_[0] : 0.0;  // how far the step starts after the newest point
+    // The miss is spread over the step, or over as far as the signal is read when that is farther
+    // (a step much shorter than the internal one, read at the grid point ahead): a slope miss/h
+    // read at Δt ≫ h would throw the input by miss·Δt/h.
+    const double span = std::max(h, reach);
     for (int order = static_cast<int>(mode);; --order) {
         const InputMode m = static_cast<InputMode>(order);
         InputSignal s = extrapolate(m).shifted(since);
         if (m != InputMode::Hold && hasReached_) {
-            s.d1 += (s.value - reached_) / h;  // start where the input is, end on the extrapolation
+            s.d1 += (s.value - reached_) / span;  // start where the input is, end on the extrapolation
             s.value = reached_;
         }
-        if (m == InputMode::Hold || staysWithin(s, h, lower, upper)) {
+        if (m == InputMode::Hold || staysWithin(s, span, lower, upper)) {
             reached(s.at(h));
             return s;
         }

@@ -63,7 +63,10 @@ public:
     // internal step). Where that signal would leave [lower, upper] inside the step (an
     // extrapolated clamp past an obstacle the master's values never passed), the order drops
     // (quadratic → linear → hold) until it stays. Remembers where this step ends.
-    InputSignal continueStep(InputMode mode, double now, double h, double lower = -HUGE_VAL, double upper = HUGE_VAL);
+    // `reach` (≥ h when given): how far into the step the signal is read — beyond h when the grid
+    // point ahead of a short step lies past its end; the miss is spread over max(h, reach).
+    InputSignal continueStep(InputMode mode, double now, double h, double lower = -HUGE_VAL, double upper = HUGE_VAL,
+                             double reach = 0.0);
     // Where the input ended the last step taken through continueStep (no step yet: none).
     bool hasReached() const { return hasReached_; }
     // Records where the input ended a step that the master's derivatives drove.

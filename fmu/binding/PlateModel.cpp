@@ -207,7 +207,10 @@ public:
                        "values take h a whole multiple of dt, or a smaller dt",
                        h, values_.parameters.dt));
         }
-        for (InputPort* port : ports()) port->beginStep(now);
+        for (InputPort* port : ports()) {
+            port->beginStep(now);
+            port->reach = plan.offset + double(plan.steps) * values_.parameters.dt;  // the last grid point read
+        }
         try {
             const plate::InputSignal base = clampSignal(now, plan.span);
             const plate::InputSignal load = values_.load.stepSignal(now, plan.span, -plate::kMaxLoad, plate::kMaxLoad);

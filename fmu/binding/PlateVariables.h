@@ -21,6 +21,7 @@ struct InputPort {
     double signalTime = 0.0;  // the model time `signal` starts at (its value's communication point)
     plate::InputMode mode;  // otherwise the step follows history.continueStep(mode, now, h)
     plate::InputHistory history;
+    double reach = 0.0;  // how far into the step its signal is read (PlateSimulation's grid points)
 
     explicit InputPort(plate::InputMode defaultMode) : mode(defaultMode) {}
     // A new value: its derivatives are zero and not given until the master sets them again.
@@ -43,7 +44,7 @@ struct InputPort {
     // [lower, upper] (the obstacles, for the clamp). Given derivatives are a polynomial from
     // their communication point on: a later start continues it.
     plate::InputSignal stepSignal(double now, double h, double lower = -HUGE_VAL, double upper = HUGE_VAL) {
-        if (!derivativesGiven) return history.continueStep(mode, now, h, lower, upper);
+        if (!derivativesGiven) return history.continueStep(mode, now, h, lower, upper, reach);
         const plate::InputSignal s = signal.shifted(now - signalTime);
         history.reached(s.at(h));
         return s;
