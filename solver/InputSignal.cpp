@@ -55,8 +55,7 @@ bool staysWithin(const InputSignal& s, double h, double lower, double upper) {
 
 }  // namespace
 
-InputSignal InputHistory::continueStep(InputMode mode, double now, double h, double lower, double upper,
-                                       double reach) {
+InputSignal InputHistory::continueStep(InputMode mode, double now, double h, double lower, double upper, double reach) {
     const double since = count_ > 0 ? now - t_[0] : 0.0;  // how far the step starts after the newest point
     // The miss is spread over the step, or over as far as the signal is read when that is farther
     // (a step much shorter than the internal one, read at the grid point ahead): a slope miss/h

@@ -63,7 +63,8 @@ void setInitialReaction(const SchemeSetup& s, NewmarkScheme& scheme, const Eigen
 // The initial state (docs/theory.md §3, §11): the static equilibrium under initial_load between
 // the obstacles, at rest; with a singular mass its massless part in equilibrium with the load at
 // t = 0 and the contact forces that hold it.
-void initializeState(const SchemeSetup& s, const std::shared_ptr<const DiscretePlate>& discrete, NewmarkScheme& scheme) {
+void initializeState(const SchemeSetup& s, const std::shared_ptr<const DiscretePlate>& discrete,
+                     NewmarkScheme& scheme) {
     const PlateParameters& p = s.parameters;
     const Obstacles& obstacles = s.obstacles;
     const double baseDisplacement0 = s.baseDisplacement0, loadAtStart = s.loadAtStart;
@@ -127,7 +128,8 @@ std::unique_ptr<Scheme> makeNewmark(const SchemeSetup& s, InitProgress& progress
         progress.phase("kappa_h by power iteration with the factor of M", s.resources.spectrumSeconds);
         requireStableStep(s);
     }
-    const bool modal = s.resources.engine == EngineKind::CompleteModal || s.resources.engine == EngineKind::ReducedModal;
+    const bool modal =
+        s.resources.engine == EngineKind::CompleteModal || s.resources.engine == EngineKind::ReducedModal;
     progress.phase(modal ? "modal basis (generalized eigenproblem)" : "factorization of A = M + beta dt^2 K",
                    modal ? s.resources.spectrumSeconds : 0.5 * s.resources.factorSeconds);
     std::shared_ptr<const DiscretePlate> discrete;
@@ -164,12 +166,13 @@ std::unique_ptr<Scheme> makeScheme(const SchemeSetup& setup, InitProgress& progr
     auto condensed = condensedPlate(setup, rows);
     std::unique_ptr<CondensedScheme> scheme;
     if (p.timeScheme == TimeScheme::Flow)
-        scheme = std::make_unique<FlowScheme>(condensed, setup.obstacles, p.dt,
-                                              ContactRefinement{p.contactSubsteps, p.tolerance, p.maxContactSubsteps, p.contactRowSpace},
-                                              p.dampingMass, p.dampingStiffness, std::move(rows));
+        scheme = std::make_unique<FlowScheme>(
+            condensed, setup.obstacles, p.dt,
+            ContactRefinement{p.contactSubsteps, p.tolerance, p.maxContactSubsteps, p.contactRowSpace}, p.dampingMass,
+            p.dampingStiffness, std::move(rows));
     else
-        scheme = std::make_unique<MidpointScheme>(condensed, setup.obstacles, p.dt, p.dampingMass,
-                                                  p.dampingStiffness, std::move(rows));
+        scheme = std::make_unique<MidpointScheme>(condensed, setup.obstacles, p.dt, p.dampingMass, p.dampingStiffness,
+                                                  std::move(rows));
     scheme->initialize(setup.baseDisplacement0, p.initialLoad);
     scheme->setLoadAtStart(setup.loadAtStart);
     return scheme;

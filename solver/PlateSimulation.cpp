@@ -94,8 +94,8 @@ PlateSimulation::PlateSimulation(const PlateParameters& p, double baseDisplaceme
     }
     const Eigen::SparseMatrix<double> rootFree =
         p.condensed() ? freeRows(root, *s.clamped) : Eigen::SparseMatrix<double>();
-    s.scheme = makeScheme(SchemeSetup{p, s.space, s.clamped, *s.recovery, s.resources, couplingFree, rootFree, obstacles,
-                                      baseDisplacement0, loadAtStart},
+    s.scheme = makeScheme(SchemeSetup{p, s.space, s.clamped, *s.recovery, s.resources, couplingFree, rootFree,
+                                      obstacles, baseDisplacement0, loadAtStart},
                           progress);
     s.trackRoot();  // the initial state's (t = 0 belongs to the peak)
     progress.done(s.resources.peakMB);
@@ -322,8 +322,8 @@ constexpr std::array<std::size_t, 0> kNoSizes{};
 std::vector<double> PlateSimulation::saveState() const {
     const Impl& s = *impl_;
     std::vector<double> out = s.scheme->saveState();
-    const std::vector<double> grid =
-        archive::save(GridState{s.commTime, s.onGrid ? 1 : 0, s.rootPeak, s.before}, kGridFormat, kNoSizes, gridMembers);
+    const std::vector<double> grid = archive::save(GridState{s.commTime, s.onGrid ? 1 : 0, s.rootPeak, s.before},
+                                                   kGridFormat, kNoSizes, gridMembers);
     out.insert(out.end(), grid.begin(), grid.end());
     if (const Armature* carrier = s.scheme->carrier()) {  // last (§18)
         for (const auto& f : kCarrierFields) out.push_back(f.value(carrier->state()));

@@ -212,7 +212,7 @@ int printEstimate(const plate::PlateParameters& p) {
         const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
         const char* engine = e.engine == plate::EngineKind::Sparse          ? "sparse"
                              : e.engine == plate::EngineKind::CompleteModal ? "modal-complete"
-                             : e.engine == plate::EngineKind::Condensed    ? "conserving"
+                             : e.engine == plate::EngineKind::Condensed     ? "conserving"
                                                                             : "modal-reduced";
         std::printf(
             "{\"element\": \"%s\", \"nx\": %d, \"ny\": %d, \"engine\": \"%s\", \"dofs\": %lld, \"nnz_k\": %lld, "
@@ -362,8 +362,8 @@ int main(int argc, char** argv) {
             p.element == plate::ElementType::Fvs ? "fvs" : "argyris", p.nx, p.ny, p.dt, p.beta, p.modes,
             sim.engine().c_str(), static_cast<long>(sim.dofCount()), steps,
             std::chrono::duration<double>(t1 - t0).count(), std::chrono::duration<double>(t3 - t2).count(), perStep,
-            (cpu3 - cpu2) / steps, floorCpu, floor, perStep / floor, o.contactSolves, o.energyDissipated,
-            o.impacts[0], o.impacts[1], energySum, o.errorEstimate, o.cappedSteps, resources.c_str(), spectrum.c_str());
+            (cpu3 - cpu2) / steps, floorCpu, floor, perStep / floor, o.contactSolves, o.energyDissipated, o.impacts[0],
+            o.impacts[1], energySum, o.errorEstimate, o.cappedSteps, resources.c_str(), spectrum.c_str());
     } catch (const std::exception& e) {
         std::fprintf(stderr, "plate_bench: %s\n", e.what());
         return 1;

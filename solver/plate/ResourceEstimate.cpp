@@ -198,7 +198,6 @@ void modalCost(const PlateParameters& p, const ProblemSize& s, EngineKind engine
     bytes += kDouble * (n * m + m * c);  // Φ and (CΦ)ᵀ kept for the run
 }
 
-
 // Stress and probes (docs/theory.md §23): about three functionals per vertex (the vertices'
 // curvatures; the root's and the probes' are a few more), sparse rows over an element's dofs, then
 // in the engine's coordinates: dense over the modes (modal), over the massive modes and the
@@ -317,7 +316,7 @@ std::string ResourceEstimate::describe() const {
     const ProblemSize& s = size;
     const char* name = engine == EngineKind::Sparse          ? "sparse"
                        : engine == EngineKind::CompleteModal ? "modal-complete"
-                       : engine == EngineKind::Condensed    ? "conserving"
+                       : engine == EngineKind::Condensed     ? "conserving"
                                                              : "modal-reduced";
     char text[600];
     if (!complete) {

@@ -57,7 +57,12 @@ ProblemSize countEntries(const FiniteElementSpace& space);
 // Stage 2: the free pattern (O(T) time, O(nnz) memory) and its symbolic factor.
 void analyzePattern(const FiniteElementSpace& space, ProblemSize& size);
 
-enum class EngineKind { Sparse, CompleteModal, ReducedModal, Condensed };  // Condensed: time_scheme = conserving or flow
+enum class EngineKind {
+    Sparse,
+    CompleteModal,
+    ReducedModal,
+    Condensed
+};  // Condensed: time_scheme = conserving or flow
 
 // Exact mode's choice between the sparse factor and the complete modal basis (docs/theory.md
 // §7), from counts: n dofs, m contact vertices, nnz(K).

@@ -53,8 +53,7 @@ CondensedScheme::CondensedScheme(std::shared_ptr<const CondensedPlate> plate, Ob
     endColumns_ = denseColumns(endMatrix_);
     endQP_ = std::make_unique<BoxQP>(*endColumns_);
     space_ = {&c.rowModesT, &c.rowLoad, &c.rowAbscissae, endQP_.get()};
-    for (Eigen::VectorXd* v : {&rhs_, &dq_, &qNext_, &momentumNext_, &modalForce_, &modalScratch_})
-        v->resize(m);
+    for (Eigen::VectorXd* v : {&rhs_, &dq_, &qNext_, &momentumNext_, &modalForce_, &modalScratch_}) v->resize(m);
     w2v_.resize(rows);
     for (Eigen::VectorXd* v : {&forceNext_, &multiplier_, &r0_, &r1_, &drFree_, &dr_, &base_, &e_, &y_})
         v->resize(rows);

@@ -132,7 +132,8 @@ protected:
     // bound holds (inline: the common case of both schemes), else lookAtRowsNow.
     enum class Look { Skipped, Free, Contact };
     Look lookAtRows(double zNext, double pNext) {
-        if (!obstacles_.any() || plate_->rows() == 0 || (state_.contactPoints == 0 && freeFlight_.holds(qNext_, zNext, pNext)))
+        if (!obstacles_.any() || plate_->rows() == 0 ||
+            (state_.contactPoints == 0 && freeFlight_.holds(qNext_, zNext, pNext)))
             return Look::Skipped;
         return lookAtRowsNow(zNext, pNext);
     }

@@ -261,8 +261,8 @@ bool FlowScheme::selectRows(double zNext, double pNext) {
         rowsStart_ = rowsCached_;
     else
         gatherRows(s.q, s.p, s.z, rowsStart_);
-    const double reach = 2.0 * (c.rowModeNormMax * (qNext_ - s.q).norm() + std::abs(zNext - s.z) +
-                                std::abs(pNext - s.p) * rowLoadMax_);
+    const double reach =
+        2.0 * (c.rowModeNormMax * (qNext_ - s.q).norm() + std::abs(zNext - s.z) + std::abs(pNext - s.p) * rowLoadMax_);
     const auto gap = [this](double r) { return std::min(r - obstacles_.lower, obstacles_.upper - r); };
     const int rows = c.rows();
     for (int i = 0; i < rows; ++i) {
@@ -285,12 +285,13 @@ bool FlowScheme::selectRows(double zNext, double pNext) {
     touch_.from = nullptr;
     touch_.lower = Eigen::VectorXd::Constant(n, obstacles_.lower);
     touch_.upper = Eigen::VectorXd::Constant(n, obstacles_.upper);
-    for (Eigen::VectorXd* v : {&touch_.forceNext, &touch_.multiplier, &touch_.r0, &touch_.r1, &touch_.drFree,
-                               &touch_.dr, &touch_.base, &touch_.e, &touch_.y, &touch_.w2v, &touch_.midForce,
-                               &touch_.endForce, &touch_.rowsCached, &touch_.force, &touch_.forcePrev,
-                               &touch_.forcePrev2})
+    for (Eigen::VectorXd* v :
+         {&touch_.forceNext, &touch_.multiplier, &touch_.r0, &touch_.r1, &touch_.drFree, &touch_.dr, &touch_.base,
+          &touch_.e, &touch_.y, &touch_.w2v, &touch_.midForce, &touch_.endForce, &touch_.rowsCached, &touch_.force,
+          &touch_.forcePrev, &touch_.forcePrev2})
         v->setZero(n);
-    for (auto* v : {&touch_.rowState, &touch_.midState, &touch_.rowTrial, &touch_.midTrial}) v->assign(touch_.index.size(), 0);
+    for (auto* v : {&touch_.rowState, &touch_.midState, &touch_.rowTrial, &touch_.midTrial})
+        v->assign(touch_.index.size(), 0);
     return true;
 }
 
@@ -311,13 +312,28 @@ void FlowScheme::buildRowOperator(const MidpointOperator& op) {
 void FlowScheme::swapRowBuffers() {
     CondensedState& s = state_;
     TouchRows& t = touch_;
-    for (auto [a, b] : {std::pair{&forceNext_, &t.forceNext}, {&multiplier_, &t.multiplier}, {&r0_, &t.r0},
-                        {&r1_, &t.r1}, {&drFree_, &t.drFree}, {&dr_, &t.dr}, {&base_, &t.base}, {&e_, &t.e},
-                        {&y_, &t.y}, {&w2v_, &t.w2v}, {&lower_, &t.lower}, {&upper_, &t.upper},
-                        {&midForce_, &t.midForce}, {&endForce_, &t.endForce}, {&rowsCached_, &t.rowsCached},
-                        {&s.force, &t.force}, {&s.forcePrev, &t.forcePrev}, {&s.forcePrev2, &t.forcePrev2}})
+    for (auto [a, b] : {std::pair{&forceNext_, &t.forceNext},
+                        {&multiplier_, &t.multiplier},
+                        {&r0_, &t.r0},
+                        {&r1_, &t.r1},
+                        {&drFree_, &t.drFree},
+                        {&dr_, &t.dr},
+                        {&base_, &t.base},
+                        {&e_, &t.e},
+                        {&y_, &t.y},
+                        {&w2v_, &t.w2v},
+                        {&lower_, &t.lower},
+                        {&upper_, &t.upper},
+                        {&midForce_, &t.midForce},
+                        {&endForce_, &t.endForce},
+                        {&rowsCached_, &t.rowsCached},
+                        {&s.force, &t.force},
+                        {&s.forcePrev, &t.forcePrev},
+                        {&s.forcePrev2, &t.forcePrev2}})
         a->swap(*b);
-    for (auto [a, b] : {std::pair{&s.rowState, &t.rowState}, {&s.midState, &t.midState}, {&rowTrial_, &t.rowTrial},
+    for (auto [a, b] : {std::pair{&s.rowState, &t.rowState},
+                        {&s.midState, &t.midState},
+                        {&rowTrial_, &t.rowTrial},
                         {&midTrial_, &t.midTrial}})
         a->swap(*b);
 }

@@ -15,8 +15,7 @@ namespace {
 // product): FreeFlightBound.
 class InelasticImpact final : public ImpactLaw {
 public:
-    InelasticImpact(const DiscretePlate& plate, const Obstacles& obstacles)
-        : plate_(plate), obstacles_(obstacles) {
+    InelasticImpact(const DiscretePlate& plate, const Obstacles& obstacles) : plate_(plate), obstacles_(obstacles) {
         freeFlight_.setup(plate.size(), plate.contactRowNormBound());
     }
 
@@ -93,7 +92,8 @@ public:
             b.upper.setConstant(obstacles_.upper - zNext);
         }
         bool violated = false;
-        for (int i = 0; i < b.yFree.size(); ++i) violated = violated || b.yFree[i] < b.lower[i] || b.yFree[i] > b.upper[i];
+        for (int i = 0; i < b.yFree.size(); ++i)
+            violated = violated || b.yFree[i] < b.lower[i] || b.yFree[i] > b.upper[i];
         return violated;
     }
 

@@ -55,7 +55,8 @@ FlowRun run(const std::shared_ptr<const CondensedPlate>& plate, const Case& k, b
     Obstacles obstacles;
     obstacles.lower = k.gap > 0 ? -k.gap : k.gap;
     if (k.gap > 0) obstacles.upper = k.gap;
-    FlowScheme scheme(plate, obstacles, k.dt, ContactRefinement{substeps, 0.0, 128, rowSpace}, k.damping, 1e-6 * k.damping);
+    FlowScheme scheme(plate, obstacles, k.dt, ContactRefinement{substeps, 0.0, 128, rowSpace}, k.damping,
+                      1e-6 * k.damping);
     scheme.initialize(0.0, 8600.0);  // held on the lower obstacle by the initial load, then released
     scheme.setLoadAtStart(0.0);
     FlowRun r;
@@ -128,14 +129,14 @@ TEST_P(RowSpace, AgreesWithEveryRowAndClosesTheLedger) {
 
 INSTANTIATE_TEST_SUITE_P(
     Cases, RowSpace,
-    ::testing::Values(
-        Case{"ArgyrisRelease", ElementType::Argyris, 8, 3, 2e-5, 0.02, 0.0, 0.0, 5000},
-        Case{"ArgyrisDampedLoadRamp", ElementType::Argyris, 8, 3, 2e-5, 0.02, 2.0, 2e4, 5000},
-        Case{"FvsRelease", ElementType::Fvs, 8, 3, 2e-5, 0.02, 0.0, 0.0, 5000},
-        Case{"ArgyrisBothObstacles", ElementType::Argyris, 8, 3, 2e-5, 0.002, 0.0, 0.0, 1500, 100.0, true},
-        Case{"FvsBothObstacles", ElementType::Fvs, 8, 3, 2e-5, 0.002, 0.0, 0.0, 1500, 100.0, true},
-        Case{"SmallStep", ElementType::Argyris, 8, 3, 2e-6, 0.02, 0.0, 0.0, 25000, 20.0, false, false},
-        Case{"LargeStep", ElementType::Argyris, 8, 3, 2e-4, 0.02, 1.0, 1e4, 500}),
+    ::testing::Values(Case{"ArgyrisRelease", ElementType::Argyris, 8, 3, 2e-5, 0.02, 0.0, 0.0, 5000},
+                      Case{"ArgyrisDampedLoadRamp", ElementType::Argyris, 8, 3, 2e-5, 0.02, 2.0, 2e4, 5000},
+                      Case{"FvsRelease", ElementType::Fvs, 8, 3, 2e-5, 0.02, 0.0, 0.0, 5000},
+                      Case{"ArgyrisBothObstacles", ElementType::Argyris, 8, 3, 2e-5, 0.002, 0.0, 0.0, 1500, 100.0,
+                           true},
+                      Case{"FvsBothObstacles", ElementType::Fvs, 8, 3, 2e-5, 0.002, 0.0, 0.0, 1500, 100.0, true},
+                      Case{"SmallStep", ElementType::Argyris, 8, 3, 2e-6, 0.02, 0.0, 0.0, 25000, 20.0, false, false},
+                      Case{"LargeStep", ElementType::Argyris, 8, 3, 2e-4, 0.02, 1.0, 1e4, 500}),
     [](const ::testing::TestParamInfo<Case>& info) { return std::string(info.param.name); });
 
 }  // namespace
