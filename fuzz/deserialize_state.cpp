@@ -15,7 +15,7 @@
 
 namespace {
 
-constexpr std::size_t kChecksumOffset = 72, kHeaderBytes = 80;  // fmu/core/StateFormat.h
+constexpr std::size_t kChecksumOffset = 72, kHeaderBytes = 96;  // fmu/core/StateFormat.h
 
 // A valid header (this build's) around `values`, with the checksum the decoder expects.
 std::vector<fmi2Byte> withHeader(const std::uint8_t* values, std::size_t size, std::vector<fmi2Byte> header) {
