@@ -39,7 +39,7 @@ std::uint64_t checksum(const Byte* bytes, std::size_t size) {
     XXH64_state_t state;
     XXH64_reset(&state, 0);
     XXH64_update(&state, bytes, kChecksumOffset);
-    XXH64_update(&state, bytes + kHeaderBytes, size - kHeaderBytes);
+    XXH64_update(&state, bytes + kChecksumOffset + 8, size - kChecksumOffset - 8);  // the platform too
     return XXH64_digest(&state);
 }
 
