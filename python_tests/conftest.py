@@ -26,6 +26,22 @@ def extracted_fmu(fmu_path, tmp_path_factory) -> Path:
     return target
 
 
+@pytest.fixture(scope="session")
+def fmu3(fmu_path) -> Path:
+    """The FMI 3.0 FMU under test: $PLATEIMPACT_FMU3, else fmi3/PlateImpact.fmu beside fmu_path."""
+    path = Path(os.environ.get("PLATEIMPACT_FMU3", Path(fmu_path).parent / "fmi3" / "PlateImpact.fmu"))
+    assert path.is_file(), f"FMI 3.0 FMU not built: {path}"
+    return path
+
+
+@pytest.fixture(scope="session")
+def unzipped3(fmu3, tmp_path_factory):
+    """(unzip directory, model description) of the FMI 3.0 FMU, extracted once per session."""
+    from fmpy import extract, read_model_description
+
+    return extract(str(fmu3), str(tmp_path_factory.mktemp("fmu3"))), read_model_description(str(fmu3))
+
+
 # Tests that share a resource outside their tmp_path run in one pytest-xdist worker (test.sh runs
 # `pytest -n auto --dist loadgroup`): the Wine prefix build-win64/wineprefix (made on first use).
 SERIAL = {"test_win64.py": "wine"}

@@ -15,15 +15,12 @@ from __future__ import annotations
 
 import csv
 import math
-import os
 import re
 import subprocess
 import zipfile
-from pathlib import Path
 
 import numpy as np
 import pytest
-from fmpy import extract, read_model_description
 from fmpy.fmi1 import FMICallException
 from fmpy.fmi3 import FMU3Slave
 
@@ -44,15 +41,8 @@ def from_csv(t):
 
 
 @pytest.fixture(scope="module")
-def fmu3(fmu_path) -> Path:
-    path = Path(os.environ.get("PLATEIMPACT_FMU3", Path(fmu_path).parent / "fmi3" / "PlateImpact.fmu"))
-    assert path.is_file(), f"FMI 3.0 FMU not built: {path}"
-    return path
-
-
-@pytest.fixture(scope="module")
-def unzipped(fmu3, tmp_path_factory):
-    return extract(str(fmu3), str(tmp_path_factory.mktemp("fmu3"))), read_model_description(str(fmu3))
+def unzipped(unzipped3):  # conftest.py: the FMI 3.0 FMU, extracted
+    return unzipped3
 
 
 def run(unzipped, base=from_csv, intermediate=None, required=("base_displacement", "corner_1"), log=None):
