@@ -8,7 +8,9 @@ displacement amplitude over the base's — at the accelerometer's point (--probe
 Writes <out>/stress_sweep.csv (every communication point: time, frequency, base, root_stress,
 root_stress_peak, probe_1, probe_1_acceleration), <out>/stress_envelope.csv (per frequency bin:
 the bin's centre, the largest root_stress, root_stress_peak at its end, the transmissibility)
-and <out>/stress_sweep.png.
+and <out>/stress_sweep.png; --quick writes the same as stress_sweep_quick*.csv/.png, the figure
+marked as a smoke run. A parameter the FMU refuses (a probe off the plate, ...) ends the run with
+the FMU's message and exit status 2.
 
     python examples/stress_sweep.py --f-start 3 --f-end 10 --duration 20 --gap 0.02 --probe 0.9 0.2
 """
@@ -17,11 +19,13 @@ from __future__ import annotations
 
 import argparse
 import csv
+import sys
 from pathlib import Path
 
 import numpy as np
 
 from plateimpact import PlateImpactFMU
+from plateimpact.driver import FMUError
 from plateimpact.fmufile import require_fmu
 from plateimpact.sweep import SineSweep, rayleigh_for_band
 
@@ -85,7 +89,7 @@ def write_csv(path, columns, rows):
         w.writerows(rows)
 
 
-def plot(path, env, probe):
+def plot(path, env, probe, smoke=None):
     import matplotlib
 
     matplotlib.use("Agg")
@@ -100,15 +104,17 @@ def plot(path, env, probe):
     ax2.plot(f, [e["transmissibility"] for e in env], color="C2")
     ax2.set_ylabel(f"transmissibility at ({probe[0]:g}, {probe[1]:g}) m")
     ax2.set_xlabel("base frequency (Hz)")
+    if smoke:
+        fig.suptitle(smoke, color="C3")
     fig.tight_layout()
-    fig.savefig(path, dpi=90)
+    fig.savefig(path, dpi=90, metadata={"Description": smoke or "stress sweep"})
 
 
 def main(argv=None):
     ap = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
     ap.add_argument("--fmu", default="build/PlateImpact.fmu")
     ap.add_argument("--out", default="out", help="directory for the CSV files and the figure")
-    ap.add_argument("--quick", action="store_true", help="a 0.05 s smoke run")
+    ap.add_argument("--quick", action="store_true", help="a 0.05 s smoke run, written to stress_sweep_quick*.csv/.png")
     ap.add_argument("--amplitude", type=float, default=0.005, help="base amplitude, m")
     ap.add_argument("--f-start", type=float, default=3.0)
     ap.add_argument("--f-end", type=float, default=10.0)
@@ -122,19 +128,28 @@ def main(argv=None):
     fmu = str(require_fmu(args.fmu, "stress_sweep.py"))
     duration = 0.05 if args.quick else args.duration
     sweep = SineSweep(args.amplitude, args.f_start, args.f_end, duration, law="linear")
-    rows = run(fmu, sweep, duration, args.step, args.probe, args.gap, args.damping_ratio)
+    try:
+        rows = run(fmu, sweep, duration, args.step, args.probe, args.gap, args.damping_ratio)
+    except FMUError as e:  # the FMU's own message: what was wrong and what is allowed
+        print(f"stress_sweep.py: the FMU refused the run: {'; '.join(e.messages) or e}", file=sys.stderr)
+        return 2
     env = envelope(rows, 5 if args.quick else args.bins)
     out = Path(args.out)
     out.mkdir(parents=True, exist_ok=True)
-    write_csv(out / "stress_sweep.csv", SERIES, rows)
-    write_csv(out / "stress_envelope.csv", ENVELOPE, env)
-    plot(out / "stress_sweep.png", env, args.probe)
+    suffix = "_quick" if args.quick else ""  # a smoke run keeps the full sweep's files
+    series, envelope_csv, png = (
+        out / f"stress_{n}{suffix}.{e}" for n, e in (("sweep", "csv"), ("envelope", "csv"), ("sweep", "png"))
+    )
+    write_csv(series, SERIES, rows)
+    write_csv(envelope_csv, ENVELOPE, env)
+    plot(png, env, args.probe, f"smoke run (--quick): {duration:g} s, not a sweep" if args.quick else None)
     worst = max(env, key=lambda e: e["root_stress_max"])
     print(
         f"root stress peak {rows[-1]['root_stress_peak'] / 1e6:.1f} MPa; largest in a bin at {worst['frequency']:.2f} Hz; "
-        f"wrote {out / 'stress_sweep.csv'}, {out / 'stress_envelope.csv'}, {out / 'stress_sweep.png'}"
+        f"wrote {series}, {envelope_csv}, {png}"
     )
+    return 0
 
 
 if __name__ == "__main__":
-    main()
+    sys.exit(main())

@@ -15,7 +15,7 @@
 
 namespace {
 
-constexpr std::size_t kChecksumOffset = 72, kHeaderBytes = 80;  // fmu/core/StateFormat.h
+constexpr std::size_t kChecksumOffset = 72, kHeaderBytes = 96;  // fmu/core/StateFormat.h
 
 // A valid header (this build's) around `values`, with the checksum the decoder expects.
 std::vector<fmi2Byte> withHeader(const std::uint8_t* values, std::size_t size, std::vector<fmi2Byte> header) {
@@ -27,7 +27,7 @@ std::vector<fmi2Byte> withHeader(const std::uint8_t* values, std::size_t size, s
     XXH64_state_t state;
     XXH64_reset(&state, 0);
     XXH64_update(&state, blob.data(), kChecksumOffset);
-    XXH64_update(&state, blob.data() + kHeaderBytes, blob.size() - kHeaderBytes);
+    XXH64_update(&state, blob.data() + kChecksumOffset + 8, blob.size() - kChecksumOffset - 8);  // the platform too
     const std::uint64_t sum = XXH64_digest(&state);
     std::memcpy(blob.data() + kChecksumOffset, &sum, 8);
     return blob;

@@ -142,9 +142,14 @@ std::string causalityAttributes(const Variable& v) {
     return "";
 }
 
-// FMI 3.0: the outputs can be read inside the intermediate update callback (and nothing else).
+// FMI 3.0: the outputs can be read inside the intermediate update callback, and the inputs that
+// take intermediate values set there (Model::takesIntermediateValue).
 const char* intermediate(const fmu::Model& model, Causality causality) {
     return model.providesIntermediateUpdate() && causality == Causality::Output ? " intermediateUpdate=\"true\"" : "";
+}
+const char* intermediate(const fmu::Model& model, const Variable& v) {
+    return model.providesIntermediateUpdate() && model.takesIntermediateValue(v) ? " intermediateUpdate=\"true\""
+                                                                                 : intermediate(model, v.causality);
 }
 
 std::string rangeAndStart(const fmu::Model& model, const Variable& v) {
@@ -226,8 +231,8 @@ public:
         for (const Variable& v : model.variables()) {
             if (v.causality == Causality::Output) outputs.push_back(v.vr);
             xml << "    <" << typeName(v.type) << " name=\"" << v.name << "\" valueReference=\"" << v.vr << "\""
-                << causalityAttributes(v) << intermediate(model, v.causality) << rangeAndStart(model, v)
-                << " description=\"" << escape(describe(v, version)) << "\"/>\n";
+                << causalityAttributes(v) << intermediate(model, v) << rangeAndStart(model, v) << " description=\""
+                << escape(describe(v, version)) << "\"/>\n";
         }
         for (const fmu::StructuralParameter& s : model.structuralParameters()) {
             xml << "    <UInt64 name=\"" << s.name << "\" valueReference=\"" << s.vr

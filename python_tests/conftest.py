@@ -26,9 +26,37 @@ def extracted_fmu(fmu_path, tmp_path_factory) -> Path:
     return target
 
 
+@pytest.fixture(scope="session")
+def fmu3(fmu_path) -> Path:
+    """The FMI 3.0 FMU under test: $PLATEIMPACT_FMU3, else fmi3/PlateImpact.fmu beside fmu_path."""
+    path = Path(os.environ.get("PLATEIMPACT_FMU3", Path(fmu_path).parent / "fmi3" / "PlateImpact.fmu"))
+    assert path.is_file(), f"FMI 3.0 FMU not built: {path}"
+    return path
+
+
+@pytest.fixture(scope="session")
+def unzipped3(fmu3, tmp_path_factory):
+    """(unzip directory, model description) of the FMI 3.0 FMU, extracted once per session."""
+    from fmpy import extract, read_model_description
+
+    return extract(str(fmu3), str(tmp_path_factory.mktemp("fmu3"))), read_model_description(str(fmu3))
+
+
 # Tests that share a resource outside their tmp_path run in one pytest-xdist worker (test.sh runs
 # `pytest -n auto --dist loadgroup`): the Wine prefix build-win64/wineprefix (made on first use).
 SERIAL = {"test_win64.py": "wine"}
+# Tests that share a module fixture that is expensive to make, in one worker so that it is made
+# once (spread over the workers, each worker made it again: issue 46 found the work twice). A file
+# name (every test in it) or a file's test without its parameters; each its own group, so that the
+# groups still spread over the workers.
+SHARED_FIXTURE = {
+    "test_fmi_conformance.py::test_catalogue": "fmi-catalogue",  # 69 child processes (catalogue_outcomes)
+    "test_aarch64.py": "aarch64",  # the C master under qemu-aarch64 (runs: 28 s)
+    "test_tolerance.py": "tolerance",  # the reference at dt = 1.25e-6 s, 64 sub-steps
+    "test_speed_report.py": "speed-report",  # tools/speed_vs_error.py --quick (summary: 10 s)
+    "test_elements_agree.py": "elements",  # the Argyris run both tests compare with
+    "test_intermediate_inputs.py": "intermediate-inputs",  # three 0.2 s runs with a callback per step
+}
 
 # `slow`: left out of the developer loop (`bash test.sh --quick`, `pytest -m "not slow"`); test.sh
 # runs them all. A file name (every test in it) or a test's name without its parameters. Chosen
@@ -60,6 +88,9 @@ def pytest_collection_modifyitems(config, items):
         file = item.path.name
         if file in SERIAL:
             item.add_marker(pytest.mark.xdist_group(SERIAL[file]))
+        for key in (file, f"{file}::{item.originalname}"):
+            if key in SHARED_FIXTURE:
+                item.add_marker(pytest.mark.xdist_group(SHARED_FIXTURE[key]))
         if file in SLOW or f"{file}::{item.originalname}" in SLOW:
             item.add_marker(pytest.mark.slow)
     # The slow ones first (a stable sort): pytest-xdist hands tests out in this order, so the long

@@ -1,12 +1,14 @@
-"""The serialized FMU-state layout the tests patch (fmu/core/StateFormat.h): an 80-byte header
-whose bytes 72..79 hold the XXH64 checksum of all other bytes, then the values as doubles."""
+"""The serialized FMU-state layout the tests patch (fmu/core/StateFormat.h): a 96-byte header
+whose bytes 72..79 hold the XXH64 checksum of all other bytes and bytes 80..95 the platform that
+wrote it, then the values as doubles."""
 
 import struct
 
 import xxhash
 
 CHECKSUM = slice(72, 80)
-HEADER = 80
+PLATFORM = slice(80, 96)
+HEADER = 96
 
 
 def checksum(blob: bytes) -> int:

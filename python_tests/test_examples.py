@@ -235,19 +235,51 @@ def test_dask_map_equals_serial_loop(fmu):
             assert s[c] == p[c], (c, s, p)  # exact equality, not approximate
 
 
+def smoke_mark(png):
+    """The Description a figure was saved with (examples mark --quick figures as smoke runs)."""
+    from PIL import Image
+
+    with Image.open(png) as image:
+        return image.text.get("Description", "")
+
+
 def test_stress_sweep_quick(fmu, tmp_path):
     run_example("stress_sweep.py", fmu, tmp_path)
     series = ("time", "frequency", "base", "root_stress", "root_stress_peak", "probe_1", "probe_1_acceleration")
-    rows = read_csv(tmp_path / "stress_sweep.csv", series)
+    assert not (tmp_path / "stress_sweep.csv").exists()  # a smoke run keeps the full sweep's files
+    rows = read_csv(tmp_path / "stress_sweep_quick.csv", series)
     assert_finite(rows, series)
     assert len(rows) == 50  # 0.05 s at 1 ms
     peaks = [float(r["root_stress_peak"]) for r in rows]
     assert peaks == sorted(peaks) and all(float(r["root_stress"]) <= p for r, p in zip(rows, peaks))
     env = read_csv(
-        tmp_path / "stress_envelope.csv", ("frequency", "root_stress_max", "root_stress_peak", "transmissibility")
+        tmp_path / "stress_envelope_quick.csv", ("frequency", "root_stress_max", "root_stress_peak", "transmissibility")
     )
     assert_finite(env, ("frequency", "root_stress_max", "root_stress_peak", "transmissibility"))
-    assert (tmp_path / "stress_sweep.png").stat().st_size > 10_000
+    assert (tmp_path / "stress_sweep_quick.png").stat().st_size > 10_000
+    assert smoke_mark(tmp_path / "stress_sweep_quick.png").startswith("smoke run (--quick)")
+
+
+def test_stress_sweep_probe_off_the_plate_is_the_fmus_message(fmu, tmp_path):
+    """Issue 46: `--probe 1.5 0.2` (past the 1.2 m plate) ended in a 22-line traceback that hid the
+    FMU's message; now it is that message, one line, and exit status 2."""
+    cmd = [sys.executable, str(EXAMPLES / "stress_sweep.py"), "--quick", "--fmu", fmu, "--out", str(tmp_path)]
+    r = subprocess.run([*cmd, "--probe", "1.5", "0.2"], capture_output=True, text=True, timeout=240, cwd=REPO)
+    assert r.returncode == 2, (r.stdout, r.stderr)
+    assert "Traceback" not in r.stderr and len(r.stderr.strip().splitlines()) == 1, r.stderr
+    assert "the FMU refused the run" in r.stderr and "probe_1_x" in r.stderr and "1.5" in r.stderr, r.stderr
+    assert "length" in r.stderr, r.stderr  # the allowed range
+    assert not list(tmp_path.glob("*.csv"))
+
+
+def test_default_scene_quick_keeps_the_full_scene_and_says_smoke(fmu, tmp_path):
+    """Issue 46: a quick default_scene wrote out/default_scene.csv, the README's 1 s scene, with an
+    unmarked figure; it writes default_scene_quick.* now, the figure marked as a smoke run."""
+    run_example("default_scene.py", fmu, tmp_path)
+    assert not (tmp_path / "default_scene.csv").exists() and not (tmp_path / "default_scene.png").exists()
+    rows = read_csv(tmp_path / "default_scene_quick.csv", None)
+    assert float(rows[-1]["time"]) == pytest.approx(0.1)
+    assert smoke_mark(tmp_path / "default_scene_quick.png") == "smoke run (--quick): the first 0.1 s only"
 
 
 # -- every example takes the options the README promises ----------------------------------------

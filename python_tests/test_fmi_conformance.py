@@ -1,12 +1,15 @@
 """FMI 2.0 co-simulation conformance of PlateImpact.fmu (fmpy as the importer).
 
 - the model description validates and agrees with the binary's variable table;
-- the catalogue of wrong calls: each runs in a child process, must return fmi2Error, must be
-  named in the log, and the child must end normally (exit code 0, no crash);
+- the catalogue of wrong calls: each runs in a process of its own, must return fmi2Error, must be
+  named in the log, and the process must end normally (exit code 0, no crash);
 - FMU states (get/set and serialize/deserialize), fmi2Reset and concurrent instances must
   reproduce runs bit for bit.
 
-The child processes run this file as a script: python test_fmi_conformance.py --child DIR CASE.
+The processes run this file as a script: python test_fmi_conformance.py --child DIR CASE runs one
+case; --serve DIR is a warm server (Python, fmpy and this module imported once) that runs each case
+named on its stdin in a fork of itself and answers one JSON line per case (issue 46: the imports
+were most of a case's time, and under the sanitizer's preloaded runtime more so).
 """
 
 import ctypes
@@ -28,7 +31,7 @@ from fmpy.fmi2 import (
     fmi2LastSuccessfulTime,
     fmi2Terminated,
 )
-from state_bytes import with_checksum
+from state_bytes import HEADER, with_checksum
 
 from plateimpact import PlateImpactFMU
 
@@ -308,7 +311,7 @@ def _put_double(blob, index, value):
     """Patch value `index` of a serialized state and repair its checksum, so that the decoder's
     own checks of the values are what the case exercises (a plain patch is refused earlier, by
     the checksum: test_state_integrity.py)."""
-    offset = 80 + 8 * index
+    offset = HEADER + 8 * index
     return with_checksum(blob[:offset] + struct.pack("d", value) + blob[offset + 8 :])
 
 
@@ -551,21 +554,84 @@ def _child_main(unzipdir, case):
     sys.stdout.flush()
 
 
-def _run_child(unzipped, case):
-    proc = subprocess.run(
-        [sys.executable, __file__, "--child", str(unzipped), case], capture_output=True, text=True, timeout=120
+CASE_SECONDS = 120  # a case that takes longer is killed (SIGALRM) and fails as a crash
+
+
+def _serve(unzipdir):
+    """Runs each case named on stdin in a fork of this process (a fresh process image for the FMU:
+    the server never loads it) and prints {"returncode", "stdout", "stderr"} as one JSON line: the
+    fork's exit code (negative: the signal that ended it) and what it wrote."""
+    import signal
+    import tempfile
+
+    for line in sys.stdin:
+        case = line.strip()
+        with tempfile.TemporaryFile() as out, tempfile.TemporaryFile() as err:
+            sys.stdout.flush()
+            sys.stderr.flush()
+            pid = os.fork()
+            if pid == 0:  # the case: its output into the files, its end its exit code
+                code = 1
+                try:
+                    os.dup2(out.fileno(), 1)
+                    os.dup2(err.fileno(), 2)
+                    signal.alarm(CASE_SECONDS)
+                    _child_main(unzipdir, case)
+                    code = 0
+                except BaseException:
+                    import traceback
+
+                    traceback.print_exc()
+                finally:
+                    sys.stdout.flush()
+                    sys.stderr.flush()
+                    os._exit(code)
+            _, status = os.waitpid(pid, 0)
+            out.seek(0)
+            err.seek(0)
+            answer = {
+                "returncode": os.waitstatus_to_exitcode(status),
+                "stdout": out.read().decode(errors="replace"),
+                "stderr": err.read().decode(errors="replace"),
+            }
+        print(json.dumps(answer), flush=True)
+
+
+def _run_cases(unzipped, cases):
+    """(returncode, stdout, stderr) per case, run one after the other by one --serve process."""
+    server = subprocess.Popen(
+        [sys.executable, __file__, "--serve", str(unzipped)], stdin=subprocess.PIPE, stdout=subprocess.PIPE, text=True
     )
-    return proc.returncode, proc.stdout, proc.stderr
+    outcomes = {}
+    try:
+        for case in cases:
+            server.stdin.write(case + "\n")
+            server.stdin.flush()
+            line = server.stdout.readline()
+            if not line:  # the server itself died: every case left fails with its exit code
+                code = server.wait()
+                outcomes.update({c: (code, "", f"--serve ended with {code}") for c in cases if c not in outcomes})
+                break
+            answer = json.loads(line)
+            outcomes[case] = (answer["returncode"], answer["stdout"], answer["stderr"])
+    finally:
+        server.stdin.close()
+        server.wait(timeout=CASE_SECONDS)
+    return outcomes
 
 
 @pytest.fixture(scope="module")
 def catalogue_outcomes(unzipped):
-    """All catalogue cases, each in its own child process, several at a time."""
+    """All catalogue cases, each in a process of its own (forks of a few warm servers, several at a
+    time); conftest.py keeps the catalogue's tests in one pytest-xdist worker, so this runs once."""
     from concurrent.futures import ThreadPoolExecutor
 
-    with ThreadPoolExecutor(max(2, min(8, os.cpu_count() or 2))) as pool:
-        futures = {case: pool.submit(_run_child, unzipped, case) for case in CATALOGUE}
-    return {case: future.result() for case, future in futures.items()}
+    servers = max(2, min(8, os.cpu_count() or 2))
+    cases = sorted(CATALOGUE)
+    shares = [cases[k::servers] for k in range(servers)]
+    with ThreadPoolExecutor(servers) as pool:
+        parts = list(pool.map(lambda share: _run_cases(unzipped, share), shares))
+    return {case: outcome for part in parts for case, outcome in part.items()}
 
 
 @pytest.mark.parametrize("case", sorted(CATALOGUE))
@@ -862,3 +928,5 @@ def test_two_threads_match_sequential_runs(unzipped, config):
 
 if __name__ == "__main__" and len(sys.argv) == 4 and sys.argv[1] == "--child":
     _child_main(sys.argv[2], sys.argv[3])
+if __name__ == "__main__" and len(sys.argv) == 3 and sys.argv[1] == "--serve":
+    _serve(sys.argv[2])

@@ -21,12 +21,9 @@ samples of the same run, bit for bit, and those between follow a run stepped at 
 from __future__ import annotations
 
 import math
-import os
-from pathlib import Path
 
 import numpy as np
 import pytest
-from fmpy import extract, read_model_description
 from fmpy.fmi3 import FMU3Slave
 
 H, STOP, DT = 1e-4, 0.2, 1e-5
@@ -34,16 +31,8 @@ GAP = 0.1  # the default obstacles at +-0.1 m
 
 
 @pytest.fixture(scope="module")
-def fmu3(fmu_path) -> Path:
-    path = Path(os.environ.get("PLATEIMPACT_FMU3", Path(fmu_path).parent / "fmi3" / "PlateImpact.fmu"))
-    assert path.is_file(), f"FMI 3.0 FMU not built: {path}"
-    return path
-
-
-@pytest.fixture(scope="module")
-def unzipped(fmu3, tmp_path_factory):
-    target = tmp_path_factory.mktemp("fmu3")
-    return extract(str(fmu3), str(target)), read_model_description(str(fmu3))
+def unzipped(unzipped3):  # conftest.py: the FMI 3.0 FMU, extracted
+    return unzipped3
 
 
 def base_at(t):

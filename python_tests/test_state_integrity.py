@@ -125,3 +125,32 @@ def test_a_state_the_model_refuses_leaves_the_instance_as_it_was(fmu_path, field
         saved_state(fresh)
         fresh.time = t
         assert outputs_after(fresh, blob) == good  # the same continuation as a fresh instance's
+
+
+@pytest.mark.parametrize("written_on, accepted", [("aarch64-linux", False), ("x86_64-windows", True)])
+def test_a_state_of_another_architecture_is_refused_by_name(fmu_path, written_on, accepted):
+    """The header names the platform that wrote a state (bytes 80..95). A state of another CPU
+    architecture is refused with a message naming both platforms (a run continued from it would not
+    be the run it came from: docs/theory.md §20); one of the same architecture on another OS
+    (x86_64-windows computes the bits x86_64-linux does) is taken and continues bit for bit. Here the
+    platform field is patched (checksum repaired); python_tests/test_experiments_platforms.py
+    restores a real linux state with the aarch64 and x86_64-windows binaries."""
+    from state_bytes import PLATFORM, with_checksum
+
+    with PlateRun(fmu_path, **TINY) as run:
+        blob = saved_state(run)
+        assert blob[PLATFORM].rstrip(b"\0") == b"x86_64-linux"  # this suite runs on x86-64 Linux
+        t = run.time
+        expected = [run.step(run_h(run), base=0.01)["corner_1"] for _ in range(3)]
+        field = written_on.encode().ljust(PLATFORM.stop - PLATFORM.start, b"\0")
+        other = with_checksum(blob[: PLATFORM.start] + field + blob[PLATFORM.stop :])
+        run.time = t
+        if accepted:
+            assert outputs_after(run, other) == expected
+            return
+        before = len(run.log)
+        with pytest.raises(FMICallException):
+            run.fmu.deSerializeFMUstate(other)
+        message = " ".join(m for _, _, m in run.log[before:])
+        assert "saved by the aarch64-linux binary" in message and "this is the x86_64-linux binary" in message, message
+        assert outputs_after(run, blob) == expected  # the instance is unharmed

@@ -168,3 +168,45 @@ def test_a_probe_count_out_of_range_is_refused(fmu_path):
     with pytest.raises(FMICallException):
         PlateImpactFMU(fmu_path, logger=lambda s, c, m: messages.append(m), probe_count=5)
     assert "0 <= probe_count <= 4" in " ".join(messages), messages
+
+
+def warnings_of(fmu_path, **parameters):
+    """The warnings (status 1) an initialization with these parameters logs."""
+    messages = []
+    with PlateImpactFMU(fmu_path, logger=lambda s, c, m: messages.append((s, m)), **parameters):
+        pass
+    return [m for s, m in messages if s == 1]
+
+
+def test_a_placed_probe_that_probe_count_leaves_off_is_warned_about(fmu_path):
+    """Issue 46: a probe placed while probe_count leaves it off read 0 without a word."""
+    said = warnings_of(fmu_path, probe_count=1, probe_1_x=0.6, probe_2_x=0.9, probe_2_y=0.2)
+    assert len(said) == 1, said
+    assert "probe_2 is placed at (0.9, 0.2) m but probe_count = 1 leaves it off" in said[0], said
+    assert "probe_count >= 2" in said[0], said
+    assert warnings_of(fmu_path, probe_count=2, probe_1_x=0.6, probe_2_x=0.9, probe_2_y=0.2) == []
+
+
+def test_a_counted_probe_on_the_clamp_is_warned_about(fmu_path):
+    """Issue 46: probe_count = 2 with probe 2 unplaced read the clamp's motion without a word."""
+    said = warnings_of(fmu_path, probe_count=2, probe_1_x=0.6)
+    assert len(said) == 1 and "probe_2 at (0, 0) m is counted (probe_count = 2)" in said[0], said
+    assert "clamp's motion" in said[0] and "never set" in said[0], said
+
+
+@pytest.mark.parametrize(
+    "parameters, named",
+    [
+        ({"contact_substeps": 4}, "contact_substeps = 4"),
+        ({"max_contact_substeps": 32}, "max_contact_substeps = 32"),
+        ({"mass": 2, "time_scheme": 2, "contact_substeps": 4}, "contact_substeps = 4"),
+    ],
+)
+def test_flow_settings_under_another_scheme_are_warned_about(fmu_path, parameters, named):
+    """Issue 46: contact_substeps and max_contact_substeps under newmark (or conserving) were ignored
+    without a word (a tolerance there was warned about already)."""
+    said = warnings_of(fmu_path, **parameters)
+    assert any(named in m and "time_scheme = flow" in m and "ignores it" in m for m in said), said
+    assert (
+        warnings_of(fmu_path, mass=2, time_scheme=3, **{k: v for k, v in parameters.items() if "substeps" in k}) == []
+    )

@@ -81,3 +81,75 @@ def test_fmu_page_points_at_a_fmusim_that_restores_states(fmu_path):
     section = section[: section.index("<h2>", 10)]
     assert "--initial-fmu-state-file" in section
     assert "patched" in section and "https://github.com/modelica/fmusim" in section, section[-800:]
+
+
+STAND_IN = """#!/bin/sh
+# A stand-in fmusim: records its command line, answers --version as {version!r}, and plays the part
+# the test gives it (fmusim 0.8's validate prints problems as `error:` lines and exits 0).
+echo "$@" >> "{log}"
+case "$1" in
+  --version) [ -n "{version}" ] && echo "fmusim {version}" && exit 0; echo "unknown option --version" >&2; exit 1;;
+  validate) printf '    Validating ZIP archive\\n{validate_stderr}' >&2; exit 0;;
+esac
+echo "error: stand-in does not simulate" >&2
+exit 1
+"""
+
+
+def stand_in(tmp_path, monkeypatch, version, validate_stderr=""):
+    fake, log = tmp_path / "fmusim", tmp_path / "calls.txt"
+    fake.write_text(STAND_IN.format(version=version, log=log, validate_stderr=validate_stderr))
+    fake.chmod(0o755)
+    monkeypatch.setenv("FMUSIM", str(fake))
+    return log
+
+
+def test_current_fmusim_command_lines(fmu_path, tmp_path, monkeypatch, capsys):
+    """fmusim 0.8 (the standalone one): `fmusim validate FMU` once, then `fmusim simulate` with
+    `--start-value NAME=VALUE` per experiment; a clean validate passes."""
+    log = stand_in(tmp_path, monkeypatch, "0.8.0")
+    code, out, _ = run([fmu_path, "--master", "fmusim", "--experiment", "fvs"], capsys)
+    calls = log.read_text().splitlines()
+    assert calls[0] == "--version" and calls[1] == f"validate {fmu_path}", calls
+    simulate = calls[2].split()
+    assert simulate[0] == "simulate" and "--interface-type" in simulate, calls[2]
+    assert "element=2" in simulate and "nx=20" in simulate, calls[2]  # NAME=VALUE, one argument
+    assert simulate[-1] == str(fmu_path)
+    assert "PASS fmusim-validate" in out, out
+    assert code == 1 and "FAIL fvs" in out and "error: stand-in does not simulate" in out, out
+
+
+def test_current_fmusim_validate_error_lines_fail(fmu_path, tmp_path, monkeypatch, capsys):
+    """fmusim 0.8's validate exits 0 while printing ZIP or schema problems as `error:` lines (in
+    colour on a terminal): the validator reads them as failures."""
+    log = stand_in(tmp_path, monkeypatch, "0.8.0", validate_stderr="\\033[1;91merror\\033[0m: Unexpected file x.txt\\n")
+    code, out, _ = run([fmu_path, "--master", "fmusim", "--experiment", "smoke"], capsys)
+    assert "validate" in log.read_text()
+    line = next(x for x in out.splitlines() if x.startswith("FAIL fmusim-validate"))
+    assert "1 error line(s): error: Unexpected file x.txt" in line, line
+    assert code == 1
+
+
+def test_legacy_fmusim_command_lines(fmu_path, tmp_path, monkeypatch, capsys):
+    """Reference-FMUs' fmusim v0.0.39 (no --version): one command line, `--start-value NAME VALUE`,
+    no validate."""
+    log = stand_in(tmp_path, monkeypatch, "")
+    code, out, _ = run([fmu_path, "--master", "fmusim", "--experiment", "fvs"], capsys)
+    calls = log.read_text().splitlines()
+    assert calls[0] == "--version" and len(calls) == 2, calls
+    simulate = calls[1].split()
+    assert simulate[0] == "--interface-type" and not any(c.split()[0] == "validate" for c in calls), calls
+    k = simulate.index("element")
+    assert simulate[k - 1] == "--start-value" and simulate[k + 1] == "2", calls[1]
+    assert "fmusim-validate" not in out and code == 1
+
+
+def test_current_fmusim_end_to_end(fmu_path):
+    """The real fmusim 0.8 where it is found: its validate is clean and it replays the smoke and
+    state experiments within their tolerances."""
+    fmusim = validate.find_fmusim()
+    if fmusim is None or not validate.is_current(validate.fmusim_version(fmusim)):
+        pytest.skip("no fmusim >= 0.8 found ($FMUSIM, PATH, .deps/fmusim/bin/fmusim)")
+    _, _, results = validate.validate(fmu_path, ("fmusim",), ["smoke", "forced_state"], log=lambda _: None)
+    assert [r.experiment for r in results] == ["fmusim-validate", "smoke", "forced_state"]
+    assert all(r.passed for r in results), [validate.format_result(r) for r in results if not r.passed]

@@ -56,6 +56,7 @@ struct PlateSimulation::Impl {
     bool onGrid = true;
     PlateOutputs before;
     ResourceEstimate resources;  // made before the assembly
+    InputSampler sampler;  // setInputSampler
 };
 
 PlateSimulation::PlateSimulation(const PlateParameters& p, double baseDisplacement0, double loadAtStart,
@@ -182,7 +183,9 @@ bool PlateSimulation::stepThrough(const StepPlan& plan, const InputSignal& base,
         // The last step of one that ends between grid points: keep the grid point before it.
         if (k == plan.steps && !plan.endsOnGrid) s.before = gridOutputs(true, FieldOutputs::Plate);
         const double t = plan.offset + k * dt;
-        s.scheme->step(base.at(t), load.at(t));
+        double z = base.at(t), p = load.at(t);
+        if (s.sampler) s.sampler(t, z, p);
+        s.scheme->step(z, p);
         s.trackRoot();
         if (k == plan.steps && !plan.endsOnGrid) break;
         if (!stopAfter.wanted) continue;
@@ -220,6 +223,8 @@ StopWhen<Condition> stopWhen(Condition c) {
 }
 
 }  // namespace
+
+void PlateSimulation::setInputSampler(InputSampler sampler) { impl_->sampler = std::move(sampler); }
 
 void PlateSimulation::communicate(const StepPlan& plan, const InputSignal& base, const InputSignal& load,
                                   const GridPointObserver& observer) {

@@ -73,6 +73,11 @@ public:
     // ended early.
     bool communicateUntilContactChange(const StepPlan& plan, const InputSignal& base, const InputSignal& load,
                                        const GridPointObserver& observer = {});
+    // Called before each internal step with s (the grid time it steps to, from the communication
+    // time, as the signals') and the base and load the signals give there, which it may replace
+    // (FMI 3.0 intermediate update: the master's inputs at that grid point). Empty: the signals.
+    using InputSampler = std::function<void(double s, double& base, double& load)>;
+    void setInputSampler(InputSampler sampler);
 
     // At the communication time: on the grid the scheme's values; between grid points the linear
     // interpolation of the two neighbours (counts: the earlier one). `port` adds the port's fields.

@@ -8,6 +8,7 @@
 #include <memory>
 #include <new>
 #include <string>
+#include <utility>
 
 #include "core/Model.h"
 #include "binding/PlateArrays.h"
@@ -73,7 +74,7 @@ Parameters outside the min/max of the table below (poisson_ratio and the obstacl
 bound on dt; a singular mass with modes &gt; 0, beta &lt; 0.25 or without massless directions at every contact
 vertex; an instance whose estimated memory exceeds memory_limit; inputs outside their min/max, NaN or Inf; a
 clamp driven past an obstacle; a communication step shorter than 1e-9 dt; calls outside the states FMI
-{fmi2:2.0}{fmi3:3.0} allows; FMU states of another build or damaged (XXH64 checksum); time_scheme = conserving
+{fmi2:2.0}{fmi3:3.0} allows; FMU states of another build, of another CPU architecture (both platforms named) or damaged (XXH64 checksum); time_scheme = conserving
 with mass = consistent or restitution &gt; 0. With the clamp carried (base_drive = force: an armature inside the
 FMU; tlm: the end of a transmission line to a partner FMU): armature_mass &le; 0, tlm_impedance &le; 0, a singular
 mass, a second input driving the clamp (a motion input with force or tlm, a drive_force with a motion drive),
@@ -110,6 +111,19 @@ public:
     void getArray(const fmu::ArrayOutput& a, double* out, std::size_t n) const override {
         if (!simulation_) throw fmu::ModelError("internal error: no simulation to read an array from");
         getPlateArray(*simulation_, a, out, n);
+    }
+    // FMI 3.0 intermediate update with inputs: the clamp's height and the load, set by the master at
+    // each internal grid point, are the values the step to that point takes (no reconstruction).
+    bool takesIntermediateValue(const fmu::Variable& v) const override {
+        return v.vr == kVrBaseDisplacement || v.vr == kVrLoad;
+    }
+    void setIntermediate(const fmu::Variable& v, double x) override {
+        if (v.vr == kVrBaseDisplacement && values_.baseDrive != BaseDrive::Displacement)
+            throw fmu::ModelError(
+                std::string("base_displacement set in the intermediate update callback, but base_drive "
+                            "= ") +
+                driveName() + " drives the clamp: only the drive's own input moves it");
+        (v.vr == kVrLoad ? sampledLoad_ : sampledBase_) = {true, x};
     }
     bool hasEvents() const override { return true; }
     bool providesIntermediateUpdate() const override { return true; }
@@ -164,6 +178,7 @@ public:
         warnOfCoarseStep();
         driveSet_ = interpolationWarned_ = errorWarned_ = cappedWarned_ = false;
         warnOfUnusedTolerance();
+        warnOfProbes();
     }
     void terminate() override {
         // A drive the master never set: the clamp stayed where it started (a CSV column missing or
@@ -344,14 +359,44 @@ private:
              " (fewer than 20 steps per period): the outputs resolve the first mode only roughly; take dt <= " +
              format("%.4g s (T1/20) for accurate results", period / 20.0, 0.0));
     }
-    // A tolerance only the flow law uses (docs/theory.md §22), set for another scheme: said at build.
+    // A tolerance or sub-step count only the flow law uses (docs/theory.md §21–22), set for another
+    // scheme: said at build.
     void warnOfUnusedTolerance() {
         const plate::PlateParameters& p = values_.parameters;
-        if (p.tolerance > 0.0 && p.timeScheme != plate::TimeScheme::Flow)
+        if (p.timeScheme == plate::TimeScheme::Flow) return;
+        if (p.tolerance > 0.0)
             warn(
                 format("tolerance = %g m is used by time_scheme = flow only (3): this run's scheme ignores it, and "
                        "error_estimate stays 0",
                        p.tolerance, 0.0));
+        const plate::PlateParameters defaults;
+        if (p.contactSubsteps != defaults.contactSubsteps)
+            warn(format("contact_substeps = %g is used by time_scheme = flow only (3): this run's scheme ignores it",
+                        double(p.contactSubsteps), 0.0));
+        if (p.maxContactSubsteps != defaults.maxContactSubsteps)
+            warn(
+                format("max_contact_substeps = %g is used by time_scheme = flow with a tolerance only: this run's "
+                       "scheme ignores it",
+                       double(p.maxContactSubsteps), 0.0));
+    }
+    // Probes (docs/theory.md §23) that are not what they seem: one placed but not counted (it reads 0),
+    // one counted but on the clamped edge x = 0 (unplaced: the default (0, 0)), which moves with the clamp.
+    void warnOfProbes() {
+        const plate::PlateParameters& p = values_.parameters;
+        for (int k = 0; k < plate::kProbeCount; ++k) {
+            const double x = p.probeX[std::size_t(k)], y = p.probeY[std::size_t(k)];
+            const std::string name = "probe_" + std::to_string(k + 1);
+            if (k >= p.probeCount && (x != 0.0 || y != 0.0))
+                warn(name + format(" is placed at (%g, %g) m", x, y) +
+                     format(" but probe_count = %g leaves it off: it reads 0; set probe_count >= %g to compute it",
+                            double(p.probeCount), double(k + 1)));
+            if (k < p.probeCount && x == 0.0)
+                warn(name +
+                     format(" at (%g, %g) m is counted (probe_count = %g) but lies on the clamped edge x = 0", x, y,
+                            double(p.probeCount)) +
+                     ": it reads the clamp's motion; place it with " + name + "_x > 0 (" + name +
+                     (y == 0.0 ? "_x and _y were never set)" : "_x is 0)"));
+        }
     }
     // tolerance > 0 (docs/theory.md §22): the contact steps' accumulated error estimate passing the
     // tolerance, and a contact step the cap bounded, are each said once per build.
@@ -449,6 +494,18 @@ private:
                 return returnRequested_;
             };
         }
+        // FMI 3.0 intermediate update with inputs: the master's values at each grid point, where it set them.
+        plate::PlateSimulation::InputSampler sampler;
+        if (intermediateInputs) {
+            const double now = simulation_->time();
+            sampler = [this, now](double s, double& z, double& p) {
+                sampledBase_ = sampledLoad_ = {false, 0.0};
+                intermediateInputs(now + s);
+                if (sampledBase_.first) z = sampledBase_.second;
+                if (sampledLoad_.first) p = sampledLoad_.second;
+            };
+        }
+        simulation_->setInputSampler(std::move(sampler));
         if (!stopAtContactChange_ || carried()) {  // a carried clamp: no early return (§18)
             simulation_->communicate(plan, base, load, observer);
             return plan.span;
@@ -492,6 +549,8 @@ private:
     bool endedAtEvent_ = false;  // the last step of doStepUntilEvent ended at a contact change
     bool returnRequested_ = false;  // ... or where the master's intermediate update asked
     double returnAt_ = HUGE_VAL;  // the earliest early return time the master asked for in this step
+    // Inputs the master set in the intermediate update callback for the grid point ahead (set, value).
+    std::pair<bool, double> sampledBase_{false, 0.0}, sampledLoad_{false, 0.0};
 };
 
 }  // namespace

@@ -133,6 +133,23 @@ void Instance::attachTrace() {
     model_->warn = [this](const std::string& message) {
         log(Status::Warning, LogStatusWarning, "%s: %s", function_, message.c_str());
     };
+    if (intermediateInputs_) {
+        // As below, with the inputs that take intermediate values settable while it runs.
+        model_->intermediateInputs = [this](double time) {
+            const State running = state_;
+            const char* function = function_;
+            state_ = IntermediateUpdateMode;
+            inputsRequested_ = true;
+            intermediateInputs_(startTime_ + time);
+            inputsRequested_ = false;
+            const bool failed = state_ & (Error | Fatal);
+            function_ = function;
+            if (failed) throw std::runtime_error("a call of the master inside its intermediate update callback failed");
+            state_ = running;
+        };
+    } else {
+        model_->intermediateInputs = nullptr;
+    }
     if (!intermediateUpdate_) {
         model_->intermediateUpdate = nullptr;
         return;
@@ -154,6 +171,11 @@ void Instance::attachTrace() {
 
 void Instance::setIntermediateUpdate(std::function<double(double)> callback) {
     intermediateUpdate_ = std::move(callback);
+    attachTrace();
+}
+
+void Instance::setIntermediateInputs(std::function<void(double)> callback) {
+    intermediateInputs_ = std::move(callback);
     attachTrace();
 }
 
@@ -280,9 +302,20 @@ Status Instance::getValues(VariableType type, const ValueReference vr[], std::si
 Status Instance::setValues(VariableType type, const ValueReference vr[], std::size_t nvr, const double value[]) {
     if (nvr == 0) return Status::OK;
     if (!vr || !value) return fail("arguments vr[] and value[] must not be NULL");
+    const bool intermediate = state_ == IntermediateUpdateMode;
     for (std::size_t i = 0; i < nvr; ++i) {
         const Variable* variable = variableFor(vr[i], type);
         if (!variable || !settable(*variable)) return Status::Error;
+        if (intermediate && !(inputsRequested_ && model_->takesIntermediateValue(*variable))) {
+            std::string inputs;
+            for (const Variable& v : model_->variables())
+                if (model_->takesIntermediateValue(v)) inputs += (inputs.empty() ? "" : ", ") + std::string(v.name);
+            return fail(
+                "%s (vr %u) cannot be set inside the intermediate update callback%s (settable there: %s, and only "
+                "when the FMU asks, intermediateVariableSetRequested = true)",
+                variable->name, variable->vr, inputsRequested_ ? "" : " now: the FMU did not request inputs",
+                inputs.empty() ? "nothing" : inputs.c_str());
+        }
         if (!std::isfinite(value[i]))
             return fail("%s (vr %u) = %g rejected: NaN and Inf are not allowed", variable->name, variable->vr,
                         value[i]);
@@ -294,6 +327,10 @@ Status Instance::setValues(VariableType type, const ValueReference vr[], std::si
             !(std::floor(value[i]) == value[i] && variable->enumeration->contains(int(value[i]))))
             return fail("%s = %.17g is none of its items (%s)", variable->name, value[i],
                         variable->enumeration->itemList().c_str());
+        if (intermediate) {  // the value at the grid point the model is about to step to
+            model_->setIntermediate(*variable, value[i]);
+            continue;
+        }
         model_->set(*variable, value[i]);
         // Before initialization ends, what was built (an output was read) came from the old value.
         if (variable->shapesInitialState && (state_ & (Instantiated | ConfigurationMode | InitializationMode)) &&
@@ -397,6 +434,8 @@ Status Instance::deserializeState(const Byte serialized[], std::size_t size, Sta
         decoded = deserialize(serialized, size, modelGuid(), *model_);
     } catch (const CorruptState& e) {
         return fail("corrupt serialized state: %s", e.what());
+    } catch (const ForeignState& e) {
+        return fail("serialized state of another platform refused: %s", e.what());
     }
     if (*state) {
         *asSnapshot(*state) = std::move(decoded);

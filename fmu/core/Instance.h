@@ -82,6 +82,10 @@ public:
     // grid point (the instance in IntermediateUpdateMode meanwhile) and returns the early return
     // time it asked for (HUGE_VAL: none). Kept across reset().
     void setIntermediateUpdate(std::function<double(double)> callback);
+    // Intermediate update with inputs (FMI 3.0): `callback(time)` runs the master's callback before
+    // the internal step to `time`, asking it to set the inputs that take intermediate values
+    // (Model::takesIntermediateValue); only those, and only then, may be set. Kept across reset().
+    void setIntermediateInputs(std::function<void(double)> callback);
     // Arrays (FMI 3.0): the values of an array output of the model (n of them).
     Status getArray(const ArrayOutput& array, double value[], std::size_t n);
     // Number of values of an array output: the product of its extents' values now.
@@ -120,6 +124,8 @@ private:
     double startTime_ = 0.0;
     std::unique_ptr<Model> model_;
     std::function<double(double)> intermediateUpdate_;
+    std::function<void(double)> intermediateInputs_;
+    bool inputsRequested_ = false;  // inside intermediateInputs_: the inputs may be set
 };
 
 template <class Body>

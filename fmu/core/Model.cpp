@@ -70,6 +70,10 @@ void Model::setInputDerivative(const Variable& v, int, double) {
     throw ModelError(std::string(v.name) + " takes no input derivatives");
 }
 
+void Model::setIntermediate(const Variable& v, double) {
+    throw ModelError(std::string(v.name) + " takes no intermediate values");
+}
+
 double Model::getOutputDerivative(const Variable& v, int) const {
     throw ModelError(std::string(v.name) + " has no output derivatives");
 }

@@ -191,6 +191,13 @@ public:
     virtual void saveState(std::vector<double>& out) const = 0;
     virtual void restoreState(const double*& in, const double* end) = 0;
 
+    // FMI 3.0 intermediate update with inputs: the inputs a master may set inside its callback, at
+    // the grid point the model is about to step to (FMI 3.0 intermediateUpdate="true" on an input),
+    // and such a value (the instance has checked type, range and that the model asked for it).
+    // Default: none.
+    virtual bool takesIntermediateValue(const Variable&) const { return false; }
+    virtual void setIntermediate(const Variable& v, double value);
+
     // Where the model's trace messages go (the instance's logAll category).
     std::function<void(const std::string&)> trace = [](const std::string&) {};
     // Where the model's information for the user goes (the instance's logInfo category): what
@@ -204,6 +211,10 @@ public:
     // of that point); it returns the time at which the master wants the step to end (HUGE_VAL:
     // none), which a step that may return early honours at the first grid point not before it.
     std::function<double(double time)> intermediateUpdate;
+    // FMI 3.0 intermediate update with inputs, when the master gave the callback and required an
+    // input that takesIntermediateValue: the model calls it before each internal step with the grid
+    // time it steps to; the master sets those inputs there (setIntermediate), the step uses them.
+    std::function<void(double time)> intermediateInputs;
 
 private:
     std::vector<std::pair<ValueReference, double>> ownStructuralValues_;  // those set so far

@@ -1,5 +1,6 @@
 #include "core/StateFormat.h"
 
+#include <algorithm>
 #include <cmath>
 #include <cstring>
 #include <string>
@@ -21,17 +22,24 @@ namespace {
 // starts (inputs are samples at the times the master set them).
 // Version 7: the root stress's peak since t = 0 and the stress and probe outputs of the grid point
 // before an off-grid communication time (docs/theory.md §23).
-constexpr std::uint32_t kFormatVersion = 7;
+// Version 8: the platform of the binary that wrote it (a state of another CPU architecture is refused
+// by name instead of run wrong; issue 46).
+constexpr std::uint32_t kFormatVersion = 8;
 constexpr std::size_t kGuidField = 48;
 constexpr std::size_t kChecksumOffset = 8 + 4 + 4 + kGuidField + 8;
-constexpr std::size_t kHeaderBytes = kChecksumOffset + 8;
+constexpr std::size_t kPlatformOffset = kChecksumOffset + 8;
+constexpr std::size_t kPlatformField = 16;
+constexpr std::size_t kHeaderBytes = kPlatformOffset + kPlatformField;
+
+// The architecture part of a platform name ("x86_64" of "x86_64-windows").
+std::string architecture(const std::string& platform) { return platform.substr(0, platform.find('-')); }
 
 // XXH64 of every byte of a serialized state but the checksum field itself.
 std::uint64_t checksum(const Byte* bytes, std::size_t size) {
     XXH64_state_t state;
     XXH64_reset(&state, 0);
     XXH64_update(&state, bytes, kChecksumOffset);
-    XXH64_update(&state, bytes + kHeaderBytes, size - kHeaderBytes);
+    XXH64_update(&state, bytes + kChecksumOffset + 8, size - kChecksumOffset - 8);  // the platform too
     return XXH64_digest(&state);
 }
 
@@ -79,6 +87,26 @@ Snapshot* asSnapshot(StateHandle state) {
 
 bool isSettable(const Variable& v) { return v.causality != Causality::Output; }
 
+const char* buildPlatform() {
+#if defined(__x86_64__) || defined(_M_X64)
+#define PLATEIMPACT_ARCH "x86_64"
+#elif defined(__aarch64__) || defined(_M_ARM64)
+#define PLATEIMPACT_ARCH "aarch64"
+#elif defined(__i386__) || defined(_M_IX86)
+#define PLATEIMPACT_ARCH "x86"
+#else
+#define PLATEIMPACT_ARCH "unknown"
+#endif
+#if defined(_WIN32)
+    return PLATEIMPACT_ARCH "-windows";
+#elif defined(__APPLE__)
+    return PLATEIMPACT_ARCH "-darwin";
+#else
+    return PLATEIMPACT_ARCH "-linux";
+#endif
+#undef PLATEIMPACT_ARCH
+}
+
 std::size_t serializedSize(const Snapshot& s) {
     return kHeaderBytes + sizeof(double) * (2 + s.values.size() + s.modelState.size());
 }
@@ -96,6 +124,8 @@ void serialize(const Snapshot& s, const Model& model, const char* guid, Byte* ou
     std::memcpy(out + 12, &guidLength, 4);
     std::memcpy(out + 16, guid, guidLength);
     std::memcpy(out + 16 + kGuidField, &count, 8);
+    static_assert(sizeof("aarch64-windows") <= kPlatformField, "platform names fit their field");
+    std::memcpy(out + kPlatformOffset, buildPlatform(), std::strlen(buildPlatform()));
     std::memcpy(out + kHeaderBytes, data.data(), sizeof(double) * data.size());
     const std::uint64_t sum = checksum(out, size);
     std::memcpy(out + kChecksumOffset, &sum, 8);
@@ -131,6 +161,16 @@ Snapshot deserialize(const Byte* bytes, std::size_t size, const char* guid, cons
     std::memcpy(&stored, bytes + kChecksumOffset, 8);
     if (stored != checksum(bytes, size))
         throw CorruptState("checksum mismatch (XXH64 of the state's bytes): the state is damaged");
+    // Sound, and now its platform is known for sure: another CPU architecture computes other bits
+    // (docs/theory.md §20), and a run continued from its state would not be the run it came from.
+    const char* field = reinterpret_cast<const char*>(bytes + kPlatformOffset);
+    const std::string platform(field, std::find(field, field + kPlatformField, '\0'));
+    if (architecture(platform) != architecture(buildPlatform()))
+        throw ForeignState("the state was saved by the " + platform + " binary and this is the " + buildPlatform() +
+                           " binary: a state travels only between binaries of one CPU architecture, which compute "
+                           "the same bits (x86_64-linux and x86_64-windows do; docs/theory.md §20); restore it with "
+                           "an " +
+                           architecture(platform) + " binary, or start this one from its parameters");
     std::vector<double> data(static_cast<std::size_t>(count));
     if (count > 0) std::memcpy(data.data(), bytes + kHeaderBytes, payloadBytes);
 

@@ -31,7 +31,20 @@ public:
     using std::runtime_error::runtime_error;
 };
 
-// Serialized form (native byte order, this FMU's own platform only):
+// A sound state written by a binary of another CPU architecture: refused by name (both platforms),
+// since a run continued from it would not be the run it came from (docs/theory.md §20).
+class ForeignState : public std::runtime_error {
+public:
+    using std::runtime_error::runtime_error;
+};
+
+// The platform this binary was built for, as FMI 3.0 names binaries folders ("x86_64-linux",
+// "x86_64-windows", "aarch64-linux", ...), and its CPU architecture (the part before the dash):
+// what decides the arithmetic (docs/theory.md §20). States travel between binaries of one
+// architecture (x86_64-linux and x86_64-windows compute the same bits) and are refused across them.
+const char* buildPlatform();
+
+// Serialized form (native byte order; little-endian on every platform this FMU is built for):
 //   bytes  0..7   magic: the model's ModelInfo::stateMagic (8 characters)
 //   bytes  8..11  uint32 format version
 //   bytes 12..15  uint32 length of the GUID
@@ -39,12 +52,14 @@ public:
 //   bytes 64..71  uint64 number n of doubles that follow
 //   bytes 72..79  uint64 XXH64 checksum of all the other bytes (verified before any value is
 //                 decoded)
-//   bytes 80..    n doubles: the state-machine state, the start time, the values of the
+//   bytes 80..95  the platform of the binary that wrote it (buildPlatform(), NUL padded)
+//   bytes 96..    n doubles: the state-machine state, the start time, the values of the
 //                 settable variables in table order, then the model's state.
 std::size_t serializedSize(const Snapshot& snapshot);
 void serialize(const Snapshot& snapshot, const Model& model, const char* guid, Byte* out, std::size_t size);
 // Throws CorruptState naming what is wrong (magic, version, GUID, size, checksum, a value out
-// of range), in that order.
+// of range), in that order; ForeignState (after the checksum, before any value) when another CPU
+// architecture wrote it, naming both platforms.
 Snapshot deserialize(const Byte* bytes, std::size_t size, const char* guid, const Model& model);
 
 }  // namespace fmu

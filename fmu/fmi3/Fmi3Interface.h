@@ -29,7 +29,10 @@ inline const char* typeName(VariableType type) {
 constexpr State StepMode = StepComplete;
 constexpr unsigned kGetStates = Instantiated | InitializationMode | ConfigurationMode | EventMode | StepMode |
                                 IntermediateUpdateMode | Terminated | Error;
-constexpr unsigned kSetStates = Instantiated | ConfigurationMode | InitializationMode | EventMode | StepMode;
+// IntermediateUpdateMode: the inputs that take intermediate values, when the FMU requested them
+// (Instance::setValues checks).
+constexpr unsigned kSetStates =
+    Instantiated | ConfigurationMode | InitializationMode | EventMode | StepMode | IntermediateUpdateMode;
 constexpr unsigned kFMUStateStates = Instantiated | InitializationMode | EventMode | StepMode | Terminated | Error;
 constexpr unsigned kTerminateStates = EventMode | StepMode;
 constexpr unsigned kResetStates = Instantiated | InitializationMode | StepComplete | StepFailed | StepCanceled |

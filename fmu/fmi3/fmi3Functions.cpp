@@ -274,19 +274,41 @@ fmi3Instance fmi3InstantiateCoSimulation(fmi3String instanceName, fmi3String ins
         self->instance->log(Status::OK, fmu::LogAll, "%s: instance \"%s\" of %s (instantiationToken %s)", f,
                             instanceName, self->instance->model().info().modelName, fmu::modelGuid());
         // Intermediate update (providesIntermediateUpdate): the outputs, the arrays and time may be
-        // read inside the callback; nothing may be set (intermediateVariableSetRequested = false).
+        // read inside the callback after each internal step; the inputs that take intermediate values
+        // (intermediateUpdate="true": base_displacement, load), when required, are asked for before
+        // each internal step (intermediateVariableSetRequested = true) and used at that grid point.
+        const fmu::Model& model = self->instance->model();
+        bool inputsRequired = false;
         for (size_t k = 0; k < nRequiredIntermediateVariables; ++k) {
             const fmi3ValueReference vr = requiredIntermediateVariables ? requiredIntermediateVariables[k] : 0;
-            const fmu::Variable* v = self->instance->model().find(vr);
-            const bool readable = vr == kTimeValueReference || (v && v->causality == fmu::Causality::Output) ||
-                                  self->instance->model().findArray(vr);
-            if (!requiredIntermediateVariables || !readable) {
-                fmu::logWithoutInstance(logger,
-                                        "%s: required intermediate variable (vr %u) is not an output of this FMU "
-                                        "(the intermediate update variables are the outputs, the arrays and time)",
-                                        f, vr);
+            const fmu::Variable* v = model.find(vr);
+            const bool readable =
+                vr == kTimeValueReference || (v && v->causality == fmu::Causality::Output) || model.findArray(vr);
+            const bool input = v && v->causality == fmu::Causality::Input && model.takesIntermediateValue(*v);
+            inputsRequired = inputsRequired || input;
+            if (!requiredIntermediateVariables || !(readable || input)) {
+                std::string inputs;
+                for (const fmu::Variable& w : model.variables())
+                    if (model.takesIntermediateValue(w)) inputs += std::string(inputs.empty() ? "" : ", ") + w.name;
+                fmu::logWithoutInstance(
+                    logger,
+                    "%s: required intermediate variable %s (vr %u) has no intermediateUpdate=\"true\" "
+                    "(the intermediate update variables are the outputs, the arrays, time and "
+                    "the inputs %s)",
+                    f, v ? v->name : "(unknown)", vr, inputs.c_str());
                 return nullptr;
             }
+        }
+        if (intermediateUpdate && inputsRequired) {
+            Fmi3Instance* raw = self.get();
+            self->instance->setIntermediateInputs([raw](double time) {
+                fmi3Boolean requested = fmi3False;
+                fmi3Float64 at = time;
+                raw->intermediateUpdate(raw->environment, time, /*intermediateVariableSetRequested=*/fmi3True,
+                                        /*intermediateVariableGetAllowed=*/fmi3False,
+                                        /*intermediateStepFinished=*/fmi3False, /*canReturnEarly=*/fmi3False,
+                                        &requested, &at);
+            });
         }
         if (intermediateUpdate) {
             Fmi3Instance* raw = self.get();

@@ -11,7 +11,7 @@
 The studies and report writers of docs/ are not part of it: they are in the repository's tools/.
 """
 
-from .driver import PlateImpactFMU, signal, unzipped
+from .driver import FMUError, PlateImpactFMU, signal, unzipped
 from .scenes import default_base, sine
 
-__all__ = ["PlateImpactFMU", "default_base", "signal", "sine", "unzipped"]
+__all__ = ["FMUError", "PlateImpactFMU", "default_base", "signal", "sine", "unzipped"]

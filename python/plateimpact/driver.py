@@ -11,16 +11,20 @@ read the outputs every communication step.
         print(out["corner_1"])
 
 The FMU's log messages (status, category, message) are kept in `plate.log`; pass
-`logger=callable(status, category, message)` to see them as they come.
+`logger=callable(status, category, message)` to see them as they come. A call the FMU refuses
+raises `FMUError` (an fmpy FMICallException) whose text carries the FMU's own error messages: what
+was wrong and what is allowed.
 """
 
 from __future__ import annotations
 
 import atexit
+import functools
 import re
 import shutil
 
 from fmpy import calloc, extract, free, read_model_description
+from fmpy.fmi1 import FMICallException
 from fmpy.fmi2 import (
     FMU2Slave,
     fmi2CallbackAllocateMemoryTYPE,
@@ -30,6 +34,34 @@ from fmpy.fmi2 import (
 )
 
 from .fmufile import fmu_file
+
+
+class FMUError(FMICallException):
+    """An FMI call the FMU refused, with the error messages it logged for it (the value, the
+    variable and the allowed range): fmpy's own exception says only "failed with status 3"."""
+
+    def __init__(self, error: FMICallException, messages):
+        super().__init__(error.function, error.status)
+        self.messages = list(messages)
+        if self.messages:
+            self.args = (f"{self.args[0]} The FMU says: " + " | ".join(self.messages),)
+
+
+def _explained(method):
+    """Runs a method of PlateImpactFMU; a refused call raises FMUError with what the FMU logged."""
+
+    @functools.wraps(method)
+    def run(self, *args, **kwargs):
+        before = len(self.log)
+        try:
+            return method(self, *args, **kwargs)
+        except FMUError:
+            raise
+        except FMICallException as e:
+            raise FMUError(e, [m for s, _, m in self.log[before:] if s >= 3]) from e
+
+    return run
+
 
 ITEMS = re.compile(r"\((\d+ = \w+(?:, \d+ = \w+)*)\)$")
 
@@ -134,6 +166,7 @@ class PlateImpactFMU:
         """The messages logged with status fmi2Error or worse."""
         return [m for s, _, m in self.log if s >= 3]
 
+    @_explained
     def initialize(self, parameters, base0=0.0, load0=0.0):
         self.fmu.setupExperiment(startTime=self.time)
         self.fmu.enterInitializationMode()
@@ -145,6 +178,7 @@ class PlateImpactFMU:
         self._initialized = True
 
     # -- variables by name ------------------------------------------------------------------
+    @_explained
     def set(self, name, value):
         v = self.vars[name]
         if v.type == "Real":
@@ -161,6 +195,7 @@ class PlateImpactFMU:
         else:
             raise TypeError(f"{name}: unsupported type {v.type}")
 
+    @_explained
     def outputs(self):
         real = [(n, v) for n, v in self._out_refs if v.type == "Real"]
         ints = [(n, v) for n, v in self._out_refs if v.type == "Integer"]
@@ -170,6 +205,7 @@ class PlateImpactFMU:
         return out
 
     # -- time stepping ----------------------------------------------------------------------
+    @_explained
     def step(self, h, base=None, load=None, derivatives=True):
         """Advance by h from self.time; the outputs after the step. base/load: a value or
         (value, first derivative, second derivative) at the step start; None keeps the input

@@ -7,7 +7,10 @@ Reads extra/org.fmi-standard.fmi-ls-ref/fmi-ls-manifest.xml of any FMU (FMI 2.0 
 checks each listed file's SHA3-256 checksum where the manifest gives one, and replays every
 experiment it can run (role experiment..., type application/x-plateimpact-experiment+xml: see
 documentation/fmi-ls-ref.html of the FMU) through fmpy, and through fmusim when it is found
-(on the PATH, at $FMUSIM, or at .deps/fmusim/bin/fmusim of the repository). Prints pass/fail per
+(on the PATH, at $FMUSIM, or at .deps/fmusim/bin/fmusim of the repository): the standalone
+fmusim (>= 0.8, https://github.com/modelica/fmusim: `fmusim simulate ...`, and `fmusim validate`
+of the FMU file, whose `error:` lines fail the validation although it exits 0 on some of them) or
+Reference-FMUs' fmusim v0.0.39 (its one command line), told apart by `fmusim --version`. Prints pass/fail per
 output with its deviation and tolerance; exit status 0 when everything passed, 1 when something
 failed, 2 when the FMU cannot be validated: missing, no manifest, no binary for this platform
 (a source-only FMU: build it first), an unknown --experiment, or --master fmusim without fmusim.
@@ -18,6 +21,7 @@ from __future__ import annotations
 import argparse
 import hashlib
 import os
+import re
 import shutil
 import signal
 import subprocess
@@ -238,9 +242,49 @@ def check_runnable(fmu: Path, md):
 
 
 FMUSIM_HINT = (
-    "a fmusim on the PATH, at $FMUSIM or at .deps/fmusim/bin/fmusim (scripts/build-fmusim.sh builds "
-    "Reference-FMUs v0.0.39's with its FreeFMUState fix); or --master fmpy"
+    "a fmusim on the PATH, at $FMUSIM or at .deps/fmusim/bin/fmusim (the standalone fmusim >= 0.8, "
+    "https://github.com/modelica/fmusim, or scripts/build-fmusim.sh's Reference-FMUs v0.0.39 with its "
+    "FreeFMUState fix); or --master fmpy"
 )
+
+# The first fmusim with subcommands (simulate, validate): the standalone one, modelica/fmusim 0.8.
+CURRENT_FMUSIM = (0, 8)
+
+
+def fmusim_version(fmusim: str):
+    """(major, minor, patch) that `fmusim --version` prints ("fmusim 0.8.0"), or None when it prints
+    no version (Reference-FMUs' v0.0.39 has no --version and is taken for what it is)."""
+    try:
+        proc = subprocess.run([fmusim, "--version"], capture_output=True, text=True, timeout=30)
+    except (OSError, subprocess.TimeoutExpired):
+        return None
+    match = re.search(r"fmusim\s+v?(\d+)\.(\d+)\.(\d+)", proc.stdout + proc.stderr)
+    return tuple(int(x) for x in match.groups()) if match and proc.returncode == 0 else None
+
+
+def is_current(version) -> bool:
+    """Whether a fmusim of that version speaks the standalone fmusim's command lines."""
+    return version is not None and version[:2] >= CURRENT_FMUSIM
+
+
+def fmusim_errors(stderr: str):
+    """The `error:` lines of a fmusim's stderr (colours stripped): fmusim 0.8's `validate` prints its
+    ZIP, schema and buildDescription problems so and still exits 0."""
+    plain = re.sub(r"\x1b\[[0-9;]*m", "", stderr)
+    return [line.strip() for line in plain.splitlines() if line.strip().startswith("error:")]
+
+
+def run_fmusim_validate(fmusim: str, fmu: Path) -> ExperimentResult:
+    """`fmusim validate FMU` (fmusim >= 0.8): its checks of the archive, the model and the build
+    description, as one result: failed on a non-zero exit or any `error:` line."""
+    res = ExperimentResult("fmusim-validate", "fmusim", "the FMU file: ZIP, schemas, structure")
+    proc = subprocess.run([fmusim, "validate", str(fmu)], capture_output=True, text=True, timeout=600)
+    errors = fmusim_errors(proc.stderr)
+    if proc.returncode != 0 or errors:
+        res.error = f"fmusim validate exited with {proc.returncode}" + (
+            f"; {len(errors)} error line(s): " + " | ".join(errors) if errors else f": {proc.stderr.strip()[-300:]}"
+        )
+    return res
 
 
 def find_fmusim():
@@ -263,9 +307,11 @@ def run_fmpy(fmu: Path, exp: Experiment, variables):
     return simulate(fmu, exp.start, exp.stop, exp.step, start_values, stimuli, list(exp.tolerances), fmu_state=state)
 
 
-def run_fmusim(fmusim: str, fmu: Path, exp: Experiment, variables, workdir: Path, fmi_version: str):
-    out = workdir / f"{exp.name}_fmusim.csv"
-    cmd = [fmusim, "--interface-type", "cs", "--start-time", repr(exp.start), "--stop-time", repr(exp.stop)]
+def fmusim_command(fmusim: str, current: bool, fmu: Path, exp: Experiment, variables, out: Path):
+    """The command line that replays `exp`: `fmusim simulate ... --start-value NAME=VALUE` for the
+    standalone fmusim (current), `fmusim ... --start-value NAME VALUE` for v0.0.39."""
+    cmd = [fmusim, "simulate"] if current else [fmusim]
+    cmd += ["--interface-type", "cs", "--start-time", repr(exp.start), "--stop-time", repr(exp.stop)]
     cmd += ["--output-interval", repr(exp.step), "--output-file", str(out)]
     for k, (kind, v) in exp.parameters.items():
         value = typed(v, kind, variables.get(k))
@@ -273,7 +319,7 @@ def run_fmusim(fmusim: str, fmu: Path, exp: Experiment, variables, workdir: Path
             value = "true" if value else "false"
         elif isinstance(value, float):
             value = repr(value)
-        cmd += ["--start-value", k, str(value)]
+        cmd += ["--start-value", f"{k}={value}"] if current else ["--start-value", k, str(value)]
     if exp.state:
         cmd += ["--initial-fmu-state-file", str(exp.state)]
     if exp.stimuli:
@@ -281,8 +327,16 @@ def run_fmusim(fmusim: str, fmu: Path, exp: Experiment, variables, workdir: Path
     for name in exp.tolerances:
         cmd += ["--output-variable", name]
     cmd.append(str(fmu))
-    proc = subprocess.run(cmd, capture_output=True, text=True, timeout=600)
-    if proc.returncode != 0:
+    return cmd
+
+
+def run_fmusim(fmusim: str, fmu: Path, exp: Experiment, variables, workdir: Path, current: bool):
+    out = workdir / f"{exp.name}_fmusim.csv"
+    proc = subprocess.run(
+        fmusim_command(fmusim, current, fmu, exp, variables, out), capture_output=True, text=True, timeout=600
+    )
+    errors = fmusim_errors(proc.stderr) if current else []
+    if proc.returncode != 0 or errors:
         raise RuntimeError(fmusim_failure(proc.returncode, proc.stderr or proc.stdout, exp))
     return read_csv(out)
 
@@ -333,6 +387,12 @@ def validate(fmu, masters=("fmpy", "fmusim"), only=None, log=print):
             )
         if "fmusim" in masters and fmusim is None:
             skipped.append(("fmusim", f"not found: replayed through fmpy only (for fmusim too: {FMUSIM_HINT})"))
+        current = fmusim is not None and is_current(fmusim_version(fmusim))
+        if current and fmu.is_file():
+            results.append(run_fmusim_validate(fmusim, fmu))
+            log(format_result(results[-1]))
+        elif current:
+            skipped.append(("fmusim validate", f"{fmu} is a folder; fmusim validate checks FMU files (.fmu)"))
         for exp in experiments:
             if only and exp.name not in only:
                 continue
@@ -341,7 +401,7 @@ def validate(fmu, masters=("fmpy", "fmusim"), only=None, log=print):
             if "fmpy" in masters:
                 runners.append(("fmpy", lambda e=exp: run_fmpy(fmu, e, variables)))
             if fmusim:
-                runners.append(("fmusim", lambda e=exp: run_fmusim(fmusim, fmu, e, variables, work, md.fmiVersion)))
+                runners.append(("fmusim", lambda e=exp: run_fmusim(fmusim, fmu, e, variables, work, current)))
             for master, run in runners:
                 res = ExperimentResult(exp.name, master, exp.role)
                 try:
