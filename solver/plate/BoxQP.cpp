@@ -84,7 +84,10 @@ bool BoxQP::solveOnActive(const Eigen::VectorXd& yFree, const Eigen::VectorXd& l
 QPResult BoxQP::solve(const Eigen::VectorXd& yFree, const Eigen::VectorXd& lower, const Eigen::VectorXd& upper,
                       std::vector<signed char>& state, Eigen::VectorXd& mu, Eigen::VectorXd& y) {
     const int m = columns_.count();
-    for (int i : active_) mu[i] = 0.0;  // mu is zero off the active set: clear the old one
+    // mu is zero off the active set on return. The caller's vector may have been written by another
+    // solver or restored from a snapshot since this one last ran, so clear it whole (O(m), as the
+    // set scans below), not only this solver's last set.
+    mu.setZero();
     QPResult result;
     for (int it = 1; it <= maxPdasIterations_; ++it) {
         active_.clear();

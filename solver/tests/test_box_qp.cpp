@@ -225,3 +225,28 @@ TEST(BoxQP, RankDeficientContactOperatorOfAReducedPlate) {
     }
     EXPECT_GT(withContact, 100);
 }
+
+// The multipliers' vector is the caller's: between two solves of one solver it may have been
+// written by another solver (the flow law's sub-step levels share one) or restored from a snapshot.
+// A solve must not trust it to be zero off its own last set (issue 55's regression: stale entries
+// read as a violated complementarity, "contact solve did not converge ... KKT residual 1.47").
+TEST(BoxQP, MultipliersWrittenElsewhereDoNotLeakIntoTheSolution) {
+    std::mt19937 rng(11);
+    const Problem p = randomProblem(rng, 30, 12, true);
+    const int m = 12;
+    const Eigen::LLT<Eigen::MatrixXd> llt(p.s);
+    plate::ContactColumns columns = selectionColumns(p, llt);
+    plate::BoxQP qp(columns);
+    const Eigen::VectorXd w = llt.solve(p.b);
+    Eigen::VectorXd yFree(m), mu = Eigen::VectorXd::Zero(m), y;
+    for (int i = 0; i < m; ++i) yFree[i] = w[p.constrained[i]];
+    std::vector<signed char> state(m, 0);
+    ASSERT_TRUE(qp.solve(yFree, p.lower, p.upper, state, mu, y).converged);
+    const std::vector<signed char> solution = state;
+    mu.setConstant(123.0);  // another solver's multipliers, or a snapshot's
+    const auto again = qp.solve(yFree, p.lower, p.upper, state, mu, y);
+    EXPECT_TRUE(again.converged);
+    EXPECT_LE(again.kktResidual, 1e-10);
+    for (int i = 0; i < m; ++i)
+        if (solution[std::size_t(i)] == 0) EXPECT_EQ(mu[i], 0.0) << "row " << i;
+}
