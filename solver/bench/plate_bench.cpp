@@ -3,7 +3,7 @@
 // as one JSON object. Usage:
 //   plate_bench [key=value ...]   keys: element=argyris|fvs nx ny dt beta steps amplitude
 //                                 frequency gap (both obstacles at ±gap; gap=0 disables them)
-//                                 modes initial_load lower_only=0|1
+//                                 modes initial_load lower_only=0|1 damping_mass damping_stiffness
 //                                 mass=consistent|singular_p0|singular_p1dg
 //                                 scheme=newmark|conserving|flow (time_scheme, docs/theory.md §17, §21)
 //                                 substeps=N (contact_substeps of scheme=flow)
@@ -274,6 +274,8 @@ int main(int argc, char** argv) {
     p.maxContactSubsteps = static_cast<int>(num("max_substeps", p.maxContactSubsteps));
     p.contactRowSpace = num("rowspace", 1.0) != 0.0;
     p.memoryLimit = num("memory_limit", 0.0);
+    p.dampingMass = num("damping_mass", 0.0);
+    p.dampingStiffness = num("damping_stiffness", 0.0);
     // stress=1 (stress_outputs: the root's peak tracked every step), probes=N (probe_count)
     p.stressOutputs = num("stress", 0.0) != 0.0;
     p.probeCount = static_cast<int>(num("probes", 0.0));
@@ -313,12 +315,13 @@ int main(int argc, char** argv) {
         if (series)
             std::fprintf(series,
                          "time,base,corner_1,corner_2,free_edge_mid,energy,energy_input,"
-                         "energy_dissipated,contact_vertices\n");
+                         "energy_dissipated,contact_vertices,error_estimate\n");
         auto record = [&](double base) {
             if (!series) return;
             const auto o = sim.outputs();
-            std::fprintf(series, "%.10g,%.17g,%.17g,%.17g,%.17g,%.17g,%.17g,%.17g,%.0f\n", sim.time(), base, o.corner1,
-                         o.corner2, o.freeEdgeMid, o.energy, o.energyInput, o.energyDissipated, o.contactVertices);
+            std::fprintf(series, "%.10g,%.17g,%.17g,%.17g,%.17g,%.17g,%.17g,%.17g,%.0f,%.6g\n", sim.time(), base, o.corner1,
+                         o.corner2, o.freeEdgeMid, o.energy, o.energyInput, o.energyDissipated, o.contactVertices,
+                         o.errorEstimate);
         };
         record(0.0);
         const double omega = 2.0 * M_PI * frequency;

@@ -155,14 +155,14 @@ void CondensedScheme::setLoadAtStart(double p0) {
 
 // The rows r1_ at the trial's end looked at: Contact when a row is held at the start or past an
 // obstacle at the end, Free otherwise (the free-flight bound restarts from this look).
-CondensedScheme::Look CondensedScheme::lookAtRowsNow(double zNext, double pNext) {
+CondensedScheme::Look CondensedScheme::lookAtRowsNow(double zNext, double pNext, double reserve) {
     const CondensedState& s = state_;
     gatherRows(qNext_, pNext, zNext, r1_);
     double margin = std::numeric_limits<double>::infinity();
     for (Eigen::Index i = 0; i < r1_.size(); ++i)
         margin = std::min(margin, std::min(r1_[i] - obstacles_.lower, obstacles_.upper - r1_[i]));
     freeFlight_.reset();
-    if (s.contactPoints > 0 || margin < 0.0) return Look::Contact;
+    if (s.contactPoints > 0 || margin < reserve) return Look::Contact;
     freeFlight_.restart(qNext_, zNext, pNext, margin);
     return Look::Free;
 }

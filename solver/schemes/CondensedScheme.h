@@ -131,13 +131,14 @@ protected:
     // The contact check after a trial step to (qNext_, zNext, pNext): Skipped while the free-flight
     // bound holds (inline: the common case of both schemes), else lookAtRowsNow.
     enum class Look { Skipped, Free, Contact };
-    Look lookAtRows(double zNext, double pNext) {
+    // `reserve` (FlowScheme with a tolerance): a row within it of an obstacle counts as contact.
+    Look lookAtRows(double zNext, double pNext, double reserve = 0.0) {
         if (!obstacles_.any() || plate_->rows() == 0 ||
-            (state_.contactPoints == 0 && freeFlight_.holds(qNext_, zNext, pNext)))
+            (state_.contactPoints == 0 && freeFlight_.holds(qNext_, zNext, pNext, reserve)))
             return Look::Skipped;
-        return lookAtRowsNow(zNext, pNext);
+        return lookAtRowsNow(zNext, pNext, reserve);
     }
-    Look lookAtRowsNow(double zNext, double pNext);
+    Look lookAtRowsNow(double zNext, double pNext, double reserve = 0.0);
     void gatherRows(const Eigen::VectorXd& q, double p, double z, Eigen::VectorXd& r) const;
     void applyW2(const Eigen::VectorXd& v, Eigen::VectorXd& out);
     void discreteGradient(double psi0);  // Λ into multiplier_, from r0_, drFree_

@@ -43,14 +43,18 @@ void modalFlow(double omega2, double c, double h, double& f11, double& f12, doub
     f11 = e11, f12 = e12 / omega, f21 = e21 * omega, f22 = e22;
 }
 
-// The local target of step doubling (docs/theory.md §22): a contact step of Δt may add
-// tolerance·Δt/kContactTime, so that the contact phases add about the tolerance per kContactTime
-// of contact (error per unit step). Chosen by measurement on §5.2 and the default scene
-// (docs/performance.md, "Accuracy on request"): the error over 0.3 s stays inside the tolerance.
-constexpr double kContactTime = 3e-3;  // s
-// The level drops for the next contact step when the estimate was below 1/kLowerBelow of the
-// target (one level down multiplies it by about 4 where the sub-steps are second order).
-constexpr double kLowerBelow = 8.0;
+// In free flight the global error only rotates (docs/theory.md §22): its value at the reported
+// points is sampled every kSample steps (8e-5 s at the default Δt, finer than the default
+// communication step), and at every contact step.
+constexpr long long kSample = 8;
+// The kept run takes at least 2^2 sub-steps: at 2 against 1 the pair is too coarse for its
+// difference to say what the finer one missed (measured: estimates at half the error at the first
+// impact of a contact-rich scene, docs/performance.md).
+constexpr int kLowestLevel = 2;
+// The kept run's own error from the pair's difference where no row changed sides over the step:
+// half of it. Second order would be a third (Richardson), first order all of it; measured on four
+// scenes, a half keeps the estimate above the error in held contact (a third fell below it).
+constexpr double kSmoothWeight = 0.5;
 
 }  // namespace
 
@@ -61,17 +65,30 @@ FlowScheme::FlowScheme(std::shared_ptr<const CondensedPlate> plate, Obstacles ob
     const CondensedPlate& c = *plate_;
     const Eigen::Index m = c.modes(), rows = c.rows();
     keepRows_ = true;
+    flow_.errorQ = flow_.errorMomentum = Eigen::VectorXd::Zero(m);
     if (refinement_.tolerance > 0.0) {
         // Levels 1 … log2(maxSubsteps): 2^j sub-steps of Δt/2^j (level 0 is the step itself, full_).
         for (int j = 1; (1 << j) <= refinement_.maxSubsteps; ++j) {
             levels_.push_back(std::make_unique<MidpointOperator>());
             buildOperator(*levels_.back(), dt / double(1 << j));
         }
-        stepTarget_ = refinement_.tolerance * dt / kContactTime;
-        rowModesAbs_ = c.rowModesT.cwiseAbs();
+        // The error is measured where the user reads it: the reported points (every row when the
+        // scheme reports none, as in the unit tests).
+        std::vector<int> measured;
+        for (int i : rows_.probes)
+            if (i >= 0) measured.push_back(i);
+        if (measured.empty())
+            for (int i = 0; i < rows; ++i) measured.push_back(i);
+        measuredRows_ = c.rowModesT(Eigen::all, measured).transpose();
+
         inverseOmega_ = c.omega2.cwiseSqrt().cwiseInverse();
-        amplitude_.resize(m);
-        rowBound_.resize(rows);
+        for (Eigen::VectorXd* v : {&amplitude_, &errorNextQ_, &errorNextMomentum_, &localQ_, &localMomentum_, &scratchQ_})
+            v->resize(m);
+        rowBound_.resize(Eigen::Index(measured.size()));
+        for (Eigen::VectorXd* v : {&sample11_, &sample12_, &sample21_, &sample22_}) v->resize(m);
+        for (Eigen::Index k = 0; k < m; ++k)
+            modalFlow(c.omega2[k], damping_[k], double(kSample) * dt, sample11_[k], sample12_[k], sample21_[k],
+                      sample22_[k]);
     } else {
         buildOperator(sub_, dt / refinement_.substeps);
     }
@@ -127,7 +144,9 @@ void FlowScheme::advance(double zNext, double pNext) {
     iterations_ = solves_ = 0;
     kkt_ = 0.0;
     // The contact check of the midpoint step (its free-flight bound included).
-    const Look look = lookAtRows(zNext, pNext);
+    // With a tolerance, a row the carried error could take past an obstacle makes a contact step
+    // too: the exact motion may touch where the computed one does not (§22).
+    const Look look = lookAtRows(zNext, pNext, errorReach_);
     if (look == Look::Contact) {
         selectRows(zNext, pNext);
         if (refinement_.tolerance > 0.0)
@@ -165,6 +184,10 @@ void FlowScheme::advance(double zNext, double pNext) {
     st.stepContactMoment = 0.0;
     st.stepContactForce[0] = st.stepContactForce[1] = 0.0;  // (no onset: bookContact needs no call)
     commit(zNext, pNext, loadWork + dz * onRigid, dampedWork, 0);
+    if (flow_.contactSteps > 0 && st.step - flow_.errorStep >= kSample) {
+        rotateError(st.step);
+        sampleError();
+    }
 }
 
 // The step from t_n as m midpoint sub-steps of Δt/m, the base and the load linear in between (as
@@ -402,77 +425,135 @@ bool FlowScheme::rowsOutsideStayFree() {
     return true;
 }
 
-// tolerance > 0 (docs/theory.md §22): the contact step from t_n taken at 2^(j−1) and at 2^j
-// sub-steps from the same start, j the level the last contact step chose. Where the solution is
-// smooth the sub-steps are second order, across an onset or a release first order: |coarse − fine|
-// bounds the finer result's error in both cases (Richardson: a third of it, resp. all of it) and is
-// its estimate. While it exceeds the step's target the level rises (the finer result becomes the
-// coarse one), up to the cap; the finer result is kept and the estimate accumulates. A step that
-// starts held, at the level whose estimate the last step measured well inside the target, runs the
-// fine level first: if no row changed sides (the same active set at both ends: the smooth case)
-// it books that estimate again and needs no coarse run. Every run is a sequence of
-// discrete-gradient sub-steps, so the energy identity holds at any level; the discarded runs leave
-// no trace but their work count.
+// tolerance > 0 (docs/theory.md §22). The contact step from t_n is taken at level j (2^j sub-steps,
+// kept) and at level j − 1 from the same start x_n; their difference says what the kept run missed
+// (localError). While that local error exceeds the step's share of the tolerance the
+// level rises (the kept run becomes the coarse one) up to the cap. The global error E_n carried to
+// t_n goes through the step by the step itself: a companion at level j − 1 from x_n + E_n, whose
+// difference from the coarse run is E carried through the contact (its growth at an impact
+// included). E_{n+1} = that + the kept run's local error. Every run is a sequence of
+// discrete-gradient sub-steps: the energy identity holds at any level; the coarse runs and the
+// companion leave no trace but their work count.
 void FlowScheme::refine(double zNext, double pNext) {
     CondensedState& s = state_;
     const int top = static_cast<int>(levels_.size());
     const auto level = [&](int j) -> const MidpointOperator& { return j == 0 ? full_ : *levels_[j - 1]; };
-    int j = std::clamp(flow_.refinementLevel, 1, top);
+    int j = std::clamp(std::max(flow_.refinementLevel, kLowestLevel), 1, top);
+    rotateError(s.step);
+    ++flow_.contactSteps;
+    const double target = localTarget();
     save(start_);
-    bool fineDone = false;
-    if (s.contactPoints > 0 && flow_.stepError >= 0.0 && 2.0 * flow_.stepError <= stepTarget_) {
-        const double booked = flow_.stepError;
-        substeps(zNext, pNext, 1 << j, level(j));
-        if (s.contactPoints > 0 && s.rowState == start_.state.rowState) {
-            flow_.errorEstimate += booked;
-            return;
-        }
-        save(fine_);
-        fineDone = true;
-        restore(start_);
-    }
     substeps(zNext, pNext, 1 << (j - 1), level(j - 1));
     long long discardedSolves = s.contactSolves - start_.state.contactSolves;
     save(coarse_);
-    double error = 0.0;
+    double local = 0.0, before = HUGE_VAL;
     for (;;) {
-        if (fineDone) {
-            restore(fine_);
-            fineDone = false;
-        } else {
-            restore(start_);
-            substeps(zNext, pNext, 1 << j, level(j));
-        }
-        error = separation(coarse_.state, s);
-        if (error <= stepTarget_ || j == top) break;
+        restore(start_);
+        substeps(zNext, pNext, 1 << j, level(j));
+        local = localError();
+        if (local <= target || j == top || local > 0.5 * before) break;
         discardedSolves += s.contactSolves - start_.state.contactSolves;
         save(coarse_);
+        before = local;
         ++j;
     }
+    save(fine_);
+    if (!flow_.errorQ.isZero(0.0)) {
+        companion(zNext, pNext, j - 1);
+        discardedSolves += s.contactSolves - start_.state.contactSolves;
+        restore(fine_);
+    } else {
+        errorNextQ_.setZero();
+        errorNextMomentum_.setZero();
+    }
     s.contactSolves += discardedSolves;
-    flow_.errorEstimate += error;
-    flow_.cappedSteps += error > stepTarget_;
+    flow_.errorQ = errorNextQ_ + localQ_;
+    flow_.errorMomentum = errorNextMomentum_ + localMomentum_;
+    flow_.errorStep = s.step;
+    sampleError();
+    // How far E can move any row while it flows freely (the amplitudes are constant undamped,
+    // decay damped): ‖G_i‖ max times the amplitudes' norm.
+    amplitude_.array() =
+        flow_.errorQ.array().square() + (flow_.errorMomentum.array() * inverseOmega_.array()).square();
+    errorReach_ = plate_->rowModeNormMax * std::sqrt(amplitude_.sum());
+    flow_.cappedSteps += local > target && j == top;
     // One level lower next time when the pair one level down would still be well inside the target
-    // (a level down multiplies the error by about 4 where the sub-steps are second order); the
-    // estimate is then unknown at the new level.
-    const bool lower = j > 1 && kLowerBelow * error < stepTarget_;
-    flow_.refinementLevel = lower ? j - 1 : j;
-    flow_.stepError = lower ? -1.0 : error;
+    // (a level down multiplies the local error by about 4 where the sub-steps are second order).
+    flow_.refinementLevel = j > 1 && 8.0 * local < target ? j - 1 : j;
+}
+
+// The companion of the contact step: from start_ with the global error added to the massive modes
+// (the massless part's contact force and energy at t_n solved again for the perturbed rows, so the
+// discrete gradient starts from its own ψ), taken at `level`; E carried through the step is its end
+// less the coarse run's (coarse_, the same level from the unperturbed start).
+void FlowScheme::companion(double zNext, double pNext, int level) {
+    CondensedState& s = state_;
+    restore(start_);
+    s.q += flow_.errorQ;
+    s.momentum += flow_.errorMomentum;
+    gatherRows(s.q, s.p, s.z, r0_);
+    int solves = 0;
+    solveContact(*endQP_, r0_, s.rowState, s.force, y_, solves);
+    s.boundary = 0.5 * s.force.dot(y_ - r0_);
+    s.contactSolves += solves;
+    refreshDerived();
+    substeps(zNext, pNext, 1 << level, level == 0 ? full_ : *levels_[std::size_t(level - 1)]);
+    errorNextQ_ = s.q - coarse_.state.q;
+    errorNextMomentum_ = s.momentum - coarse_.state.momentum;
+}
+
+// The kept run's own error, from the coarse run's difference to it: kSmoothWeight of it where no
+// row changed sides over the step, all of it across an onset or a release (first order). Into localQ_, localMomentum_; returned measured at the reported points as the
+// amplitude of their sum of modal oscillations, √Σ(G_ik a_k)², a_k = √(δq_k² + (δP_k/ω_k)²).
+double FlowScheme::localError() {
+    const CondensedState& s = state_;
+    const bool smooth = s.rowState == start_.state.rowState && coarse_.state.rowState == start_.state.rowState;
+    const double weight = smooth ? kSmoothWeight : 1.0;
+    localQ_ = weight * (coarse_.state.q - s.q);
+    localMomentum_ = weight * (coarse_.state.momentum - s.momentum);
+    amplitude_.array() = localQ_.array().square() + (localMomentum_.array() * inverseOmega_.array()).square();
+    rowBound_.noalias() = measuredRows_.cwiseAbs2() * amplitude_;
+    return rowBound_.size() > 0 ? std::sqrt(rowBound_.maxCoeff()) : 0.0;
+}
+
+// E from errorStep to toStep by the exact free flow of each mode (the error obeys the homogeneous
+// equation: the base and the load are the same for the computed and the exact motion).
+void FlowScheme::rotateError(long long toStep) {
+    Eigen::VectorXd& u = flow_.errorQ;
+    Eigen::VectorXd& v = flow_.errorMomentum;
+    for (; flow_.errorStep + kSample <= toStep; flow_.errorStep += kSample) {
+        scratchQ_ = sample11_.cwiseProduct(u) + sample12_.cwiseProduct(v);
+        v = sample21_.cwiseProduct(u) + sample22_.cwiseProduct(v);
+        u.swap(scratchQ_);
+    }
+    for (; flow_.errorStep < toStep; ++flow_.errorStep) {
+        scratchQ_ = flow11_.cwiseProduct(u) + flow12_.cwiseProduct(v);
+        v = flow21_.cwiseProduct(u) + flow22_.cwiseProduct(v);
+        u.swap(scratchQ_);
+    }
+}
+
+void FlowScheme::sampleError() {
+    rowBound_.noalias() = measuredRows_ * flow_.errorQ;
+    const double now = rowBound_.size() > 0 ? rowBound_.cwiseAbs().maxCoeff() : 0.0;
+    flow_.errorEstimate = std::max(flow_.errorEstimate, now);
+}
+
+// The step's share of the tolerance (docs/theory.md §22): what is left of it, over the contact steps
+// still to come. Their number is unknown; it lies between the contact steps so far (the run goes on
+// as it went) and all steps so far (contact at every step from now on), and the share takes their
+// geometric mean. Once the estimate has reached the tolerance (said once, with the time), the share
+// is of the whole tolerance: later steps stay as fine as the run's length asks, not finer.
+double FlowScheme::localTarget() const {
+    const double tolerance = refinement_.tolerance;
+    const double left = std::max(tolerance - flow_.errorEstimate, 0.0);
+    const double contactSteps = double(flow_.contactSteps), steps = double(state_.step + 1);
+    return (left > 0.0 ? left : tolerance) / std::sqrt(contactSteps * steps);
 }
 
 std::string FlowScheme::name() const {
     const CondensedPlate& c = *plate_;
     return c.modes() == c.massiveCount ? "flow-complete" : "flow-" + std::to_string(c.modes());
-}
-
-// How far two states at the same t_n can part at any row afterwards: mode k's difference
-// (δq, δq̇) is an oscillation of amplitude √(δq² + (δq̇/ω)²) in free flight (less when damped), and
-// a row moves by Σ_k |G_ik| times it (the bound reached when the phases agree).
-double FlowScheme::separation(const CondensedState& a, const CondensedState& b) {
-    amplitude_.array() =
-        ((a.q - b.q).array().square() + ((a.momentum - b.momentum).array() * inverseOmega_.array()).square()).sqrt();
-    rowBound_.noalias() = rowModesAbs_.transpose() * amplitude_;
-    return rowBound_.size() > 0 ? rowBound_.maxCoeff() : 0.0;
 }
 
 void FlowScheme::addOutputs(PlateOutputs& o) const {
@@ -482,22 +563,25 @@ void FlowScheme::addOutputs(PlateOutputs& o) const {
 
 namespace {
 
-constexpr double kFlowFormat = 1.0;  // the flow law's own part of the flat form, version 1
+constexpr double kFlowFormat = 2.0;  // the flow law's own part of the flat form, version 2 (the error vector)
 const auto flowMembers = [](auto& s, auto& v) {
     v.real(s.errorEstimate, "error estimate");
-    v.real(s.stepError, "step error estimate");
     v.count(s.cappedSteps, "capped steps");
     v.count(s.refinementLevel, "refinement level", 30.0);
+    v.count(s.contactSteps, "contact steps");
+    v.count(s.errorStep, "error step");
+    for (auto* x : {&s.errorQ, &s.errorMomentum}) v.vector(*x, 0, "error vector");
 };
 
 }  // namespace
 
 std::vector<double> FlowScheme::saveOwn() const {
-    return archive::save(flow_, kFlowFormat, std::array<std::size_t, 0>{}, flowMembers);
+    return archive::save(flow_, kFlowFormat, std::array<std::size_t, 1>{std::size_t(plate_->modes())}, flowMembers);
 }
 
 void FlowScheme::restoreOwn(const std::vector<double>& own) {
-    flow_ = archive::load<FlowState>(own, kFlowFormat, std::array<std::size_t, 0>{}, flowMembers);
+    flow_ = archive::load<FlowState>(own, kFlowFormat, std::array<std::size_t, 1>{std::size_t(plate_->modes())},
+                                     flowMembers);
 }
 
 }  // namespace plate

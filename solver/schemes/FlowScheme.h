@@ -24,14 +24,18 @@ struct ContactRefinement {
 };
 
 // The flow law's own state (after the condensed schemes' in the flat form): with a tolerance
-// (docs/theory.md §22), the accumulated estimate of the displacement error, the last step's
-// estimate, the contact steps the sub-step cap bounded and the controller's level (the next
-// contact step takes 2^level sub-steps).
+// (docs/theory.md §22), the global error estimate — the vector E = (δq, δP) of modal displacement
+// and momentum errors at step errorStep, carried through free flight by the exact flow and through
+// each contact step by a companion of the step from the perturbed start — the largest output error
+// it has implied so far, the contact steps taken, those the cap bounded, and the controller's level
+// (the next contact step takes 2^level sub-steps).
 struct FlowState {
-    double errorEstimate = 0;
-    double stepError = -1;  // the last estimate at refinementLevel (< 0: none yet)
+    double errorEstimate = 0;  // the largest estimated error of the reported points so far, m
     long long cappedSteps = 0;
     int refinementLevel = 1;
+    long long contactSteps = 0;
+    long long errorStep = 0;
+    Eigen::VectorXd errorQ, errorMomentum;  // E at errorStep (sized to the massive modes)
 };
 
 class FlowScheme final : public CondensedScheme {
@@ -64,8 +68,14 @@ private:
     void leaveRows();
     void swapRowBuffers();
     bool rowsOutsideStayFree();  // after leaving: the other rows inside the obstacles at the end
-    void refine(double zNext, double pNext);  // tolerance > 0: step doubling (§22)
-    double separation(const CondensedState& a, const CondensedState& b);  // bound on their rows' parting, m
+    // tolerance > 0 (docs/theory.md §22): the kept step at level j and its companion from the
+    // perturbed start at level j − 1; the global error carried and sampled.
+    void refine(double zNext, double pNext);
+    void companion(double zNext, double pNext, int level);  // from start_ + E: E carried, into errorNext*
+    void rotateError(long long toStep);  // E by the exact free flow from errorStep to toStep
+    void sampleError();  // the reported points' error implied by E, into the running maximum
+    double localTarget() const;  // what this contact step may add at the reported points, m
+    double localError();  // the kept run's own error, into local*: at the reported points, m
 
     ContactRefinement refinement_;
     FlowState flow_;
@@ -88,12 +98,15 @@ private:
     Snapshot retry_;
     Eigen::VectorXd rowsStart_;
     MidpointOperator sub_;  // sub-steps of Δt/m (tolerance = 0)
-    // tolerance > 0: level j takes 2^j sub-steps of Δt/2^j (level 0 is full_); the local target.
+    // tolerance > 0: level j takes 2^j sub-steps of Δt/2^j (level 0 is full_).
     std::vector<std::unique_ptr<MidpointOperator>> levels_;
-    double stepTarget_ = 0.0;
     Snapshot start_, coarse_, fine_;
-    Eigen::MatrixXd rowModesAbs_;  // |G|: rows' response to each mode's amplitude
-    Eigen::VectorXd inverseOmega_, amplitude_, rowBound_;
+    double errorReach_ = 0.0;  // how far the carried error can move a row (0 without a tolerance)
+    Eigen::MatrixXd measuredRows_;  // G at the reported points
+    Eigen::VectorXd inverseOmega_, amplitude_, rowBound_, errorNextQ_, errorNextMomentum_, localQ_, localMomentum_,
+        scratchQ_;
+    // The exact free flow over kSample·Δt, the sampling period of the output error in free flight.
+    Eigen::VectorXd sample11_, sample12_, sample21_, sample22_;
     // The exact flow over Δt of each mode's u = q − q_particular (§21): (u, u̇)⁺ = Φ (u, u̇).
     Eigen::VectorXd flow11_, flow12_, flow21_, flow22_;
     Eigen::VectorXd inverseOmega2_;  // 1/ω²

@@ -18,11 +18,11 @@ public:
         loadNorm_ = loadNorm;
         if (rowNorm_ > 0.0) x0_.resize(size);
     }
-    // No point can have reached an obstacle since the last look.
-    bool holds(const Eigen::VectorXd& x, double z, double p = 0.0) const {
+    // No point can have come within `reserve` of an obstacle since the last look.
+    bool holds(const Eigen::VectorXd& x, double z, double p = 0.0, double reserve = 0.0) const {
         if (margin_ <= 0.0) return false;
         const double moved = rowNorm_ * (x - x0_).norm() + std::abs(z - z0_) + std::abs(p - p0_) * loadNorm_;
-        return moved + 1e-12 < margin_;
+        return moved + reserve + 1e-12 < margin_;
     }
     // A look found every point `margin` inside the obstacles at (x, z, p): the bound starts there.
     void restart(const Eigen::VectorXd& x, double z, double p, double margin) {

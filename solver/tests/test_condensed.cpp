@@ -323,7 +323,9 @@ struct CornerRun {
 CornerRun releaseRun(const std::shared_ptr<const CondensedPlate>& plate, double dt, ContactRefinement refinement) {
     Obstacles obstacles;
     obstacles.lower = -0.08;
-    FlowScheme scheme(plate, obstacles, dt, refinement);
+    OutputRows corner;  // the estimate measured where the run is compared: row 0
+    corner.probes = {0, 0, 0};
+    FlowScheme scheme(plate, obstacles, dt, refinement, 0.0, 0.0, corner);
     scheme.initialize(0.0, 8600.0);
     scheme.setLoadAtStart(0.0);
     CornerRun run;
@@ -348,10 +350,8 @@ double worstDifference(const std::vector<double>& a, const std::vector<double>& 
 // The tolerance met and the estimate honest (docs/theory.md §22): against a converged reference
 // (a quarter of the step, 64 sub-steps per contact step: its own error is checked to be below a
 // tenth of the smallest tolerance against half that step), corner_1's error stays inside the
-// tolerance at 1e-4 and 1e-5 m, and the accumulated estimate is not below a third of it nor above
-// ten times it. (A bound: it assumes first-order steps and phases that agree, so it overestimates
-// where they do not — measured 9× on this coarse plate, 0.9–1.3× on §5.2's default plate, where
-// python_tests/test_tolerance.py checks the factor 3 through the FMU.)
+// tolerance at 1e-4 and 1e-5 m, and the global estimate is not below the error nor above three
+// times it (the estimate may over-state what a user gets, never under-state it).
 TEST(FlowTolerance, ErrorWithinToleranceAndEstimateBoundsIt) {
     const Condensed s(ElementType::Argyris, 8, 3, MassProjection::P0);
     auto plate = std::make_shared<const CondensedPlate>(s.c);
@@ -363,8 +363,8 @@ TEST(FlowTolerance, ErrorWithinToleranceAndEstimateBoundsIt) {
         const CornerRun run = releaseRun(plate, dt, ContactRefinement{16, tolerance});
         const double error = worstDifference(run.corner, reference.corner);
         EXPECT_LE(error, tolerance) << "tolerance " << tolerance;
-        EXPECT_GT(run.flow.errorEstimate, error / 3.0) << "tolerance " << tolerance << ", error " << error;
-        EXPECT_LT(run.flow.errorEstimate, error * 10.0) << "tolerance " << tolerance << ", error " << error;
+        EXPECT_GE(run.flow.errorEstimate, error) << "tolerance " << tolerance << ", error " << error;
+        EXPECT_LE(run.flow.errorEstimate, error * 3.0) << "tolerance " << tolerance << ", error " << error;
         EXPECT_EQ(run.flow.cappedSteps, 0);
     }
 }
@@ -393,7 +393,7 @@ TEST(FlowTolerance, SavedStateContinuesBitForBit) {
     a.setLoadAtStart(0.0);
     b.initialize(0.0, 8600.0);
     int n = 0;
-    while (a.state().contactPoints == 0 || a.flowState().refinementLevel < 2) {
+    while (a.state().contactPoints == 0 || a.flowState().contactSteps < 5) {  // E carried, mid-contact
         a.step(0.0, 0.0);
         ASSERT_LT(++n, 20000);
     }
