@@ -398,8 +398,8 @@ private:
                      (y == 0.0 ? "_x and _y were never set)" : "_x is 0)"));
         }
     }
-    // tolerance > 0 (docs/theory.md §22): the contact steps' accumulated error estimate passing the
-    // tolerance, and a contact step the cap bounded, are each said once per build.
+    // tolerance > 0 (docs/theory.md §22): the global error estimate passing the tolerance (the scene's
+    // horizon for it), and a contact step the cap bounded, are each said once per build.
     void warnOfErrorEstimate() {
         const plate::PlateParameters& p = values_.parameters;
         const plate::PlateOutputs& o = values_.outputs;
@@ -408,8 +408,10 @@ private:
             errorWarned_ = true;
             warn(format("error_estimate = %.3g m passed tolerance = %.3g m at t = %.17g", o.errorEstimate, p.tolerance,
                         simulation_->time()) +
-                 ": the contact phases so far add up to more than the tolerance (it bounds what about 3 ms of "
-                 "contact adds); later outputs are this much less certain (docs/performance.md)");
+                 ": the flow law cannot hold the tolerance from this time on (errors made at earlier impacts grew at "
+                 "later ones, or the sub-step cap bounded a step): this is the scene's horizon for this tolerance. "
+                 "Later contact steps take contact_substeps sub-steps and error_estimate goes on "
+                 "(docs/theory.md section 22)");
         }
         if (!cappedWarned_ && o.cappedSteps > 0) {
             cappedWarned_ = true;

@@ -221,9 +221,10 @@ const Row kRows[] = {
         "time_scheme = flow: midpoint sub-steps of each internal step in which a constraint row is or becomes "
         "active when tolerance = 0 (1..64; the free steps take the exact modal flow whatever this is)"),
     parameter(kVrTolerance,         "tolerance",          "m",     kTolerance,         PARAMETER(tolerance),
-        "time_scheme = flow: > 0 chooses each contact step's sub-steps from an error estimate of its own (step "
-        "doubling) so that the contact phases add at most about this much displacement error per 3 ms of contact "
-        "(error_estimate reports the sum; a warning when it passes the tolerance); 0 = contact_substeps sub-steps"),
+        "time_scheme = flow: > 0 bounds the error of the reported points (corner_1, corner_2, free_edge_mid) "
+        "against the exact motion: each contact step takes the sub-steps the global error estimate asks for, and "
+        "a warning says when the estimate passes the tolerance (the scene's horizon for it; contact steps then "
+        "take contact_substeps sub-steps); 0 = contact_substeps sub-steps"),
     integerParameter(kVrMaxContactSubsteps, "max_contact_substeps", kMaxContactSubsteps,
         PARAMETER(maxContactSubsteps),
         "time_scheme = flow with tolerance > 0: the most sub-steps one contact step may take (a power of two, "
@@ -278,11 +279,12 @@ const Row kRows[] = {
         "Largest number of iterations of one step's contact solve so far: active-set iterations (newmark), "
         "discrete-gradient iterations (conserving, flow)"),
     output(kVrErrorEstimate,           "error_estimate",             "m",    OUTPUT(errorEstimate),
-        "time_scheme = flow with tolerance > 0: the accumulated estimate of the displacement error the contact "
-        "steps added since t = 0 (the sum of each step's |coarse - fine| bound; free flight is exact); 0 otherwise"),
+        "time_scheme = flow with tolerance > 0: the largest error of the reported points since t = 0, estimated "
+        "from the global error carried through free flight and impacts (docs/theory.md section 22); at most the "
+        "gap between the obstacles; 0 otherwise"),
     integerOutput(kVrCappedSteps,       "capped_steps",        OUTPUT(cappedSteps),
-        "time_scheme = flow with tolerance > 0: contact steps whose estimate stayed above its target at "
-        "max_contact_substeps sub-steps (the cap bounded their work, not their error)"),
+        "time_scheme = flow with tolerance > 0: contact steps whose own error stayed above their share of the "
+        "tolerance at max_contact_substeps sub-steps (the cap bounded their work; error_estimate includes them)"),
     output(kVrClampForce,              "clamp_force",                "N",    PORT(clampForce),
         "Vertical force the plate exerts on the clamp (positive upward): what a shaker carrying the clamp feels; the "
         "scheme's value at the last internal step's centre t - dt (t - dt/2 with time_scheme = conserving). Fed back "

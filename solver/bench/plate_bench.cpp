@@ -319,9 +319,9 @@ int main(int argc, char** argv) {
         auto record = [&](double base) {
             if (!series) return;
             const auto o = sim.outputs();
-            std::fprintf(series, "%.10g,%.17g,%.17g,%.17g,%.17g,%.17g,%.17g,%.17g,%.0f,%.6g\n", sim.time(), base, o.corner1,
-                         o.corner2, o.freeEdgeMid, o.energy, o.energyInput, o.energyDissipated, o.contactVertices,
-                         o.errorEstimate);
+            std::fprintf(series, "%.10g,%.17g,%.17g,%.17g,%.17g,%.17g,%.17g,%.17g,%.0f,%.6g\n", sim.time(), base,
+                         o.corner1, o.corner2, o.freeEdgeMid, o.energy, o.energyInput, o.energyDissipated,
+                         o.contactVertices, o.errorEstimate);
         };
         record(0.0);
         const double omega = 2.0 * M_PI * frequency;

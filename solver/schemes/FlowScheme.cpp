@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cmath>
 
+#include "base/Errors.h"
 #include "base/PortableMath.h"
 #include "base/StateArchive.h"
 
@@ -82,10 +83,12 @@ FlowScheme::FlowScheme(std::shared_ptr<const CondensedPlate> plate, Obstacles ob
         measuredRows_ = c.rowModesT(Eigen::all, measured).transpose();
 
         inverseOmega_ = c.omega2.cwiseSqrt().cwiseInverse();
-        for (Eigen::VectorXd* v : {&amplitude_, &errorNextQ_, &errorNextMomentum_, &localQ_, &localMomentum_, &scratchQ_})
+        for (Eigen::VectorXd* v :
+             {&amplitude_, &errorNextQ_, &errorNextMomentum_, &localQ_, &localMomentum_, &scratchQ_})
             v->resize(m);
         rowBound_.resize(Eigen::Index(measured.size()));
         for (Eigen::VectorXd* v : {&sample11_, &sample12_, &sample21_, &sample22_}) v->resize(m);
+        while ((2 << fixedLevel_) <= refinement_.substeps) ++fixedLevel_;  // 2^level ≤ contact_substeps
         for (Eigen::Index k = 0; k < m; ++k)
             modalFlow(c.omega2[k], damping_[k], double(kSample) * dt, sample11_[k], sample12_[k], sample21_[k],
                       sample22_[k]);
@@ -438,10 +441,14 @@ void FlowScheme::refine(double zNext, double pNext) {
     CondensedState& s = state_;
     const int top = static_cast<int>(levels_.size());
     const auto level = [&](int j) -> const MidpointOperator& { return j == 0 ? full_ : *levels_[j - 1]; };
-    int j = std::clamp(std::max(flow_.refinementLevel, kLowestLevel), 1, top);
+    // Past the time the estimate passed the tolerance (the scene's horizon for it: no sub-step brings
+    // it back) the contact steps take contact_substeps sub-steps, as without a tolerance, and the
+    // estimate goes on.
+    const bool lost = flow_.lostAt >= 0.0;
+    int j = std::clamp(lost ? fixedLevel_ : std::max(flow_.refinementLevel, kLowestLevel), 1, top);
     rotateError(s.step);
     ++flow_.contactSteps;
-    const double target = localTarget();
+    const double target = lost ? HUGE_VAL : localTarget();
     save(start_);
     substeps(zNext, pNext, 1 << (j - 1), level(j - 1));
     long long discardedSolves = s.contactSolves - start_.state.contactSolves;
@@ -459,8 +466,16 @@ void FlowScheme::refine(double zNext, double pNext) {
     }
     save(fine_);
     if (!flow_.errorQ.isZero(0.0)) {
-        companion(zNext, pNext, j - 1);
-        discardedSolves += s.contactSolves - start_.state.contactSolves;
+        try {
+            companion(zNext, pNext, j - 1);
+            discardedSolves += s.contactSolves - start_.state.contactSolves;
+        } catch (const StepError&) {
+            // The perturbed start is one the contact solves cannot take (past the horizon E is as
+            // large as the motion and may put rows deep past an obstacle): E goes through this step
+            // by the free flow instead; the kept step is unaffected.
+            errorNextQ_ = flow11_.cwiseProduct(flow_.errorQ) + flow12_.cwiseProduct(flow_.errorMomentum);
+            errorNextMomentum_ = flow21_.cwiseProduct(flow_.errorQ) + flow22_.cwiseProduct(flow_.errorMomentum);
+        }
         restore(fine_);
     } else {
         errorNextQ_.setZero();
@@ -473,13 +488,14 @@ void FlowScheme::refine(double zNext, double pNext) {
     sampleError();
     // How far E can move any row while it flows freely (the amplitudes are constant undamped,
     // decay damped): ‖G_i‖ max times the amplitudes' norm.
-    amplitude_.array() =
-        flow_.errorQ.array().square() + (flow_.errorMomentum.array() * inverseOmega_.array()).square();
-    errorReach_ = plate_->rowModeNormMax * std::sqrt(amplitude_.sum());
-    flow_.cappedSteps += local > target && j == top;
+    amplitude_.array() = flow_.errorQ.array().square() + (flow_.errorMomentum.array() * inverseOmega_.array()).square();
+    // Past the horizon (lost) the carried error is as large as the motion's own differences: every
+    // step would count, and the steps are no longer chosen for the tolerance.
+    errorReach_ = lost ? 0.0 : plate_->rowModeNormMax * std::sqrt(amplitude_.sum());
+    flow_.cappedSteps += !lost && local > target && j == top;
     // One level lower next time when the pair one level down would still be well inside the target
     // (a level down multiplies the local error by about 4 where the sub-steps are second order).
-    flow_.refinementLevel = j > 1 && 8.0 * local < target ? j - 1 : j;
+    if (!lost) flow_.refinementLevel = j > 1 && 8.0 * local < target ? j - 1 : j;
 }
 
 // The companion of the contact step: from start_ with the global error added to the massive modes
@@ -533,22 +549,29 @@ void FlowScheme::rotateError(long long toStep) {
     }
 }
 
+// The reported points' error implied by E now, into the running maximum. Two motions between both
+// obstacles differ at a constraint row by the gap at most: past the horizon, where E grows with the
+// motion's sensitivity, the estimate stops there (and E with it).
 void FlowScheme::sampleError() {
     rowBound_.noalias() = measuredRows_ * flow_.errorQ;
     const double now = rowBound_.size() > 0 ? rowBound_.cwiseAbs().maxCoeff() : 0.0;
-    flow_.errorEstimate = std::max(flow_.errorEstimate, now);
+    const double gap = obstacles_.upper - obstacles_.lower;
+    if (!(now < gap)) {  // also a non-finite E
+        const double scale = std::isfinite(now) && now > 0.0 ? gap / now : 0.0;
+        flow_.errorQ *= scale;
+        flow_.errorMomentum *= scale;
+    }
+    flow_.errorEstimate = std::max(flow_.errorEstimate, std::isfinite(now) ? std::min(now, gap) : gap);
+    if (flow_.lostAt < 0.0 && flow_.errorEstimate > refinement_.tolerance) flow_.lostAt = double(flow_.errorStep) * dt_;
 }
 
 // The step's share of the tolerance (docs/theory.md §22): what is left of it, over the contact steps
 // still to come. Their number is unknown; it lies between the contact steps so far (the run goes on
 // as it went) and all steps so far (contact at every step from now on), and the share takes their
-// geometric mean. Once the estimate has reached the tolerance (said once, with the time), the share
-// is of the whole tolerance: later steps stay as fine as the run's length asks, not finer.
+// geometric mean.
 double FlowScheme::localTarget() const {
-    const double tolerance = refinement_.tolerance;
-    const double left = std::max(tolerance - flow_.errorEstimate, 0.0);
-    const double contactSteps = double(flow_.contactSteps), steps = double(state_.step + 1);
-    return (left > 0.0 ? left : tolerance) / std::sqrt(contactSteps * steps);
+    const double left = refinement_.tolerance - flow_.errorEstimate;
+    return left / std::sqrt(double(flow_.contactSteps) * double(state_.step + 1));
 }
 
 std::string FlowScheme::name() const {
@@ -570,6 +593,7 @@ const auto flowMembers = [](auto& s, auto& v) {
     v.count(s.refinementLevel, "refinement level", 30.0);
     v.count(s.contactSteps, "contact steps");
     v.count(s.errorStep, "error step");
+    v.real(s.lostAt, "time the tolerance was lost");
     for (auto* x : {&s.errorQ, &s.errorMomentum}) v.vector(*x, 0, "error vector");
 };
 

@@ -35,6 +35,7 @@ struct FlowState {
     int refinementLevel = 1;
     long long contactSteps = 0;
     long long errorStep = 0;
+    double lostAt = -1;  // when the estimate passed the tolerance, s (< 0: not yet)
     Eigen::VectorXd errorQ, errorMomentum;  // E at errorStep (sized to the massive modes)
 };
 
@@ -101,7 +102,9 @@ private:
     // tolerance > 0: level j takes 2^j sub-steps of Δt/2^j (level 0 is full_).
     std::vector<std::unique_ptr<MidpointOperator>> levels_;
     Snapshot start_, coarse_, fine_;
-    double errorReach_ = 0.0;  // how far the carried error can move a row (0 without a tolerance)
+    double errorReach_ = 0.0;
+    int fixedLevel_ =
+        0;  // past the tolerance's horizon: 2^fixedLevel_ sub-steps (≤ contact_substeps)  // how far the carried error can move a row (0 without a tolerance)
     Eigen::MatrixXd measuredRows_;  // G at the reported points
     Eigen::VectorXd inverseOmega_, amplitude_, rowBound_, errorNextQ_, errorNextMomentum_, localQ_, localMomentum_,
         scratchQ_;
