@@ -92,7 +92,7 @@ def release_reference(fmu_path):
     return reference(fmu_path, RELEASE, 0.15)
 
 
-@pytest.mark.parametrize("tolerance", [1e-4, 1e-5])
+@pytest.mark.parametrize("tolerance", [1e-5, 1e-6])
 def test_release_error_estimate_follows_the_error(fmu_path, release_reference, tolerance):
     corner, estimate, warnings, last = history(fmu_path, RELEASE, 0.15, dt=1e-5, tolerance=tolerance)
     check_promise(corner, estimate, warnings, *release_reference, tolerance)

@@ -162,9 +162,9 @@ CondensedScheme::Look CondensedScheme::lookAtRowsNow(double zNext, double pNext,
     for (Eigen::Index i = 0; i < r1_.size(); ++i)
         margin = std::min(margin, std::min(r1_[i] - obstacles_.lower, obstacles_.upper - r1_[i]));
     freeFlight_.reset();
-    if (s.contactPoints > 0 || margin < reserve) return Look::Contact;
+    if (s.contactPoints > 0 || margin < 0.0) return Look::Contact;
     freeFlight_.restart(qNext_, zNext, pNext, margin);
-    return Look::Free;
+    return margin < reserve ? Look::Near : Look::Free;
 }
 
 void CondensedScheme::midpointStep(double zNext, double pNext) {

@@ -130,7 +130,8 @@ protected:
     void midpointStep(double zNext, double pNext);  // one step of op_->h (T.17b–c)
     // The contact check after a trial step to (qNext_, zNext, pNext): Skipped while the free-flight
     // bound holds (inline: the common case of both schemes), else lookAtRowsNow.
-    enum class Look { Skipped, Free, Contact };
+    // Near (FlowScheme with a tolerance): free, but a row is within `reserve` of an obstacle.
+    enum class Look { Skipped, Free, Near, Contact };
     // `reserve` (FlowScheme with a tolerance): a row within it of an obstacle counts as contact.
     Look lookAtRows(double zNext, double pNext, double reserve = 0.0) {
         if (!obstacles_.any() || plate_->rows() == 0 ||

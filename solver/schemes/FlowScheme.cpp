@@ -52,10 +52,8 @@ constexpr long long kSample = 8;
 // difference to say what the finer one missed (measured: estimates at half the error at the first
 // impact of a contact-rich scene, docs/performance.md).
 constexpr int kLowestLevel = 2;
-// The kept run's own error from the pair's difference where no row changed sides over the step:
-// half of it. Second order would be a third (Richardson), first order all of it; measured on four
-// scenes, a half keeps the estimate above the error in held contact (a third fell below it).
-constexpr double kSmoothWeight = 0.5;
+// The observed order of held contact steps is a running mean over the last ~kOrderMemory rises.
+constexpr double kOrderMemory = 8.0;
 
 }  // namespace
 
@@ -146,9 +144,9 @@ void FlowScheme::advance(double zNext, double pNext) {
     const bool damped = dampedModes_;
     iterations_ = solves_ = 0;
     kkt_ = 0.0;
-    // The contact check of the midpoint step (its free-flight bound included).
-    // With a tolerance, a row the carried error could take past an obstacle makes a contact step
-    // too: the exact motion may touch where the computed one does not (§22).
+    // The contact check of the midpoint step (its free-flight bound included). With a tolerance, a
+    // row the carried error could take past an obstacle is looked at too (Near): the exact motion
+    // may touch where the computed one does not (§22).
     const Look look = lookAtRows(zNext, pNext, errorReach_);
     if (look == Look::Contact) {
         selectRows(zNext, pNext);
@@ -158,7 +156,12 @@ void FlowScheme::advance(double zNext, double pNext) {
             substeps(zNext, pNext, refinement_.substeps, sub_);
         return;
     }
-    rowsCachedValid_ = look == Look::Free;
+    const bool near = look == Look::Near;
+    if (near) {
+        rotateError(s.step);
+        save(start_);
+    }
+    rowsCachedValid_ = look == Look::Free || near;
     if (rowsCachedValid_) rowsCached_ = r1_;
     if (!std::isfinite(momentumNext_.sum()) || !std::isfinite(qNext_.sum())) refuseNonFinite();
     if (multiplierUsed_) multiplier_.setZero();
@@ -187,6 +190,7 @@ void FlowScheme::advance(double zNext, double pNext) {
     st.stepContactMoment = 0.0;
     st.stepContactForce[0] = st.stepContactForce[1] = 0.0;  // (no onset: bookContact needs no call)
     commit(zNext, pNext, loadWork + dz * onRigid, dampedWork, 0);
+    if (near) return nearMiss(zNext, pNext);
     if (flow_.contactSteps > 0 && st.step - flow_.errorStep >= kSample) {
         rotateError(st.step);
         sampleError();
@@ -453,49 +457,92 @@ void FlowScheme::refine(double zNext, double pNext) {
     substeps(zNext, pNext, 1 << (j - 1), level(j - 1));
     long long discardedSolves = s.contactSolves - start_.state.contactSolves;
     save(coarse_);
-    double local = 0.0, before = HUGE_VAL;
+    double local = 0.0, before = HUGE_VAL, differenceBefore = 0.0;
+    bool smoothBefore = false;
     for (;;) {
         restore(start_);
         substeps(zNext, pNext, 1 << j, level(j));
         local = localError();
+        // Two differences of a smooth step at successive levels measure its order (their ratio
+        // is 2^p): the held contact's order is learnt from the run's own rises.
+        if (smoothBefore && smooth_ && difference_ > 0.0 && differenceBefore > difference_) {
+            const double order = std::clamp(std::log2(differenceBefore / difference_), 1.0, 2.0);
+            flow_.smoothOrder += (order - flow_.smoothOrder) / kOrderMemory;
+        }
         if (local <= target || j == top || local > 0.5 * before) break;
         discardedSolves += s.contactSolves - start_.state.contactSolves;
         save(coarse_);
         before = local;
+        differenceBefore = difference_;
+        smoothBefore = smooth_;
         ++j;
     }
     save(fine_);
-    if (!flow_.errorQ.isZero(0.0)) {
-        try {
-            companion(zNext, pNext, j - 1);
-            discardedSolves += s.contactSolves - start_.state.contactSolves;
-        } catch (const StepError&) {
-            // The perturbed start is one the contact solves cannot take (past the horizon E is as
-            // large as the motion and may put rows deep past an obstacle): E goes through this step
-            // by the free flow instead; the kept step is unaffected.
-            errorNextQ_ = flow11_.cwiseProduct(flow_.errorQ) + flow12_.cwiseProduct(flow_.errorMomentum);
-            errorNextMomentum_ = flow21_.cwiseProduct(flow_.errorQ) + flow22_.cwiseProduct(flow_.errorMomentum);
-        }
-        restore(fine_);
-    } else {
-        errorNextQ_.setZero();
-        errorNextMomentum_.setZero();
-    }
+    discardedSolves += carryThroughStep(zNext, pNext, j - 1);
+    restore(fine_);
     s.contactSolves += discardedSolves;
-    flow_.errorQ = errorNextQ_ + localQ_;
-    flow_.errorMomentum = errorNextMomentum_ + localMomentum_;
-    flow_.errorStep = s.step;
-    sampleError();
-    // How far E can move any row while it flows freely (the amplitudes are constant undamped,
-    // decay damped): ‖G_i‖ max times the amplitudes' norm.
-    amplitude_.array() = flow_.errorQ.array().square() + (flow_.errorMomentum.array() * inverseOmega_.array()).square();
-    // Past the horizon (lost) the carried error is as large as the motion's own differences: every
-    // step would count, and the steps are no longer chosen for the tolerance.
-    errorReach_ = lost ? 0.0 : plate_->rowModeNormMax * std::sqrt(amplitude_.sum());
+    carryError();
     flow_.cappedSteps += !lost && local > target && j == top;
     // One level lower next time when the pair one level down would still be well inside the target
     // (a level down multiplies the local error by about 4 where the sub-steps are second order).
     if (!lost) flow_.refinementLevel = j > 1 && 8.0 * local < target ? j - 1 : j;
+}
+
+// A step the computed motion takes in free flight (kept: exact) while a row is within the carried
+// error's reach of an obstacle: E goes through it by its companion against a coarse run from the
+// same start (at the coarse level of the last contact step, in every row); the step adds no error
+// of its own.
+void FlowScheme::nearMiss(double zNext, double pNext) {
+    CondensedState& s = state_;
+    const int top = static_cast<int>(levels_.size());
+    const int level = std::clamp(std::max(flow_.refinementLevel, kLowestLevel), 1, top) - 1;
+    save(fine_);
+    restore(start_);
+    allRows_ = true;
+    substeps(zNext, pNext, 1 << level, level == 0 ? full_ : *levels_[std::size_t(level - 1)]);
+    long long solves = s.contactSolves - start_.state.contactSolves;
+    save(coarse_);
+    solves += carryThroughStep(zNext, pNext, level);
+    restore(fine_);
+    s.contactSolves += solves;
+    localQ_.setZero();
+    localMomentum_.setZero();
+    carryError();
+}
+
+// E from t_n through the step to t_{n+1} into errorNext*: the companion at `level` against coarse_
+// (its work returned), or the free flow when E is zero or the companion cannot be taken (past the
+// horizon E is as large as the motion and may put rows deep past an obstacle).
+long long FlowScheme::carryThroughStep(double zNext, double pNext, int level) {
+    const auto freeFlow = [this] {
+        errorNextQ_ = flow11_.cwiseProduct(flow_.errorQ) + flow12_.cwiseProduct(flow_.errorMomentum);
+        errorNextMomentum_ = flow21_.cwiseProduct(flow_.errorQ) + flow22_.cwiseProduct(flow_.errorMomentum);
+    };
+    if (flow_.errorQ.isZero(0.0) && flow_.errorMomentum.isZero(0.0)) {
+        freeFlow();
+        return 0;
+    }
+    try {
+        companion(zNext, pNext, level);
+        return state_.contactSolves - start_.state.contactSolves;
+    } catch (const StepError&) {
+        freeFlow();
+        return 0;
+    }
+}
+
+// E_{n+1} = E carried through the step + the kept run's own error, at t_{n+1}; sampled at the
+// reported points, and its reach over the rows in free flight: ‖G_i‖ max times the modes' error
+// amplitudes (constant undamped, decaying damped). Past the horizon (lost) E is as large as the
+// motion's own differences: every step would be near, and the steps are no longer chosen for the
+// tolerance.
+void FlowScheme::carryError() {
+    flow_.errorQ = errorNextQ_ + localQ_;
+    flow_.errorMomentum = errorNextMomentum_ + localMomentum_;
+    flow_.errorStep = state_.step;
+    sampleError();
+    amplitude_.array() = flow_.errorQ.array().square() + (flow_.errorMomentum.array() * inverseOmega_.array()).square();
+    errorReach_ = flow_.lostAt >= 0.0 ? 0.0 : plate_->rowModeNormMax * std::sqrt(amplitude_.sum());
 }
 
 // The companion of the contact step: from start_ with the global error added to the massive modes
@@ -523,13 +570,17 @@ void FlowScheme::companion(double zNext, double pNext, int level) {
 // amplitude of their sum of modal oscillations, √Σ(G_ik a_k)², a_k = √(δq_k² + (δP_k/ω_k)²).
 double FlowScheme::localError() {
     const CondensedState& s = state_;
-    const bool smooth = s.rowState == start_.state.rowState && coarse_.state.rowState == start_.state.rowState;
-    const double weight = smooth ? kSmoothWeight : 1.0;
-    localQ_ = weight * (coarse_.state.q - s.q);
-    localMomentum_ = weight * (coarse_.state.momentum - s.momentum);
+    smooth_ = s.rowState == start_.state.rowState && coarse_.state.rowState == start_.state.rowState;
+    localQ_ = coarse_.state.q - s.q;
+    localMomentum_ = coarse_.state.momentum - s.momentum;
     amplitude_.array() = localQ_.array().square() + (localMomentum_.array() * inverseOmega_.array()).square();
     rowBound_.noalias() = measuredRows_.cwiseAbs2() * amplitude_;
-    return rowBound_.size() > 0 ? std::sqrt(rowBound_.maxCoeff()) : 0.0;
+    difference_ = rowBound_.size() > 0 ? std::sqrt(rowBound_.maxCoeff()) : 0.0;
+    // Order p: the kept run's error is the difference / (2^p − 1).
+    const double weight = smooth_ ? 1.0 / (std::exp2(flow_.smoothOrder) - 1.0) : 1.0;
+    localQ_ *= weight;
+    localMomentum_ *= weight;
+    return weight * difference_;
 }
 
 // E from errorStep to toStep by the exact free flow of each mode (the error obeys the homogeneous
@@ -570,7 +621,7 @@ void FlowScheme::sampleError() {
 // as it went) and all steps so far (contact at every step from now on), and the share takes their
 // geometric mean.
 double FlowScheme::localTarget() const {
-    const double left = refinement_.tolerance - flow_.errorEstimate;
+    const double left = std::max(refinement_.tolerance - flow_.errorEstimate, 0.5 * refinement_.tolerance);
     return left / std::sqrt(double(flow_.contactSteps) * double(state_.step + 1));
 }
 
@@ -594,6 +645,7 @@ const auto flowMembers = [](auto& s, auto& v) {
     v.count(s.contactSteps, "contact steps");
     v.count(s.errorStep, "error step");
     v.real(s.lostAt, "time the tolerance was lost");
+    v.real(s.smoothOrder, "order of held contact steps");
     for (auto* x : {&s.errorQ, &s.errorMomentum}) v.vector(*x, 0, "error vector");
 };
 

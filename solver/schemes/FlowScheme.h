@@ -36,6 +36,8 @@ struct FlowState {
     long long contactSteps = 0;
     long long errorStep = 0;
     double lostAt = -1;  // when the estimate passed the tolerance, s (< 0: not yet)
+    // The sub-steps' order in held contact, observed (docs/theory.md §22); log2 3 until a rise says.
+    double smoothOrder = 1.584962500721156;
     Eigen::VectorXd errorQ, errorMomentum;  // E at errorStep (sized to the massive modes)
 };
 
@@ -72,6 +74,9 @@ private:
     // tolerance > 0 (docs/theory.md §22): the kept step at level j and its companion from the
     // perturbed start at level j − 1; the global error carried and sampled.
     void refine(double zNext, double pNext);
+    void nearMiss(double zNext, double pNext);  // a free step within E's reach of an obstacle
+    long long carryThroughStep(double zNext, double pNext, int level);  // E through the step
+    void carryError();  // E_{n+1} = carried + local; sampled; its reach
     void companion(double zNext, double pNext, int level);  // from start_ + E: E carried, into errorNext*
     void rotateError(long long toStep);  // E by the exact free flow from errorStep to toStep
     void sampleError();  // the reported points' error implied by E, into the running maximum
@@ -103,6 +108,8 @@ private:
     std::vector<std::unique_ptr<MidpointOperator>> levels_;
     Snapshot start_, coarse_, fine_;
     double errorReach_ = 0.0;
+    bool smooth_ = false;  // the last localError's pair: no row changed sides
+    double difference_ = 0.0;  // and its difference at the reported points, m
     int fixedLevel_ =
         0;  // past the tolerance's horizon: 2^fixedLevel_ sub-steps (≤ contact_substeps)  // how far the carried error can move a row (0 without a tolerance)
     Eigen::MatrixXd measuredRows_;  // G at the reported points

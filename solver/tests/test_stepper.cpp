@@ -91,3 +91,31 @@ TEST(Stepper, TimeStepDoesNotAllocate) {
         EXPECT_EQ(allocations.load(), 0) << sim.engine();
     }
 }
+
+// The condensed laws (docs/theory.md §17, §21–22, §24): 10⁴ steps of the default scene after its
+// first impact (the snapshots and buffers a first contact step sizes), through a dozen more.
+TEST(Stepper, CondensedLawsStepWithoutAllocating) {
+    struct Case {
+        const char* name;
+        plate::TimeScheme scheme;
+        double tolerance;
+    };
+    for (const Case c :
+         {Case{"conserving", plate::TimeScheme::Conserving, 0.0}, Case{"flow", plate::TimeScheme::Flow, 0.0},
+          Case{"flow with a tolerance", plate::TimeScheme::Flow, 1e-5}}) {
+        plate::PlateParameters p;
+        p.mass = plate::MassModel::SingularP0;
+        p.timeScheme = c.scheme;
+        p.tolerance = c.tolerance;
+        plate::PlateSimulation sim(p, 0.0);
+        run(sim, 6000);  // the first impact near 0.05 s
+        const long long before = static_cast<long long>(sim.outputs().contactSolves);
+        ASSERT_GT(before, 0) << c.name;
+        allocations = 0;
+        counting = true;
+        run(sim, 10000);
+        counting = false;
+        EXPECT_GT(static_cast<long long>(sim.outputs().contactSolves), before) << c.name;
+        EXPECT_EQ(allocations.load(), 0) << c.name;
+    }
+}
