@@ -269,7 +269,7 @@ void CondensedScheme::discreteGradient(double psi0) {
         if (std::abs(residual) <= kGradientTolerance * scale || norm2 == 0.0) return;
         if (it == kGradientIterations) {
             std::ostringstream msg;
-            msg << "the discrete gradient of the contact step to t = " << double(s.step + 1) * op_->h
+            msg << "the discrete gradient of the contact step to t = " << nextTime()
                 << " did not converge in " << it << " iterations (energy residual " << residual << " J)";
             throw StepError(msg.str());
         }

@@ -256,6 +256,7 @@ void FlowScheme::midpointSubsteps(double zNext, double pNext, int m) {
         const double z = j == m ? zNext : z0 + (zNext - z0) * (double(j) / m);
         const double p = j == m ? pNext : p0 + (pNext - p0) * (double(j) / m);
         midpointStep(z, p);
+        s.step = step0;  // one internal step, not m: the messages' t_{n+1} (nextTime) stays right
         force += s.clampForce;
         moment += s.clampMoment;
         contact[0] += s.stepContactForce[0];
