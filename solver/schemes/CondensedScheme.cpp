@@ -269,8 +269,8 @@ void CondensedScheme::discreteGradient(double psi0) {
         if (std::abs(residual) <= kGradientTolerance * scale || norm2 == 0.0) return;
         if (it == kGradientIterations) {
             std::ostringstream msg;
-            msg << "the discrete gradient of the contact step to t = " << nextTime()
-                << " did not converge in " << it << " iterations (energy residual " << residual << " J)";
+            msg << "the discrete gradient of the contact step to t = " << nextTime() << " did not converge in " << it
+                << " iterations (energy residual " << residual << " J)";
             throw StepError(msg.str());
         }
         // e ← c_g Δr with c_g from λ*(r_mid) = Λ − e.
