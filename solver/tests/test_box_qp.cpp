@@ -162,19 +162,30 @@ TEST(BoxQP, BothPathsAgreeWithBruteForceOverAllActiveSets) {
     }
 }
 
+// A two-sided problem of 30 unknowns and 12 constraints with its solver, built in place (the
+// solver keeps references to the problem and its factor), its free contact values and a cold start.
+struct TwelveContacts {
+    explicit TwelveContacts(unsigned seed)
+        : rng(seed), p(randomProblem(rng, 30, m, true)), llt(p.s), columns(selectionColumns(p, llt)), qp(columns) {
+        const Eigen::VectorXd w = llt.solve(p.b);
+        for (int i = 0; i < m; ++i) yFree[i] = w[p.constrained[i]];
+    }
+    plate::QPResult solve() { return qp.solve(yFree, p.lower, p.upper, state, mu, y); }
+
+    static constexpr int m = 12;
+    std::mt19937 rng;
+    Problem p;
+    Eigen::LLT<Eigen::MatrixXd> llt;
+    plate::ContactColumns columns;
+    plate::BoxQP qp;
+    Eigen::VectorXd yFree = Eigen::VectorXd(m), mu = Eigen::VectorXd::Zero(m), y;
+    std::vector<signed char> state = std::vector<signed char>(m, 0);
+};
+
 TEST(BoxQP, WarmStartFromTheSolutionTakesOneIteration) {
-    std::mt19937 rng(3);
-    const Problem p = randomProblem(rng, 30, 12, true);
-    const int m = 12;
-    const Eigen::LLT<Eigen::MatrixXd> llt(p.s);
-    plate::ContactColumns columns = selectionColumns(p, llt);
-    plate::BoxQP qp(columns);
-    const Eigen::VectorXd w = llt.solve(p.b);
-    Eigen::VectorXd yFree(m), mu = Eigen::VectorXd::Zero(m), y;
-    for (int i = 0; i < m; ++i) yFree[i] = w[p.constrained[i]];
-    std::vector<signed char> state(m, 0);
-    const auto cold = qp.solve(yFree, p.lower, p.upper, state, mu, y);
-    const auto warm = qp.solve(yFree, p.lower, p.upper, state, mu, y);
+    TwelveContacts c(3);
+    const auto cold = c.solve();
+    const auto warm = c.solve();
     EXPECT_TRUE(cold.converged);
     EXPECT_EQ(warm.iterations, 1);  // the previous step's set is the answer: verified, not searched
 }
@@ -231,22 +242,13 @@ TEST(BoxQP, RankDeficientContactOperatorOfAReducedPlate) {
 // A solve must not trust it to be zero off its own last set (issue 55's regression: stale entries
 // read as a violated complementarity, "contact solve did not converge ... KKT residual 1.47").
 TEST(BoxQP, MultipliersWrittenElsewhereDoNotLeakIntoTheSolution) {
-    std::mt19937 rng(11);
-    const Problem p = randomProblem(rng, 30, 12, true);
-    const int m = 12;
-    const Eigen::LLT<Eigen::MatrixXd> llt(p.s);
-    plate::ContactColumns columns = selectionColumns(p, llt);
-    plate::BoxQP qp(columns);
-    const Eigen::VectorXd w = llt.solve(p.b);
-    Eigen::VectorXd yFree(m), mu = Eigen::VectorXd::Zero(m), y;
-    for (int i = 0; i < m; ++i) yFree[i] = w[p.constrained[i]];
-    std::vector<signed char> state(m, 0);
-    ASSERT_TRUE(qp.solve(yFree, p.lower, p.upper, state, mu, y).converged);
-    const std::vector<signed char> solution = state;
-    mu.setConstant(123.0);  // another solver's multipliers, or a snapshot's
-    const auto again = qp.solve(yFree, p.lower, p.upper, state, mu, y);
+    TwelveContacts c(11);
+    ASSERT_TRUE(c.solve().converged);
+    const std::vector<signed char> solution = c.state;
+    c.mu.setConstant(123.0);  // another solver's multipliers, or a snapshot's
+    const auto again = c.solve();
     EXPECT_TRUE(again.converged);
     EXPECT_LE(again.kktResidual, 1e-10);
-    for (int i = 0; i < m; ++i)
-        if (solution[std::size_t(i)] == 0) EXPECT_EQ(mu[i], 0.0) << "row " << i;
+    for (int i = 0; i < TwelveContacts::m; ++i)
+        if (solution[std::size_t(i)] == 0) EXPECT_EQ(c.mu[i], 0.0) << "row " << i;
 }
