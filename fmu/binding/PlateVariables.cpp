@@ -280,7 +280,7 @@ const Row kRows[] = {
         "discrete-gradient iterations (conserving, flow)"),
     output(kVrErrorEstimate,           "error_estimate",             "m",    OUTPUT(errorEstimate),
         "time_scheme = flow with tolerance > 0: the largest error of the reported points since t = 0, estimated "
-        "from the global error carried through free flight and impacts (docs/theory.md section 22); at most the "
+        "from the global error carried through free flight and impacts (the theory, section 22); at most the "
         "gap between the obstacles; 0 otherwise"),
     integerOutput(kVrCappedSteps,       "capped_steps",        OUTPUT(cappedSteps),
         "time_scheme = flow with tolerance > 0: contact steps whose own error stayed above their share of the "
