@@ -89,7 +89,7 @@ def test_paper_scenes_quick(fmu, tmp_path):
 
 def test_frequency_response_quick(fmu, tmp_path):
     run_example("frequency_response.py", fmu, tmp_path, "--no-progress")
-    cols = RESULT_COLUMNS + ("wall_s",)
+    cols = RESULT_COLUMNS + ("wall_s", "setup_s")
     rows = read_csv(tmp_path / "frequency_response.csv", cols)
     assert len(rows) == 4
     assert_finite(rows, cols)
