@@ -1,8 +1,7 @@
 #pragma once
-// The process-wide cache of discretizations (README, "Performance"; docs/performance.md,
-// "Instances that share a plate"). What an instance builds before its first step — the FE space,
-// the clamped M and K, the modal basis, the condensed operators — depends on a few parameters
-// only; instances with the same ones (a sweep's points, a master that re-instantiates, a test
+// The process-wide cache of discretizations (README, "Performance"). What an instance builds
+// before its first step — the FE space, the clamped M and K, the modal basis, the condensed
+// operators — depends on a few parameters only; instances with the same ones (a sweep's points, a master that re-instantiates, a test
 // suite) share one immutable copy instead of each building its own: the default plate's
 // complete modal basis is 95 % of its 0.6 s initialization.
 //
