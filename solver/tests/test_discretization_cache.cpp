@@ -6,6 +6,7 @@
 #include <cmath>
 #include <cstdlib>
 #include <cstring>
+#include <string>
 #include <thread>
 #include <vector>
 
@@ -31,7 +32,7 @@ PlateParameters scene(int kind, double gap) {
     p.obstacleUpper = gap;
     switch (kind % 5) {
         case 0: break;
-        case 1: p.nx = 8, p.ny = 3, p.modes = 12, p.beta = 0.2; break;
+        case 1: p.nx = 8, p.ny = 3, p.modes = 12, p.beta = 0.2, p.dt = 5e-6; break;
         case 2: p.nx = 6, p.ny = 2, p.engine = PlateParameters::Engine::SparseFactor; break;
         case 3: p.nx = 8, p.ny = 3, p.mass = MassModel::SingularP0, p.timeScheme = TimeScheme::Conserving; break;
         default:
@@ -53,8 +54,8 @@ std::vector<double> run(const PlateParameters& p, double frequency, int steps = 
         InputSignal base{0.015 * std::sin(w * t), 0.015 * w * std::cos(w * t), -0.015 * w * w * std::sin(w * t)};
         s.advance(100, base, InputSignal{});
         const PlateOutputs o = s.outputs(true, FieldOutputs::Plate);
-        out.insert(out.end(),
-                   {o.corner1, o.corner2, o.freeEdgeMid, o.energy, o.clampForce, o.rootStress, o.contactVertices});
+        out.insert(out.end(), {o.corner1, o.corner2, o.freeEdgeMid, o.energy, o.clampForce, o.rootStress, o.probe[0],
+                               o.maxStress, o.contactVertices});
     }
     const std::vector<double> state = s.saveState();
     out.insert(out.end(), state.begin(), state.end());
@@ -117,6 +118,50 @@ TEST(DiscretizationCache, ADifferentPlateIsNotShared) {
     EXPECT_EQ(after.builds - before.builds, 3);
     CacheBudget off("0");
     EXPECT_TRUE(bitIdentical(thicker, run(p, 20.0, 100)));
+}
+
+// Every parameter a key holds, changed one at a time after the unchanged plate was cached: the
+// instance gives what one built alone gives (a parameter missing from its key would hand it the
+// cached plate of the old value). A mutation check of the keys: drop one from
+// DiscretizationCache.cpp and its line fails.
+TEST(DiscretizationCache, EveryKeyParameterChangesTheResult) {
+    using Change = void (*)(PlateParameters&);
+    const std::vector<std::pair<const char*, Change>> changes = {
+        {"element", [](PlateParameters& p) { p.element = ElementType::Fvs; }},
+        {"length", [](PlateParameters& p) { p.length *= 1.1; }},
+        {"width", [](PlateParameters& p) { p.width *= 1.1; }},
+        {"nx", [](PlateParameters& p) { p.nx += 1; }},
+        {"ny", [](PlateParameters& p) { p.ny += 1; }},
+        {"thickness", [](PlateParameters& p) { p.thickness *= 0.9; }},
+        {"youngsModulus", [](PlateParameters& p) { p.youngsModulus *= 0.9; }},
+        {"poissonRatio", [](PlateParameters& p) { p.poissonRatio = 0.25; }},
+        {"density", [](PlateParameters& p) { p.density *= 1.1; }},
+        {"dt", [](PlateParameters& p) { p.dt *= 0.5; }},
+        {"beta", [](PlateParameters& p) { p.beta = 0.3; }},
+        {"modes", [](PlateParameters& p) { p.modes += 2; }},
+        {"dampingMass", [](PlateParameters& p) { p.dampingMass = 3.0; }},
+        {"dampingStiffness", [](PlateParameters& p) { p.dampingStiffness = 1e-5; }},
+    };
+    for (int kind : {1, 3, 4}) {  // Newmark's reduced modal basis, the conserving and flow laws
+        for (const auto& [name, change] : changes) {
+            PlateParameters p = scene(kind, 0.02);
+            if (kind == 4 && std::string(name) == "element") continue;  // P1dg's mass is Argyris's only
+            clearDiscretizationCache();
+            (void)run(p, 20.0, 100);  // the unchanged plate, cached
+            change(p);
+            const std::vector<double> changed = run(p, 20.0, 200);
+            CacheBudget off("0");
+            EXPECT_TRUE(bitIdentical(changed, run(p, 20.0, 200))) << "kind " << kind << ", " << name;
+        }
+    }
+    // The condensed plate's recovery rows: a probe moved.
+    PlateParameters p = scene(4, 0.02);
+    clearDiscretizationCache();
+    (void)run(p, 20.0, 100);
+    p.probeX[0] = 0.7;
+    const std::vector<double> moved = run(p, 20.0, 200);
+    CacheBudget off("0");
+    EXPECT_TRUE(bitIdentical(moved, run(p, 20.0, 200))) << "probe_1_x";
 }
 
 TEST(DiscretizationCache, TheBudgetBoundsWhatIsKept) {
