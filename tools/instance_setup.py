@@ -26,14 +26,10 @@ def setup_cpu(fmu, parameters):
     """(CPU s, wall s) of one instance's ExitInitializationMode; the instance is freed after."""
     plate = PlateImpactFMU(fmu, initialize=False)
     try:
-        plate.fmu.setupExperiment(startTime=0.0)
-        plate.fmu.enterInitializationMode()
-        for name, value in parameters.items():
-            plate.set(name, value)
+        plate.enter_initialization(parameters)
         cpu, wall = time.process_time(), time.perf_counter()
-        plate.fmu.exitInitializationMode()
+        plate.exit_initialization()
         cpu, wall = time.process_time() - cpu, time.perf_counter() - wall
-        plate._initialized = True
     finally:
         plate.close()
     return cpu, wall

@@ -182,12 +182,23 @@ class PlateImpactFMU:
 
     @_explained
     def initialize(self, parameters, base0=0.0, load0=0.0):
+        self.enter_initialization(parameters, base0, load0)
+        self.exit_initialization()
+
+    @_explained
+    def enter_initialization(self, parameters, base0=0.0, load0=0.0):
+        """initialize() up to fmi2ExitInitializationMode, for a caller that times that call or
+        expects it to fail: the experiment set up, the parameters and start inputs set."""
         self.fmu.setupExperiment(startTime=self.time)
         self.fmu.enterInitializationMode()
         for name, value in parameters.items():
             self.set(name, value)
         self.set("base_displacement", base0)
         self.set("load", load0)
+
+    @_explained
+    def exit_initialization(self):
+        """fmi2ExitInitializationMode: the FMU builds the plate (or refuses its parameters)."""
         self.fmu.exitInitializationMode()
         self._initialized = True
 
