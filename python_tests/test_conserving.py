@@ -253,12 +253,9 @@ def test_fmi3_early_return_stops_at_contact_events(fmu_path):
 def test_what_it_cannot_take_is_refused_with_a_message(fmu_path, parameters, named):
     plate = PlateImpactFMU(fmu_path, initialize=False)
     try:
-        plate.fmu.setupExperiment(startTime=0.0)
-        plate.fmu.enterInitializationMode()
-        for name, value in parameters.items():
-            plate.set(name, value)
+        plate.enter_initialization(parameters)
         with pytest.raises(FMICallException):
-            plate.fmu.exitInitializationMode()
+            plate.exit_initialization()
         assert any(f"invalid parameter {named}" in m for m in plate.errors()), plate.errors()
     finally:
         plate.free()

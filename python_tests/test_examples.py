@@ -3,6 +3,7 @@ the FMU through the input derivatives, and the Dask response map equals the seri
 
 import csv
 import math
+import os
 import subprocess
 import sys
 from pathlib import Path
@@ -89,10 +90,13 @@ def test_paper_scenes_quick(fmu, tmp_path):
 
 def test_frequency_response_quick(fmu, tmp_path):
     run_example("frequency_response.py", fmu, tmp_path, "--no-progress")
-    cols = RESULT_COLUMNS + ("wall_s",)
-    rows = read_csv(tmp_path / "frequency_response.csv", cols)
+    cols = RESULT_COLUMNS + ("wall_s", "setup_s")
+    rows = read_csv(tmp_path / "frequency_response.csv", cols + ("plate_shared",))
     assert len(rows) == 4
     assert_finite(rows, cols)
+    # 4 points on 2 worker processes: each process builds the plate once, the other points share it
+    if os.environ.get("PLATEIMPACT_CACHE_MB") != "0":
+        assert sum(r["plate_shared"] == "True" for r in rows) >= 2, rows
     assert (tmp_path / "frequency_response.png").stat().st_size > 10_000
 
 

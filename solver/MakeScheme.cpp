@@ -36,7 +36,9 @@ CarrierOptions carrierOptions(const PlateParameters& p, double baseDisplacement0
 // Stability of γ = ½, β < ¼ (docs/theory.md §4): Δt < 2 / √((1 − 4β) κ_h).
 void requireStableStep(const SchemeSetup& setup) {
     const PlateParameters& p = setup.parameters;
-    const double kappaH = largestEigenvalue(*setup.clamped);  // a power iteration: once
+    const double kappaH = *cached<double>(  // a power iteration: once per plate and process
+        kappaKey(p), [&] { return std::make_shared<const double>(largestEigenvalue(*setup.clamped)); },
+        [](double) { return sizeof(double); }, setup.cache);
     const double bound = 2.0 / std::sqrt((1.0 - 4.0 * p.beta) * kappaH);
     if (!(p.dt < bound)) {
         std::ostringstream msg;
@@ -96,6 +98,18 @@ void initializeState(const SchemeSetup& s, const std::shared_ptr<const DiscreteP
     }
 }
 
+// What the discretization cache charges (DiscretizationCache.h).
+std::size_t modalBytes(const ModalPlate& m) {
+    const auto n = static_cast<std::size_t>(m.clamped().mass.rows()), k = static_cast<std::size_t>(m.size());
+    return sizeof(double) * k * (n + static_cast<std::size_t>(m.contactCount()) + 5);
+}
+
+std::size_t condensedBytes(const CondensedPlate& c) {
+    return heapBytes(c.omega2) + heapBytes(c.rowModesT) + heapBytes(c.delassus) + heapBytes(c.rowLoad) +
+           heapBytes(c.modalLoad) + heapBytes(c.modalBaseInertia) + heapBytes(c.modalRotationInertia) +
+           heapBytes(c.recoveryModes) + heapBytes(c.recoveryRows) + heapBytes(c.recoveryLoad);
+}
+
 // time_scheme = conserving and flow (docs/theory.md §17): the output points become constraint rows
 // — a corner, or a free_edge_mid on a vertex, is its contact vertex's row; a free_edge_mid between
 // vertices (ny odd) a row of its own.
@@ -115,8 +129,13 @@ std::shared_ptr<const CondensedPlate> condensedPlate(const SchemeSetup& s, Outpu
     }
     rows.probes = probeRows;
     rows.vertices = std::move(vertexRows);
-    return std::make_shared<const CondensedPlate>(
-        condense(*s.clamped, s.rootFree, extra, p.modes, s.recovery.functionals()));
+    return cached<CondensedPlate>(
+        condensedPlateKey(p),
+        [&] {
+            return std::make_shared<const CondensedPlate>(
+                condense(*s.clamped, s.rootFree, extra, p.modes, s.recovery.functionals()));
+        },
+        condensedBytes, s.cache);
 }
 
 // time_scheme = newmark: the plate in modal coordinates or on the sparse factor of A, as the
@@ -133,9 +152,14 @@ std::unique_ptr<Scheme> makeNewmark(const SchemeSetup& s, InitProgress& progress
     progress.phase(modal ? "modal basis (generalized eigenproblem)" : "factorization of A = M + beta dt^2 K",
                    modal ? s.resources.spectrumSeconds : 0.5 * s.resources.factorSeconds);
     std::shared_ptr<const DiscretePlate> discrete;
-    if (modal)
-        discrete = std::make_shared<const ModalPlate>(s.space, s.clamped, p.dt, p.beta, p.modes, p.dampingMass,
-                                                      p.dampingStiffness);
+    if (modal)  // shared between instances: plain data. The sparse factor is not (its solve's workspace).
+        discrete = cached<ModalPlate>(
+            modalPlateKey(p, s.resources.engine == EngineKind::CompleteModal),
+            [&] {
+                return std::make_shared<const ModalPlate>(s.space, s.clamped, p.dt, p.beta, p.modes, p.dampingMass,
+                                                          p.dampingStiffness);
+            },
+            modalBytes, s.cache);
     else
         discrete =
             std::make_shared<const FullOrderPlate>(s.space, s.clamped, p.dt, p.beta, p.dampingMass, p.dampingStiffness);

@@ -5,6 +5,7 @@
 #include <Eigen/Sparse>
 #include <memory>
 
+#include "plate/DiscretizationCache.h"
 #include "plate/Obstacles.h"
 #include "plate/PlateParameters.h"
 #include "plate/ResourceEstimate.h"
@@ -27,6 +28,7 @@ struct SchemeSetup {
     const Eigen::SparseMatrix<double>& rootFree;  // R of the singular mass (free rows), or empty
     Obstacles obstacles;
     double baseDisplacement0, loadAtStart;
+    CacheUse& cache;  // what the modal basis, the condensed plate and κ_h came from (DiscretizationCache.h)
 };
 
 // The scheme at t = 0 in its initial static state. Throws ParameterError (an unstable Δt for

@@ -12,6 +12,7 @@
 #include "base/PortableMath.h"
 #include "fe/Assembly.h"
 #include "fe/SingularMass.h"
+#include "plate/DiscretizationCache.h"
 #include "plate/Spectrum.h"
 #include "schemes/Armature.h"
 #include "schemes/FieldRecovery.h"
@@ -33,6 +34,58 @@ Obstacles obstaclesOf(const PlateParameters& p) {
     if (p.obstacleLowerEnabled) o.lower = p.obstacleLower;
     if (p.obstacleUpperEnabled) o.upper = p.obstacleUpper;
     return o;
+}
+
+// What every scheme starts from (one entry of the discretization cache, DiscretizationCache.h):
+// the space, the clamped M and K, and the singular mass's B and R on the free rows (empty with the
+// consistent mass).
+struct ClampedDiscretization {
+    std::shared_ptr<const FiniteElementSpace> space;
+    std::shared_ptr<const ClampedPlate> clamped;
+    Eigen::SparseMatrix<double> couplingFree, rootFree;
+    std::size_t bytes() const {
+        const ClampedPlate& c = *clamped;
+        return heapBytes(c.mass) + heapBytes(c.stiffness) + heapBytes(couplingFree) + heapBytes(rootFree) +
+               heapBytes(c.pressureLoad) + heapBytes(c.baseInertia) + heapBytes(c.rotationInertia) +
+               sizeof(Eigen::Index) * (c.freeDofs.size() + 2 * c.contactDofs.size());
+    }
+};
+
+ClampedDiscretization clampedDiscretization(const PlateParameters& p, std::shared_ptr<const FiniteElementSpace> space) {
+    ClampedDiscretization d;
+    d.space = std::move(space);
+    PlateMatrices matrices = assemble(*d.space, p.surfaceDensity(), p.bendingStiffness(), p.poissonRatio);
+    Eigen::SparseMatrix<double> coupling, root;  // B and R of the singular mass, all dofs
+    if (p.singularMass()) {
+        SingularMass singular = assembleSingularMass(
+            *d.space, p.surfaceDensity(), p.mass == MassModel::SingularP0 ? MassProjection::P0 : MassProjection::P1dg);
+        matrices.mass = std::move(singular.mass);
+        matrices.massMoment = std::move(singular.massMoment);
+        coupling = std::move(singular.coupling);
+        root = std::move(singular.root);
+    }
+    d.clamped = std::make_shared<const ClampedPlate>(clamp(*d.space, matrices));
+    if (p.singularMass()) {
+        d.couplingFree = freeRows(coupling, *d.clamped);
+        requireMasslessContact(d.couplingFree, *d.clamped,
+                               p.mass == MassModel::SingularP0 ? "singular_p0" : "singular_p1dg");
+        d.rootFree = freeRows(root, *d.clamped);
+    }
+    return d;
+}
+
+std::size_t spaceBytes(const FiniteElementSpace& space) {
+    std::size_t bytes = 0;
+    for (int e = 0; e < space.elementCount(); ++e) bytes += 256 + sizeof(Eigen::Index) * space.elementDofs(e).size();
+    return bytes;
+}
+
+std::string describe(const CacheUse& cache) {
+    std::ostringstream line;
+    line << "discretization: " << cache.shared << " of " << cache.shared + cache.built
+         << " parts shared from the process's cache, " << cache.built
+         << " built (PLATEIMPACT_CACHE_MB sets its budget, 0 turns it off)";
+    return line.str();
 }
 
 }  // namespace
@@ -69,35 +122,27 @@ PlateSimulation::PlateSimulation(const PlateParameters& p, double baseDisplaceme
     Impl& s = *impl_;
     s.parameters = p;
     requireMeshWithinBudget(p);  // far beyond memory_limit: refused before the space is built
-    const Mesh mesh(p.length, p.width, p.nx, p.ny);
-    s.space = makeSpace(p.element, mesh);
-    s.resources = planResources(p, *s.space, log);  // refuses beyond memory_limit
+    CacheUse cache;
+    const auto space = cached<FiniteElementSpace>(
+        spaceKey(p),
+        [&] {
+            return std::shared_ptr<const FiniteElementSpace>(makeSpace(p.element, Mesh(p.length, p.width, p.nx, p.ny)));
+        },
+        spaceBytes, cache);
+    s.resources = planResources(p, *space, log);  // refuses beyond memory_limit
     InitProgress progress(log, s.resources.initSeconds);
     progress.phase("assembly of M and K", s.resources.assemblySeconds);
-    PlateMatrices matrices = assemble(*s.space, p.surfaceDensity(), p.bendingStiffness(), p.poissonRatio);
-    Eigen::SparseMatrix<double> coupling, root;  // B and R of the singular mass, all dofs
-    if (p.singularMass()) {
-        SingularMass singular = assembleSingularMass(
-            *s.space, p.surfaceDensity(), p.mass == MassModel::SingularP0 ? MassProjection::P0 : MassProjection::P1dg);
-        matrices.mass = std::move(singular.mass);
-        matrices.massMoment = std::move(singular.massMoment);
-        coupling = std::move(singular.coupling);
-        root = std::move(singular.root);
-    }
-    s.clamped = std::make_shared<const ClampedPlate>(clamp(*s.space, matrices));
+    const auto plate = cached<ClampedDiscretization>(
+        clampedPlateKey(p),
+        [&] { return std::make_shared<const ClampedDiscretization>(clampedDiscretization(p, space)); },
+        [](const ClampedDiscretization& d) { return d.bytes(); }, cache);
+    s.space = plate->space;
+    s.clamped = plate->clamped;
     s.recovery = std::make_unique<FieldRecovery>(*s.space, *s.clamped, p);
-    matrices = PlateMatrices{};  // the unclamped matrices are not needed past the clamp
-    Eigen::SparseMatrix<double> couplingFree;
-    if (p.singularMass()) {
-        couplingFree = freeRows(coupling, *s.clamped);
-        requireMasslessContact(couplingFree, *s.clamped,
-                               p.mass == MassModel::SingularP0 ? "singular_p0" : "singular_p1dg");
-    }
-    const Eigen::SparseMatrix<double> rootFree =
-        p.condensed() ? freeRows(root, *s.clamped) : Eigen::SparseMatrix<double>();
-    s.scheme = makeScheme(SchemeSetup{p, s.space, s.clamped, *s.recovery, s.resources, couplingFree, rootFree,
-                                      obstacles, baseDisplacement0, loadAtStart},
+    s.scheme = makeScheme(SchemeSetup{p, s.space, s.clamped, *s.recovery, s.resources, plate->couplingFree,
+                                      plate->rootFree, obstacles, baseDisplacement0, loadAtStart, cache},
                           progress);
+    if (log) log(describe(cache));
     s.trackRoot();  // the initial state's (t = 0 belongs to the peak)
     progress.done(s.resources.peakMB);
 }

@@ -19,11 +19,13 @@ was wrong and what is allowed.
 from __future__ import annotations
 
 import atexit
+import ctypes
 import functools
 import re
 import shutil
+from pathlib import Path
 
-from fmpy import calloc, extract, free, read_model_description
+from fmpy import calloc, extract, free, platform, read_model_description, sharedLibraryExtension
 from fmpy.fmi1 import FMICallException
 from fmpy.fmi2 import (
     FMU2Slave,
@@ -77,15 +79,27 @@ def switch_items(v) -> dict[str, int]:
 
 
 _extracted = {}  # (resolved path, mtime) -> (unzip directory, model description)
+_pinned = []  # the FMUs' libraries, loaded once more and never freed (unzipped)
 
 
 def unzipped(fmu_path):
     """(unzip directory, model description) of an FMU file, extracted once per process (and file
-    version) and removed at exit, or of a directory holding an extracted FMU."""
+    version) and removed at exit, or of a directory holding an extracted FMU.
+
+    Its library stays loaded for the process: fmpy unloads it when an instance is freed, and with
+    it the FMU's cache of discretizations (instances of the same plate share its modal basis:
+    README, "Performance"), so a sweep of one instance after another would otherwise pay the
+    whole setup at every point."""
     path = fmu_file(fmu_path)
     key = (str(path), path.stat().st_mtime_ns)
     if key not in _extracted:
-        _extracted[key] = (str(path) if path.is_dir() else _extract(path), read_model_description(str(path)))
+        unzip_dir = str(path) if path.is_dir() else _extract(path)
+        md = read_model_description(str(path))
+        _extracted[key] = (unzip_dir, md)
+        if md.coSimulation is not None:
+            library = Path(unzip_dir, "binaries", platform, md.coSimulation.modelIdentifier + sharedLibraryExtension)
+            if library.is_file():
+                _pinned.append(ctypes.CDLL(str(library)))
     return _extracted[key]
 
 
@@ -168,12 +182,23 @@ class PlateImpactFMU:
 
     @_explained
     def initialize(self, parameters, base0=0.0, load0=0.0):
+        self.enter_initialization(parameters, base0, load0)
+        self.exit_initialization()
+
+    @_explained
+    def enter_initialization(self, parameters, base0=0.0, load0=0.0):
+        """initialize() up to fmi2ExitInitializationMode, for a caller that times that call or
+        expects it to fail: the experiment set up, the parameters and start inputs set."""
         self.fmu.setupExperiment(startTime=self.time)
         self.fmu.enterInitializationMode()
         for name, value in parameters.items():
             self.set(name, value)
         self.set("base_displacement", base0)
         self.set("load", load0)
+
+    @_explained
+    def exit_initialization(self):
+        """fmi2ExitInitializationMode: the FMU builds the plate (or refuses its parameters)."""
         self.fmu.exitInitializationMode()
         self._initialized = True
 
