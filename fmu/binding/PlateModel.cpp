@@ -83,6 +83,9 @@ communication steps that are not whole multiples of dt.</p>
     /*stateMagic=*/"PLATEIMP",
 };
 
+// base_drive's items by value (index 0 unused).
+const char* const kDriveItems[] = {"", "displacement", "velocity", "acceleration", "force", "tlm"};
+
 std::string format(const char* fmt, double a, double b, double c = 0.0) {
     char text[400];
     std::snprintf(text, sizeof text, fmt, a, b, c);
@@ -97,20 +100,42 @@ public:
     double get(const fmu::Variable& v) const override { return getValue(values_, v); }
     void set(const fmu::Variable& v, double x) override {
         setValue(values_, v, x);
-        // Set while the simulation runs (not the start value of initialization mode): the drive is driven.
-        if (simulation_ && v.causality == fmu::Causality::Input && values_.inputPort(v.vr) == &drivePort())
-            driveSet_ = true;
+        // Set while the simulation runs (not the start value of initialization mode): the drive is
+        // driven, or another motion input is (terminate tells which).
+        if (simulation_ && v.causality == fmu::Causality::Input) {
+            if (values_.inputPort(v.vr) == &drivePort())
+                driveSet_ = true;
+            else if (isMotionInput(v.vr) && !otherMotionSet_)
+                otherMotionSet_ = v.name;
+        }
     }
 
     // FMI 3.0: the vertex displacements as an array, early return at contact onset and release.
     const std::vector<fmu::StructuralParameter>& structuralParameters() const override {
         return plateStructuralParameters();
     }
-    const std::vector<fmu::ArrayOutput>& arrayOutputs() const override { return plateArrayOutputs(); }
+    const std::vector<fmu::ArrayVariable>& arrayVariables() const override { return plateArrays(); }
     const std::vector<fmu::Terminal>& terminals() const override { return plateTerminals(); }
-    void getArray(const fmu::ArrayOutput& a, double* out, std::size_t n) const override {
-        if (!simulation_) throw fmu::ModelError("internal error: no simulation to read an array from");
-        getPlateArray(*simulation_, a, out, n);
+    void getArray(const fmu::ArrayVariable& a, double* out, std::size_t n) const override {
+        getPlateArray(values_, a, out, n);
+    }
+    void setArray(const fmu::ArrayVariable& a, const double* values, std::size_t n) override {
+        setPlateArray(values_, a, values, n);
+    }
+    // FMI 3.0's probe_count is the probes' count itself (FMU states carry it: saveState).
+    double ownStructuralValue(const fmu::StructuralParameter& s) const override {
+        return s.vr == kVrProbeCountArrays ? double(values_.probes.count) : Model::ownStructuralValue(s);
+    }
+    void setOwnStructuralValue(const fmu::StructuralParameter& s, double x) override {
+        if (s.vr != kVrProbeCountArrays) return Model::setOwnStructuralValue(s, x);
+        values_.probes.setCount(std::size_t(x));
+        values_.probes.placed = true;
+    }
+    // FMI 3.0: up to kMaxProbes probes, one to start with (an array's initial size is positive).
+    void useVersion(int version) override {
+        Model::useVersion(version);
+        values_.probes.max = version == 3 ? kMaxProbes : kScalarProbes;
+        values_.probes.setCount(version == 3 ? 1 : 0);
     }
     // FMI 3.0 intermediate update with inputs: the clamp's height and the load, set by the master at
     // each internal grid point, are the values the step to that point takes (no reconstruction).
@@ -162,7 +187,7 @@ public:
         requireOneDrive();
         try {
             simulation_ = std::make_unique<plate::PlateSimulation>(
-                values_.parameters, values_.baseDisplacement.signal.value, values_.load.signal.value, log);
+                values_.solverParameters(), values_.baseDisplacement.signal.value, values_.load.signal.value, log);
         } catch (const std::bad_alloc&) {
             // The estimate is an estimate: what fails anyway is reported, never an abort.
             throw fmu::ModelError("out of memory while building the simulation (std::bad_alloc) after " + estimate +
@@ -177,16 +202,25 @@ public:
         trace(format("simulation built (nx = %g, ny = %g, dt = %g s)", p.nx, p.ny, p.dt));
         warnOfCoarseStep();
         driveSet_ = interpolationWarned_ = errorWarned_ = cappedWarned_ = false;
+        otherMotionSet_ = nullptr;
         warnOfUnusedTolerance();
         warnOfProbes();
     }
     void terminate() override {
-        // A drive the master never set: the clamp stayed where it started (a CSV column missing or
-        // misspelled runs to the end without an error otherwise).
-        if (!driveSet_ && simulation_->stepCount() > 0 && !carried())
-            warn(std::string(driveName()) +
-                 " (base_drive) was never set during this run: the clamp stayed at its start value, so only the "
-                 "load moved the plate; if an input file or a connection should drive it, check the input's name");
+        // A drive the master never set: the clamp stayed where it started. A motion input of another
+        // drive set instead is a mistake (base_drive not switched, or the wrong column): warned. None
+        // set is a load-only scene (the paper's §5.2 release), as likely meant as not: told once, at
+        // the info level (logInfo), for the user who looks for why the clamp did not move.
+        if (driveSet_ || simulation_->stepCount() == 0 || carried()) return;
+        if (otherMotionSet_)
+            warn(std::string(otherMotionSet_) + " was set during this run, but base_drive = " +
+                 kDriveItems[static_cast<int>(values_.baseDrive)] + " moves the clamp by " + driveName() +
+                 ", which was never set: the clamp stayed at its start value; set base_drive to the input you "
+                 "drive (1 = base_displacement, 2 = base_velocity, 3 = base_acceleration)");
+        else
+            inform(std::string(driveName()) +
+                   " (base_drive) was never set during this run: a load-only run, the clamp stayed at its start "
+                   "value; if an input file or a connection should drive it, check the input's name");
     }
     bool built() const override { return simulation_ != nullptr; }
     void drop() override {
@@ -249,6 +283,7 @@ public:
             port->history.serialize(out);
         }
         out.insert(out.end(), {clampPosition_, clampVelocity_});
+        saveProbes(out);
         out.push_back(simulation_ ? 1.0 : 0.0);
         out.push_back(simulationBase0_);
         if (simulation_) {
@@ -286,6 +321,7 @@ public:
             throw fmu::ModelError("the clamp's motion is not finite");
         clampPosition_ = clamp[0];
         clampVelocity_ = clamp[1];
+        restoreProbes(take);
         const double* flags = take(2, "the simulation flag");
         if ((flags[0] != 0.0 && flags[0] != 1.0) || !std::isfinite(flags[1]))
             throw fmu::ModelError("simulation flag or initial base displacement out of range");
@@ -299,7 +335,7 @@ public:
         // Equal configurations (every parameter of the table, and the initial base) reuse the
         // discretization; another one is built for the state's parameters.
         if (!simulation_ || builtWith_ != configuration() || simulationBase0_ != flags[1]) {
-            auto simulation = std::make_unique<plate::PlateSimulation>(values_.parameters, flags[1]);
+            auto simulation = std::make_unique<plate::PlateSimulation>(values_.solverParameters(), flags[1]);
             simulation->restoreState(state);
             simulation_ = std::move(simulation);
             builtWith_ = configuration();
@@ -317,7 +353,32 @@ private:
         std::vector<double> out;
         for (const fmu::Variable& v : plateVariables())
             if (v.causality == fmu::Causality::Parameter) out.push_back(getValue(values_, v));
+        saveProbes(out);
         return out;
+    }
+    // The probes' count and places (as many as the FMI 2.0 slots, or the count if more): FMU states
+    // carry them, FMI 3.0's count with them.
+    void saveProbes(std::vector<double>& out) const {
+        const ProbePlaces& probes = values_.probes;
+        out.push_back(double(probes.count));
+        out.insert(out.end(), probes.x.begin(), probes.x.end());
+        out.insert(out.end(), probes.y.begin(), probes.y.end());
+    }
+    template <class Take>
+    void restoreProbes(const Take& take) {
+        const double count = *take(1, "the probes' count");
+        if (!(count >= 0.0 && count <= double(values_.probes.max)) || std::floor(count) != count)
+            throw fmu::ModelError("the probes' count is out of range");
+        ProbePlaces probes = values_.probes;
+        probes.setCount(std::size_t(count));
+        const double* places = take(2 * probes.x.size(), "the probes' places");
+        for (std::size_t k = 0; k < probes.x.size(); ++k) {
+            probes.x[k] = places[k];
+            probes.y[k] = places[probes.x.size() + k];
+            if (!std::isfinite(probes.x[k]) || !std::isfinite(probes.y[k]))
+                throw fmu::ModelError("a probe's place is not finite");
+        }
+        values_.probes = probes;
     }
     void refreshOutputs() {
         values_.outputs = simulation_ ? simulation_->outputs() : plate::PlateOutputs{};
@@ -325,6 +386,7 @@ private:
         values_.portValid = false;
         values_.fieldValid = false;
         values_.plateFieldValid = false;
+        values_.probesValid = false;
     }
 
     std::array<InputPort*, 6> ports() {
@@ -342,6 +404,9 @@ private:
             case BaseDrive::Displacement: break;
         }
         return values_.baseDisplacement;
+    }
+    bool isMotionInput(fmu::ValueReference vr) const {
+        return vr == kVrBaseDisplacement || vr == kVrBaseVelocity || vr == kVrBaseAcceleration;
     }
     const char* driveName() const {
         static const char* const names[] = {
@@ -379,23 +444,28 @@ private:
                        "scheme ignores it",
                        double(p.maxContactSubsteps), 0.0));
     }
-    // Probes (docs/theory.md §23) that are not what they seem: one placed but not counted (it reads 0),
-    // one counted but on the clamped edge x = 0 (unplaced: the default (0, 0)), which moves with the clamp.
+    // Probes (docs/theory.md §23) that are not what they seem, among those the importer placed or
+    // counted: an FMI 2.0 probe placed but not counted (it reads 0), one counted but on the clamped
+    // edge x = 0 (unplaced: the default (0, 0)), which moves with the clamp.
     void warnOfProbes() {
-        const plate::PlateParameters& p = values_.parameters;
-        for (int k = 0; k < plate::kProbeCount; ++k) {
-            const double x = p.probeX[std::size_t(k)], y = p.probeY[std::size_t(k)];
-            const std::string name = "probe_" + std::to_string(k + 1);
-            if (k >= p.probeCount && (x != 0.0 || y != 0.0))
+        const ProbePlaces& probes = values_.probes;
+        if (!probes.placed) return;
+        const bool arrays = fmiVersion() == 3;
+        for (std::size_t k = 0; k < probes.x.size(); ++k) {
+            const double x = probes.x[k], y = probes.y[k];
+            const std::string index = std::to_string(k + 1), at = "[" + std::to_string(k) + "]";
+            const std::string name = arrays ? "probe" + at : "probe_" + index;
+            const std::string placeX = arrays ? "probe_x" + at : name + "_x";
+            if (k >= probes.count && !arrays && (x != 0.0 || y != 0.0))
                 warn(name + format(" is placed at (%g, %g) m", x, y) +
                      format(" but probe_count = %g leaves it off: it reads 0; set probe_count >= %g to compute it",
-                            double(p.probeCount), double(k + 1)));
-            if (k < p.probeCount && x == 0.0)
+                            double(probes.count), double(k + 1)));
+            if (k < probes.count && x == 0.0)
                 warn(name +
                      format(" at (%g, %g) m is counted (probe_count = %g) but lies on the clamped edge x = 0", x, y,
-                            double(p.probeCount)) +
-                     ": it reads the clamp's motion; place it with " + name + "_x > 0 (" + name +
-                     (y == 0.0 ? "_x and _y were never set)" : "_x is 0)"));
+                            double(probes.count)) +
+                     ": it reads the clamp's motion; place it with " + placeX + " > 0 (" +
+                     (y == 0.0 ? placeX + " and its y were never set)" : placeX + " is 0)"));
         }
     }
     // tolerance > 0 (docs/theory.md §22): the contact steps' accumulated error estimate passing the
@@ -440,9 +510,8 @@ private:
             if (input.used || input.value == 0.0) continue;
             const bool inputIsMotion = input.name[0] == 'b';
             if (motion && inputIsMotion) continue;  // the motion drives ignore each other's inputs (§16)
-            static const char* const drives[] = {"", "displacement", "velocity", "acceleration", "force", "tlm"};
             throw fmu::ModelError(
-                std::string("invalid parameter base_drive = ") + drives[static_cast<int>(values_.baseDrive)] +
+                std::string("invalid parameter base_drive = ") + kDriveItems[static_cast<int>(values_.baseDrive)] +
                 " with " + input.name + " set (" + format("%.17g", input.value, 0.0) +
                 (input.name == std::string("base_displacement") ? " from the initial position" : "") +
                 "): the clamp is driven by one input only; a clamp carried by the armature (force) or by the line "
@@ -541,7 +610,8 @@ private:
     double simulationBase0_ = 0.0;  // base displacement the simulation was built with
     // The clamp at the communication time when a velocity or an acceleration drives it.
     double clampPosition_ = 0.0, clampVelocity_ = 0.0;
-    bool driveSet_ = false;  // the drive input was set during the run (warned at terminate otherwise)
+    bool driveSet_ = false;  // the drive input was set during the run (terminate tells otherwise)
+    const char* otherMotionSet_ = nullptr;  // the first motion input of another drive set during the run
     bool interpolationWarned_ = false;  // the warning of steps shorter than two grid steps, once
     bool errorWarned_ = false;  // the warning of the error estimate past the tolerance, once
     bool cappedWarned_ = false;  // the warning of a contact step the sub-step cap bounded, once

@@ -112,6 +112,7 @@ Status Instance::fail(const char* format, ...) {
 
 Instance::Instance(Logger logger, bool loggingOn, ApiNames names)
     : logger_(std::move(logger)), names_(names), model_(createModel()) {
+    model_->useVersion(names_.fmiVersion);
     // As the Reference FMUs: errors are logged unless switched off with setDebugLogging;
     // so are warnings (a computed result that is likely not what was meant); the call trace follows loggingOn.
     logCategories_[LogStatusError] = true;
@@ -239,6 +240,7 @@ Status Instance::terminate() {
 Status Instance::reset() {
     // The same as after instantiation: a fresh model with its default values.
     model_ = createModel();
+    model_->useVersion(names_.fmiVersion);
     attachTrace();
     startTime_ = 0.0;
     state_ = Instantiated;
@@ -506,7 +508,7 @@ Status Instance::doStep(double t, double h, bool stopAtEvent, bool* endedAtEvent
     return Status::OK;
 }
 
-std::size_t Instance::arrayLength(const ArrayOutput& array) const {
+std::size_t Instance::arrayLength(const ArrayVariable& array) const {
     std::size_t n = 1;
     for (ValueReference extent : array.extents) {
         const StructuralParameter* s = model_->findStructural(extent);
@@ -522,6 +524,11 @@ std::size_t Instance::structuralValue(const StructuralParameter& s) const {
 }
 
 Status Instance::setStructural(const StructuralParameter& s, double value) {
+    if (s.configurationOnly && state_ != ConfigurationMode)
+        return fail(
+            "%s is a structural parameter: set it in Configuration Mode (fmi3EnterConfigurationMode, set it, "
+            "fmi3ExitConfigurationMode, before fmi3EnterInitializationMode), not in state %s",
+            s.name, stateName(state_));
     if (s.ownValue()) {
         if (!(state_ & (Instantiated | ConfigurationMode)))
             return fail(
@@ -542,12 +549,36 @@ Status Instance::setStructural(const StructuralParameter& s, double value) {
     return setValues(VariableType::Integer, &s.parameter, 1, &parameter);
 }
 
-Status Instance::getArray(const ArrayOutput& array, double value[], std::size_t n) {
+Status Instance::getArray(const ArrayVariable& array, double value[], std::size_t n) {
     if (n > 0 && !value) return fail("argument values[] must not be NULL");
+    if (array.causality == Causality::Parameter) {  // the model's values, built or not
+        model_->getArray(array, value, n);
+        return Status::OK;
+    }
     // As getValues: an output read in initialization mode builds what the parameters describe.
     if (state_ == InitializationMode && !model_->built()) model_->build();
     if (!model_->built()) return fail("%s is not available before initialization", array.name);
     model_->getArray(array, value, n);
+    return Status::OK;
+}
+
+Status Instance::setArray(const ArrayVariable& array, const double value[], std::size_t n) {
+    if (array.causality != Causality::Parameter)
+        return fail("%s (vr %u) is an output array and cannot be set", array.name, array.vr);
+    if (!(state_ & (Instantiated | ConfigurationMode | InitializationMode))) {
+        log(Status::Error, LogStatusError,
+            "illegal call sequence: %s of fixed parameter array %s (vr %u) in state %s; fixed parameters can only "
+            "be set before %s",
+            function_, array.name, array.vr, stateName(state_), names_.exitInitializationMode);
+        return Status::Error;
+    }
+    if (n > 0 && !value) return fail("argument values[] must not be NULL");
+    for (std::size_t k = 0; k < n; ++k)
+        if (!std::isfinite(value[k]))
+            return fail("%s[%zu] = %g rejected: NaN and Inf are not allowed", array.name, k, value[k]);
+    model_->setArray(array, value, n);
+    // Before initialization ends, what was built (an output was read) came from the old values.
+    if (model_->built()) model_->drop();
     return Status::OK;
 }
 

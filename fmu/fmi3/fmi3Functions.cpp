@@ -18,7 +18,7 @@
 #include "core/Instance.h"
 #include "fmi3Functions.h"
 
-using fmu::ArrayOutput;
+using fmu::ArrayVariable;
 using fmu::Instance;
 using fmu::Status;
 using fmu::StructuralParameter;
@@ -36,7 +36,7 @@ constexpr double kEarlyTolerance = 1e-9;
 
 // The functions the core's messages name. The size message has always named FMI 2.0's
 // function, in FMI 3.0 too; kept so that the messages stay as they were.
-constexpr fmu::ApiNames kNames = {"fmi3ExitInitializationMode", "fmi3SerializedFMUStateSize"};
+constexpr fmu::ApiNames kNames = {"fmi3ExitInitializationMode", "fmi3SerializedFMUStateSize", 3};
 
 // Status and fmi3Status list the same outcomes in the same order.
 fmi3Status toFmi3(Status status) {
@@ -77,7 +77,9 @@ enum class Kind { Float64, Int32, Int64, UInt64, Boolean, Other };
 std::string describe(const fmu::Model& model, fmi3ValueReference vr) {
     if (vr == kTimeValueReference) return "the Float64 variable time";
     if (const StructuralParameter* s = model.findStructural(vr)) return std::string("the UInt64 variable ") + s->name;
-    if (const ArrayOutput* a = model.findArray(vr)) return std::string("the Float64 array ") + a->name;
+    if (const ArrayVariable* a = model.findArray(vr))
+        return std::string("the Float64 ") +
+               (a->causality == fmu::Causality::Parameter ? "parameter array " : "array ") + a->name;
     if (const fmu::Variable* v = model.find(vr))
         return std::string("the ") + fmu::fmi3::typeName(v->type) + " variable " + v->name;
     return "no variable (unknown value reference)";
@@ -115,7 +117,9 @@ Status getScalar(Instance& i, Kind kind, fmi3ValueReference vr, double* x) {
 bool beforeInitialization(const Instance& i, fmi3ValueReference vr) {
     if (!(i.state() & (fmu::Instantiated | fmu::ConfigurationMode))) return false;
     const fmu::Variable* v = i.model().find(vr);
-    return i.model().findArray(vr) || vr == kTimeValueReference || (v && v->causality == fmu::Causality::Output);
+    const ArrayVariable* a = i.model().findArray(vr);
+    return (a && a->causality == fmu::Causality::Output) || vr == kTimeValueReference ||
+           (v && v->causality == fmu::Causality::Output);
 }
 
 template <class T>
@@ -127,7 +131,7 @@ Status getValues(Instance& i, Kind kind, const fmi3ValueReference vrs[], size_t 
         if (beforeInitialization(i, vrs[k]))
             return i.fail("value reference %u is %s, an output: available from initialization mode on", vrs[k],
                           describe(i.model(), vrs[k]).c_str());
-        const ArrayOutput* array = i.model().findArray(vrs[k]);
+        const ArrayVariable* array = i.model().findArray(vrs[k]);
         if (array && kind != Kind::Float64)
             return i.fail("value reference %u is %s", vrs[k], describe(i.model(), vrs[k]).c_str());
         const std::size_t n = array ? i.arrayLength(*array) : 1;
@@ -150,7 +154,7 @@ Status getValues(Instance& i, Kind kind, const fmi3ValueReference vrs[], size_t 
     if (next != nValues) {
         std::string arrays;  // which of them are arrays, and their sizes
         for (size_t k = 0; k < nvr; ++k)
-            if (const ArrayOutput* array = i.model().findArray(vrs[k]))
+            if (const ArrayVariable* array = i.model().findArray(vrs[k]))
                 arrays += std::string(arrays.empty() ? "" : ", ") + array->name + " needs " +
                           std::to_string(i.arrayLength(*array)) + " values";
         return i.fail("nValues = %zu, but the %zu value references have %zu values%s%s%s", nValues, nvr, next,
@@ -163,7 +167,7 @@ Status setScalar(Instance& i, Kind kind, fmi3ValueReference vr, double x) {
     const fmu::Model& model = i.model();
     if (const StructuralParameter* s = model.findStructural(vr); s && kind == Kind::UInt64)
         return i.setStructural(*s, x);
-    if (vr == kTimeValueReference || model.findArray(vr))
+    if (vr == kTimeValueReference)
         return i.fail("value reference %u is %s, which cannot be set", vr, describe(model, vr).c_str());
     const fmu::Variable* v = model.find(vr);
     VariableType type;
@@ -171,17 +175,35 @@ Status setScalar(Instance& i, Kind kind, fmi3ValueReference vr, double x) {
     return i.setValues(type, &vr, 1, &x);
 }
 
+// The values of every value reference, an array's as many as its extents give now (a parameter
+// array: Float64; an output array is refused by name).
 template <class T>
 Status setValues(Instance& i, Kind kind, const fmi3ValueReference vrs[], size_t nvr, const T values[], size_t nValues) {
     if (nvr == 0) return Status::OK;
     if (!vrs || !values) return i.fail("arguments valueReferences[] and values[] must not be NULL");
-    if (nValues != nvr)
-        return i.fail("nValues = %zu, but the %zu value references have %zu values (no settable arrays)", nValues, nvr,
-                      nvr);
+    std::size_t next = 0;
     for (size_t k = 0; k < nvr; ++k) {
-        const double x = kind == Kind::Boolean ? double(values[k] != 0) : double(values[k]);
-        if (setScalar(i, kind, vrs[k], x) != Status::OK) return Status::Error;
+        const ArrayVariable* array = i.model().findArray(vrs[k]);
+        if (array && (kind != Kind::Float64 || array->causality != fmu::Causality::Parameter))
+            return i.fail("value reference %u is %s, which cannot be set%s", vrs[k],
+                          describe(i.model(), vrs[k]).c_str(), kind != Kind::Float64 ? " with this type" : "");
+        const std::size_t n = array ? i.arrayLength(*array) : 1;
+        if (next > nValues || nValues - next < n)
+            return i.fail(
+                "nValues = %zu is too small: %s (value reference %u) takes %zu values, from position %zu of values[]",
+                nValues, describe(i.model(), vrs[k]).c_str(), vrs[k], n, next);
+        if (array) {
+            if constexpr (std::is_same_v<T, double>) {
+                if (i.setArray(*array, values + next, n) != Status::OK) return Status::Error;
+            }
+        } else {
+            const double x = kind == Kind::Boolean ? double(values[next] != 0) : double(values[next]);
+            if (setScalar(i, kind, vrs[k], x) != Status::OK) return Status::Error;
+        }
+        next += n;
     }
+    if (next != nValues)
+        return i.fail("nValues = %zu, but the %zu value references take %zu values", nValues, nvr, next);
     return Status::OK;
 }
 
