@@ -11,7 +11,9 @@
 #include <utility>
 
 #include "core/Model.h"
+#include "binding/BaseDrives.h"
 #include "binding/PlateArrays.h"
+#include "binding/PlateWarnings.h"
 #include "PlateImpactGuid.h"  // generated at build time: FMU_GUID
 #include "binding/PlateVariables.h"
 
@@ -19,82 +21,9 @@ namespace plateimpact {
 
 namespace {
 
-const fmu::ModelInfo kInfo{
-    "PlateImpact",
-    "PlateImpact",
-    "Kirchhoff plate clamped along x = 0 and free elsewhere, between two flat obstacles; C1 finite elements "
-    "(Argyris or reduced FVS), Newmark scheme with exact per-step contact QP at a fixed time step dt",
-    /*canInterpolateInputs=*/true,
-    /*maxOutputDerivativeOrder=*/0,
-    /*canGetAndSetFMUstate=*/true,
-    /*defaultStopTime=*/0.2,
-    /*defaultStepSize=*/0.001,
-    R"(<h2>What it computes</h2>
-<p>A Kirchhoff&ndash;Love plate [0, length] &times; [0, width], clamped along x = 0 and free elsewhere, between a flat
-obstacle below (obstacle_lower) and one above (obstacle_upper). The master moves the clamped edge
-(base_displacement) and may press on the plate (load, a uniform pressure). C1 finite elements (Argyris
-triangles or reduced Fraeijs de Veubeke&ndash;Sander quadrilaterals), the Newmark scheme (gamma = 1/2, beta)
-at the fixed internal step dt, and one exact contact QP per step keeping every mesh vertex between the
-obstacles (Pozzolini, Renard &amp; Salaün 2013). Beyond the paper: a singular mass (mass = singular_p0)
-whose impacts keep their energy as dt &rarr; 0, a restitution coefficient and Rayleigh damping.</p>
-<h2>The default scene</h2>
-<p>A 1.2 &times; 0.4 &times; 0.01 m steel plate (E = 210 GPa, &nu; = 0.3, &rho; = 7770 kg/m<sup>3</sup>),
-14 &times; 5 cells (140 Argyris triangles), obstacles at &plusmn;0.1 m, dt = 1e-5 s; driven with
-base_displacement = 0.09 sin(2&pi; 10 t) m it hits the obstacles from t &asymp; 0.05 s on.</p>
-<h2>Using it</h2>
-<ul>
-<li>Any communication step: the scheme keeps its fixed grid of dt and interpolates the outputs between grid
-points; steps that are whole multiples of dt (relative tolerance 1e-9) run exactly on the grid.</li>
-<li>Inputs: {fmi2:give their first and second derivatives (fmiXSetRealInputDerivatives) when you can; otherwise
-}the FMU {fmi2:extrapolates}{fmi3:holds or extrapolates} the communicated values (base_input_mode, load_input_mode).</li>
-<li>Switches (element, mass, base_drive, base_input_mode, load_input_mode) are Integers: the description of each
-lists its items, e.g. base_drive = 2 drives the clamp by base_velocity.</li>
-{fmi3:<li>Early return: a master that grants it at fmiXInstantiateCoSimulation gets every contact onset and
-release as an event, exactly on the internal grid (lastSuccessfulTime), the impact in the outputs there.</li>
-<li>The array output vertex_displacement holds the deflection at every mesh vertex
-([vertex_output][vertices_x][vertices_y]); vertices_x = nx + 1 and vertices_y = ny + 1 are views of nx and ny;
-vertex_output = 0 (before initialization) leaves the array empty.</li>
-<li>Terminals (terminalsAndIcons/terminalsAndIcons.xml): <code>clamp</code> (kind
-org.plateimpact.TranslationalFlange, matchingRule bus: base_displacement s, base_velocity v, base_acceleration a
-in, clamp_force f out), <code>armature</code> (the same kind, plug: drive_force f in, clamp_displacement s,
-clamp_velocity v, clamp_acceleration a out) and <code>line</code> (kind org.plateimpact.TransmissionLineEnd,
-matchingRule org.plateimpact.crossed: tlm_wave_in wave_in, tlm_wave_out wave_out, tlm_impedance impedance; one
-end's wave_out feeds the other's wave_in, the impedances are equal). A TranslationalFlange's members connect by
-memberName, each output to the partner's input of the same memberName (all are signals: the connection is
-causal).</li>
-}<li>Outputs are absolute displacements; the energy ledger energy = E0 + energy_input &minus; energy_dissipated
-&minus; energy_damped holds to roundoff.</li>
-</ul>
-<p>Reference experiments to validate this FMU on your platform and master (FMI-LS-REF):
-<a href="fmi-ls-ref.html">fmi-ls-ref.html</a>.</p>
-<h2>Limits: what the FMU refuses</h2>
-<p>Each refusal returns fmiXError and logs what was wrong and the allowed range (category logStatusError).
-Parameters outside the min/max of the table below (poisson_ratio and the obstacles' heights exclude their ends:
-0 &lt; poisson_ratio &lt; 0.5, obstacle_lower &lt; 0 &lt; obstacle_upper); beta &lt; 0.25 beyond the stability
-bound on dt; a singular mass with modes &gt; 0, beta &lt; 0.25 or without massless directions at every contact
-vertex; an instance whose estimated memory exceeds memory_limit; inputs outside their min/max, NaN or Inf; a
-clamp driven past an obstacle; a communication step shorter than 1e-9 dt; calls outside the states FMI
-{fmi2:2.0}{fmi3:3.0} allows; FMU states of another build, of another CPU architecture (both platforms named) or damaged (XXH64 checksum); time_scheme = conserving
-with mass = consistent or restitution &gt; 0. With the clamp carried (base_drive = force: an armature inside the
-FMU; tlm: the end of a transmission line to a partner FMU): armature_mass &le; 0, tlm_impedance &le; 0, a singular
-mass, a second input driving the clamp (a motion input with force or tlm, a drive_force with a motion drive),
-communication steps that are not whole multiples of dt.</p>
-)",
-    /*stateMagic=*/"PLATEIMP",
-};
-
-// base_drive's items by value (index 0 unused).
-const char* const kDriveItems[] = {"", "displacement", "velocity", "acceleration", "force", "tlm"};
-
-std::string format(const char* fmt, double a, double b, double c = 0.0) {
-    char text[400];
-    std::snprintf(text, sizeof text, fmt, a, b, c);
-    return text;
-}
-
 class PlateModel final : public fmu::Model {
 public:
-    const fmu::ModelInfo& info() const override { return kInfo; }
+    const fmu::ModelInfo& info() const override { return plateInfo(); }
     const std::vector<fmu::Variable>& variables() const override { return plateVariables(); }
 
     double get(const fmu::Variable& v) const override { return getValue(values_, v); }
@@ -200,11 +129,9 @@ public:
         refreshOutputs();
         const plate::PlateParameters& p = values_.parameters;
         trace(format("simulation built (nx = %g, ny = %g, dt = %g s)", p.nx, p.ny, p.dt));
-        warnOfCoarseStep();
+        for (const std::string& message : buildWarnings(values_, fmiVersion() == 3)) warn(message);
         driveSet_ = interpolationWarned_ = errorWarned_ = cappedWarned_ = false;
         otherMotionSet_ = nullptr;
-        warnOfUnusedTolerance();
-        warnOfProbes();
     }
     void terminate() override {
         // A drive the master never set: the clamp stayed where it started. A motion input of another
@@ -213,8 +140,8 @@ public:
         // the info level (logInfo), for the user who looks for why the clamp did not move.
         if (driveSet_ || simulation_->stepCount() == 0 || carried()) return;
         if (otherMotionSet_)
-            warn(std::string(otherMotionSet_) + " was set during this run, but base_drive = " +
-                 kDriveItems[static_cast<int>(values_.baseDrive)] + " moves the clamp by " + driveName() +
+            warn(std::string(otherMotionSet_) + " was set during this run, but base_drive = " + mode().item +
+                 " moves the clamp by " + driveName() +
                  ", which was never set: the clamp stayed at its start value; set base_drive to the input you "
                  "drive (1 = base_displacement, 2 = base_velocity, 3 = base_acceleration)");
         else
@@ -283,7 +210,7 @@ public:
             port->history.serialize(out);
         }
         out.insert(out.end(), {clampPosition_, clampVelocity_});
-        saveProbes(out);
+        values_.probes.appendTo(out);
         out.push_back(simulation_ ? 1.0 : 0.0);
         out.push_back(simulationBase0_);
         if (simulation_) {
@@ -321,7 +248,12 @@ public:
             throw fmu::ModelError("the clamp's motion is not finite");
         clampPosition_ = clamp[0];
         clampVelocity_ = clamp[1];
-        restoreProbes(take);
+        const double* count = take(1, "the probes' count");
+        ProbePlaces probes = values_.probes;
+        if (!probes.setCountFrom(*count)) throw fmu::ModelError("the probes' count is out of range");
+        if (!probes.readPlaces(take(2 * probes.x.size(), "the probes' places")))
+            throw fmu::ModelError("a probe's place is not finite");
+        values_.probes = probes;
         const double* flags = take(2, "the simulation flag");
         if ((flags[0] != 0.0 && flags[0] != 1.0) || !std::isfinite(flags[1]))
             throw fmu::ModelError("simulation flag or initial base displacement out of range");
@@ -353,32 +285,8 @@ private:
         std::vector<double> out;
         for (const fmu::Variable& v : plateVariables())
             if (v.causality == fmu::Causality::Parameter) out.push_back(getValue(values_, v));
-        saveProbes(out);
+        values_.probes.appendTo(out);
         return out;
-    }
-    // The probes' count and places (as many as the FMI 2.0 slots, or the count if more): FMU states
-    // carry them, FMI 3.0's count with them.
-    void saveProbes(std::vector<double>& out) const {
-        const ProbePlaces& probes = values_.probes;
-        out.push_back(double(probes.count));
-        out.insert(out.end(), probes.x.begin(), probes.x.end());
-        out.insert(out.end(), probes.y.begin(), probes.y.end());
-    }
-    template <class Take>
-    void restoreProbes(const Take& take) {
-        const double count = *take(1, "the probes' count");
-        if (!(count >= 0.0 && count <= double(values_.probes.max)) || std::floor(count) != count)
-            throw fmu::ModelError("the probes' count is out of range");
-        ProbePlaces probes = values_.probes;
-        probes.setCount(std::size_t(count));
-        const double* places = take(2 * probes.x.size(), "the probes' places");
-        for (std::size_t k = 0; k < probes.x.size(); ++k) {
-            probes.x[k] = places[k];
-            probes.y[k] = places[probes.x.size() + k];
-            if (!std::isfinite(probes.x[k]) || !std::isfinite(probes.y[k]))
-                throw fmu::ModelError("a probe's place is not finite");
-        }
-        values_.probes = probes;
     }
     void refreshOutputs() {
         values_.outputs = simulation_ ? simulation_->outputs() : plate::PlateOutputs{};
@@ -393,80 +301,15 @@ private:
         return {&values_.baseDisplacement, &values_.baseVelocity, &values_.baseAcceleration, &values_.load,
                 &values_.driveForce,       &values_.tlmWaveIn};
     }
-    bool carried() const { return values_.baseDrive == BaseDrive::Force || values_.baseDrive == BaseDrive::Tlm; }
-    // The motion input base_drive chooses (carried clamps: their drive).
-    InputPort& drivePort() {
-        switch (values_.baseDrive) {
-            case BaseDrive::Velocity: return values_.baseVelocity;
-            case BaseDrive::Acceleration: return values_.baseAcceleration;
-            case BaseDrive::Force: return values_.driveForce;
-            case BaseDrive::Tlm: return values_.tlmWaveIn;
-            case BaseDrive::Displacement: break;
-        }
-        return values_.baseDisplacement;
-    }
-    bool isMotionInput(fmu::ValueReference vr) const {
-        return vr == kVrBaseDisplacement || vr == kVrBaseVelocity || vr == kVrBaseAcceleration;
-    }
-    const char* driveName() const {
-        static const char* const names[] = {
-            "", "base_displacement", "base_velocity", "base_acceleration", "drive_force", "tlm_wave_in"};
-        return names[static_cast<int>(values_.baseDrive)];
-    }
-    // dt against the plate's first period (plate::PlateParameters::firstFrequencyEstimate; dt above
-    // T1/2 is refused by the solver): fewer than 20 steps per period give visibly wrong amplitudes
-    // and phases. Once per build.
-    void warnOfCoarseStep() {
-        const plate::PlateParameters& p = values_.parameters;
-        const double period = 1.0 / p.firstFrequencyEstimate();
-        if (p.dt <= period / 20.0) return;
-        warn(format("dt = %g s is %.3g of the plate's first period T1 = %.4g s", p.dt, p.dt / period, period) +
-             " (fewer than 20 steps per period): the outputs resolve the first mode only roughly; take dt <= " +
-             format("%.4g s (T1/20) for accurate results", period / 20.0, 0.0));
-    }
-    // A tolerance or sub-step count only the flow law uses (docs/theory.md §21–22), set for another
-    // scheme: said at build.
-    void warnOfUnusedTolerance() {
-        const plate::PlateParameters& p = values_.parameters;
-        if (p.timeScheme == plate::TimeScheme::Flow) return;
-        if (p.tolerance > 0.0)
-            warn(
-                format("tolerance = %g m is used by time_scheme = flow only (3): this run's scheme ignores it, and "
-                       "error_estimate stays 0",
-                       p.tolerance, 0.0));
-        const plate::PlateParameters defaults;
-        if (p.contactSubsteps != defaults.contactSubsteps)
-            warn(format("contact_substeps = %g is used by time_scheme = flow only (3): this run's scheme ignores it",
-                        double(p.contactSubsteps), 0.0));
-        if (p.maxContactSubsteps != defaults.maxContactSubsteps)
-            warn(
-                format("max_contact_substeps = %g is used by time_scheme = flow with a tolerance only: this run's "
-                       "scheme ignores it",
-                       double(p.maxContactSubsteps), 0.0));
-    }
-    // Probes (docs/theory.md §23) that are not what they seem, among those the importer placed or
-    // counted: an FMI 2.0 probe placed but not counted (it reads 0), one counted but on the clamped
-    // edge x = 0 (unplaced: the default (0, 0)), which moves with the clamp.
-    void warnOfProbes() {
-        const ProbePlaces& probes = values_.probes;
-        if (!probes.placed) return;
-        const bool arrays = fmiVersion() == 3;
-        for (std::size_t k = 0; k < probes.x.size(); ++k) {
-            const double x = probes.x[k], y = probes.y[k];
-            const std::string index = std::to_string(k + 1), at = "[" + std::to_string(k) + "]";
-            const std::string name = arrays ? "probe" + at : "probe_" + index;
-            const std::string placeX = arrays ? "probe_x" + at : name + "_x";
-            if (k >= probes.count && !arrays && (x != 0.0 || y != 0.0))
-                warn(name + format(" is placed at (%g, %g) m", x, y) +
-                     format(" but probe_count = %g leaves it off: it reads 0; set probe_count >= %g to compute it",
-                            double(probes.count), double(k + 1)));
-            if (k < probes.count && x == 0.0)
-                warn(name +
-                     format(" at (%g, %g) m is counted (probe_count = %g) but lies on the clamped edge x = 0", x, y,
-                            double(probes.count)) +
-                     ": it reads the clamp's motion; place it with " + placeX + " > 0 (" +
-                     (y == 0.0 ? placeX + " and its y were never set)" : placeX + " is 0)"));
-        }
+    // The row of base_drive's mode (BaseDrives.h): its input, whether it carries the clamp, its path.
+    const DriveMode& mode() const { return driveMode(values_.baseDrive); }
+    bool carried() const { return mode().carried; }
+    InputPort& drivePort() { return values_.*mode().port; }  // the input base_drive chooses
+    const char* driveName() const { return mode().input; }
+    bool isMotionInput(fmu::ValueReference vr) {
+        for (int k = 0; k < kDriveModeCount; ++k)
+            if (!driveModes()[k].carried && &(values_.*driveModes()[k].port) == values_.inputPort(vr)) return true;
+        return false;
     }
     // tolerance > 0 (docs/theory.md §22): the contact steps' accumulated error estimate passing the
     // tolerance, and a contact step the cap bounded, are each said once per build.
@@ -493,27 +336,15 @@ private:
     // whose motion inputs are set as well, or a motion-driven one given a force, is refused.
     void requireOneDrive() const {
         const double base0 = simulation_ ? simulationBase0_ : values_.baseDisplacement.signal.value;
-        const struct {
-            const char* name;
-            double value;
-            bool used;
-        } inputs[] = {
-            {"base_displacement", values_.baseDisplacement.signal.value - base0,
-             values_.baseDrive == BaseDrive::Displacement},
-            {"base_velocity", values_.baseVelocity.signal.value, values_.baseDrive == BaseDrive::Velocity},
-            {"base_acceleration", values_.baseAcceleration.signal.value, values_.baseDrive == BaseDrive::Acceleration},
-            {"drive_force", values_.driveForce.signal.value, values_.baseDrive == BaseDrive::Force},
-            {"tlm_wave_in", values_.tlmWaveIn.signal.value, values_.baseDrive == BaseDrive::Tlm},
-        };
-        const bool motion = !carried();
-        for (const auto& input : inputs) {
-            if (input.used || input.value == 0.0) continue;
-            const bool inputIsMotion = input.name[0] == 'b';
-            if (motion && inputIsMotion) continue;  // the motion drives ignore each other's inputs (§16)
+        for (int k = 0; k < kDriveModeCount; ++k) {
+            const DriveMode& input = driveModes()[k];
+            const bool displacement = input.drive == BaseDrive::Displacement;
+            const double value = (values_.*input.port).signal.value - (displacement ? base0 : 0.0);
+            if (input.drive == values_.baseDrive || value == 0.0) continue;
+            if (!carried() && !input.carried) continue;  // the motion drives ignore each other's inputs (§16)
             throw fmu::ModelError(
-                std::string("invalid parameter base_drive = ") + kDriveItems[static_cast<int>(values_.baseDrive)] +
-                " with " + input.name + " set (" + format("%.17g", input.value, 0.0) +
-                (input.name == std::string("base_displacement") ? " from the initial position" : "") +
+                std::string("invalid parameter base_drive = ") + mode().item + " with " + input.input + " set (" +
+                format("%.17g", value, 0.0) + (displacement ? " from the initial position" : "") +
                 "): the clamp is driven by one input only; a clamp carried by the armature (force) or by the line "
                 "(tlm) is not also moved by a motion input, nor a motion-driven clamp by a force (allowed: set "
                 "base_drive to the input you drive, leave the others at 0)");
@@ -528,22 +359,7 @@ private:
         const plate::PlateParameters& p = simulation_->parameters();
         const double lower = p.obstacleLowerEnabled ? p.obstacleLower : -plate::kMaxDisplacement;
         const double upper = p.obstacleUpperEnabled ? p.obstacleUpper : plate::kMaxDisplacement;
-        switch (values_.baseDrive) {
-            case BaseDrive::Velocity:
-                return values_.baseVelocity.stepSignal(now, span, -kMaxBaseVelocity, kMaxBaseVelocity)
-                    .integral(clampPosition_);
-            case BaseDrive::Acceleration:
-                return values_.baseAcceleration.stepSignal(now, span, -kMaxBaseAcceleration, kMaxBaseAcceleration)
-                    .integral(clampVelocity_)
-                    .integral(clampPosition_);
-            case BaseDrive::Force:  // the drive force on the armature (§18)
-                return values_.driveForce.stepSignal(now, span, -plate::kMaxCarrierForce, plate::kMaxCarrierForce);
-            case BaseDrive::Tlm:  // the wave, held: what the partner launched is what arrives (§19)
-                values_.tlmWaveIn.history.reached(values_.tlmWaveIn.signal.value);
-                return plate::InputSignal{values_.tlmWaveIn.signal.value, 0.0, 0.0};
-            case BaseDrive::Displacement:
-            default: return values_.baseDisplacement.stepSignal(now, span, lower, upper);
-        }
+        return mode().path(values_, {clampPosition_, clampVelocity_}, now, span, lower, upper);
     }
     // simulation_->communicate, or with stopAtContactChange_ (FMI 3.0 early return) up to the
     // first contact onset or release on the grid. Returns the span of the step as taken; after
@@ -586,16 +402,7 @@ private:
         const double span = simulation_->time() - start;
         if (simulation_->time() == plan.end) return plan.span;  // at the end anyway
         values_.load.history.reached(load.at(span));
-        switch (values_.baseDrive) {  // the drive's own signal inside the clamp's (clampSignal)
-            case BaseDrive::Velocity:
-                values_.baseVelocity.history.reached(plate::InputSignal{base.d1, base.d2, base.d3, base.d4}.at(span));
-                break;
-            case BaseDrive::Acceleration:
-                values_.baseAcceleration.history.reached(plate::InputSignal{base.d2, base.d3, base.d4}.at(span));
-                break;
-            case BaseDrive::Displacement:
-            default: values_.baseDisplacement.history.reached(base.at(span));
-        }
+        (values_.*mode().port).history.reached(mode().inputAt(base, span));  // the drive's own, inside the clamp's
         return span;
     }
     void advanceClamp(const plate::InputSignal& base, double span) {

@@ -1,5 +1,7 @@
 #include "binding/PlateVariables.h"
 
+#include "binding/PlateSwitches.h"
+
 #include <array>
 #include <climits>
 #include <cmath>
@@ -15,52 +17,6 @@ using plate::ElementType;
 using plate::InputMode;
 using plate::MassModel;
 using plate::TimeScheme;
-
-const fmu::EnumerationType kElementType{
-    "ElementType",
-    "C1 plate element",
-    {{"argyris", 1, "Argyris triangle (P5, 21 dofs); each cell split into two triangles"},
-     {"fvs", 2, "Reduced Fraeijs de Veubeke-Sander quadrilateral (12 dofs); one per cell"}}};
-
-const fmu::EnumerationType kInputMode{
-    "InputMode",
-    "How an input is continued inside a communication step from its communicated values",
-    {{"hold", 1, "Held constant over the step"},
-     {"linear", 2, "Extrapolated along the line through the last two communicated values"},
-     {"quadratic", 3, "Extrapolated along the parabola through the last three communicated values"}}};
-
-const fmu::EnumerationType kMassModel{
-    "MassModel",
-    "Mass matrix of the plate",
-    {{"consistent", 1, "Consistent mass of the finite element space (the paper's scheme)"},
-     {"singular_p0", 2,
-      "Singular mass projected on element-wise constants: no inertia at the contact vertices, energy-consistent "
-      "impacts as dt -> 0"},
-     {"singular_p1dg", 3, "Singular mass projected on element-wise linear functions (Argyris only)"}}};
-
-const fmu::EnumerationType kTimeScheme{
-    "TimeScheme",
-    "Time scheme",
-    {{"newmark", 1, "The paper's three-level Newmark scheme with the impact law set by mass and restitution"},
-     {"conserving", 2,
-      "Condensed singular plate (needs mass = singular_p0 or singular_p1dg): massive modes stepped by the midpoint "
-      "rule, the massless boundary static, impacts through a discrete gradient; conserves energy through impacts "
-      "at any dt"},
-     {"flow", 3,
-      "The conserving scheme with every massive mode advanced by its exact flow between contacts (no phase error "
-      "in free flight) and each step with a constraint row active taken as contact_substeps discrete-gradient "
-      "sub-steps; conserves energy through impacts at any dt"}}};
-
-const fmu::EnumerationType kBaseDrive{
-    "BaseDrive",
-    "Which input moves the clamped edge",
-    {{"displacement", 1, "base_displacement (the clamp position)"},
-     {"velocity", 2, "base_velocity, integrated exactly over each communication step from the position at its start"},
-     {"acceleration", 3, "base_acceleration, integrated twice exactly over each communication step"},
-     {"force", 4,
-      "drive_force on an armature that carries the clamp inside the FMU (armature_mass, _stiffness, _damping)"},
-     {"tlm", 5,
-      "tlm_wave_in: the clamp is the end of a transmission line of impedance tlm_impedance to a partner FMU"}}};
 
 using Get = double (*)(const PlateValues&);
 using Set = void (*)(PlateValues&, double);
@@ -200,7 +156,7 @@ const Row kRows[] = {
         "Number of mesh cells along x (at least 1)"),
     integerParameter(kVrNy,    "ny",    kCells, PARAMETER(ny),
         "Number of mesh cells along y (at least 1)"),
-    choice(kVrElement,       "element",         kElementType, getElement,       setElement,
+    choice(kVrElement,       "element",         elementType(), getElement,       setElement,
         "Finite element"),
     parameter(kVrObstacleLower,     "obstacle_lower",     "m",     kObstacleLower,     PARAMETER(obstacleLower),
         "Height of the lower obstacle (negative; used when obstacle_lower_enabled)"),
@@ -219,17 +175,17 @@ const Row kRows[] = {
         "Uniform pressure (positive upward) whose static equilibrium is the initial shape; the plate starts at rest"),
     integerParameter(kVrModes, "modes", kModes, PARAMETER(modes),
         "0: full finite element space (exact scheme); m > 0: reduced model on m modes"),
-    choice(kVrBaseInputMode, "base_input_mode", kInputMode,   getBaseInputMode, setBaseInputMode,
+    choice(kVrBaseInputMode, "base_input_mode", inputMode(),   getBaseInputMode, setBaseInputMode,
         "How base_displacement (and base_velocity, base_acceleration) moves inside a communication step{fmi2: when "
         "the master gives no input derivatives}: held, or extrapolated from the communicated values{fmi2: "
         "(derivatives set by the master always win)}"),
-    choice(kVrLoadInputMode, "load_input_mode", kInputMode,   getLoadInputMode, setLoadInputMode,
+    choice(kVrLoadInputMode, "load_input_mode", inputMode(),   getLoadInputMode, setLoadInputMode,
         "How load moves inside a communication step{fmi2: when the master gives no input derivatives}: held (a load "
         "may step; extrapolating a step overshoots) or extrapolated"),
-    choice(kVrMass,          "mass",            kMassModel,   getMass,          setMass,
+    choice(kVrMass,          "mass",            massModel(),   getMass,          setMass,
         "Mass matrix: consistent (the paper's scheme; impacts lose energy at every mesh vertex), singular_p0 "
         "(energy-consistent impacts, results converge after impact) or singular_p1dg"),
-    choice(kVrTimeScheme,    "time_scheme",     kTimeScheme,  getTimeScheme,    setTimeScheme,
+    choice(kVrTimeScheme,    "time_scheme",     timeScheme(),  getTimeScheme,    setTimeScheme,
         "Time scheme: newmark (the paper's scheme, default), conserving (needs a singular mass: the energy balance "
         "closes exactly through impacts at any dt and every reported displacement stays within the obstacles; modes "
         "= m keeps the m lowest massive modes, damping acts on them; beta and restitution do not apply) or flow (the "
@@ -260,7 +216,7 @@ const Row kRows[] = {
         "t = 0"),
     input(kVrLoad,             "load",              "Pa",   false, plate::kMaxLoad,         INPUT(load),
         "Uniform pressure on the plate, positive upward, acting from t = 0 on"),
-    choice(kVrBaseDrive,     "base_drive",      kBaseDrive,   getBaseDrive,     setBaseDrive,
+    choice(kVrBaseDrive,     "base_drive",      baseDrive(),   getBaseDrive,     setBaseDrive,
         "Which input moves the clamped edge: displacement (base_displacement), velocity (base_velocity, integrated "
         "from the initial base_displacement), acceleration (base_acceleration, integrated twice, the clamp at rest "
         "at t = 0), force (drive_force on an armature inside the FMU that carries the clamp) or tlm (a transmission "
@@ -457,44 +413,6 @@ const std::vector<fmu::Variable>& plateVariables() {
         return out;
     }();
     return variables;
-}
-
-// The terminal kinds (documented on the model's page, PlateModel.cpp):
-//   org.plateimpact.TranslationalFlange  a vertical translational flange: s [m], v [m/s],
-//       a [m/s2] the flange's motion, f [N] the force on it; members of equal memberName
-//       connect (a causal connection: one side's output feeds the other's input).
-//   org.plateimpact.TransmissionLineEnd  one end of a transmission line (TLM): wave_out feeds
-//       the partner's wave_in and the other way round (matchingRule org.plateimpact.crossed),
-//       impedance is equal at both ends.
-const std::vector<fmu::Terminal>& plateTerminals() {
-    static const std::vector<fmu::Terminal> terminals = {
-        {"clamp",
-         "bus",
-         "org.plateimpact.TranslationalFlange",
-         "The clamped edge moved by a partner (base_drive = displacement, velocity or acceleration: the partner "
-         "gives the one the drive uses) and the force the plate exerts on it",
-         {{"base_displacement", "s", "signal"},
-          {"base_velocity", "v", "signal"},
-          {"base_acceleration", "a", "signal"},
-          {"clamp_force", "f", "signal"}}},
-        {"armature",
-         "plug",
-         "org.plateimpact.TranslationalFlange",
-         "The clamp carried by the armature inside the FMU (base_drive = force): the partner's force in, the "
-         "clamp's motion out",
-         {{"drive_force", "f", "signal"},
-          {"clamp_displacement", "s", "signal"},
-          {"clamp_velocity", "v", "signal"},
-          {"clamp_acceleration", "a", "signal"}}},
-        {"line",
-         "org.plateimpact.crossed",
-         "org.plateimpact.TransmissionLineEnd",
-         "The clamp as the end of a transmission line to a partner (base_drive = tlm)",
-         {{"tlm_wave_in", "wave_in", "signal"},
-          {"tlm_wave_out", "wave_out", "signal"},
-          {"tlm_impedance", "impedance", "signal"}}},
-    };
-    return terminals;
 }
 
 InputPort* PlateValues::inputPort(fmu::ValueReference vr) {

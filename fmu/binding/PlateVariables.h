@@ -3,6 +3,7 @@
 // (PlateVariables.cpp): name, value reference, type, causality, unit, description and the
 // accessors. modelDescription.xml, FMU states and the README's table all come from it.
 #include <algorithm>
+#include <cmath>
 #include <vector>
 
 #include "core/Model.h"
@@ -71,6 +72,27 @@ struct ProbePlaces {
         count = n;
         x.resize(std::max(n, kScalarProbes), 0.0);
         y.resize(std::max(n, kScalarProbes), 0.0);
+    }
+    // As FMU states and configurations carry them: the count, then the x and the y of every place
+    // (as many as the FMI 2.0 slots, or the count if more). Read back: the count (false: not a
+    // count in range), then the 2 x.size() places it gives room for (false: one not finite).
+    void appendTo(std::vector<double>& out) const {
+        out.push_back(double(count));
+        out.insert(out.end(), x.begin(), x.end());
+        out.insert(out.end(), y.begin(), y.end());
+    }
+    bool setCountFrom(double n) {
+        if (!(n >= 0.0 && n <= double(max)) || std::floor(n) != n) return false;
+        setCount(std::size_t(n));
+        return true;
+    }
+    bool readPlaces(const double* places) {
+        for (std::size_t k = 0; k < x.size(); ++k) {
+            x[k] = places[k];
+            y[k] = places[x.size() + k];
+            if (!std::isfinite(x[k]) || !std::isfinite(y[k])) return false;
+        }
+        return true;
     }
 };
 
@@ -256,6 +278,8 @@ const std::vector<fmu::Variable>& plateVariables();
 // translational flange, driven by motion (clamp) or by force (armature), and the transmission
 // line's end (line). The kinds are documented in the model's page (PlateModel.cpp).
 const std::vector<fmu::Terminal>& plateTerminals();
+// The fixed part of modelDescription.xml and the documentation page (PlateInfo.cpp).
+const fmu::ModelInfo& plateInfo();
 double getValue(const PlateValues& values, const fmu::Variable& v);
 void setValue(PlateValues& values, const fmu::Variable& v, double x);
 

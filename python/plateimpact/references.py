@@ -249,17 +249,28 @@ def serialized_state(fmu, exp: Experiment, at: float) -> bytes:
                 terminate=False,
                 model_description=md,
             )
-        state = inst.getFMUState()
-        data = bytes(inst.serializeFMUState(state))
-        inst.freeFMUState(state)
-        inst.terminate()
+        data = serialized(inst)
     finally:
-        inst.freeInstance()
-        if not Path(fmu).is_dir():
-            import shutil
-
-            shutil.rmtree(unzipdir, ignore_errors=True)
+        release(inst, fmu, unzipdir)
     return data
+
+
+def serialized(inst) -> bytes:
+    """The instance's FMU state, serialized; the instance terminated after it."""
+    state = inst.getFMUState()
+    data = bytes(inst.serializeFMUState(state))
+    inst.freeFMUState(state)
+    inst.terminate()
+    return data
+
+
+def release(inst, fmu, unzipdir):
+    """Frees the instance and the extracted copy of the FMU (none when the FMU is a folder)."""
+    inst.freeInstance()
+    if not Path(fmu).is_dir():
+        import shutil
+
+        shutil.rmtree(unzipdir, ignore_errors=True)
 
 
 # --- files -----------------------------------------------------------------------------------
@@ -427,17 +438,9 @@ def simulate_probe_arrays(fmu, start, stop, step, parameters: dict, stimuli, out
             step_finished=lambda time, recorder: sample() or True,
             terminate=not serialize,
         )
-        if serialize:
-            state = inst.getFMUState()
-            data = bytes(inst.serializeFMUState(state))
-            inst.freeFMUState(state)
-            inst.terminate()
+        data = serialized(inst) if serialize else None
     finally:
-        inst.freeInstance()
-        if not Path(fmu).is_dir():
-            import shutil
-
-            shutil.rmtree(unzipdir, ignore_errors=True)
+        release(inst, fmu, unzipdir)
     names = list(result.dtype.names) + probe_outputs
     arrays = [result[n] for n in result.dtype.names] + [np.asarray(columns[n], dtype=float) for n in probe_outputs]
     table = np.rec.fromarrays(arrays, names=names)
