@@ -147,7 +147,7 @@ PLATE_RECORD = (
     "contact_force_lower",
     "contact_force_upper",
 )
-PLATE_COUNTERS = ("impacts_lower", "impacts_upper")
+PLATE_COUNTERS = ("impacts_lower", "impacts_upper", "contact_onsets_lower", "contact_onsets_upper")
 BASE_DRIVE_VELOCITY = 2  # PlateImpact's base_drive switch: 2 = velocity
 
 

@@ -138,17 +138,18 @@ def acceleration(run, position):
 
 
 def first_impact(run):
-    impacts = run["plate.impacts_lower"] + run["plate.impacts_upper"]
-    hit = np.nonzero(impacts > 0)[0]
+    onsets = run["plate.contact_onsets_lower"] + run["plate.contact_onsets_upper"]
+    hit = np.nonzero(onsets > 0)[0]
     return run["time"][hit[0]] if len(hit) else np.inf
 
 
 def impact_episodes(run, separation=EPISODE_SEPARATION):
     """Impacts as episodes: contact onsets (steps whose contact force starts from zero, the
-    counters impacts_*) closer than `separation` to the previous one belong to its episode. The
+    counters contact_onsets_*) closer than `separation` to the previous one belong to its episode. The
     onsets themselves are not a converged count: a vertex that chatters on the obstacle makes
     more of them at a smaller dt (docs/system-model.md)."""
-    onsets = run["time"][np.diff(np.concatenate([[0.0], run["plate.impacts_lower"] + run["plate.impacts_upper"]])) > 0]
+    onsets = run["plate.contact_onsets_lower"] + run["plate.contact_onsets_upper"]
+    onsets = run["time"][np.diff(np.concatenate([[0.0], onsets])) > 0]
     return int(len(onsets) and 1 + np.count_nonzero(np.diff(onsets) > separation))
 
 
@@ -193,7 +194,7 @@ def simulate(paths, coupling, mass, h, duration, gap, ecco=False, z=None, dt=Non
         ledgers=float(e["ledgers"]),
         clamp_force_max=float(np.abs(run["plate.clamp_force"]).max()),
         impacts=impact_episodes(run),
-        contact_onsets=int(run["plate.impacts_lower"][-1] + run["plate.impacts_upper"][-1]),
+        contact_onsets=int(run["plate.contact_onsets_lower"][-1] + run["plate.contact_onsets_upper"][-1]),
         first_impact=float(first_impact(run)),
         run=run,
     )

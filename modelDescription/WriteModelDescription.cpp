@@ -22,6 +22,7 @@
 #include <cstdlib>
 #include <ctime>
 #include <fstream>
+#include <functional>
 #include <iostream>
 #include <memory>
 #include <string>
@@ -129,6 +130,15 @@ public:
     virtual void extraRows(std::ostream&, const fmu::Model&) const {}
 };
 
+// The table's rows this version declares (a row of one version only: Variable::version), as the
+// model's own (its accessors know a row by its place in the table).
+std::vector<std::reference_wrapper<const Variable>> rowsOf(const fmu::Model& model) {
+    std::vector<std::reference_wrapper<const Variable>> rows;
+    for (const Variable& v : model.variables())
+        if (v.version == 0 || v.version == model.fmiVersion()) rows.push_back(std::cref(v));
+    return rows;
+}
+
 // The causality/variability/initial attributes of a table row; outputs are continuous Reals
 // or discrete counters.
 std::string causalityAttributes(const Variable& v) {
@@ -180,7 +190,7 @@ public:
     }
 
     void variables(std::ostream& xml, const fmu::Model& model) const override {
-        const std::vector<Variable>& variables = model.variables();
+        const auto variables = rowsOf(model);
         xml << "  <ModelVariables>\n";
         std::vector<std::size_t> outputs;
         for (std::size_t i = 0; i < variables.size(); ++i) {
@@ -228,7 +238,7 @@ public:
             << "    <Float64 name=\"time\" valueReference=\"" << fmu::fmi3::kTimeValueReference
             << "\" causality=\"independent\" variability=\"continuous\" description=\"Simulation time\"/>\n";
         std::vector<fmu::ValueReference> outputs;
-        for (const Variable& v : model.variables()) {
+        for (const Variable& v : rowsOf(model)) {
             if (v.causality == Causality::Output) outputs.push_back(v.vr);
             xml << "    <" << typeName(v.type) << " name=\"" << v.name << "\" valueReference=\"" << v.vr << "\""
                 << causalityAttributes(v) << intermediate(model, v) << rangeAndStart(model, v) << " description=\""
@@ -241,16 +251,22 @@ public:
             if (s.ownValue()) xml << " min=\"" << s.min << "\" max=\"" << s.max << "\"";
             xml << " description=\"" << escape(forVersion(s.description, version)) << "\"/>\n";
         }
-        for (const fmu::ArrayOutput& a : model.arrayOutputs()) {
-            xml << "    <Float64 name=\"" << a.name << "\" valueReference=\"" << a.vr
-                << "\" causality=\"output\" variability=\"continuous\" initial=\"calculated\""
-                << intermediate(model, Causality::Output);
+        for (const fmu::ArrayVariable& a : model.arrayVariables()) {
+            xml << "    <Float64 name=\"" << a.name << "\" valueReference=\"" << a.vr << "\"";
+            if (a.causality == Causality::Parameter)
+                xml << " causality=\"parameter\" variability=\"fixed\" initial=\"exact\"";
+            else
+                xml << " causality=\"output\" variability=\"continuous\" initial=\"calculated\""
+                    << intermediate(model, Causality::Output);
             if (a.unit) xml << " unit=\"" << escape(a.unit) << "\"";
+            if (!std::isnan(a.min)) xml << " min=\"" << real(a.min) << "\"";
+            if (!std::isnan(a.max)) xml << " max=\"" << real(a.max) << "\"";
+            if (a.causality == Causality::Parameter) xml << " start=\"" << arrayStart(model, a) << "\"";
             xml << " description=\"" << escape(forVersion(a.description, version)) << "\">\n";
             for (fmu::ValueReference extent : a.extents)
                 xml << "      <Dimension valueReference=\"" << extent << "\"/>\n";
             xml << "    </Float64>\n";
-            outputs.push_back(a.vr);
+            if (a.causality == Causality::Output) outputs.push_back(a.vr);
         }
         xml << "  </ModelVariables>\n\n";
         // No direct feedthrough: the outputs at a communication point depend on the inputs only
@@ -272,18 +288,35 @@ public:
                  << (s.ownValue() ? std::to_string(s.min) : "") << "</td><td>"
                  << (s.ownValue() ? std::to_string(s.max) : "") << "</td><td></td><td>"
                  << escape(forVersion(s.description, version)) << "</td></tr>\n";
-        for (const fmu::ArrayOutput& a : model.arrayOutputs()) {
-            html << "<tr><td><code>" << a.name << "</code></td><td>" << a.vr << "</td><td>output</td><td>Float64[";
+        for (const fmu::ArrayVariable& a : model.arrayVariables()) {
+            html << "<tr><td><code>" << a.name << "</code></td><td>" << a.vr << "</td><td>"
+                 << (a.causality == Causality::Parameter ? "parameter" : "output") << "</td><td>Float64[";
             for (std::size_t k = 0; k < a.extents.size(); ++k) {
                 const fmu::StructuralParameter* s = model.findStructural(a.extents[k]);
                 html << (k ? "][" : "") << (s ? s->name : "?");
             }
-            html << "]</td><td></td><td></td><td></td><td>" << (a.unit ? escape(a.unit) : "") << "</td><td>"
+            html << "]</td><td>" << (a.causality == Causality::Parameter ? arrayStart(model, a) : "") << "</td><td>"
+                 << (std::isnan(a.min) ? "" : real(a.min)) << "</td><td>" << (std::isnan(a.max) ? "" : real(a.max))
+                 << "</td><td>" << (a.unit ? escape(a.unit) : "") << "</td><td>"
                  << escape(forVersion(a.description, version)) << "</td></tr>\n";
         }
     }
 
 private:
+    // A parameter array's start values, space-separated (as many as its extents' starts give).
+    static std::string arrayStart(const fmu::Model& model, const fmu::ArrayVariable& a) {
+        std::size_t n = 1;
+        for (fmu::ValueReference extent : a.extents) {
+            const fmu::StructuralParameter* s = model.findStructural(extent);
+            if (!s) throw std::runtime_error(std::string(a.name) + ": an extent is no structural parameter");
+            n *= std::size_t(structuralStart(model, *s));
+        }
+        std::vector<double> values(n);
+        model.getArray(a, values.data(), n);
+        std::string text;
+        for (double x : values) text += (text.empty() ? "" : " ") + real(x);
+        return text;
+    }
     static long long structuralStart(const fmu::Model& model, const fmu::StructuralParameter& s) {
         if (s.ownValue()) return s.offset;
         const Variable* base = model.find(s.parameter);
@@ -313,7 +346,7 @@ void writeDescription(std::ostream& xml, const fmu::Model& model, const Emitter&
     };
     for (const Variable& v : model.variables()) addUnit(v.unit);
     if (emitter.version == 3)
-        for (const fmu::ArrayOutput& a : model.arrayOutputs()) addUnit(a.unit);
+        for (const fmu::ArrayVariable& a : model.arrayVariables()) addUnit(a.unit);
     if (!units.empty()) {
         xml << "  <UnitDefinitions>\n";
         for (const std::string& unit : units) {
@@ -358,7 +391,7 @@ void writeDocumentation(std::ostream& html, const fmu::Model& model, const Emitt
     html << "<h2>Variables</h2>\n<table>\n<tr><th>name</th><th>value reference</th><th>causality</th><th>type</th>"
             "<th>start</th><th>min</th><th>max</th><th>unit</th><th>description</th></tr>\n";
     emitter.extraRows(html, model);
-    for (const Variable& v : model.variables()) {
+    for (const Variable& v : rowsOf(model)) {
         const char* causality = v.causality == Causality::Parameter ? "parameter"
                                 : v.causality == Causality::Input   ? "input"
                                                                     : "output";
@@ -398,7 +431,8 @@ void writeTerminals(std::ostream& xml, const fmu::Model& model) {
             << "\" terminalKind=\"" << escape(t.terminalKind) << "\" description=\"" << escape(t.description)
             << "\">\n";
         for (const fmu::TerminalMember& m : t.members) {
-            const bool known = std::any_of(model.variables().begin(), model.variables().end(),
+            const auto rows = rowsOf(model);
+            const bool known = std::any_of(rows.begin(), rows.end(),
                                            [&](const Variable& v) { return std::string(v.name) == m.variableName; });
             if (!known) throw std::runtime_error(std::string("terminal ") + t.name + ": no variable " + m.variableName);
             xml << "      <TerminalMemberVariable variableName=\"" << escape(m.variableName) << "\" memberName=\""
@@ -435,6 +469,7 @@ int main(int argc, char** argv) {
         else
             emitter = std::make_unique<Fmi3Emitter>();
         const std::unique_ptr<fmu::Model> model = fmu::createModel();
+        model->useVersion(emitter->version);
         std::ofstream xml(argv[2]);
         writeDescription(xml, *model, *emitter, licenses);
         if (!xml) throw std::runtime_error(std::string("cannot write ") + argv[2]);

@@ -56,6 +56,7 @@ SHARED_FIXTURE = {
     "test_speed_report.py": "speed-report",  # tools/speed_vs_error.py --quick (summary: 10 s)
     "test_elements_agree.py": "elements",  # the Argyris run both tests compare with
     "test_intermediate_inputs.py": "intermediate-inputs",  # three 0.2 s runs with a callback per step
+    "test_impact_episodes.py": "impact-episodes",  # the default scene's 0.6 s (9 s)
 }
 
 # `slow`: left out of the developer loop (`bash test.sh --quick`, `pytest -m "not slow"`); test.sh

@@ -53,8 +53,8 @@ def test_monolithic_ledger_closes_to_roundoff_through_impacts(fmu_path, law):
     with PlateImpactFMU(fmu_path, **SCENE, **law) as plate:
         rows = run_armature(plate, 8000)
     drive_work = rows[-1]["armature_drive_work"]
-    impacts = rows[-1]["impacts_lower"] + rows[-1]["impacts_upper"]
-    assert impacts >= 5 and rows[-1]["impacts_upper"] > 0 and rows[-1]["impacts_lower"] > 0, rows[-1]
+    impacts = rows[-1]["contact_onsets_lower"] + rows[-1]["contact_onsets_upper"]
+    assert impacts >= 5 and rows[-1]["contact_onsets_upper"] > 0 and rows[-1]["contact_onsets_lower"] > 0, rows[-1]
     closure = max(
         abs(
             r["energy"]
@@ -134,7 +134,7 @@ def test_line_coupling_in_fmpy_ssp_master(fmu_path, example):
     for key in ("plate.corner_1", "plate.clamp_force", "shaker.armature_displacement", "shaker.drive_work"):
         scale = max(abs(a[key]).max(), 1e-12)
         assert abs(a[key] - b[key]).max() <= 1e-8 * scale, key
-    assert (a["plate.impacts_lower"] == b["plate.impacts_lower"]).all()
+    assert (a["plate.contact_onsets_lower"] == b["plate.contact_onsets_lower"]).all()
 
 
 def test_monolithic_run_of_the_example_is_the_reference(fmu_path, example):

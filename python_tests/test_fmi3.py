@@ -90,12 +90,29 @@ def test_same_variables_and_defaults(fmu2, fmu3):
     assert md3.guid == md2.guid  # one source, one binding: the same GUID as instantiationToken
     types = {"Real": "Float64", "Integer": "Int32", "Boolean": "Boolean"}
     by_name3 = {v.name: v for v in md3.modelVariables}
+    # FMI 2.0's scalar probes are FMI 3.0's arrays (issue 53): probe_count a structural parameter
+    scalar_probes = {f"probe_{k}{s}" for k in range(1, 5) for s in ("_x", "_y", "", "_velocity", "_acceleration")}
+    assert {v.name for v in md2.modelVariables} - set(by_name3) == scalar_probes
     for v2 in md2.modelVariables:
+        if v2.name in scalar_probes | {"probe_count"}:
+            continue
         v3 = by_name3[v2.name]
         assert (v3.valueReference, v3.causality, v3.type) == (v2.valueReference, v2.causality, types[v2.type])
         assert (v3.start, v3.unit, v3.declaredType is None) == (v2.start, v2.unit, v2.declaredType is None)
     extra = {v.name for v in md3.modelVariables} - {v.name for v in md2.modelVariables}
-    assert extra == {"time", "vertex_output", "vertices_x", "vertices_y", "vertex_displacement", "vertex_stress"}
+    assert extra == {"time", "vertex_output", "vertices_x", "vertices_y", "vertex_displacement", "vertex_stress"} | {
+        "probe_x",
+        "probe_y",
+        "probe",
+        "probe_velocity",
+        "probe_acceleration",
+    }
+    assert (by_name3["probe_count"].causality, by_name3["probe_count"].type, by_name3["probe_count"].start) == (
+        "structuralParameter",
+        "UInt64",
+        "1",
+    )
+    assert by_name3["probe"].shape == by_name3["probe_x"].shape == (1,)  # one probe to start with (size > 0)
     assert by_name3["time"].causality == "independent"
     assert (by_name3["vertices_x"].start, by_name3["vertices_y"].start) == ("15", "6")  # nx + 1, ny + 1
     assert by_name3["vertices_x"].causality == "structuralParameter"
@@ -114,7 +131,12 @@ def test_same_variables_and_defaults(fmu2, fmu3):
 def test_default_scene_bit_identical_to_fmi2(fmu2, fmu3):
     """0.1 s of the default scene (impacts from t = 0.05 s on), base values every 1e-4 s, no
     derivatives (FMI 3.0 has no input derivatives: both reconstruct the same way)."""
-    outputs = [v.name for v in fmpy.read_model_description(str(fmu2)).modelVariables if v.causality == "output"]
+    names3 = {v.name for v in fmpy.read_model_description(str(fmu3)).modelVariables}
+    outputs = [
+        v.name
+        for v in fmpy.read_model_description(str(fmu2)).modelVariables
+        if v.causality == "output" and v.name in names3  # FMI 2.0's scalar probes are FMI 3.0's arrays
+    ]
     kwargs = dict(stop_time=0.1, output_interval=1e-4, input=sine_input(0.1, 1e-4), output=outputs)
     r2 = fmpy.simulate_fmu(str(fmu2), **kwargs)
     r3 = fmpy.simulate_fmu(str(fmu3), **kwargs)

@@ -55,15 +55,31 @@ def test_a_coarse_dt_is_warned_of_once(fmu_path):
         assert len(coarse) == 1 and "dt <= " in coarse[0], warnings(run)
 
 
-def test_a_drive_never_set_is_warned_of_at_the_end(fmu_path):
-    """An input file whose base_displacement column is missing: the run ends with the clamp at 0."""
+def test_a_load_only_run_is_told_once_at_the_info_level(fmu_path):
+    """Issue 53: a run that never sets the clamp's input (the paper's §5.2 release: a load only, or
+    none) is a scene as likely meant as not: one message at the info level, no warning a user learns
+    to ignore."""
+    with PlateRun(fmu_path, logger=lambda *entry: None, **SMALL, dt=1e-4) as run:
+        for _ in range(5):
+            run.step(1e-4, base=None, load=100.0)
+        run.close()
+        assert warnings(run) == [], warnings(run)
+        told = [m for _, category, m in run.log if category == "logInfo" and "never set" in m]
+        assert len(told) == 1 and "base_displacement" in told[0] and "load-only" in told[0], run.log
+
+
+def test_a_motion_input_of_another_drive_is_warned_of_at_the_end(fmu_path):
+    """The warning stays where it catches a mistake: base_velocity set while base_drive =
+    displacement reads base_displacement (never set), the clamp stands still."""
     with PlateRun(fmu_path, **SMALL, dt=1e-4) as run:
         for _ in range(5):
+            run.set("base_velocity", 0.01)
             run.step(1e-4, base=None, load=100.0)
         assert warnings(run) == []  # nothing to say before the run ends
         run.close()
         never = [m for m in warnings(run) if "never set" in m]
-        assert len(never) == 1 and "base_displacement" in never[0], warnings(run)
+        assert len(never) == 1 and never[0].startswith("fmi2Terminate: base_velocity was set"), warnings(run)
+        assert "base_drive = displacement moves the clamp by base_displacement" in never[0], never
 
 
 def test_outputs_interpolated_inside_one_grid_step_are_warned_of_once(fmu_path):

@@ -92,7 +92,7 @@ def test_contact_sums_are_consistent(fmu_path):
     assert rows[-1]["contact_impulse_lower"] == pytest.approx(lower.sum() * DT, rel=1e-12)
     assert rows[-1]["contact_impulse_upper"] == pytest.approx(upper.sum() * DT, rel=1e-12)
     onsets = int(np.sum((upper[1:] < 0) & (upper[:-1] == 0)))
-    assert rows[-1]["impacts_upper"] == onsets > 0
+    assert rows[-1]["contact_onsets_upper"] == onsets > 0
 
 
 def test_probe_velocity_and_acceleration_are_the_differences_of_the_displacements(fmu_path):

@@ -197,7 +197,8 @@ def test_validator_says_what_is_wrong_with_a_missing_fmu_or_manifest(tmp_path):
 @pytest.mark.parametrize("fmu", [FMU2, FMU3], ids=["fmi2", "fmi3"])
 def test_validator_passes_every_experiment_through_fmusim(fmu):
     sums, skipped, results = validate.validate(fmu, masters=("fmusim",), log=lambda s: None)
-    assert len(results) == len(references.EXPERIMENTS) + len(references.STATES)
+    replays = [r for r in results if r.experiment != "fmusim-validate"]  # fmusim >= 0.8 also validates the file
+    assert len(replays) == len(references.EXPERIMENTS) + len(references.STATES)
     assert all(r.passed for r in results), [validate.format_result(r) for r in results if not r.passed]
 
 

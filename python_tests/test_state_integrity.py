@@ -103,9 +103,10 @@ def test_a_state_the_model_refuses_leaves_the_instance_as_it_was(fmu_path, field
     with PlateRun(fmu_path, **TINY) as run:
         blob = saved_state(run)
         values = struct.unpack(f"{(len(blob) - HEADER) // 8}d", blob[HEADER:])
-        # The model's part: 6 inputs x (5 + 9 history), the clamp's position and velocity, then
-        # the simulation flag and base; the scheme's state starts with 5 vectors of n.
-        simulation = 2 + sum(1 for v in run.md.modelVariables if v.causality != "output") + 6 * 14 + 2 + 2
+        # The model's part: 6 inputs x (5 + 9 history), the clamp's position and velocity, the probes'
+        # count and places (1 + 2 x 4: the FMI 2.0 slots), then the simulation flag and base; the
+        # scheme's state starts with 5 vectors of n.
+        simulation = 2 + sum(1 for v in run.md.modelVariables if v.causality != "output") + 6 * 14 + 2 + 9 + 2
         n = int(values[simulation + 1])
         index = simulation + 3 + 5 * n + offset
         patched = list(values)

@@ -72,7 +72,7 @@ def test_a_probe_at_a_corner_is_the_corner_and_one_on_the_clamp_is_the_clamp(fmu
 def test_a_probe_outside_the_plate_is_refused_with_the_allowed_range(fmu_path, name, value, allowed):
     messages = []
     with pytest.raises(FMICallException):
-        PlateImpactFMU(fmu_path, logger=lambda s, c, m: messages.append(m), **{name: value})
+        PlateImpactFMU(fmu_path, logger=lambda s, c, m: messages.append(m), probe_count=4, **{name: value})
     text = " ".join(messages)
     assert f"invalid parameter {name} = {value}" in text and allowed in text, text
 

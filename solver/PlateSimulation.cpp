@@ -7,6 +7,7 @@
 #include <limits>
 #include <sstream>
 
+#include "schemes/ImpactEpisodes.h"
 #include "MakeScheme.h"
 #include "base/StateArchive.h"
 #include "base/PortableMath.h"
@@ -99,6 +100,7 @@ struct PlateSimulation::Impl {
     // largest |w_xx|, tracked every step (part of the state).
     std::unique_ptr<FieldRecovery> recovery;
     double rootPeak = 0.0;
+    ImpactEpisodes episodes;  // per obstacle (docs/theory.md §14), counted every step (part of the state)
     // Only with stress_outputs: off, the peak stays 0 and the step costs nothing more.
     void trackRoot() {
         if (parameters.stressOutputs) rootPeak = std::max(rootPeak, recovery->rootCurvature(*scheme));
@@ -108,6 +110,7 @@ struct PlateSimulation::Impl {
     double commTime = 0.0;
     bool onGrid = true;
     PlateOutputs before;
+    ProbeOutputs probesBefore;
     ResourceEstimate resources;  // made before the assembly
     InputSampler sampler;  // setInputSampler
 };
@@ -139,11 +142,13 @@ PlateSimulation::PlateSimulation(const PlateParameters& p, double baseDisplaceme
     s.space = plate->space;
     s.clamped = plate->clamped;
     s.recovery = std::make_unique<FieldRecovery>(*s.space, *s.clamped, p);
+    s.probesBefore.resize(s.recovery->probeCount());
     s.scheme = makeScheme(SchemeSetup{p, s.space, s.clamped, *s.recovery, s.resources, plate->couplingFree,
                                       plate->rootFree, obstacles, baseDisplacement0, loadAtStart, cache},
                           progress);
     if (log) log(describe(cache));
     s.trackRoot();  // the initial state's (t = 0 belongs to the peak)
+    s.episodes = ImpactEpisodes(p.firstFrequencyEstimate(), p.dt);
     progress.done(s.resources.peakMB);
 }
 
@@ -226,12 +231,16 @@ bool PlateSimulation::stepThrough(const StepPlan& plan, const InputSignal& base,
     if (carrier) carrier->beginCommunication();
     for (long long k = 1; k <= plan.steps; ++k) {
         // The last step of one that ends between grid points: keep the grid point before it.
-        if (k == plan.steps && !plan.endsOnGrid) s.before = gridOutputs(true, FieldOutputs::Plate);
+        if (k == plan.steps && !plan.endsOnGrid) {
+            s.before = gridOutputs(true, FieldOutputs::Plate);
+            s.recovery->fillProbes(*s.scheme, dt, s.probesBefore);  // sized at construction: no allocation
+        }
         const double t = plan.offset + k * dt;
         double z = base.at(t), p = load.at(t);
         if (s.sampler) s.sampler(t, z, p);
         s.scheme->step(z, p);
         s.trackRoot();
+        s.episodes.count(*s.scheme);
         if (k == plan.steps && !plan.endsOnGrid) break;
         if (!stopAfter.wanted) continue;
         const double commTime = s.commTime;
@@ -318,11 +327,28 @@ PlateOutputs PlateSimulation::outputs(bool port, FieldOutputs field) const {
     return o;
 }
 
+ProbeOutputs PlateSimulation::probes() const {
+    const Impl& s = *impl_;
+    ProbeOutputs o;
+    s.recovery->fillProbes(*s.scheme, s.parameters.dt, o);
+    if (s.onGrid) return o;
+    // Between grid points as outputs(): the linear interpolation of the two neighbours.
+    const double dt = s.parameters.dt;
+    const double theta = (s.commTime - double(s.scheme->stepCount() - 1) * dt) / dt;
+    const ProbeOutputs& before = s.probesBefore;
+    o.displacement = before.displacement + theta * (o.displacement - before.displacement);
+    o.velocity = before.velocity + theta * (o.velocity - before.velocity);
+    o.acceleration = before.acceleration + theta * (o.acceleration - before.acceleration);
+    return o;
+}
+
 PlateOutputs PlateSimulation::gridOutputs(bool port, FieldOutputs field) const {
     const Impl& s = *impl_;
     PlateOutputs o = s.scheme->outputs(port);
     o.rootStressPeak = s.recovery->rootStress(s.rootPeak);  // 0 unless stress_outputs (never tracked)
-    if (field != FieldOutputs::None) s.recovery->fill(*s.scheme, s.parameters.dt, o, field == FieldOutputs::Plate);
+    o.impacts[0] = double(s.episodes.episodes[0]);
+    o.impacts[1] = double(s.episodes.episodes[1]);
+    if (field != FieldOutputs::None) s.recovery->fill(*s.scheme, o, field == FieldOutputs::Plate);
     return o;
 }
 
@@ -349,22 +375,34 @@ double PlateSimulation::kappa() const {
 namespace {
 
 // The grid's part of the flat form, after the scheme's (base/StateArchive.h): the communication
-// time, whether it is on the grid, the root's peak |w_xx| since t = 0 (§23) and the outputs at the
-// grid point before the communication time (§15).
+// time, whether it is on the grid, the root's peak |w_xx| since t = 0 (§23) and the outputs and the
+// probes at the grid point before the communication time (§15), measured in the probes' count.
+// Format 2: the probes became any number (format 1 had four fixed among the outputs), and the
+// impact episodes (§14) were added.
 struct GridState {
     double commTime = 0.0;
     int onGrid = 1;
     double rootPeak = 0.0;
     PlateOutputs before;
+    ProbeOutputs probesBefore;
+    long long freeSteps[2] = {0, 0};  // ImpactEpisodes::freeSteps + 1 (a count: 0 is never touched)
+    long long episodes[2] = {0, 0};
 };
-constexpr double kGridFormat = 1.0;
+constexpr double kGridFormat = 2.0;
 const auto gridMembers = [](auto& g, auto& v) {
     v.real(g.commTime, "communication time");
     v.count(g.onGrid, "on the grid", 1.0);
     v.real(g.rootPeak, "the root's peak");
     for (const OutputField& f : kOutputFields) v.real(f.field(const_cast<PlateOutputs&>(g.before)), f.name);
+    v.vector(g.probesBefore.displacement, 0, "the probes' displacement");
+    v.vector(g.probesBefore.velocity, 0, "the probes' velocity");
+    v.vector(g.probesBefore.acceleration, 0, "the probes' acceleration");
+    // The impact episodes (§14): steps since each obstacle was last touched, and the counts.
+    for (int k = 0; k < 2; ++k) {
+        v.count(g.freeSteps[k], "steps free of an obstacle");
+        v.count(g.episodes[k], "impact episodes");
+    }
 };
-constexpr std::array<std::size_t, 0> kNoSizes{};
 
 }  // namespace
 
@@ -372,8 +410,15 @@ constexpr std::array<std::size_t, 0> kNoSizes{};
 std::vector<double> PlateSimulation::saveState() const {
     const Impl& s = *impl_;
     std::vector<double> out = s.scheme->saveState();
-    const std::vector<double> grid = archive::save(GridState{s.commTime, s.onGrid ? 1 : 0, s.rootPeak, s.before},
-                                                   kGridFormat, kNoSizes, gridMembers);
+    const std::array<std::size_t, 1> sizes{std::size_t(s.recovery->probeCount())};
+    const std::vector<double> grid = archive::save(GridState{s.commTime,
+                                                             s.onGrid ? 1 : 0,
+                                                             s.rootPeak,
+                                                             s.before,
+                                                             s.probesBefore,
+                                                             {s.episodes.freeSteps[0] + 1, s.episodes.freeSteps[1] + 1},
+                                                             {s.episodes.episodes[0], s.episodes.episodes[1]}},
+                                                   kGridFormat, sizes, gridMembers);
     out.insert(out.end(), grid.begin(), grid.end());
     if (const Armature* carrier = s.scheme->carrier()) {  // last (§18)
         for (const auto& f : kCarrierFields) out.push_back(f.value(carrier->state()));
@@ -397,10 +442,11 @@ void PlateSimulation::restoreState(const std::vector<double>& all) {
         }
         in.resize(in.size() - kCarrierStateSize);
     }
-    const std::size_t gridLength = archive::length<GridState>(kNoSizes, gridMembers);
+    const std::array<std::size_t, 1> sizes{std::size_t(s.recovery->probeCount())};
+    const std::size_t gridLength = archive::length<GridState>(sizes, gridMembers);
     if (in.size() < gridLength) throw std::invalid_argument("state does not belong to this plate (too short)");
     const auto split = in.end() - std::ptrdiff_t(gridLength);
-    const GridState grid = archive::load<GridState>(std::vector<double>(split, in.end()), kGridFormat, kNoSizes,
+    const GridState grid = archive::load<GridState>(std::vector<double>(split, in.end()), kGridFormat, sizes,
                                                     gridMembers);  // throws: nothing set
     if (!(grid.rootPeak >= 0.0)) throw std::invalid_argument("corrupt state: the root's peak is negative");
     Scheme& scheme = *s.scheme;
@@ -417,6 +463,12 @@ void PlateSimulation::restoreState(const std::vector<double>& all) {
     s.commTime = grid.commTime;
     s.onGrid = onGrid;
     s.before = grid.before;
+    s.probesBefore = grid.probesBefore;
+    for (int k = 0; k < 2; ++k) {
+        s.episodes.freeSteps[k] = grid.freeSteps[k] - 1;
+        s.episodes.episodes[k] = grid.episodes[k];
+        s.episodes.onsetsSeen[k] = scheme.contactOnsets(k);  // counted up to the state's step
+    }
     s.rootPeak = grid.rootPeak;
 }
 

@@ -81,8 +81,10 @@ public:
 
     // At the communication time: on the grid the scheme's values; between grid points the linear
     // interpolation of the two neighbours (counts: the earlier one). `port` adds the port's fields.
-    // `field` adds the probes and the root's stress, or those and the plate's largest stress (§23).
+    // `field` adds the root's stress, or that and the plate's largest stress (§23).
     PlateOutputs outputs(bool port = false, FieldOutputs field = FieldOutputs::None) const;
+    // The probes' motion at the communication time (§23), one entry per probe, interpolated as outputs().
+    ProbeOutputs probes() const;
 
     // Vertex values of the absolute displacement at t_n (for plots and checks).
     std::vector<double> vertexDisplacements() const;

@@ -186,8 +186,8 @@ def reduced_against_full(repo: Path, modes: list[int]) -> list[dict]:
                 "impact_1_error": e["impact_1_error"],
                 "impact_2_error": e["impact_2_error"],
                 "corner_error": e["corner_error"],
-                "driven_impacts": driven["impacts_lower"] + driven["impacts_upper"],
-                "driven_impacts_full": driven_full["impacts_lower"] + driven_full["impacts_upper"],
+                "driven_impacts": driven["contact_onsets_lower"] + driven["contact_onsets_upper"],
+                "driven_impacts_full": driven_full["contact_onsets_lower"] + driven_full["contact_onsets_upper"],
                 "full_impacts": full["episodes"][:2],
             }
         )

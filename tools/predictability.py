@@ -26,7 +26,7 @@ Measured, per scene:
     and its shift per halving, lambda dt*/ln 2, is the order of the error the chaos amplifies.
   - statistics over a window beyond t* (the scene's `window`, checked to start after every twin
     has parted from its run by 1e-4 m): impact rates (contact onsets per second per obstacle, the
-    FMU's impacts_lower / impacts_upper, and impact episodes: onsets at least QUIET after the
+    FMU's contact_onsets_lower / contact_onsets_upper, and impact episodes: onsets at least QUIET after the
     previous one), the energy envelope (mean and max of `energy`), the RMS of corner_1 and its
     spectrum (Welch PSD: dominant frequency, spectral centroid, band shares). At every ladder level
     but the finest (run only to the horizon) the run and its N_TWINS roundoff twins form an
@@ -120,7 +120,7 @@ class Series:
     t: np.ndarray
     corner: np.ndarray
     energy: np.ndarray
-    onsets: np.ndarray  # (n, 2) impacts_lower, impacts_upper (cumulative)
+    onsets: np.ndarray  # (n, 2) contact_onsets_lower, contact_onsets_upper (cumulative)
     cpu: float
     params: dict = field(default_factory=dict)
 
@@ -139,7 +139,7 @@ def simulate(fmu, scene, params, stop, label, amplitude_factor=1.0, h=H):
     t0 = time.process_time()
     with PlateImpactFMU(fmu, **params) as plate:
         real = [plate.vars[v].valueReference for v in ("corner_1", "energy")]
-        ints = [plate.vars[v].valueReference for v in ("impacts_lower", "impacts_upper")]
+        ints = [plate.vars[v].valueReference for v in ("contact_onsets_lower", "contact_onsets_upper")]
         vb = plate.vars["base_displacement"].valueReference
         fmu_ = plate.fmu
         for k in range(n):

@@ -1,13 +1,14 @@
 #pragma once
-// FMI 3.0 only (FMI 2.0 has no arrays): the plate's array output — the absolute displacement
-// at every mesh vertex — and the UInt64 structural parameters that size it: vertex_output (its
-// switch, 1 or 0: a value of its own) and views of the table's nx and ny (vertices_x = nx + 1,
-// vertices_y = ny + 1).
+// FMI 3.0 only (FMI 2.0 has no arrays): the plate's arrays — the absolute displacement and the
+// stress at every mesh vertex, the probes' places and motion — and the UInt64 structural parameters
+// that size them: vertex_output (the vertex arrays' switch, 1 or 0: a value of its own), views of
+// the table's nx and ny (vertices_x = nx + 1, vertices_y = ny + 1), and probe_count (the probes'
+// count, PlateValues::probes, set in Configuration Mode).
 #include <cstddef>
 #include <vector>
 
+#include "binding/PlateVariables.h"
 #include "core/Model.h"
-#include "PlateSimulation.h"
 
 namespace plateimpact {
 
@@ -18,12 +19,20 @@ enum PlateArrayVr : fmu::ValueReference {
     kVrVertexDisplacement = 1003,
     kVrVertexOutput = 1004,
     kVrVertexStress = 1005,
+    kVrProbeCountArrays = 1006,  // probe_count (FMI 2.0's Integer probe_count is vr 218)
+    kVrProbeX = 1007,
+    kVrProbeY = 1008,
+    kVrProbe = 1009,
+    kVrProbeVelocity = 1010,
+    kVrProbeAcceleration = 1011,
 };
 
 const std::vector<fmu::StructuralParameter>& plateStructuralParameters();
-const std::vector<fmu::ArrayOutput>& plateArrayOutputs();
-// The n values of array output `a` (vertex (i, j) at index i (ny + 1) + j: x slowest); throws
-// fmu::ModelError if n is not the mesh's vertex count.
-void getPlateArray(const plate::PlateSimulation& simulation, const fmu::ArrayOutput& a, double* out, std::size_t n);
+const std::vector<fmu::ArrayVariable>& plateArrays();
+// The n values of array `a`: a vertex array (vertex (i, j) at index i (ny + 1) + j: x slowest; the
+// simulation built), the probes' places or their motion; throws fmu::ModelError if n is not its size.
+void getPlateArray(const PlateValues& values, const fmu::ArrayVariable& a, double* out, std::size_t n);
+// The probes' places (probe_x, probe_y; n = probe_count, checked by the caller).
+void setPlateArray(PlateValues& values, const fmu::ArrayVariable& a, const double* in, std::size_t n);
 
 }  // namespace plateimpact

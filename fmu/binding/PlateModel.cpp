@@ -11,7 +11,9 @@
 #include <utility>
 
 #include "core/Model.h"
+#include "binding/BaseDrives.h"
 #include "binding/PlateArrays.h"
+#include "binding/PlateWarnings.h"
 #include "PlateImpactGuid.h"  // generated at build time: FMU_GUID
 #include "binding/PlateVariables.h"
 
@@ -19,98 +21,50 @@ namespace plateimpact {
 
 namespace {
 
-const fmu::ModelInfo kInfo{
-    "PlateImpact",
-    "PlateImpact",
-    "Kirchhoff plate clamped along x = 0 and free elsewhere, between two flat obstacles; C1 finite elements "
-    "(Argyris or reduced FVS), Newmark scheme with exact per-step contact QP at a fixed time step dt",
-    /*canInterpolateInputs=*/true,
-    /*maxOutputDerivativeOrder=*/0,
-    /*canGetAndSetFMUstate=*/true,
-    /*defaultStopTime=*/0.2,
-    /*defaultStepSize=*/0.001,
-    R"(<h2>What it computes</h2>
-<p>A Kirchhoff&ndash;Love plate [0, length] &times; [0, width], clamped along x = 0 and free elsewhere, between a flat
-obstacle below (obstacle_lower) and one above (obstacle_upper). The master moves the clamped edge
-(base_displacement) and may press on the plate (load, a uniform pressure). C1 finite elements (Argyris
-triangles or reduced Fraeijs de Veubeke&ndash;Sander quadrilaterals), the Newmark scheme (gamma = 1/2, beta)
-at the fixed internal step dt, and one exact contact QP per step keeping every mesh vertex between the
-obstacles (Pozzolini, Renard &amp; Salaün 2013). Beyond the paper: a singular mass (mass = singular_p0)
-whose impacts keep their energy as dt &rarr; 0, a restitution coefficient and Rayleigh damping.</p>
-<h2>The default scene</h2>
-<p>A 1.2 &times; 0.4 &times; 0.01 m steel plate (E = 210 GPa, &nu; = 0.3, &rho; = 7770 kg/m<sup>3</sup>),
-14 &times; 5 cells (140 Argyris triangles), obstacles at &plusmn;0.1 m, dt = 1e-5 s; driven with
-base_displacement = 0.09 sin(2&pi; 10 t) m it hits the obstacles from t &asymp; 0.05 s on.</p>
-<h2>Using it</h2>
-<ul>
-<li>Any communication step: the scheme keeps its fixed grid of dt and interpolates the outputs between grid
-points; steps that are whole multiples of dt (relative tolerance 1e-9) run exactly on the grid.</li>
-<li>Inputs: {fmi2:give their first and second derivatives (fmiXSetRealInputDerivatives) when you can; otherwise
-}the FMU {fmi2:extrapolates}{fmi3:holds or extrapolates} the communicated values (base_input_mode, load_input_mode).</li>
-<li>Switches (element, mass, base_drive, base_input_mode, load_input_mode) are Integers: the description of each
-lists its items, e.g. base_drive = 2 drives the clamp by base_velocity.</li>
-{fmi3:<li>Early return: a master that grants it at fmiXInstantiateCoSimulation gets every contact onset and
-release as an event, exactly on the internal grid (lastSuccessfulTime), the impact in the outputs there.</li>
-<li>The array output vertex_displacement holds the deflection at every mesh vertex
-([vertex_output][vertices_x][vertices_y]); vertices_x = nx + 1 and vertices_y = ny + 1 are views of nx and ny;
-vertex_output = 0 (before initialization) leaves the array empty.</li>
-<li>Terminals (terminalsAndIcons/terminalsAndIcons.xml): <code>clamp</code> (kind
-org.plateimpact.TranslationalFlange, matchingRule bus: base_displacement s, base_velocity v, base_acceleration a
-in, clamp_force f out), <code>armature</code> (the same kind, plug: drive_force f in, clamp_displacement s,
-clamp_velocity v, clamp_acceleration a out) and <code>line</code> (kind org.plateimpact.TransmissionLineEnd,
-matchingRule org.plateimpact.crossed: tlm_wave_in wave_in, tlm_wave_out wave_out, tlm_impedance impedance; one
-end's wave_out feeds the other's wave_in, the impedances are equal). A TranslationalFlange's members connect by
-memberName, each output to the partner's input of the same memberName (all are signals: the connection is
-causal).</li>
-}<li>Outputs are absolute displacements; the energy ledger energy = E0 + energy_input &minus; energy_dissipated
-&minus; energy_damped holds to roundoff.</li>
-</ul>
-<p>Reference experiments to validate this FMU on your platform and master (FMI-LS-REF):
-<a href="fmi-ls-ref.html">fmi-ls-ref.html</a>.</p>
-<h2>Limits: what the FMU refuses</h2>
-<p>Each refusal returns fmiXError and logs what was wrong and the allowed range (category logStatusError).
-Parameters outside the min/max of the table below (poisson_ratio and the obstacles' heights exclude their ends:
-0 &lt; poisson_ratio &lt; 0.5, obstacle_lower &lt; 0 &lt; obstacle_upper); beta &lt; 0.25 beyond the stability
-bound on dt; a singular mass with modes &gt; 0, beta &lt; 0.25 or without massless directions at every contact
-vertex; an instance whose estimated memory exceeds memory_limit; inputs outside their min/max, NaN or Inf; a
-clamp driven past an obstacle; a communication step shorter than 1e-9 dt; calls outside the states FMI
-{fmi2:2.0}{fmi3:3.0} allows; FMU states of another build, of another CPU architecture (both platforms named) or damaged (XXH64 checksum); time_scheme = conserving
-with mass = consistent or restitution &gt; 0. With the clamp carried (base_drive = force: an armature inside the
-FMU; tlm: the end of a transmission line to a partner FMU): armature_mass &le; 0, tlm_impedance &le; 0, a singular
-mass, a second input driving the clamp (a motion input with force or tlm, a drive_force with a motion drive),
-communication steps that are not whole multiples of dt.</p>
-)",
-    /*stateMagic=*/"PLATEIMP",
-};
-
-std::string format(const char* fmt, double a, double b, double c = 0.0) {
-    char text[400];
-    std::snprintf(text, sizeof text, fmt, a, b, c);
-    return text;
-}
-
 class PlateModel final : public fmu::Model {
 public:
-    const fmu::ModelInfo& info() const override { return kInfo; }
+    const fmu::ModelInfo& info() const override { return plateInfo(); }
     const std::vector<fmu::Variable>& variables() const override { return plateVariables(); }
 
     double get(const fmu::Variable& v) const override { return getValue(values_, v); }
     void set(const fmu::Variable& v, double x) override {
         setValue(values_, v, x);
-        // Set while the simulation runs (not the start value of initialization mode): the drive is driven.
-        if (simulation_ && v.causality == fmu::Causality::Input && values_.inputPort(v.vr) == &drivePort())
-            driveSet_ = true;
+        // Set while the simulation runs (not the start value of initialization mode): the drive is
+        // driven, or another motion input is (terminate tells which).
+        if (simulation_ && v.causality == fmu::Causality::Input) {
+            if (values_.inputPort(v.vr) == &drivePort())
+                driveSet_ = true;
+            else if (isMotionInput(v.vr) && !otherMotionSet_)
+                otherMotionSet_ = v.name;
+        }
     }
 
     // FMI 3.0: the vertex displacements as an array, early return at contact onset and release.
     const std::vector<fmu::StructuralParameter>& structuralParameters() const override {
         return plateStructuralParameters();
     }
-    const std::vector<fmu::ArrayOutput>& arrayOutputs() const override { return plateArrayOutputs(); }
+    const std::vector<fmu::ArrayVariable>& arrayVariables() const override { return plateArrays(); }
     const std::vector<fmu::Terminal>& terminals() const override { return plateTerminals(); }
-    void getArray(const fmu::ArrayOutput& a, double* out, std::size_t n) const override {
-        if (!simulation_) throw fmu::ModelError("internal error: no simulation to read an array from");
-        getPlateArray(*simulation_, a, out, n);
+    void getArray(const fmu::ArrayVariable& a, double* out, std::size_t n) const override {
+        getPlateArray(values_, a, out, n);
+    }
+    void setArray(const fmu::ArrayVariable& a, const double* values, std::size_t n) override {
+        setPlateArray(values_, a, values, n);
+    }
+    // FMI 3.0's probe_count is the probes' count itself (FMU states carry it: saveState).
+    double ownStructuralValue(const fmu::StructuralParameter& s) const override {
+        return s.vr == kVrProbeCountArrays ? double(values_.probes.count) : Model::ownStructuralValue(s);
+    }
+    void setOwnStructuralValue(const fmu::StructuralParameter& s, double x) override {
+        if (s.vr != kVrProbeCountArrays) return Model::setOwnStructuralValue(s, x);
+        values_.probes.setCount(std::size_t(x));
+        values_.probes.placed = true;
+    }
+    // FMI 3.0: up to kMaxProbes probes, one to start with (an array's initial size is positive).
+    void useVersion(int version) override {
+        Model::useVersion(version);
+        values_.probes.max = version == 3 ? kMaxProbes : kScalarProbes;
+        values_.probes.setCount(version == 3 ? 1 : 0);
     }
     // FMI 3.0 intermediate update with inputs: the clamp's height and the load, set by the master at
     // each internal grid point, are the values the step to that point takes (no reconstruction).
@@ -162,7 +116,7 @@ public:
         requireOneDrive();
         try {
             simulation_ = std::make_unique<plate::PlateSimulation>(
-                values_.parameters, values_.baseDisplacement.signal.value, values_.load.signal.value, log);
+                values_.solverParameters(), values_.baseDisplacement.signal.value, values_.load.signal.value, log);
         } catch (const std::bad_alloc&) {
             // The estimate is an estimate: what fails anyway is reported, never an abort.
             throw fmu::ModelError("out of memory while building the simulation (std::bad_alloc) after " + estimate +
@@ -175,18 +129,25 @@ public:
         refreshOutputs();
         const plate::PlateParameters& p = values_.parameters;
         trace(format("simulation built (nx = %g, ny = %g, dt = %g s)", p.nx, p.ny, p.dt));
-        warnOfCoarseStep();
+        for (const std::string& message : buildWarnings(values_, fmiVersion() == 3)) warn(message);
         driveSet_ = interpolationWarned_ = errorWarned_ = cappedWarned_ = false;
-        warnOfUnusedTolerance();
-        warnOfProbes();
+        otherMotionSet_ = nullptr;
     }
     void terminate() override {
-        // A drive the master never set: the clamp stayed where it started (a CSV column missing or
-        // misspelled runs to the end without an error otherwise).
-        if (!driveSet_ && simulation_->stepCount() > 0 && !carried())
-            warn(std::string(driveName()) +
-                 " (base_drive) was never set during this run: the clamp stayed at its start value, so only the "
-                 "load moved the plate; if an input file or a connection should drive it, check the input's name");
+        // A drive the master never set: the clamp stayed where it started. A motion input of another
+        // drive set instead is a mistake (base_drive not switched, or the wrong column): warned. None
+        // set is a load-only scene (the paper's §5.2 release), as likely meant as not: told once, at
+        // the info level (logInfo), for the user who looks for why the clamp did not move.
+        if (driveSet_ || simulation_->stepCount() == 0 || carried()) return;
+        if (otherMotionSet_)
+            warn(std::string(otherMotionSet_) + " was set during this run, but base_drive = " + mode().item +
+                 " moves the clamp by " + driveName() +
+                 ", which was never set: the clamp stayed at its start value; set base_drive to the input you "
+                 "drive (1 = base_displacement, 2 = base_velocity, 3 = base_acceleration)");
+        else
+            inform(std::string(driveName()) +
+                   " (base_drive) was never set during this run: a load-only run, the clamp stayed at its start "
+                   "value; if an input file or a connection should drive it, check the input's name");
     }
     bool built() const override { return simulation_ != nullptr; }
     void drop() override {
@@ -249,6 +210,7 @@ public:
             port->history.serialize(out);
         }
         out.insert(out.end(), {clampPosition_, clampVelocity_});
+        values_.probes.appendTo(out);
         out.push_back(simulation_ ? 1.0 : 0.0);
         out.push_back(simulationBase0_);
         if (simulation_) {
@@ -286,6 +248,12 @@ public:
             throw fmu::ModelError("the clamp's motion is not finite");
         clampPosition_ = clamp[0];
         clampVelocity_ = clamp[1];
+        const double* count = take(1, "the probes' count");
+        ProbePlaces probes = values_.probes;
+        if (!probes.setCountFrom(*count)) throw fmu::ModelError("the probes' count is out of range");
+        if (!probes.readPlaces(take(2 * probes.x.size(), "the probes' places")))
+            throw fmu::ModelError("a probe's place is not finite");
+        values_.probes = probes;
         const double* flags = take(2, "the simulation flag");
         if ((flags[0] != 0.0 && flags[0] != 1.0) || !std::isfinite(flags[1]))
             throw fmu::ModelError("simulation flag or initial base displacement out of range");
@@ -299,7 +267,7 @@ public:
         // Equal configurations (every parameter of the table, and the initial base) reuse the
         // discretization; another one is built for the state's parameters.
         if (!simulation_ || builtWith_ != configuration() || simulationBase0_ != flags[1]) {
-            auto simulation = std::make_unique<plate::PlateSimulation>(values_.parameters, flags[1]);
+            auto simulation = std::make_unique<plate::PlateSimulation>(values_.solverParameters(), flags[1]);
             simulation->restoreState(state);
             simulation_ = std::move(simulation);
             builtWith_ = configuration();
@@ -317,6 +285,7 @@ private:
         std::vector<double> out;
         for (const fmu::Variable& v : plateVariables())
             if (v.causality == fmu::Causality::Parameter) out.push_back(getValue(values_, v));
+        values_.probes.appendTo(out);
         return out;
     }
     void refreshOutputs() {
@@ -325,78 +294,22 @@ private:
         values_.portValid = false;
         values_.fieldValid = false;
         values_.plateFieldValid = false;
+        values_.probesValid = false;
     }
 
     std::array<InputPort*, 6> ports() {
         return {&values_.baseDisplacement, &values_.baseVelocity, &values_.baseAcceleration, &values_.load,
                 &values_.driveForce,       &values_.tlmWaveIn};
     }
-    bool carried() const { return values_.baseDrive == BaseDrive::Force || values_.baseDrive == BaseDrive::Tlm; }
-    // The motion input base_drive chooses (carried clamps: their drive).
-    InputPort& drivePort() {
-        switch (values_.baseDrive) {
-            case BaseDrive::Velocity: return values_.baseVelocity;
-            case BaseDrive::Acceleration: return values_.baseAcceleration;
-            case BaseDrive::Force: return values_.driveForce;
-            case BaseDrive::Tlm: return values_.tlmWaveIn;
-            case BaseDrive::Displacement: break;
-        }
-        return values_.baseDisplacement;
-    }
-    const char* driveName() const {
-        static const char* const names[] = {
-            "", "base_displacement", "base_velocity", "base_acceleration", "drive_force", "tlm_wave_in"};
-        return names[static_cast<int>(values_.baseDrive)];
-    }
-    // dt against the plate's first period (plate::PlateParameters::firstFrequencyEstimate; dt above
-    // T1/2 is refused by the solver): fewer than 20 steps per period give visibly wrong amplitudes
-    // and phases. Once per build.
-    void warnOfCoarseStep() {
-        const plate::PlateParameters& p = values_.parameters;
-        const double period = 1.0 / p.firstFrequencyEstimate();
-        if (p.dt <= period / 20.0) return;
-        warn(format("dt = %g s is %.3g of the plate's first period T1 = %.4g s", p.dt, p.dt / period, period) +
-             " (fewer than 20 steps per period): the outputs resolve the first mode only roughly; take dt <= " +
-             format("%.4g s (T1/20) for accurate results", period / 20.0, 0.0));
-    }
-    // A tolerance or sub-step count only the flow law uses (docs/theory.md §21–22), set for another
-    // scheme: said at build.
-    void warnOfUnusedTolerance() {
-        const plate::PlateParameters& p = values_.parameters;
-        if (p.timeScheme == plate::TimeScheme::Flow) return;
-        if (p.tolerance > 0.0)
-            warn(
-                format("tolerance = %g m is used by time_scheme = flow only (3): this run's scheme ignores it, and "
-                       "error_estimate stays 0",
-                       p.tolerance, 0.0));
-        const plate::PlateParameters defaults;
-        if (p.contactSubsteps != defaults.contactSubsteps)
-            warn(format("contact_substeps = %g is used by time_scheme = flow only (3): this run's scheme ignores it",
-                        double(p.contactSubsteps), 0.0));
-        if (p.maxContactSubsteps != defaults.maxContactSubsteps)
-            warn(
-                format("max_contact_substeps = %g is used by time_scheme = flow with a tolerance only: this run's "
-                       "scheme ignores it",
-                       double(p.maxContactSubsteps), 0.0));
-    }
-    // Probes (docs/theory.md §23) that are not what they seem: one placed but not counted (it reads 0),
-    // one counted but on the clamped edge x = 0 (unplaced: the default (0, 0)), which moves with the clamp.
-    void warnOfProbes() {
-        const plate::PlateParameters& p = values_.parameters;
-        for (int k = 0; k < plate::kProbeCount; ++k) {
-            const double x = p.probeX[std::size_t(k)], y = p.probeY[std::size_t(k)];
-            const std::string name = "probe_" + std::to_string(k + 1);
-            if (k >= p.probeCount && (x != 0.0 || y != 0.0))
-                warn(name + format(" is placed at (%g, %g) m", x, y) +
-                     format(" but probe_count = %g leaves it off: it reads 0; set probe_count >= %g to compute it",
-                            double(p.probeCount), double(k + 1)));
-            if (k < p.probeCount && x == 0.0)
-                warn(name +
-                     format(" at (%g, %g) m is counted (probe_count = %g) but lies on the clamped edge x = 0", x, y,
-                            double(p.probeCount)) +
-                     ": it reads the clamp's motion; place it with " + name + "_x > 0 (" + name +
-                     (y == 0.0 ? "_x and _y were never set)" : "_x is 0)"));
-        }
+    // The row of base_drive's mode (BaseDrives.h): its input, whether it carries the clamp, its path.
+    const DriveMode& mode() const { return driveMode(values_.baseDrive); }
+    bool carried() const { return mode().carried; }
+    InputPort& drivePort() { return values_.*mode().port; }  // the input base_drive chooses
+    const char* driveName() const { return mode().input; }
+    bool isMotionInput(fmu::ValueReference vr) {
+        for (int k = 0; k < kDriveModeCount; ++k)
+            if (!driveModes()[k].carried && &(values_.*driveModes()[k].port) == values_.inputPort(vr)) return true;
+        return false;
     }
     // tolerance > 0 (docs/theory.md §22): the global error estimate passing the tolerance (the scene's
     // horizon for it), and a contact step the cap bounded, are each said once per build.
@@ -425,28 +338,15 @@ private:
     // whose motion inputs are set as well, or a motion-driven one given a force, is refused.
     void requireOneDrive() const {
         const double base0 = simulation_ ? simulationBase0_ : values_.baseDisplacement.signal.value;
-        const struct {
-            const char* name;
-            double value;
-            bool used;
-        } inputs[] = {
-            {"base_displacement", values_.baseDisplacement.signal.value - base0,
-             values_.baseDrive == BaseDrive::Displacement},
-            {"base_velocity", values_.baseVelocity.signal.value, values_.baseDrive == BaseDrive::Velocity},
-            {"base_acceleration", values_.baseAcceleration.signal.value, values_.baseDrive == BaseDrive::Acceleration},
-            {"drive_force", values_.driveForce.signal.value, values_.baseDrive == BaseDrive::Force},
-            {"tlm_wave_in", values_.tlmWaveIn.signal.value, values_.baseDrive == BaseDrive::Tlm},
-        };
-        const bool motion = !carried();
-        for (const auto& input : inputs) {
-            if (input.used || input.value == 0.0) continue;
-            const bool inputIsMotion = input.name[0] == 'b';
-            if (motion && inputIsMotion) continue;  // the motion drives ignore each other's inputs (§16)
-            static const char* const drives[] = {"", "displacement", "velocity", "acceleration", "force", "tlm"};
+        for (int k = 0; k < kDriveModeCount; ++k) {
+            const DriveMode& input = driveModes()[k];
+            const bool displacement = input.drive == BaseDrive::Displacement;
+            const double value = (values_.*input.port).signal.value - (displacement ? base0 : 0.0);
+            if (input.drive == values_.baseDrive || value == 0.0) continue;
+            if (!carried() && !input.carried) continue;  // the motion drives ignore each other's inputs (§16)
             throw fmu::ModelError(
-                std::string("invalid parameter base_drive = ") + drives[static_cast<int>(values_.baseDrive)] +
-                " with " + input.name + " set (" + format("%.17g", input.value, 0.0) +
-                (input.name == std::string("base_displacement") ? " from the initial position" : "") +
+                std::string("invalid parameter base_drive = ") + mode().item + " with " + input.input + " set (" +
+                format("%.17g", value, 0.0) + (displacement ? " from the initial position" : "") +
                 "): the clamp is driven by one input only; a clamp carried by the armature (force) or by the line "
                 "(tlm) is not also moved by a motion input, nor a motion-driven clamp by a force (allowed: set "
                 "base_drive to the input you drive, leave the others at 0)");
@@ -461,22 +361,7 @@ private:
         const plate::PlateParameters& p = simulation_->parameters();
         const double lower = p.obstacleLowerEnabled ? p.obstacleLower : -plate::kMaxDisplacement;
         const double upper = p.obstacleUpperEnabled ? p.obstacleUpper : plate::kMaxDisplacement;
-        switch (values_.baseDrive) {
-            case BaseDrive::Velocity:
-                return values_.baseVelocity.stepSignal(now, span, -kMaxBaseVelocity, kMaxBaseVelocity)
-                    .integral(clampPosition_);
-            case BaseDrive::Acceleration:
-                return values_.baseAcceleration.stepSignal(now, span, -kMaxBaseAcceleration, kMaxBaseAcceleration)
-                    .integral(clampVelocity_)
-                    .integral(clampPosition_);
-            case BaseDrive::Force:  // the drive force on the armature (§18)
-                return values_.driveForce.stepSignal(now, span, -plate::kMaxCarrierForce, plate::kMaxCarrierForce);
-            case BaseDrive::Tlm:  // the wave, held: what the partner launched is what arrives (§19)
-                values_.tlmWaveIn.history.reached(values_.tlmWaveIn.signal.value);
-                return plate::InputSignal{values_.tlmWaveIn.signal.value, 0.0, 0.0};
-            case BaseDrive::Displacement:
-            default: return values_.baseDisplacement.stepSignal(now, span, lower, upper);
-        }
+        return mode().path(values_, {clampPosition_, clampVelocity_}, now, span, lower, upper);
     }
     // simulation_->communicate, or with stopAtContactChange_ (FMI 3.0 early return) up to the
     // first contact onset or release on the grid. Returns the span of the step as taken; after
@@ -519,16 +404,7 @@ private:
         const double span = simulation_->time() - start;
         if (simulation_->time() == plan.end) return plan.span;  // at the end anyway
         values_.load.history.reached(load.at(span));
-        switch (values_.baseDrive) {  // the drive's own signal inside the clamp's (clampSignal)
-            case BaseDrive::Velocity:
-                values_.baseVelocity.history.reached(plate::InputSignal{base.d1, base.d2, base.d3, base.d4}.at(span));
-                break;
-            case BaseDrive::Acceleration:
-                values_.baseAcceleration.history.reached(plate::InputSignal{base.d2, base.d3, base.d4}.at(span));
-                break;
-            case BaseDrive::Displacement:
-            default: values_.baseDisplacement.history.reached(base.at(span));
-        }
+        (values_.*mode().port).history.reached(mode().inputAt(base, span));  // the drive's own, inside the clamp's
         return span;
     }
     void advanceClamp(const plate::InputSignal& base, double span) {
@@ -543,7 +419,8 @@ private:
     double simulationBase0_ = 0.0;  // base displacement the simulation was built with
     // The clamp at the communication time when a velocity or an acceleration drives it.
     double clampPosition_ = 0.0, clampVelocity_ = 0.0;
-    bool driveSet_ = false;  // the drive input was set during the run (warned at terminate otherwise)
+    bool driveSet_ = false;  // the drive input was set during the run (terminate tells otherwise)
+    const char* otherMotionSet_ = nullptr;  // the first motion input of another drive set during the run
     bool interpolationWarned_ = false;  // the warning of steps shorter than two grid steps, once
     bool errorWarned_ = false;  // the warning of the error estimate past the tolerance, once
     bool cappedWarned_ = false;  // the warning of a contact step the sub-step cap bounded, once

@@ -1,5 +1,7 @@
 #include "binding/PlateVariables.h"
 
+#include "binding/PlateSwitches.h"
+
 #include <array>
 #include <climits>
 #include <cmath>
@@ -15,52 +17,6 @@ using plate::ElementType;
 using plate::InputMode;
 using plate::MassModel;
 using plate::TimeScheme;
-
-const fmu::EnumerationType kElementType{
-    "ElementType",
-    "C1 plate element",
-    {{"argyris", 1, "Argyris triangle (P5, 21 dofs); each cell split into two triangles"},
-     {"fvs", 2, "Reduced Fraeijs de Veubeke-Sander quadrilateral (12 dofs); one per cell"}}};
-
-const fmu::EnumerationType kInputMode{
-    "InputMode",
-    "How an input is continued inside a communication step from its communicated values",
-    {{"hold", 1, "Held constant over the step"},
-     {"linear", 2, "Extrapolated along the line through the last two communicated values"},
-     {"quadratic", 3, "Extrapolated along the parabola through the last three communicated values"}}};
-
-const fmu::EnumerationType kMassModel{
-    "MassModel",
-    "Mass matrix of the plate",
-    {{"consistent", 1, "Consistent mass of the finite element space (the paper's scheme)"},
-     {"singular_p0", 2,
-      "Singular mass projected on element-wise constants: no inertia at the contact vertices, energy-consistent "
-      "impacts as dt -> 0"},
-     {"singular_p1dg", 3, "Singular mass projected on element-wise linear functions (Argyris only)"}}};
-
-const fmu::EnumerationType kTimeScheme{
-    "TimeScheme",
-    "Time scheme",
-    {{"newmark", 1, "The paper's three-level Newmark scheme with the impact law set by mass and restitution"},
-     {"conserving", 2,
-      "Condensed singular plate (needs mass = singular_p0 or singular_p1dg): massive modes stepped by the midpoint "
-      "rule, the massless boundary static, impacts through a discrete gradient; conserves energy through impacts "
-      "at any dt"},
-     {"flow", 3,
-      "The conserving scheme with every massive mode advanced by its exact flow between contacts (no phase error "
-      "in free flight) and each step with a constraint row active taken as contact_substeps discrete-gradient "
-      "sub-steps; conserves energy through impacts at any dt"}}};
-
-const fmu::EnumerationType kBaseDrive{
-    "BaseDrive",
-    "Which input moves the clamped edge",
-    {{"displacement", 1, "base_displacement (the clamp position)"},
-     {"velocity", 2, "base_velocity, integrated exactly over each communication step from the position at its start"},
-     {"acceleration", 3, "base_acceleration, integrated twice exactly over each communication step"},
-     {"force", 4,
-      "drive_force on an armature that carries the clamp inside the FMU (armature_mass, _stiffness, _damping)"},
-     {"tlm", 5,
-      "tlm_wave_in: the clamp is the end of a transmission line of impedance tlm_impedance to a partner FMU"}}};
 
 using Get = double (*)(const PlateValues&);
 using Set = void (*)(PlateValues&, double);
@@ -117,6 +73,12 @@ Row output(fmu::ValueReference vr, const char* name, const char* unit, Get get, 
 Row integerOutput(fmu::ValueReference vr, const char* name, Get get, const char* description) {
     return {declared(vr, name, VariableType::Integer, Causality::Output, nullptr, description), get, nullptr};
 }
+// A row of the FMI 2.0 interface only: its scalar probes (FMI 3.0 has them as arrays, PlateArrays.cpp).
+Row fmi2Only(Row row) {
+    row.variable.version = 2;
+    return row;
+}
+constexpr plate::Range kScalarProbeCount{0.0, double(kScalarProbes)};
 
 // The switches' accessors (Integer values of the items above).
 double getElement(const PlateValues& v) { return v.parameters.element == ElementType::Fvs ? 2.0 : 1.0; }
@@ -140,6 +102,16 @@ void setBaseDrive(PlateValues& v, double x) {
     v.parameters.carrier = x == 4.0 ? Carrier::Armature : x == 5.0 ? Carrier::Line : Carrier::None;
 }
 
+// probe_count (the FMI 2.0 Integer; FMI 3.0's structural parameter sets the same count).
+double getProbeCount(const PlateValues& v) { return double(v.probes.count); }
+void setProbeCount(PlateValues& v, double x) {
+    if (!(x >= 0.0 && x <= double(v.probes.max)))
+        throw fmu::ModelError("invalid parameter probe_count = " + std::to_string(x) +
+                              " (allowed: 0 <= probe_count <= " + std::to_string(v.probes.max) + ")");
+    v.probes.setCount(std::size_t(x));
+    v.probes.placed = true;
+}
+
 double saturate(double n) { return n > INT_MAX ? double(INT_MAX) : n; }  // counts are >= 0
 double getQpIterationsTotal(const PlateValues& v) { return saturate(v.outputs.contactSolves); }
 
@@ -154,9 +126,10 @@ double getQpIterationsTotal(const PlateValues& v) { return saturate(v.outputs.co
 #define PORT(field) [](const PlateValues& v) { return v.port().field; }
 #define FIELD(member) [](const PlateValues& v) { return v.field().member; }
 #define PLATE_FIELD(member) [](const PlateValues& v) { return v.plateField().member; }
-#define PROBE(axis, k)                                         \
-    [](const PlateValues& v) { return v.parameters.axis[k]; }, \
-        [](PlateValues& v, double x) { v.parameters.axis[k] = x; }
+#define PROBE(axis, k)                                     \
+    [](const PlateValues& v) { return v.probes.axis[k]; }, \
+        [](PlateValues& v, double x) { v.probes.axis[k] = x, v.probes.placed = true; }
+#define PROBE_MOTION(quantity, k) [](const PlateValues& v) { return v.probe(&plate::ProbeOutputs::quantity, k); }
 #define CARRIER(field) [](const PlateValues& v) { return v.simulation ? v.simulation->carrierOutputs().field : 0.0; }
 
 using namespace plate::ranges;  // the parameters' ranges: kLength, kCells, ...
@@ -183,7 +156,7 @@ const Row kRows[] = {
         "Number of mesh cells along x (at least 1)"),
     integerParameter(kVrNy,    "ny",    kCells, PARAMETER(ny),
         "Number of mesh cells along y (at least 1)"),
-    choice(kVrElement,       "element",         kElementType, getElement,       setElement,
+    choice(kVrElement,       "element",         elementType(), getElement,       setElement,
         "Finite element"),
     parameter(kVrObstacleLower,     "obstacle_lower",     "m",     kObstacleLower,     PARAMETER(obstacleLower),
         "Height of the lower obstacle (negative; used when obstacle_lower_enabled)"),
@@ -202,17 +175,17 @@ const Row kRows[] = {
         "Uniform pressure (positive upward) whose static equilibrium is the initial shape; the plate starts at rest"),
     integerParameter(kVrModes, "modes", kModes, PARAMETER(modes),
         "0: full finite element space (exact scheme); m > 0: reduced model on m modes"),
-    choice(kVrBaseInputMode, "base_input_mode", kInputMode,   getBaseInputMode, setBaseInputMode,
+    choice(kVrBaseInputMode, "base_input_mode", inputMode(),   getBaseInputMode, setBaseInputMode,
         "How base_displacement (and base_velocity, base_acceleration) moves inside a communication step{fmi2: when "
         "the master gives no input derivatives}: held, or extrapolated from the communicated values{fmi2: "
         "(derivatives set by the master always win)}"),
-    choice(kVrLoadInputMode, "load_input_mode", kInputMode,   getLoadInputMode, setLoadInputMode,
+    choice(kVrLoadInputMode, "load_input_mode", inputMode(),   getLoadInputMode, setLoadInputMode,
         "How load moves inside a communication step{fmi2: when the master gives no input derivatives}: held (a load "
         "may step; extrapolating a step overshoots) or extrapolated"),
-    choice(kVrMass,          "mass",            kMassModel,   getMass,          setMass,
+    choice(kVrMass,          "mass",            massModel(),   getMass,          setMass,
         "Mass matrix: consistent (the paper's scheme; impacts lose energy at every mesh vertex), singular_p0 "
         "(energy-consistent impacts, results converge after impact) or singular_p1dg"),
-    choice(kVrTimeScheme,    "time_scheme",     kTimeScheme,  getTimeScheme,    setTimeScheme,
+    choice(kVrTimeScheme,    "time_scheme",     timeScheme(),  getTimeScheme,    setTimeScheme,
         "Time scheme: newmark (the paper's scheme, default), conserving (needs a singular mass: the energy balance "
         "closes exactly through impacts at any dt and every reported displacement stays within the obstacles; modes "
         "= m keeps the m lowest massive modes, damping acts on them; beta and restitution do not apply) or flow (the "
@@ -244,7 +217,7 @@ const Row kRows[] = {
         "t = 0"),
     input(kVrLoad,             "load",              "Pa",   false, plate::kMaxLoad,         INPUT(load),
         "Uniform pressure on the plate, positive upward, acting from t = 0 on"),
-    choice(kVrBaseDrive,     "base_drive",      kBaseDrive,   getBaseDrive,     setBaseDrive,
+    choice(kVrBaseDrive,     "base_drive",      baseDrive(),   getBaseDrive,     setBaseDrive,
         "Which input moves the clamped edge: displacement (base_displacement), velocity (base_velocity, integrated "
         "from the initial base_displacement), acceleration (base_acceleration, integrated twice, the clamp at rest "
         "at t = 0), force (drive_force on an armature inside the FMU that carries the clamp) or tlm (a transmission "
@@ -309,10 +282,17 @@ const Row kRows[] = {
         "Impulse of the lower obstacle on the plate since t = 0 (cumulative)"),
     output(kVrContactImpulseUpper,     "contact_impulse_upper",      "N.s",  PORT(contactImpulse[1]),
         "Impulse of the upper obstacle on the plate since t = 0 (cumulative, <= 0)"),
-    integerOutput(kVrImpactsLower,      "impacts_lower",       PORT(impacts[0]),
-        "Contact onsets on the lower obstacle since t = 0 (steps whose contact force starts from zero)"),
-    integerOutput(kVrImpactsUpper,      "impacts_upper",       PORT(impacts[1]),
-        "Contact onsets on the upper obstacle since t = 0"),
+    integerOutput(kVrImpactsLower,      "impacts_lower",       OUTPUT(impacts[0]),
+        "Impacts on the lower obstacle since t = 0: contacts after the whole plate was free of it for at least a "
+        "quarter of its first natural period (impact episodes, as counted on a corner's plot; the chatter of single "
+        "vertices inside one is contact_onsets_lower)"),
+    integerOutput(kVrImpactsUpper,      "impacts_upper",       OUTPUT(impacts[1]),
+        "Impacts on the upper obstacle since t = 0 (impact episodes, as impacts_lower)"),
+    integerOutput(kVrContactOnsetsLower, "contact_onsets_lower", OUTPUT(contactOnsets[0]),
+        "Internal steps whose lower contact force starts from zero, since t = 0: every vertex's chatter inside "
+        "an impact counts (depends on dt)"),
+    integerOutput(kVrContactOnsetsUpper, "contact_onsets_upper", OUTPUT(contactOnsets[1]),
+        "Internal steps whose upper contact force starts from zero, since t = 0 (as contact_onsets_lower)"),
     output(kVrCorner1Velocity,         "corner_1_velocity",          "m/s",  PORT(velocity[0]),
         "Absolute velocity at corner_1 (second-order backward difference)"),
     output(kVrCorner2Velocity,         "corner_2_velocity",          "m/s",  PORT(velocity[1]),
@@ -357,8 +337,8 @@ const Row kRows[] = {
     booleanParameter(kVrStressOutputs, "stress_outputs", PARAMETER(stressOutputs),
         "Compute the stress outputs (root_stress, root_stress_peak, max_stress and its place, vertex_stress): the "
         "root's peak is then tracked at every internal step; off (default) they read 0 and cost nothing"),
-    integerParameter(kVrProbeCount, "probe_count", kProbeCountRange, PARAMETER(probeCount),
-        "How many probes (probe_1 ... probe_4, at probe_k_x, probe_k_y) are computed; the others read 0"),
+    fmi2Only(integerParameter(kVrProbeCount, "probe_count", kScalarProbeCount, getProbeCount, setProbeCount,
+        "How many probes (probe_1 ... probe_4, at probe_k_x, probe_k_y) are computed; the others read 0")),
     output(kVrRootStress,              "root_stress",                "Pa",   FIELD(rootStress),
         "Largest von Mises surface bending stress along the clamped edge x = 0 now (plane stress from the "
         "curvatures: 6D/t^2 |w_xx| sqrt(1 - nu + nu^2) there), over each clamped element edge's ends (and middle: "
@@ -373,41 +353,41 @@ const Row kRows[] = {
         "x of the point where max_stress is (held between grid points)"),
     output(kVrMaxStressY,              "max_stress_y",               "m",    PLATE_FIELD(maxStressY),
         "y of the point where max_stress is (held between grid points)"),
-    parameter(kVrProbe1X, "probe_1_x", "m", kProbeCoordinate, PROBE(probeX, 0),
-        "x of probe 1 (0 <= probe_1_x <= length; outputs probe_1, _velocity, _acceleration)"),
-    parameter(kVrProbe1Y, "probe_1_y", "m", kProbeCoordinate, PROBE(probeY, 0),
-        "y of probe 1 (0 <= probe_1_y <= width)"),
-    parameter(kVrProbe2X, "probe_2_x", "m", kProbeCoordinate, PROBE(probeX, 1), "x of probe 2 (0 ... length)"),
-    parameter(kVrProbe2Y, "probe_2_y", "m", kProbeCoordinate, PROBE(probeY, 1), "y of probe 2 (0 ... width)"),
-    parameter(kVrProbe3X, "probe_3_x", "m", kProbeCoordinate, PROBE(probeX, 2), "x of probe 3 (0 ... length)"),
-    parameter(kVrProbe3Y, "probe_3_y", "m", kProbeCoordinate, PROBE(probeY, 2), "y of probe 3 (0 ... width)"),
-    parameter(kVrProbe4X, "probe_4_x", "m", kProbeCoordinate, PROBE(probeX, 3), "x of probe 4 (0 ... length)"),
-    parameter(kVrProbe4Y, "probe_4_y", "m", kProbeCoordinate, PROBE(probeY, 3), "y of probe 4 (0 ... width)"),
-    output(kVrProbe1,                  "probe_1",                    "m",    FIELD(probe[0]),
+    fmi2Only(parameter(kVrProbe1X, "probe_1_x", "m", kProbeCoordinate, PROBE(x, 0),
+        "x of probe 1 (0 <= probe_1_x <= length; outputs probe_1, _velocity, _acceleration)")),
+    fmi2Only(parameter(kVrProbe1Y, "probe_1_y", "m", kProbeCoordinate, PROBE(y, 0),
+        "y of probe 1 (0 <= probe_1_y <= width)")),
+    fmi2Only(parameter(kVrProbe2X, "probe_2_x", "m", kProbeCoordinate, PROBE(x, 1), "x of probe 2 (0 ... length)")),
+    fmi2Only(parameter(kVrProbe2Y, "probe_2_y", "m", kProbeCoordinate, PROBE(y, 1), "y of probe 2 (0 ... width)")),
+    fmi2Only(parameter(kVrProbe3X, "probe_3_x", "m", kProbeCoordinate, PROBE(x, 2), "x of probe 3 (0 ... length)")),
+    fmi2Only(parameter(kVrProbe3Y, "probe_3_y", "m", kProbeCoordinate, PROBE(y, 2), "y of probe 3 (0 ... width)")),
+    fmi2Only(parameter(kVrProbe4X, "probe_4_x", "m", kProbeCoordinate, PROBE(x, 3), "x of probe 4 (0 ... length)")),
+    fmi2Only(parameter(kVrProbe4Y, "probe_4_y", "m", kProbeCoordinate, PROBE(y, 3), "y of probe 4 (0 ... width)")),
+    fmi2Only(output(kVrProbe1,                  "probe_1",                    "m",    PROBE_MOTION(displacement, 0),
         "Absolute displacement w at probe 1 (probe_1_x, probe_1_y), from the element's shape functions; 0 unless "
-        "probe_count >= 1"),
-    output(kVrProbe1Velocity,          "probe_1_velocity",           "m/s",  FIELD(probeVelocity[0]),
-        "Absolute velocity at probe 1 (second-order backward difference, as corner_1_velocity)"),
-    output(kVrProbe1Acceleration,      "probe_1_acceleration",       "m/s2", FIELD(probeAcceleration[0]),
-        "Absolute acceleration at probe 1 at t - dt (the scheme's central difference, as corner_1_acceleration)"),
-    output(kVrProbe2,                  "probe_2",                    "m",    FIELD(probe[1]),
-        "Absolute displacement w at probe 2"),
-    output(kVrProbe2Velocity,          "probe_2_velocity",           "m/s",  FIELD(probeVelocity[1]),
-        "Absolute velocity at probe 2"),
-    output(kVrProbe2Acceleration,      "probe_2_acceleration",       "m/s2", FIELD(probeAcceleration[1]),
-        "Absolute acceleration at probe 2 at t - dt"),
-    output(kVrProbe3,                  "probe_3",                    "m",    FIELD(probe[2]),
-        "Absolute displacement w at probe 3"),
-    output(kVrProbe3Velocity,          "probe_3_velocity",           "m/s",  FIELD(probeVelocity[2]),
-        "Absolute velocity at probe 3"),
-    output(kVrProbe3Acceleration,      "probe_3_acceleration",       "m/s2", FIELD(probeAcceleration[2]),
-        "Absolute acceleration at probe 3 at t - dt"),
-    output(kVrProbe4,                  "probe_4",                    "m",    FIELD(probe[3]),
-        "Absolute displacement w at probe 4"),
-    output(kVrProbe4Velocity,          "probe_4_velocity",           "m/s",  FIELD(probeVelocity[3]),
-        "Absolute velocity at probe 4"),
-    output(kVrProbe4Acceleration,      "probe_4_acceleration",       "m/s2", FIELD(probeAcceleration[3]),
-        "Absolute acceleration at probe 4 at t - dt"),
+        "probe_count >= 1")),
+    fmi2Only(output(kVrProbe1Velocity,          "probe_1_velocity",           "m/s",  PROBE_MOTION(velocity, 0),
+        "Absolute velocity at probe 1 (second-order backward difference, as corner_1_velocity)")),
+    fmi2Only(output(kVrProbe1Acceleration,      "probe_1_acceleration",       "m/s2", PROBE_MOTION(acceleration, 0),
+        "Absolute acceleration at probe 1 at t - dt (the scheme's central difference, as corner_1_acceleration)")),
+    fmi2Only(output(kVrProbe2,                  "probe_2",                    "m",    PROBE_MOTION(displacement, 1),
+        "Absolute displacement w at probe 2")),
+    fmi2Only(output(kVrProbe2Velocity,          "probe_2_velocity",           "m/s",  PROBE_MOTION(velocity, 1),
+        "Absolute velocity at probe 2")),
+    fmi2Only(output(kVrProbe2Acceleration,      "probe_2_acceleration",       "m/s2", PROBE_MOTION(acceleration, 1),
+        "Absolute acceleration at probe 2 at t - dt")),
+    fmi2Only(output(kVrProbe3,                  "probe_3",                    "m",    PROBE_MOTION(displacement, 2),
+        "Absolute displacement w at probe 3")),
+    fmi2Only(output(kVrProbe3Velocity,          "probe_3_velocity",           "m/s",  PROBE_MOTION(velocity, 2),
+        "Absolute velocity at probe 3")),
+    fmi2Only(output(kVrProbe3Acceleration,      "probe_3_acceleration",       "m/s2", PROBE_MOTION(acceleration, 2),
+        "Absolute acceleration at probe 3 at t - dt")),
+    fmi2Only(output(kVrProbe4,                  "probe_4",                    "m",    PROBE_MOTION(displacement, 3),
+        "Absolute displacement w at probe 4")),
+    fmi2Only(output(kVrProbe4Velocity,          "probe_4_velocity",           "m/s",  PROBE_MOTION(velocity, 3),
+        "Absolute velocity at probe 4")),
+    fmi2Only(output(kVrProbe4Acceleration,      "probe_4_acceleration",       "m/s2", PROBE_MOTION(acceleration, 3),
+        "Absolute acceleration at probe 4 at t - dt")),
 };
 // clang-format on
 
@@ -419,6 +399,7 @@ const Row kRows[] = {
 #undef FIELD
 #undef PLATE_FIELD
 #undef PROBE
+#undef PROBE_MOTION
 
 const Row& rowOf(const fmu::Variable& v) {
     // `v` is an element of plateVariables(), which lists the rows' variables in the same order.
@@ -434,44 +415,6 @@ const std::vector<fmu::Variable>& plateVariables() {
         return out;
     }();
     return variables;
-}
-
-// The terminal kinds (documented on the model's page, PlateModel.cpp):
-//   org.plateimpact.TranslationalFlange  a vertical translational flange: s [m], v [m/s],
-//       a [m/s2] the flange's motion, f [N] the force on it; members of equal memberName
-//       connect (a causal connection: one side's output feeds the other's input).
-//   org.plateimpact.TransmissionLineEnd  one end of a transmission line (TLM): wave_out feeds
-//       the partner's wave_in and the other way round (matchingRule org.plateimpact.crossed),
-//       impedance is equal at both ends.
-const std::vector<fmu::Terminal>& plateTerminals() {
-    static const std::vector<fmu::Terminal> terminals = {
-        {"clamp",
-         "bus",
-         "org.plateimpact.TranslationalFlange",
-         "The clamped edge moved by a partner (base_drive = displacement, velocity or acceleration: the partner "
-         "gives the one the drive uses) and the force the plate exerts on it",
-         {{"base_displacement", "s", "signal"},
-          {"base_velocity", "v", "signal"},
-          {"base_acceleration", "a", "signal"},
-          {"clamp_force", "f", "signal"}}},
-        {"armature",
-         "plug",
-         "org.plateimpact.TranslationalFlange",
-         "The clamp carried by the armature inside the FMU (base_drive = force): the partner's force in, the "
-         "clamp's motion out",
-         {{"drive_force", "f", "signal"},
-          {"clamp_displacement", "s", "signal"},
-          {"clamp_velocity", "v", "signal"},
-          {"clamp_acceleration", "a", "signal"}}},
-        {"line",
-         "org.plateimpact.crossed",
-         "org.plateimpact.TransmissionLineEnd",
-         "The clamp as the end of a transmission line to a partner (base_drive = tlm)",
-         {{"tlm_wave_in", "wave_in", "signal"},
-          {"tlm_wave_out", "wave_out", "signal"},
-          {"tlm_impedance", "impedance", "signal"}}},
-    };
-    return terminals;
 }
 
 InputPort* PlateValues::inputPort(fmu::ValueReference vr) {

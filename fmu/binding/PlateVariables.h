@@ -2,6 +2,8 @@
 // The plate's values as the importer sets and reads them, and the one table of its variables
 // (PlateVariables.cpp): name, value reference, type, causality, unit, description and the
 // accessors. modelDescription.xml, FMU states and the README's table all come from it.
+#include <algorithm>
+#include <cmath>
 #include <vector>
 
 #include "core/Model.h"
@@ -55,9 +57,56 @@ struct InputPort {
 // Force and Tlm: the clamp is carried inside the step (docs/theory.md §18–19).
 enum class BaseDrive { Displacement = 1, Velocity = 2, Acceleration = 3, Force = 4, Tlm = 5 };
 
+// The probes as the importer places them (docs/theory.md §23): the FMI 2.0 FMU's scalar slots
+// probe_1 ... probe_4 (a place is kept while probe_count leaves it off) and the FMI 3.0 FMU's arrays
+// of probe_count entries, both over these vectors; the first `count` places are the solver's probes.
+constexpr std::size_t kScalarProbes = 4;  // FMI 2.0: probe_1 ... probe_4
+constexpr std::size_t kMaxProbes = 1024;  // FMI 3.0: probe_count's max
+struct ProbePlaces {
+    std::size_t count = 0;
+    std::size_t max = kScalarProbes;  // the interface's largest count (FMI 3.0: kMaxProbes)
+    std::vector<double> x = std::vector<double>(kScalarProbes, 0.0), y = std::vector<double>(kScalarProbes, 0.0);
+    bool placed = false;  // the importer set a count or a place (what is not asked for is not warned about)
+    // A new count: the places before it kept, new ones at the clamp's corner (0, 0).
+    void setCount(std::size_t n) {
+        count = n;
+        x.resize(std::max(n, kScalarProbes), 0.0);
+        y.resize(std::max(n, kScalarProbes), 0.0);
+    }
+    // As FMU states and configurations carry them: the count, then the x and the y of every place
+    // (as many as the FMI 2.0 slots, or the count if more). Read back: the count (false: not a
+    // count in range), then the 2 x.size() places it gives room for (false: one not finite).
+    void appendTo(std::vector<double>& out) const {
+        out.push_back(double(count));
+        out.insert(out.end(), x.begin(), x.end());
+        out.insert(out.end(), y.begin(), y.end());
+    }
+    bool setCountFrom(double n) {
+        if (!(n >= 0.0 && n <= double(max)) || std::floor(n) != n) return false;
+        setCount(std::size_t(n));
+        return true;
+    }
+    bool readPlaces(const double* places) {
+        for (std::size_t k = 0; k < x.size(); ++k) {
+            x[k] = places[k];
+            y[k] = places[x.size() + k];
+            if (!std::isfinite(x[k]) || !std::isfinite(y[k])) return false;
+        }
+        return true;
+    }
+};
+
 // Everything an importer can set or read, as plain values.
 struct PlateValues {
-    plate::PlateParameters parameters;  // defaults = the start values of modelDescription.xml
+    plate::PlateParameters parameters;  // defaults = the start values of modelDescription.xml (probes: below)
+    ProbePlaces probes;
+    // The solver's parameters: `parameters` with the first probes.count places.
+    plate::PlateParameters solverParameters() const {
+        plate::PlateParameters p = parameters;
+        p.probeX.assign(probes.x.begin(), probes.x.begin() + std::ptrdiff_t(probes.count));
+        p.probeY.assign(probes.y.begin(), probes.y.begin() + std::ptrdiff_t(probes.count));
+        return p;
+    }
     // Default modes, chosen by measurement (docs/input-accuracy.md): a clamp motion is smooth
     // (quadratic extrapolation); a load may step, and extrapolating a step overshoots.
     InputPort baseDisplacement{plate::InputMode::Quadratic};
@@ -91,6 +140,19 @@ struct PlateValues {
         if (!plateFieldValid && simulation) plateFieldOutputs = simulation->outputs(false, plate::FieldOutputs::Plate);
         plateFieldValid = simulation != nullptr;
         return simulation ? plateFieldOutputs : outputs;
+    }
+    // The probes' motion likewise; probe k's displacement, velocity or acceleration (0: not computed).
+    mutable plate::ProbeOutputs probeOutputs;
+    mutable bool probesValid = false;
+    const plate::ProbeOutputs& probeMotion() const {
+        if (!probesValid && simulation) probeOutputs = simulation->probes();
+        if (!simulation) probeOutputs.resize(0);
+        probesValid = simulation != nullptr;
+        return probeOutputs;
+    }
+    double probe(Eigen::VectorXd plate::ProbeOutputs::*quantity, std::size_t k) const {
+        const Eigen::VectorXd& v = probeMotion().*quantity;
+        return Eigen::Index(k) < v.size() ? v[Eigen::Index(k)] : 0.0;
     }
     InputPort* inputPort(fmu::ValueReference vr);  // nullptr: not an input
 };
@@ -153,6 +215,8 @@ enum PlateVr : fmu::ValueReference {
     kVrCorner1Acceleration = 84,
     kVrCorner2Acceleration = 85,
     kVrFreeEdgeMidAcceleration = 86,
+    kVrContactOnsetsLower = 87,
+    kVrContactOnsetsUpper = 88,
     kVrMemoryLimit = 60,
     kVrTimeScheme = 65,
     kVrContactSubsteps = 66,
@@ -214,6 +278,8 @@ const std::vector<fmu::Variable>& plateVariables();
 // translational flange, driven by motion (clamp) or by force (armature), and the transmission
 // line's end (line). The kinds are documented in the model's page (PlateModel.cpp).
 const std::vector<fmu::Terminal>& plateTerminals();
+// The fixed part of modelDescription.xml and the documentation page (PlateInfo.cpp).
+const fmu::ModelInfo& plateInfo();
 double getValue(const PlateValues& values, const fmu::Variable& v);
 void setValue(PlateValues& values, const fmu::Variable& v, double x);
 

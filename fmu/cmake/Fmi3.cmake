@@ -7,7 +7,7 @@
 # Cross builds (win64, aarch64) make only the shared object (target <Model>3); the scripts
 # add it to the FMU (scripts/build-win64.sh, scripts/build-aarch64.sh).
 
-add_library(fmu_layer3 OBJECT fmi3/fmi3Functions.cpp)
+add_library(fmu_layer3 OBJECT fmi3/fmi3Functions.cpp fmi3/fmi3Unsupported.cpp fmi3/Fmi3Values.cpp)
 target_include_directories(fmu_layer3 PUBLIC "${CMAKE_CURRENT_SOURCE_DIR}/headers/fmi3")
 target_link_libraries(fmu_layer3 PUBLIC fmu_core)
 target_compile_options(fmu_layer3 PRIVATE -Wall -Wextra)

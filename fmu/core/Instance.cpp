@@ -112,6 +112,7 @@ Status Instance::fail(const char* format, ...) {
 
 Instance::Instance(Logger logger, bool loggingOn, ApiNames names)
     : logger_(std::move(logger)), names_(names), model_(createModel()) {
+    model_->useVersion(names_.fmiVersion);
     // As the Reference FMUs: errors are logged unless switched off with setDebugLogging;
     // so are warnings (a computed result that is likely not what was meant); the call trace follows loggingOn.
     logCategories_[LogStatusError] = true;
@@ -239,6 +240,7 @@ Status Instance::terminate() {
 Status Instance::reset() {
     // The same as after instantiation: a fresh model with its default values.
     model_ = createModel();
+    model_->useVersion(names_.fmiVersion);
     attachTrace();
     startTime_ = 0.0;
     state_ = Instantiated;
@@ -341,111 +343,6 @@ Status Instance::setValues(VariableType type, const ValueReference vr[], std::si
 }
 
 // ---------------------------------------------------------------------------------------------
-// FMU states
-
-void Instance::capture(Snapshot& snapshot) const {
-    snapshot.state = state_;
-    snapshot.startTime = startTime_;
-    snapshot.values.clear();
-    for (const Variable& v : model_->variables())
-        if (isSettable(v)) snapshot.values.push_back(model_->get(v));
-    snapshot.modelState.clear();
-    model_->saveState(snapshot.modelState);
-}
-
-void Instance::restore(const Snapshot& snapshot) {
-    const auto apply = [this](const Snapshot& s) {
-        std::size_t next = 0;
-        for (const Variable& v : model_->variables())
-            if (isSettable(v)) model_->set(v, s.values.at(next++));
-        const double* in = s.modelState.data();
-        model_->restoreState(in, in + s.modelState.size());
-        state_ = s.state;
-        startTime_ = s.startTime;
-    };
-    // All or nothing: a state the model refuses (its part is checked only here) leaves the
-    // instance as it was.
-    Snapshot before;
-    capture(before);
-    try {
-        apply(snapshot);
-    } catch (...) {
-        apply(before);
-        throw;
-    }
-}
-
-Status Instance::getState(StateHandle* state) {
-    if (!state) return fail("argument FMUstate must not be NULL");
-    if (*state) {  // reuse a state this FMU handed out before
-        Snapshot* previous = asSnapshot(*state);
-        if (!previous) return fail("*FMUstate is not an FMU state of %s", model_->info().modelName);
-        capture(*previous);
-        return Status::OK;
-    }
-    auto snapshot = std::make_unique<Snapshot>();
-    capture(*snapshot);
-    *state = snapshot.release();  // owned by the importer until freeState
-    return Status::OK;
-}
-
-Status Instance::setState(StateHandle state) {
-    const Snapshot* snapshot = asSnapshot(state);
-    if (!snapshot) return fail("FMUstate is NULL or not an FMU state of %s", model_->info().modelName);
-    restore(*snapshot);
-    return Status::OK;
-}
-
-Status Instance::freeState(StateHandle* state) {
-    if (!state) return fail("argument FMUstate must not be NULL");
-    if (!*state) return Status::OK;
-    Snapshot* snapshot = asSnapshot(*state);
-    if (!snapshot) return fail("*FMUstate is not an FMU state of %s", model_->info().modelName);
-    std::unique_ptr<Snapshot> owned(snapshot);  // takes ownership back and frees it
-    *state = nullptr;
-    return Status::OK;
-}
-
-Status Instance::serializedStateSize(StateHandle state, std::size_t* size) {
-    const Snapshot* snapshot = asSnapshot(state);
-    if (!snapshot) return fail("FMUstate is NULL or not an FMU state of %s", model_->info().modelName);
-    if (!size) return fail("argument size must not be NULL");
-    *size = serializedSize(*snapshot);
-    return Status::OK;
-}
-
-Status Instance::serializeState(StateHandle state, Byte serialized[], std::size_t size) {
-    const Snapshot* snapshot = asSnapshot(state);
-    if (!snapshot) return fail("FMUstate is NULL or not an FMU state of %s", model_->info().modelName);
-    if (!serialized) return fail("argument serializedState must not be NULL");
-    const std::size_t expected = serializedSize(*snapshot);
-    if (size != expected)
-        return fail("size = %zu, but the state needs %zu bytes (%s)", size, expected, names_.serializedStateSize);
-    serialize(*snapshot, *model_, modelGuid(), serialized, size);
-    return Status::OK;
-}
-
-Status Instance::deserializeState(const Byte serialized[], std::size_t size, StateHandle* state) {
-    if (!state) return fail("argument FMUstate must not be NULL");
-    if (!serialized && size > 0) return fail("argument serializedState must not be NULL");
-    if (*state && !asSnapshot(*state)) return fail("*FMUstate is not an FMU state of %s", model_->info().modelName);
-    Snapshot decoded;
-    try {
-        decoded = deserialize(serialized, size, modelGuid(), *model_);
-    } catch (const CorruptState& e) {
-        return fail("corrupt serialized state: %s", e.what());
-    } catch (const ForeignState& e) {
-        return fail("serialized state of another platform refused: %s", e.what());
-    }
-    if (*state) {
-        *asSnapshot(*state) = std::move(decoded);
-        return Status::OK;
-    }
-    *state = std::make_unique<Snapshot>(std::move(decoded)).release();  // the importer's until freeState
-    return Status::OK;
-}
-
-// ---------------------------------------------------------------------------------------------
 // Co-simulation
 
 Status Instance::setInputDerivatives(const ValueReference vr[], std::size_t nvr, const int order[],
@@ -503,51 +400,6 @@ Status Instance::doStep(double t, double h, bool stopAtEvent, bool* endedAtEvent
     } else {
         model_->doStep(t, h);
     }
-    return Status::OK;
-}
-
-std::size_t Instance::arrayLength(const ArrayOutput& array) const {
-    std::size_t n = 1;
-    for (ValueReference extent : array.extents) {
-        const StructuralParameter* s = model_->findStructural(extent);
-        n *= s ? structuralValue(*s) : 0;
-    }
-    return n;
-}
-
-std::size_t Instance::structuralValue(const StructuralParameter& s) const {
-    const Variable* base = model_->find(s.parameter);
-    const double value = s.ownValue() ? model_->ownStructuralValue(s) : base ? model_->get(*base) + s.offset : 0.0;
-    return value > 0 ? static_cast<std::size_t>(value) : 0;
-}
-
-Status Instance::setStructural(const StructuralParameter& s, double value) {
-    if (s.ownValue()) {
-        if (!(state_ & (Instantiated | ConfigurationMode)))
-            return fail(
-                "%s is a fixed structural parameter: set it before initialization (instantiated or "
-                "configuration mode)",
-                s.name);
-        if (!(value >= s.min && value <= s.max))
-            return fail("%s = %.0f rejected: allowed %d to %d", s.name, value, s.min, s.max);
-        model_->setOwnStructuralValue(s, value);
-        return Status::OK;
-    }
-    const double parameter = value - s.offset;
-    const Variable* base = model_->find(s.parameter);
-    if (!base) return fail("internal error: %s is a view of no parameter", s.name);
-    if (!(parameter >= INT_MIN && parameter <= INT_MAX))
-        return fail("%s = %.0f rejected: it sets %s = %s - %d out of the Int32 range", s.name, value, base->name,
-                    s.name, s.offset);
-    return setValues(VariableType::Integer, &s.parameter, 1, &parameter);
-}
-
-Status Instance::getArray(const ArrayOutput& array, double value[], std::size_t n) {
-    if (n > 0 && !value) return fail("argument values[] must not be NULL");
-    // As getValues: an output read in initialization mode builds what the parameters describe.
-    if (state_ == InitializationMode && !model_->built()) model_->build();
-    if (!model_->built()) return fail("%s is not available before initialization", array.name);
-    model_->getArray(array, value, n);
     return Status::OK;
 }
 

@@ -30,10 +30,12 @@ const char* logCategoryName(LogCategory category);
 // Logging without an instance (failed instantiations): an error in logStatusError.
 void logWithoutInstance(const Logger& logger, const char* format, ...) PLATEIMPACT_PRINTF_FORMAT(2, 3);
 
-// How the core's own messages name two functions of the front end's interface.
+// What the core knows of its front end: how its own messages name two functions of the front
+// end's interface, and the FMI version the model serves (Model::useVersion).
 struct ApiNames {
     const char* exitInitializationMode;  // fixed parameters can be set only before it
     const char* serializedStateSize;  // gives the size a serialized state needs
+    int fmiVersion;
 };
 
 struct Snapshot;
@@ -86,10 +88,12 @@ public:
     // the internal step to `time`, asking it to set the inputs that take intermediate values
     // (Model::takesIntermediateValue); only those, and only then, may be set. Kept across reset().
     void setIntermediateInputs(std::function<void(double)> callback);
-    // Arrays (FMI 3.0): the values of an array output of the model (n of them).
-    Status getArray(const ArrayOutput& array, double value[], std::size_t n);
+    // Arrays (FMI 3.0): the values of an array of the model (n of them); setting a parameter array
+    // (n its length now, checked by the caller) before initialization ends.
+    Status getArray(const ArrayVariable& array, double value[], std::size_t n);
+    Status setArray(const ArrayVariable& array, const double value[], std::size_t n);
     // Number of values of an array output: the product of its extents' values now.
-    std::size_t arrayLength(const ArrayOutput& array) const;
+    std::size_t arrayLength(const ArrayVariable& array) const;
     // Structural parameters (FMI 3.0): the value now (0 for a negative one), and setting it: its
     // own value, or its Integer parameter becomes value - offset.
     std::size_t structuralValue(const StructuralParameter& s) const;

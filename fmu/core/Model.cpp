@@ -50,7 +50,7 @@ Variable integerSwitch(ValueReference vr, const char* name, const char* descript
 
 const Variable* Model::find(ValueReference vr) const {
     for (const Variable& v : variables())
-        if (v.vr == vr) return &v;
+        if (v.vr == vr && (v.version == 0 || v.version == fmiVersion_)) return &v;
     return nullptr;
 }
 
@@ -60,8 +60,8 @@ const StructuralParameter* Model::findStructural(ValueReference vr) const {
     return nullptr;
 }
 
-const ArrayOutput* Model::findArray(ValueReference vr) const {
-    for (const ArrayOutput& a : arrayOutputs())
+const ArrayVariable* Model::findArray(ValueReference vr) const {
+    for (const ArrayVariable& a : arrayVariables())
         if (a.vr == vr) return &a;
     return nullptr;
 }
@@ -83,8 +83,8 @@ const std::vector<StructuralParameter>& Model::structuralParameters() const {
     return none;
 }
 
-const std::vector<ArrayOutput>& Model::arrayOutputs() const {
-    static const std::vector<ArrayOutput> none;
+const std::vector<ArrayVariable>& Model::arrayVariables() const {
+    static const std::vector<ArrayVariable> none;
     return none;
 }
 
@@ -93,8 +93,12 @@ const std::vector<Terminal>& Model::terminals() const {
     return none;
 }
 
-void Model::getArray(const ArrayOutput& a, double*, std::size_t) const {
-    throw ModelError(std::string(a.name) + " is not an array output of this model");
+void Model::getArray(const ArrayVariable& a, double*, std::size_t) const {
+    throw ModelError(std::string(a.name) + " is not an array of this model");
+}
+
+void Model::setArray(const ArrayVariable& a, const double*, std::size_t) {
+    throw ModelError(std::string(a.name) + " is not a settable array of this model");
 }
 
 double Model::ownStructuralValue(const StructuralParameter& s) const {

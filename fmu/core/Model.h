@@ -62,6 +62,9 @@ struct Variable {
     // (a parameter's range, open ends included, is the binding's check at initialization).
     double min = NAN, max = NAN;
     bool hasRange() const { return !std::isnan(min) || !std::isnan(max); }
+    // The FMI version whose interface has it: 0 both; 2 or 3 that one only (the FMI 2.0 FMU's scalar
+    // probes, which FMI 3.0 has as arrays). Model::find does not see a row of the other version.
+    int version = 0;
 };
 
 // A parameter that switches between named items (element, base_drive, ...): an Integer whose
@@ -84,12 +87,14 @@ struct ModelInfo {
     const char* stateMagic = "FMUSTATE";
 };
 
-// FMI 3.0 only (FMI 2.0 has no arrays): a structural parameter giving one extent of an array
-// output. Either a view of an Integer parameter of the table, not a value of its own:
+// FMI 3.0 only (FMI 2.0 has no arrays): a structural parameter giving one extent of an array.
+// Either a view of an Integer parameter of the table, not a value of its own:
 // extent = parameter + offset; setting it sets the parameter (FMU states carry the parameter).
 // Or (parameter = kOwnValue) a value of its own in [min, max], starting at `offset`, that the
-// model keeps (Model::ownStructuralValue) and nothing else reads: an array's switch (min = 0
-// lets the master empty the array, FMI 3.0 §2.4.7.3).
+// model keeps (Model::ownStructuralValue; min = 0 lets the master empty the array, FMI 3.0
+// §2.4.7.3). `configurationOnly`: settable in Configuration Mode only (FMI 3.0's rule for a fixed
+// structural parameter); otherwise also in the instantiated state, the leniency the first ones
+// (vertex_output, vertices_x, vertices_y) kept for the masters that set them there.
 constexpr ValueReference kOwnValue = 0xFFFFFFFFu;
 struct StructuralParameter {
     ValueReference vr;
@@ -98,16 +103,20 @@ struct StructuralParameter {
     ValueReference parameter;  // the table's Integer parameter it is a view of, or kOwnValue
     int offset;  // a view: extent = parameter + offset; an own value: its start
     int min = 0, max = 0;  // an own value's range (a view's is its parameter's check)
+    bool configurationOnly = false;
     bool ownValue() const { return parameter == kOwnValue; }
 };
 
-// FMI 3.0 only: an array output (row-major, the first extent varies slowest).
-struct ArrayOutput {
+// FMI 3.0 only: an array variable (row-major, the first extent varies slowest): an output, or a
+// parameter (a fixed Float64 array set before initialization ends, its range checked by the model).
+struct ArrayVariable {
     ValueReference vr;
     const char* name;
     const char* description;
     const char* unit;  // nullptr: none
     std::vector<ValueReference> extents;  // value references of StructuralParameters
+    Causality causality = Causality::Output;
+    double min = NAN, max = NAN;  // a parameter's declared range
 };
 
 // FMI 3.0 terminals (terminalsAndIcons/terminalsAndIcons.xml, FMI 3.0 section 2.4.9): a named
@@ -139,9 +148,14 @@ public:
 
     virtual const ModelInfo& info() const = 0;
     virtual const std::vector<Variable>& variables() const = 0;
+    // The row of `vr` in the interface of fmiVersion() (nullptr: none there).
     const Variable* find(ValueReference vr) const;
+    // The FMI version of the front end the model serves (the instance sets it before anything
+    // else, the description writer too): which rows find() sees, and the defaults that differ.
+    int fmiVersion() const { return fmiVersion_; }
+    virtual void useVersion(int version) { fmiVersion_ = version; }
     const StructuralParameter* findStructural(ValueReference vr) const;  // nullptr: none
-    const ArrayOutput* findArray(ValueReference vr) const;  // nullptr: none
+    const ArrayVariable* findArray(ValueReference vr) const;  // nullptr: none
 
     // Values, as doubles for every type (Integer and Boolean exactly). The generic
     // layer has checked type, causality and finiteness; `set` may still throw ModelError.
@@ -175,16 +189,19 @@ public:
     // The internal step of the default configuration (fixedInternalStepSize); 0: none.
     virtual double fixedInternalStepSize() const { return 0.0; }
     // FMI 3.0 arrays: none by default. getArray writes the product of the extents' values
-    // (read from the table) into `out`; called only when built().
+    // (read from the table) into `out` (an output: called only when built()); setArray (a
+    // parameter) takes them, n checked by the caller; throws ModelError.
     virtual const std::vector<StructuralParameter>& structuralParameters() const;
-    virtual const std::vector<ArrayOutput>& arrayOutputs() const;
-    virtual void getArray(const ArrayOutput& a, double* out, std::size_t n) const;
+    virtual const std::vector<ArrayVariable>& arrayVariables() const;
+    virtual void getArray(const ArrayVariable& a, double* out, std::size_t n) const;
+    virtual void setArray(const ArrayVariable& a, const double* values, std::size_t n);
     // FMI 3.0 terminals: none by default.
     virtual const std::vector<Terminal>& terminals() const;
     // The value of a structural parameter with a value of its own (its start until set; the
-    // caller has checked the range). A new instance (a reset) starts again from the starts.
-    double ownStructuralValue(const StructuralParameter& s) const;
-    void setOwnStructuralValue(const StructuralParameter& s, double value);
+    // caller has checked the range). A new instance (a reset) starts again from the starts. A
+    // model that sizes its own data by one (the probes) overrides both for it.
+    virtual double ownStructuralValue(const StructuralParameter& s) const;
+    virtual void setOwnStructuralValue(const StructuralParameter& s, double value);
 
     // Everything beyond the variables' values that an FMU state must carry (append / read
     // back in the same order; `in` advances). restoreState throws ModelError on bad data.
@@ -218,6 +235,7 @@ public:
 
 private:
     std::vector<std::pair<ValueReference, double>> ownStructuralValues_;  // those set so far
+    int fmiVersion_ = 2;
 };
 
 // Defined once by each model binding.

@@ -36,7 +36,7 @@ constexpr unsigned kOutputDerivativeStates = kGetStates & ~fmu::InitializationMo
 constexpr unsigned kStatusStates = fmu::StepComplete | fmu::StepInProgress | fmu::StepFailed | fmu::Terminated;
 
 // The functions the core's messages name.
-constexpr fmu::ApiNames kNames = {"fmi2ExitInitializationMode", "fmi2SerializedFMUstateSize"};
+constexpr fmu::ApiNames kNames = {"fmi2ExitInitializationMode", "fmi2SerializedFMUstateSize", 2};
 
 // Status and fmi2Status list the same outcomes in the same order.
 fmi2Status toFmi2(Status status) {

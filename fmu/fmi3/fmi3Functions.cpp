@@ -3,10 +3,10 @@
 // and statuses. Every fmi3* function runs its body through Instance::call with the states that
 // allow it (Fmi3Interface.h), which logs an illegal call sequence, prefixes messages with the
 // function's name and keeps exceptions inside. Beyond FMI 2.0: the independent variable
-// "time", array outputs sized by UInt64 structural parameters (views
-// of Integer parameters of the table, Model.h), configuration mode, and early return with
-// event mode at the model's events (Model::doStepUntilEvent) when the master grants them at
-// fmi3InstantiateCoSimulation. Only the fmi3* symbols leave the shared object (fmi3/exports.map).
+// "time", arrays sized by UInt64 structural parameters (Model.h; their get and set: Fmi3Values.cpp),
+// configuration mode, intermediate update, and early return with event mode at the model's events
+// (Model::doStepUntilEvent) when the master grants them at fmi3InstantiateCoSimulation. Only the
+// fmi3* symbols leave the shared object (fmi3/exports.map).
 #include <cmath>
 #include <cstring>
 #include <memory>
@@ -14,16 +14,19 @@
 #include <type_traits>
 #include <vector>
 
+#include "fmi3/Fmi3Instance.h"
 #include "fmi3/Fmi3Interface.h"
+#include "fmi3/Fmi3Values.h"
 #include "core/Instance.h"
 #include "fmi3Functions.h"
 
-using fmu::ArrayOutput;
 using fmu::Instance;
 using fmu::Status;
-using fmu::StructuralParameter;
-using fmu::VariableType;
+using fmu::fmi3::Fmi3Instance;
+using fmu::fmi3::Kind;
 using fmu::fmi3::kTimeValueReference;
+using fmu::fmi3::loggerOf;
+using fmu::fmi3::run;
 
 static_assert(std::is_same_v<fmi3ValueReference, fmu::ValueReference> && std::is_same_v<fmi3Byte, fmu::Byte> &&
                   std::is_same_v<fmi3Int32, int>,
@@ -36,199 +39,79 @@ constexpr double kEarlyTolerance = 1e-9;
 
 // The functions the core's messages name. The size message has always named FMI 2.0's
 // function, in FMI 3.0 too; kept so that the messages stay as they were.
-constexpr fmu::ApiNames kNames = {"fmi3ExitInitializationMode", "fmi3SerializedFMUStateSize"};
+constexpr fmu::ApiNames kNames = {"fmi3ExitInitializationMode", "fmi3SerializedFMUStateSize", 3};
 
-// Status and fmi3Status list the same outcomes in the same order.
-fmi3Status toFmi3(Status status) {
-    static constexpr fmi3Status kStatus[] = {fmi3OK, fmi3Warning, fmi3Discard, fmi3Error, fmi3Fatal};
-    return kStatus[static_cast<int>(status)];
-}
-
-// The core's logger over the master's fmi3LogMessageCallback (none without one).
-fmu::Logger loggerOf(fmi3InstanceEnvironment environment, fmi3LogMessageCallback logMessage) {
-    if (!logMessage) return nullptr;
-    return [environment, logMessage](Status status, const char* category, const char* message) {
-        logMessage(environment, toFmi3(status), category, message);
-    };
-}
-
-// One FMI 3.0 instance: the master's callbacks and grants, and the core's Instance.
-struct Fmi3Instance {
-    fmi3InstanceEnvironment environment = nullptr;
-    bool eventModeUsed = false;
-    bool earlyReturnAllowed = false;
-    fmi3IntermediateUpdateCallback intermediateUpdate = nullptr;
-    std::unique_ptr<Instance> instance;
-};
-
-// Runs `body(self, instance)` as `function` when `c` is an instance and the state allows it.
-template <class Body>
-fmi3Status run(fmi3Instance c, const char* function, unsigned allowed, Body&& body) {
-    auto* self = static_cast<Fmi3Instance*>(c);
-    if (!self) return fmi3Error;  // a NULL instance has no logger to tell
-    Instance& instance = *self->instance;
-    return toFmi3(instance.call(function, allowed, [&]() -> Status { return body(*self, instance); }));
-}
-
-// The FMI 3.0 types of the get/set functions, as far as they concern this layer.
-enum class Kind { Float64, Int32, Int64, UInt64, Boolean, Other };
-
-// The FMI 3.0 type of the variable behind vr, for messages ("Float64 variable length").
-std::string describe(const fmu::Model& model, fmi3ValueReference vr) {
-    if (vr == kTimeValueReference) return "the Float64 variable time";
-    if (const StructuralParameter* s = model.findStructural(vr)) return std::string("the UInt64 variable ") + s->name;
-    if (const ArrayOutput* a = model.findArray(vr)) return std::string("the Float64 array ") + a->name;
-    if (const fmu::Variable* v = model.find(vr))
-        return std::string("the ") + fmu::fmi3::typeName(v->type) + " variable " + v->name;
-    return "no variable (unknown value reference)";
-}
-
-// The table's type a Kind reads and writes (Int64 and the rest: none of the table's).
-bool tableTypeOf(Kind kind, const fmu::Variable& v, VariableType* type) {
-    switch (kind) {
-        case Kind::Float64: *type = VariableType::Real; return v.type == VariableType::Real;
-        case Kind::Int32: *type = VariableType::Integer; return v.type == VariableType::Integer;
-        case Kind::Boolean: *type = VariableType::Boolean; return v.type == VariableType::Boolean;
-        default: return false;
+// Intermediate update (providesIntermediateUpdate): the outputs, the output arrays and time may be
+// read inside the callback after each internal step; the inputs that take intermediate values
+// (intermediateUpdate="true": base_displacement, load), when required, are asked for before each
+// internal step (intermediateVariableSetRequested = true) and used at that grid point. Logs the
+// first required variable that is neither, and returns false; *inputsRequired: an input is among them.
+bool requiredVariablesAllowed(const fmu::Model& model, const fmu::Logger& logger, const fmi3ValueReference vrs[],
+                              size_t n, bool* inputsRequired) {
+    for (size_t k = 0; k < n; ++k) {
+        const fmi3ValueReference vr = vrs ? vrs[k] : 0;
+        const fmu::Variable* v = model.find(vr);
+        const fmu::ArrayVariable* a = model.findArray(vr);
+        const bool readable = vr == kTimeValueReference || (v && v->causality == fmu::Causality::Output) ||
+                              (a && a->causality == fmu::Causality::Output);
+        const bool input = v && v->causality == fmu::Causality::Input && model.takesIntermediateValue(*v);
+        *inputsRequired = *inputsRequired || input;
+        if (vrs && (readable || input)) continue;
+        std::string inputs;
+        for (const fmu::Variable& w : model.variables())
+            if (model.takesIntermediateValue(w)) inputs += std::string(inputs.empty() ? "" : ", ") + w.name;
+        fmu::logWithoutInstance(logger,
+                                "%s: required intermediate variable %s (vr %u) has no intermediateUpdate=\"true\" "
+                                "(the intermediate update variables are the outputs, the arrays, time and "
+                                "the inputs %s)",
+                                "fmi3InstantiateCoSimulation", v ? v->name : "(unknown)", vr, inputs.c_str());
+        return false;
     }
+    return true;
 }
 
-// One scalar of an fmi3Get<kind> call into *x.
-Status getScalar(Instance& i, Kind kind, fmi3ValueReference vr, double* x) {
-    const fmu::Model& model = i.model();
-    if (vr == kTimeValueReference && kind == Kind::Float64) {
-        *x = i.currentTime();
-        return Status::OK;
-    }
-    if (const StructuralParameter* s = model.findStructural(vr)) {
-        if (kind != Kind::UInt64) return i.fail("value reference %u is %s", vr, describe(model, vr).c_str());
-        *x = double(i.structuralValue(*s));
-        return Status::OK;
-    }
-    const fmu::Variable* v = model.find(vr);
-    VariableType type;
-    if (!v || !tableTypeOf(kind, *v, &type)) return i.fail("value reference %u is %s", vr, describe(model, vr).c_str());
-    return i.getValues(type, &vr, 1, x);
-}
-
-// Outputs exist from initialization mode on (parameters and inputs can be read before).
-bool beforeInitialization(const Instance& i, fmi3ValueReference vr) {
-    if (!(i.state() & (fmu::Instantiated | fmu::ConfigurationMode))) return false;
-    const fmu::Variable* v = i.model().find(vr);
-    return i.model().findArray(vr) || vr == kTimeValueReference || (v && v->causality == fmu::Causality::Output);
-}
-
-template <class T>
-Status getValues(Instance& i, Kind kind, const fmi3ValueReference vrs[], size_t nvr, T values[], size_t nValues) {
-    if (nvr == 0) return Status::OK;
-    if (!vrs || !values) return i.fail("arguments valueReferences[] and values[] must not be NULL");
-    std::size_t next = 0;
-    for (size_t k = 0; k < nvr; ++k) {
-        if (beforeInitialization(i, vrs[k]))
-            return i.fail("value reference %u is %s, an output: available from initialization mode on", vrs[k],
-                          describe(i.model(), vrs[k]).c_str());
-        const ArrayOutput* array = i.model().findArray(vrs[k]);
-        if (array && kind != Kind::Float64)
-            return i.fail("value reference %u is %s", vrs[k], describe(i.model(), vrs[k]).c_str());
-        const std::size_t n = array ? i.arrayLength(*array) : 1;
-        if (nValues - next < n || next > nValues)
-            return i.fail(
-                "nValues = %zu is too small: %s (value reference %u) needs %zu values, from position %zu "
-                "of values[]",
-                nValues, describe(i.model(), vrs[k]).c_str(), vrs[k], n, next);
-        if (array) {
-            if constexpr (std::is_same_v<T, double>) {  // an emptied array (an extent 0) has nothing to ask
-                if (n > 0 && i.getArray(*array, values + next, n) != Status::OK) return Status::Error;
-            }
-        } else {
-            double x = 0.0;
-            if (getScalar(i, kind, vrs[k], &x) != Status::OK) return Status::Error;
-            values[next] = static_cast<T>(x);
-        }
-        next += n;
-    }
-    if (next != nValues) {
-        std::string arrays;  // which of them are arrays, and their sizes
-        for (size_t k = 0; k < nvr; ++k)
-            if (const ArrayOutput* array = i.model().findArray(vrs[k]))
-                arrays += std::string(arrays.empty() ? "" : ", ") + array->name + " needs " +
-                          std::to_string(i.arrayLength(*array)) + " values";
-        return i.fail("nValues = %zu, but the %zu value references have %zu values%s%s%s", nValues, nvr, next,
-                      arrays.empty() ? "" : " (", arrays.c_str(), arrays.empty() ? "" : ")");
-    }
-    return Status::OK;
-}
-
-Status setScalar(Instance& i, Kind kind, fmi3ValueReference vr, double x) {
-    const fmu::Model& model = i.model();
-    if (const StructuralParameter* s = model.findStructural(vr); s && kind == Kind::UInt64)
-        return i.setStructural(*s, x);
-    if (vr == kTimeValueReference || model.findArray(vr))
-        return i.fail("value reference %u is %s, which cannot be set", vr, describe(model, vr).c_str());
-    const fmu::Variable* v = model.find(vr);
-    VariableType type;
-    if (!v || !tableTypeOf(kind, *v, &type)) return i.fail("value reference %u is %s", vr, describe(model, vr).c_str());
-    return i.setValues(type, &vr, 1, &x);
-}
-
-template <class T>
-Status setValues(Instance& i, Kind kind, const fmi3ValueReference vrs[], size_t nvr, const T values[], size_t nValues) {
-    if (nvr == 0) return Status::OK;
-    if (!vrs || !values) return i.fail("arguments valueReferences[] and values[] must not be NULL");
-    if (nValues != nvr)
-        return i.fail("nValues = %zu, but the %zu value references have %zu values (no settable arrays)", nValues, nvr,
-                      nvr);
-    for (size_t k = 0; k < nvr; ++k) {
-        const double x = kind == Kind::Boolean ? double(values[k] != 0) : double(values[k]);
-        if (setScalar(i, kind, vrs[k], x) != Status::OK) return Status::Error;
-    }
-    return Status::OK;
-}
-
-// fmi3Get/Set of a type this FMU has no variables of.
-Status noVariables(Instance& i, const char* type, const fmi3ValueReference vrs[], size_t nvr) {
-    if (nvr == 0) return Status::OK;
-    const fmi3ValueReference vr = vrs ? vrs[0] : 0u;
-    return i.fail("this FMU has no %s variables (value reference %u is %s)", type, vr, describe(i.model(), vr).c_str());
-}
-
-fmi3Status unsupported(fmi3Instance c, const char* function, const char* why) {
-    return run(c, function, fmu::kAnyState, [&](Fmi3Instance&, Instance& i) { return i.fail("%s", why); });
-}
-
-constexpr const char* kModelExchange =
-    "Model Exchange is not supported; this FMU implements FMI 3.0 Co-Simulation only";
-constexpr const char* kScheduled = "Scheduled Execution is not supported; this FMU implements Co-Simulation only";
-constexpr const char* kNoClocks = "this FMU has no clocks";
-
-// An instantiation of an interface type this FMU does not implement: logs why, returns NULL.
-fmi3Instance refuse(fmi3InstanceEnvironment environment, fmi3LogMessageCallback logMessage, const char* function,
-                    fmi3String instanceName, const char* why) {
-    fmu::logWithoutInstance(loggerOf(environment, logMessage), "%s (%s): %s", function,
-                            instanceName ? instanceName : "", why);
-    return nullptr;
+// The master's callback as the core's two hooks: before each internal step when an input is
+// required (the master sets it), after each one (the master reads, may ask for an early return).
+void connectIntermediateUpdate(Fmi3Instance* raw, bool inputsRequired) {
+    if (inputsRequired)
+        raw->instance->setIntermediateInputs([raw](double time) {
+            fmi3Boolean requested = fmi3False;
+            fmi3Float64 at = time;
+            raw->intermediateUpdate(raw->environment, time, /*intermediateVariableSetRequested=*/fmi3True,
+                                    /*intermediateVariableGetAllowed=*/fmi3False,
+                                    /*intermediateStepFinished=*/fmi3False, /*canReturnEarly=*/fmi3False, &requested,
+                                    &at);
+        });
+    raw->instance->setIntermediateUpdate([raw](double time) {
+        fmi3Boolean requested = fmi3False;
+        fmi3Float64 at = time;
+        raw->intermediateUpdate(raw->environment, time, /*intermediateVariableSetRequested=*/fmi3False,
+                                /*intermediateVariableGetAllowed=*/fmi3True,
+                                /*intermediateStepFinished=*/fmi3True, raw->earlyReturnAllowed, &requested, &at);
+        return requested && raw->earlyReturnAllowed ? at : HUGE_VAL;
+    });
 }
 
 }  // namespace
 
-#define PLATEIMPACT_FMI3_GET(Name, T, kind)                                                                      \
-    fmi3Status fmi3Get##Name(fmi3Instance c, const fmi3ValueReference vrs[], size_t nvr, T values[], size_t n) { \
-        return run(c, "fmi3Get" #Name, fmu::fmi3::kGetStates,                                                    \
-                   [&](Fmi3Instance&, Instance& i) { return getValues(i, kind, vrs, nvr, values, n); });         \
+#define PLATEIMPACT_FMI3_GET(Name, T, kind)                                                                         \
+    fmi3Status fmi3Get##Name(fmi3Instance c, const fmi3ValueReference vrs[], size_t nvr, T values[], size_t n) {    \
+        return run(c, "fmi3Get" #Name, fmu::fmi3::kGetStates,                                                       \
+                   [&](Fmi3Instance&, Instance& i) { return fmu::fmi3::getValues(i, kind, vrs, nvr, values, n); }); \
     }
 #define PLATEIMPACT_FMI3_SET(Name, T, kind)                                                                            \
     fmi3Status fmi3Set##Name(fmi3Instance c, const fmi3ValueReference vrs[], size_t nvr, const T values[], size_t n) { \
         return run(c, "fmi3Set" #Name, fmu::fmi3::kSetStates,                                                          \
-                   [&](Fmi3Instance&, Instance& i) { return setValues(i, kind, vrs, nvr, values, n); });               \
+                   [&](Fmi3Instance&, Instance& i) { return fmu::fmi3::setValues(i, kind, vrs, nvr, values, n); });    \
     }
 #define PLATEIMPACT_FMI3_NONE(Name, T, Const)                                                                 \
     fmi3Status fmi3Get##Name(fmi3Instance c, const fmi3ValueReference vrs[], size_t nvr, T[], size_t) {       \
         return run(c, "fmi3Get" #Name, fmu::fmi3::kGetStates,                                                 \
-                   [&](Fmi3Instance&, Instance& i) { return noVariables(i, #Name, vrs, nvr); });              \
+                   [&](Fmi3Instance&, Instance& i) { return fmu::fmi3::noVariables(i, #Name, vrs, nvr); });   \
     }                                                                                                         \
     fmi3Status fmi3Set##Name(fmi3Instance c, const fmi3ValueReference vrs[], size_t nvr, Const T[], size_t) { \
         return run(c, "fmi3Set" #Name, fmu::fmi3::kSetStates,                                                 \
-                   [&](Fmi3Instance&, Instance& i) { return noVariables(i, #Name, vrs, nvr); });              \
+                   [&](Fmi3Instance&, Instance& i) { return fmu::fmi3::noVariables(i, #Name, vrs, nvr); });   \
     }
 
 extern "C" {
@@ -273,74 +156,17 @@ fmi3Instance fmi3InstantiateCoSimulation(fmi3String instanceName, fmi3String ins
         self->instance = std::make_unique<Instance>(logger, loggingOn, kNames);
         self->instance->log(Status::OK, fmu::LogAll, "%s: instance \"%s\" of %s (instantiationToken %s)", f,
                             instanceName, self->instance->model().info().modelName, fmu::modelGuid());
-        // Intermediate update (providesIntermediateUpdate): the outputs, the arrays and time may be
-        // read inside the callback after each internal step; the inputs that take intermediate values
-        // (intermediateUpdate="true": base_displacement, load), when required, are asked for before
-        // each internal step (intermediateVariableSetRequested = true) and used at that grid point.
-        const fmu::Model& model = self->instance->model();
         bool inputsRequired = false;
-        for (size_t k = 0; k < nRequiredIntermediateVariables; ++k) {
-            const fmi3ValueReference vr = requiredIntermediateVariables ? requiredIntermediateVariables[k] : 0;
-            const fmu::Variable* v = model.find(vr);
-            const bool readable =
-                vr == kTimeValueReference || (v && v->causality == fmu::Causality::Output) || model.findArray(vr);
-            const bool input = v && v->causality == fmu::Causality::Input && model.takesIntermediateValue(*v);
-            inputsRequired = inputsRequired || input;
-            if (!requiredIntermediateVariables || !(readable || input)) {
-                std::string inputs;
-                for (const fmu::Variable& w : model.variables())
-                    if (model.takesIntermediateValue(w)) inputs += std::string(inputs.empty() ? "" : ", ") + w.name;
-                fmu::logWithoutInstance(
-                    logger,
-                    "%s: required intermediate variable %s (vr %u) has no intermediateUpdate=\"true\" "
-                    "(the intermediate update variables are the outputs, the arrays, time and "
-                    "the inputs %s)",
-                    f, v ? v->name : "(unknown)", vr, inputs.c_str());
-                return nullptr;
-            }
-        }
-        if (intermediateUpdate && inputsRequired) {
-            Fmi3Instance* raw = self.get();
-            self->instance->setIntermediateInputs([raw](double time) {
-                fmi3Boolean requested = fmi3False;
-                fmi3Float64 at = time;
-                raw->intermediateUpdate(raw->environment, time, /*intermediateVariableSetRequested=*/fmi3True,
-                                        /*intermediateVariableGetAllowed=*/fmi3False,
-                                        /*intermediateStepFinished=*/fmi3False, /*canReturnEarly=*/fmi3False,
-                                        &requested, &at);
-            });
-        }
-        if (intermediateUpdate) {
-            Fmi3Instance* raw = self.get();
-            self->instance->setIntermediateUpdate([raw](double time) {
-                fmi3Boolean requested = fmi3False;
-                fmi3Float64 at = time;
-                raw->intermediateUpdate(raw->environment, time, /*intermediateVariableSetRequested=*/fmi3False,
-                                        /*intermediateVariableGetAllowed=*/fmi3True,
-                                        /*intermediateStepFinished=*/fmi3True, raw->earlyReturnAllowed, &requested,
-                                        &at);
-                return requested && raw->earlyReturnAllowed ? at : HUGE_VAL;
-            });
-        }
+        if (!requiredVariablesAllowed(self->instance->model(), logger, requiredIntermediateVariables,
+                                      nRequiredIntermediateVariables, &inputsRequired))
+            return nullptr;
+        if (intermediateUpdate) connectIntermediateUpdate(self.get(), inputsRequired);
         return self.release();
     } catch (...) {
         if (logMessage)
             logMessage(instanceEnvironment, fmi3Error, "logStatusError", "fmi3InstantiateCoSimulation: out of memory");
         return nullptr;
     }
-}
-
-fmi3Instance fmi3InstantiateModelExchange(fmi3String instanceName, fmi3String, fmi3String, fmi3Boolean, fmi3Boolean,
-                                          fmi3InstanceEnvironment instanceEnvironment,
-                                          fmi3LogMessageCallback logMessage) {
-    return refuse(instanceEnvironment, logMessage, "fmi3InstantiateModelExchange", instanceName, kModelExchange);
-}
-
-fmi3Instance fmi3InstantiateScheduledExecution(fmi3String instanceName, fmi3String, fmi3String, fmi3Boolean,
-                                               fmi3Boolean, fmi3InstanceEnvironment instanceEnvironment,
-                                               fmi3LogMessageCallback logMessage, fmi3ClockUpdateCallback,
-                                               fmi3LockPreemptionCallback, fmi3UnlockPreemptionCallback) {
-    return refuse(instanceEnvironment, logMessage, "fmi3InstantiateScheduledExecution", instanceName, kScheduled);
 }
 
 void fmi3FreeInstance(fmi3Instance c) {
@@ -404,30 +230,13 @@ PLATEIMPACT_FMI3_NONE(String, fmi3String, const)
 
 fmi3Status fmi3GetBinary(fmi3Instance c, const fmi3ValueReference vrs[], size_t nvr, size_t[], fmi3Binary[], size_t) {
     return run(c, "fmi3GetBinary", fmu::fmi3::kGetStates,
-               [&](Fmi3Instance&, Instance& i) { return noVariables(i, "Binary", vrs, nvr); });
+               [&](Fmi3Instance&, Instance& i) { return fmu::fmi3::noVariables(i, "Binary", vrs, nvr); });
 }
 
 fmi3Status fmi3SetBinary(fmi3Instance c, const fmi3ValueReference vrs[], size_t nvr, const size_t[], const fmi3Binary[],
                          size_t) {
     return run(c, "fmi3SetBinary", fmu::fmi3::kSetStates,
-               [&](Fmi3Instance&, Instance& i) { return noVariables(i, "Binary", vrs, nvr); });
-}
-
-fmi3Status fmi3GetClock(fmi3Instance c, const fmi3ValueReference[], size_t, fmi3Clock[]) {
-    return unsupported(c, "fmi3GetClock", kNoClocks);
-}
-fmi3Status fmi3SetClock(fmi3Instance c, const fmi3ValueReference[], size_t, const fmi3Clock[]) {
-    return unsupported(c, "fmi3SetClock", kNoClocks);
-}
-
-fmi3Status fmi3GetNumberOfVariableDependencies(fmi3Instance c, fmi3ValueReference, size_t*) {
-    return unsupported(c, "fmi3GetNumberOfVariableDependencies",
-                       "not supported (providesPerElementDependencies=\"false\"); see <ModelStructure>");
-}
-fmi3Status fmi3GetVariableDependencies(fmi3Instance c, fmi3ValueReference, size_t[], fmi3ValueReference[], size_t[],
-                                       fmi3DependencyKind[], size_t) {
-    return unsupported(c, "fmi3GetVariableDependencies",
-                       "not supported (providesPerElementDependencies=\"false\"); see <ModelStructure>");
+               [&](Fmi3Instance&, Instance& i) { return fmu::fmi3::noVariables(i, "Binary", vrs, nvr); });
 }
 
 // ---------------------------------------------------------------------------------------------
@@ -458,17 +267,8 @@ fmi3Status fmi3DeserializeFMUState(fmi3Instance c, const fmi3Byte serialized[], 
                [&](Fmi3Instance&, Instance& i) { return i.deserializeState(serialized, size, state); });
 }
 
-fmi3Status fmi3GetDirectionalDerivative(fmi3Instance c, const fmi3ValueReference[], size_t, const fmi3ValueReference[],
-                                        size_t, const fmi3Float64[], size_t, fmi3Float64[], size_t) {
-    return unsupported(c, "fmi3GetDirectionalDerivative", "not supported (providesDirectionalDerivatives=\"false\")");
-}
-fmi3Status fmi3GetAdjointDerivative(fmi3Instance c, const fmi3ValueReference[], size_t, const fmi3ValueReference[],
-                                    size_t, const fmi3Float64[], size_t, fmi3Float64[], size_t) {
-    return unsupported(c, "fmi3GetAdjointDerivative", "not supported (providesAdjointDerivatives=\"false\")");
-}
-
 // ---------------------------------------------------------------------------------------------
-// Configuration mode (the structural parameters are fixed: set before initialization)
+// Configuration mode: the structural parameters (some settable only here: probe_count)
 
 fmi3Status fmi3EnterConfigurationMode(fmi3Instance c) {
     return run(c, "fmi3EnterConfigurationMode", fmu::Instantiated, [](Fmi3Instance&, Instance& i) {
@@ -487,47 +287,8 @@ fmi3Status fmi3ExitConfigurationMode(fmi3Instance c) {
 }
 
 // ---------------------------------------------------------------------------------------------
-// Clocks: none
-
-fmi3Status fmi3GetIntervalDecimal(fmi3Instance c, const fmi3ValueReference[], size_t, fmi3Float64[],
-                                  fmi3IntervalQualifier[]) {
-    return unsupported(c, "fmi3GetIntervalDecimal", kNoClocks);
-}
-fmi3Status fmi3GetIntervalFraction(fmi3Instance c, const fmi3ValueReference[], size_t, fmi3UInt64[], fmi3UInt64[],
-                                   fmi3IntervalQualifier[]) {
-    return unsupported(c, "fmi3GetIntervalFraction", kNoClocks);
-}
-fmi3Status fmi3GetShiftDecimal(fmi3Instance c, const fmi3ValueReference[], size_t, fmi3Float64[]) {
-    return unsupported(c, "fmi3GetShiftDecimal", kNoClocks);
-}
-fmi3Status fmi3GetShiftFraction(fmi3Instance c, const fmi3ValueReference[], size_t, fmi3UInt64[], fmi3UInt64[]) {
-    return unsupported(c, "fmi3GetShiftFraction", kNoClocks);
-}
-fmi3Status fmi3SetIntervalDecimal(fmi3Instance c, const fmi3ValueReference[], size_t, const fmi3Float64[]) {
-    return unsupported(c, "fmi3SetIntervalDecimal", kNoClocks);
-}
-fmi3Status fmi3SetIntervalFraction(fmi3Instance c, const fmi3ValueReference[], size_t, const fmi3UInt64[],
-                                   const fmi3UInt64[]) {
-    return unsupported(c, "fmi3SetIntervalFraction", kNoClocks);
-}
-fmi3Status fmi3SetShiftDecimal(fmi3Instance c, const fmi3ValueReference[], size_t, const fmi3Float64[]) {
-    return unsupported(c, "fmi3SetShiftDecimal", kNoClocks);
-}
-fmi3Status fmi3SetShiftFraction(fmi3Instance c, const fmi3ValueReference[], size_t, const fmi3UInt64[],
-                                const fmi3UInt64[]) {
-    return unsupported(c, "fmi3SetShiftFraction", kNoClocks);
-}
-fmi3Status fmi3ActivateModelPartition(fmi3Instance c, fmi3ValueReference, fmi3Float64) {
-    return unsupported(c, "fmi3ActivateModelPartition", kScheduled);
-}
-
-// ---------------------------------------------------------------------------------------------
 // Event mode: the model's events (contact onset and release) change no discrete state the
 // master could iterate on; the event is the point in time and the outputs there.
-
-fmi3Status fmi3EvaluateDiscreteStates(fmi3Instance c) {
-    return unsupported(c, "fmi3EvaluateDiscreteStates", "not supported (providesEvaluateDiscreteStates=\"false\")");
-}
 
 fmi3Status fmi3UpdateDiscreteStates(fmi3Instance c, fmi3Boolean* discreteStatesNeedUpdate,
                                     fmi3Boolean* terminateSimulation, fmi3Boolean* nominalsChanged,
@@ -549,38 +310,6 @@ fmi3Status fmi3EnterStepMode(fmi3Instance c) {
         i.enterState(fmu::fmi3::StepMode);
         return Status::OK;
     });
-}
-
-// ---------------------------------------------------------------------------------------------
-// Model Exchange: not implemented
-
-fmi3Status fmi3EnterContinuousTimeMode(fmi3Instance c) {
-    return unsupported(c, "fmi3EnterContinuousTimeMode", kModelExchange);
-}
-fmi3Status fmi3CompletedIntegratorStep(fmi3Instance c, fmi3Boolean, fmi3Boolean*, fmi3Boolean*) {
-    return unsupported(c, "fmi3CompletedIntegratorStep", kModelExchange);
-}
-fmi3Status fmi3SetTime(fmi3Instance c, fmi3Float64) { return unsupported(c, "fmi3SetTime", kModelExchange); }
-fmi3Status fmi3SetContinuousStates(fmi3Instance c, const fmi3Float64[], size_t) {
-    return unsupported(c, "fmi3SetContinuousStates", kModelExchange);
-}
-fmi3Status fmi3GetContinuousStateDerivatives(fmi3Instance c, fmi3Float64[], size_t) {
-    return unsupported(c, "fmi3GetContinuousStateDerivatives", kModelExchange);
-}
-fmi3Status fmi3GetEventIndicators(fmi3Instance c, fmi3Float64[], size_t) {
-    return unsupported(c, "fmi3GetEventIndicators", kModelExchange);
-}
-fmi3Status fmi3GetContinuousStates(fmi3Instance c, fmi3Float64[], size_t) {
-    return unsupported(c, "fmi3GetContinuousStates", kModelExchange);
-}
-fmi3Status fmi3GetNominalsOfContinuousStates(fmi3Instance c, fmi3Float64[], size_t) {
-    return unsupported(c, "fmi3GetNominalsOfContinuousStates", kModelExchange);
-}
-fmi3Status fmi3GetNumberOfEventIndicators(fmi3Instance c, size_t*) {
-    return unsupported(c, "fmi3GetNumberOfEventIndicators", kModelExchange);
-}
-fmi3Status fmi3GetNumberOfContinuousStates(fmi3Instance c, size_t*) {
-    return unsupported(c, "fmi3GetNumberOfContinuousStates", kModelExchange);
 }
 
 // ---------------------------------------------------------------------------------------------

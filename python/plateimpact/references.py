@@ -44,6 +44,7 @@ import hashlib
 import html
 import json
 import math
+import re
 from dataclasses import dataclass, field
 from pathlib import Path
 from typing import Callable
@@ -84,11 +85,21 @@ COMMON = (
     "root_stress_peak",
     "max_stress",
 )
-# A probe inside the plate (the forced scene): its absolute motion as the corners' (docs/theory.md §23).
-PROBE = {"probe_count": 1, "probe_1_x": 0.9, "probe_1_y": 0.1}
+# Three probes (the forced scene): one inside the plate, one at corner_1's point, one near the free
+# edge; their absolute motion as the corners' (docs/theory.md §23). Named as the FMI 2.0 FMU's
+# scalars; the FMI 3.0 FMU runs them as its arrays (simulate_probe_arrays).
+PROBE = {
+    "probe_count": 3,
+    "probe_1_x": 0.9,
+    "probe_1_y": 0.1,
+    "probe_2_x": 1.2,
+    "probe_2_y": 0.0,
+    "probe_3_x": 1.05,
+    "probe_3_y": 0.3,
+}
 # The stress outputs are computed on request (stress_outputs, docs/theory.md §23): every experiment asks.
 STRESS = {"stress_outputs": True}
-PROBE_OUTPUTS = ("probe_1", "probe_1_velocity", "probe_1_acceleration")
+PROBE_OUTPUTS = ("probe_1", "probe_1_velocity", "probe_1_acceleration", "probe_2", "probe_3", "probe_3_velocity")
 
 
 def forced_base(t):
@@ -128,7 +139,7 @@ EXPERIMENTS = (
         "validation",
         "The paper's section 5.1 forced oscillation (figure 6): 14x5 Argyris cells, dt = 1e-4 s, base 0.09 "
         "sin(2 pi 10 t) m, obstacles at +-0.1 m, 0.1 s communicated every 1e-3 s: impacts on both obstacles; "
-        "probe_1 at (0.9, 0.1) m",
+        "three probes at (0.9, 0.1), (1.2, 0) (corner_1's point) and (1.05, 0.3) m",
         0.1,
         1e-3,
         dict(QUADRATIC, **STRESS, nx=14, ny=5, dt=1e-4, **PROBE),
@@ -207,6 +218,16 @@ def serialized_state(fmu, exp: Experiment, at: float) -> bytes:
     from fmpy import extract, instantiate_fmu, read_model_description
 
     md = read_model_description(str(fmu))
+    if md.fmiVersion.startswith("3") and uses_probes(exp.parameters, exp.outputs):
+        import contextlib
+        import io
+
+        with contextlib.redirect_stdout(io.StringIO()):
+            stimuli = stimuli_table(exp)
+            _, data = simulate_probe_arrays(
+                fmu, 0.0, at, exp.step, exp.parameters, stimuli, exp.outputs, serialize=True
+            )
+        return data
     unzipdir = str(fmu) if Path(fmu).is_dir() else extract(str(fmu))
     inst = instantiate_fmu(unzipdir, md, "CoSimulation")
     try:
@@ -228,17 +249,28 @@ def serialized_state(fmu, exp: Experiment, at: float) -> bytes:
                 terminate=False,
                 model_description=md,
             )
-        state = inst.getFMUState()
-        data = bytes(inst.serializeFMUState(state))
-        inst.freeFMUState(state)
-        inst.terminate()
+        data = serialized(inst)
     finally:
-        inst.freeInstance()
-        if not Path(fmu).is_dir():
-            import shutil
-
-            shutil.rmtree(unzipdir, ignore_errors=True)
+        release(inst, fmu, unzipdir)
     return data
+
+
+def serialized(inst) -> bytes:
+    """The instance's FMU state, serialized; the instance terminated after it."""
+    state = inst.getFMUState()
+    data = bytes(inst.serializeFMUState(state))
+    inst.freeFMUState(state)
+    inst.terminate()
+    return data
+
+
+def release(inst, fmu, unzipdir):
+    """Frees the instance and the extracted copy of the FMU (none when the FMU is a folder)."""
+    inst.freeInstance()
+    if not Path(fmu).is_dir():
+        import shutil
+
+        shutil.rmtree(unzipdir, ignore_errors=True)
 
 
 # --- files -----------------------------------------------------------------------------------
@@ -339,15 +371,97 @@ def typed(value_text: str, kind: str, variable) -> object:
     return float(value_text)
 
 
+# The FMI 2.0 FMU's scalar probes: probe_count, probe_<k>_x, probe_<k>_y and the outputs probe_<k>,
+# probe_<k>_velocity, probe_<k>_acceleration. The FMI 3.0 FMU has them as arrays (docs/fmi3.md).
+SCALAR_PROBE = re.compile(r"probe_(\d+)(_x|_y|_velocity|_acceleration)?$")
+ARRAY_OF = {None: "probe", "_velocity": "probe_velocity", "_acceleration": "probe_acceleration"}
+
+
+def uses_probes(parameters: dict, outputs) -> bool:
+    return "probe_count" in parameters or any(SCALAR_PROBE.match(n) for n in (*parameters, *outputs))
+
+
+def simulate_probe_arrays(fmu, start, stop, step, parameters: dict, stimuli, outputs, fmu_state=None, serialize=False):
+    """An experiment written with the FMI 2.0 FMU's scalar probes on the FMI 3.0 FMU: probe_count set
+    in Configuration Mode, the places as probe_x and probe_y, the outputs probe_<k>... read from the
+    arrays after each communication step; the rest through simulate_fmu as simulate() does. A state
+    carries the count and the places. serialize: (the result, the serialized state at `stop`)."""
+    from fmpy import extract, instantiate_fmu, read_model_description, simulate_fmu
+    from fmpy.simulation import Input, apply_start_values, settable_in_initialization_mode, settable_in_instantiated
+
+    md = read_model_description(str(fmu))
+    vr = {v.name: v.valueReference for v in md.modelVariables}
+    unzipdir = str(fmu) if Path(fmu).is_dir() else extract(str(fmu))
+    inst = instantiate_fmu(unzipdir, md, "CoSimulation")
+    rest = {k: v for k, v in parameters.items() if k != "probe_count" and not SCALAR_PROBE.match(k)}
+    probe_outputs = [n for n in outputs if SCALAR_PROBE.match(n)]
+    columns = {}  # name -> values at the communication points
+    try:
+        if fmu_state is None:
+            count = int(parameters.get("probe_count", 0))
+            inst.enterConfigurationMode()
+            inst.setUInt64([vr["probe_count"]], [count])
+            inst.exitConfigurationMode()
+            places = [parameters.get(f"probe_{k + 1}{axis}", 0.0) for axis in ("_x", "_y") for k in range(count)]
+            if count:
+                inst.setFloat64([vr["probe_x"], vr["probe_y"]], [float(x) for x in places])
+            values = apply_start_values(inst, md, rest, settable=settable_in_instantiated)
+            inst.enterInitializationMode(startTime=start)
+            values = apply_start_values(inst, md, values, settable=settable_in_initialization_mode)
+            if values:
+                raise ValueError(f"start values not set: {sorted(values)}")
+            if stimuli is not None:
+                Input(fmu=inst, modelDescription=md, signals=stimuli).apply(start)
+            inst.exitInitializationMode()
+        else:
+            inst.setFMUState(inst.deserializeFMUState(fmu_state))
+            count = inst.getUInt64([vr["probe_count"]])[0]
+
+        def sample():
+            for name in probe_outputs:
+                k, kind = SCALAR_PROBE.match(name).groups()
+                array = inst.getFloat64([vr[ARRAY_OF[kind]]], nValues=count)
+                columns.setdefault(name, []).append(array[int(k) - 1])
+
+        sample()  # the first communication point (simulate_fmu samples it before stepping)
+        result = simulate_fmu(
+            unzipdir,
+            start_time=start,
+            stop_time=stop,
+            output_interval=step,
+            input=stimuli,
+            output=[n for n in outputs if not SCALAR_PROBE.match(n)],
+            fmi_type="CoSimulation",
+            fmu_instance=inst,
+            initialize=False,
+            model_description=md,
+            step_finished=lambda time, recorder: sample() or True,
+            terminate=not serialize,
+        )
+        data = serialized(inst) if serialize else None
+    finally:
+        release(inst, fmu, unzipdir)
+    names = list(result.dtype.names) + probe_outputs
+    arrays = [result[n] for n in result.dtype.names] + [np.asarray(columns[n], dtype=float) for n in probe_outputs]
+    table = np.rec.fromarrays(arrays, names=names)
+    return (table, data) if serialize else table
+
+
 def simulate(fmu, start, stop, step, parameters: dict, stimuli, outputs, fmu_state=None) -> np.ndarray:
     """The experiment through fmpy's simulate_fmu: a fixed communication step, the stimuli applied
     at every communication point; the outputs at every communication point. fmu_state: a
     serialized FMU state set right after instantiation instead of initializing (the parameters
-    are the state's)."""
+    are the state's). An experiment with the FMI 2.0 FMU's scalar probes runs on an FMI 3.0 FMU
+    through its probe arrays (simulate_probe_arrays)."""
     import contextlib
     import io
 
-    from fmpy import simulate_fmu
+    from fmpy import read_model_description, simulate_fmu
+
+    if uses_probes(parameters, outputs) and read_model_description(str(fmu)).fmiVersion.startswith("3"):
+        printed = io.StringIO()
+        with contextlib.redirect_stdout(printed):
+            return simulate_probe_arrays(fmu, start, stop, step, parameters, stimuli, outputs, fmu_state)
 
     printed = io.StringIO()
     with contextlib.redirect_stdout(printed):  # fmpy prints a warning per input the CSV leaves out

@@ -307,27 +307,86 @@ def run_fmpy(fmu: Path, exp: Experiment, variables):
     return simulate(fmu, exp.start, exp.stop, exp.step, start_values, stimuli, list(exp.tolerances), fmu_state=state)
 
 
+def probe_arrays(exp: Experiment, variables) -> bool:
+    """The experiment names the FMI 2.0 FMU's scalar probes and the FMU has them as arrays (FMI 3.0)."""
+    from .references import uses_probes
+
+    return "probe_x" in variables and uses_probes(exp.parameters, exp.tolerances)
+
+
+def start_values_as_arrays(exp: Experiment, variables) -> list:
+    """(name, fmusim literal) of the experiment's start values, the scalar probes as the FMI 3.0 FMU's
+    structural parameter probe_count (fmusim sets it in Configuration Mode) and arrays probe_x, probe_y
+    (space-separated values, as fmusim 0.8 reads arrays); none of them when a state is restored."""
+    from .references import SCALAR_PROBE
+
+    plain = {k: kv for k, kv in exp.parameters.items() if k != "probe_count" and not SCALAR_PROBE.match(k)}
+    pairs = [(k, literal(typed(v, kind, variables.get(k)))) for k, (kind, v) in plain.items()]
+    if exp.state:  # the state carries the count and the places; Configuration Mode is before it
+        return pairs
+    count = int(float(exp.parameters.get("probe_count", ("Integer", "0"))[1]))
+    pairs.insert(0, ("probe_count", str(count)))
+    for axis in ("_x", "_y"):
+        places = [float(exp.parameters.get(f"probe_{k + 1}{axis}", ("Real", "0"))[1]) for k in range(count)]
+        pairs.append((f"probe{axis}", " ".join(repr(x) for x in places)))
+    return pairs
+
+
+def literal(value) -> str:
+    if isinstance(value, bool):
+        return "true" if value else "false"
+    return repr(value) if isinstance(value, float) else str(value)
+
+
 def fmusim_command(fmusim: str, current: bool, fmu: Path, exp: Experiment, variables, out: Path):
     """The command line that replays `exp`: `fmusim simulate ... --start-value NAME=VALUE` for the
-    standalone fmusim (current), `fmusim ... --start-value NAME VALUE` for v0.0.39."""
+    standalone fmusim (current), `fmusim ... --start-value NAME VALUE` for v0.0.39. The scalar probes
+    of an FMI 2.0 experiment on the FMI 3.0 FMU: its probe_count and arrays (start_values_as_arrays)."""
+    from .references import ARRAY_OF, SCALAR_PROBE
+
+    arrays = probe_arrays(exp, variables)
     cmd = [fmusim, "simulate"] if current else [fmusim]
     cmd += ["--interface-type", "cs", "--start-time", repr(exp.start), "--stop-time", repr(exp.stop)]
     cmd += ["--output-interval", repr(exp.step), "--output-file", str(out)]
-    for k, (kind, v) in exp.parameters.items():
-        value = typed(v, kind, variables.get(k))
-        if isinstance(value, bool):
-            value = "true" if value else "false"
-        elif isinstance(value, float):
-            value = repr(value)
-        cmd += ["--start-value", f"{k}={value}"] if current else ["--start-value", k, str(value)]
+    if arrays:
+        pairs = start_values_as_arrays(exp, variables)
+    else:
+        pairs = [(k, literal(typed(v, kind, variables.get(k)))) for k, (kind, v) in exp.parameters.items()]
+    for k, value in pairs:
+        cmd += ["--start-value", f"{k}={value}"] if current else ["--start-value", k, value]
     if exp.state:
         cmd += ["--initial-fmu-state-file", str(exp.state)]
     if exp.stimuli:
         cmd += ["--input-file", str(exp.stimuli)]
-    for name in exp.tolerances:
+    outputs = list(exp.tolerances)
+    if arrays:
+        scalars = [n for n in outputs if not SCALAR_PROBE.match(n)]
+        kinds = {ARRAY_OF[SCALAR_PROBE.match(n).group(2)] for n in outputs if SCALAR_PROBE.match(n)}
+        outputs = scalars + sorted(kinds)
+    for name in outputs:
         cmd += ["--output-variable", name]
     cmd.append(str(fmu))
     return cmd
+
+
+def read_fmusim_arrays(path: Path, exp: Experiment):
+    """fmusim 0.8's CSV with array columns (their values space-separated in one field), the arrays
+    probe, probe_velocity, probe_acceleration read back as the experiment's probe_<k>... columns."""
+    import csv as csvmodule
+
+    from .references import ARRAY_OF, SCALAR_PROBE
+
+    with open(path, newline="") as f:
+        rows = list(csvmodule.reader(f))
+    header, body = rows[0], [r for r in rows[1:] if r]
+    columns = {name: [[float(x) for x in r[i].split()] for r in body] for i, name in enumerate(header)}
+    out = {"time": np.array([c[0] for c in columns["time"]])}
+    for name in exp.tolerances:
+        m = SCALAR_PROBE.match(name)
+        source = ARRAY_OF[m.group(2)] if m else name
+        k = int(m.group(1)) - 1 if m else 0
+        out[name] = np.array([c[k] for c in columns[source]])
+    return np.rec.fromarrays(list(out.values()), names=list(out))
 
 
 def run_fmusim(fmusim: str, fmu: Path, exp: Experiment, variables, workdir: Path, current: bool):
@@ -338,7 +397,7 @@ def run_fmusim(fmusim: str, fmu: Path, exp: Experiment, variables, workdir: Path
     errors = fmusim_errors(proc.stderr) if current else []
     if proc.returncode != 0 or errors:
         raise RuntimeError(fmusim_failure(proc.returncode, proc.stderr or proc.stdout, exp))
-    return read_csv(out)
+    return read_fmusim_arrays(out, exp) if probe_arrays(exp, variables) else read_csv(out)
 
 
 def fmusim_failure(returncode: int, output: str, exp: Experiment) -> str:

@@ -13,7 +13,7 @@
 //                                 engine=auto|sparse|modal (how exact mode runs)
 //                                 port=1 (read the port's outputs too, every communication step)
 //                                 field=1 (read the probes and root_stress too; 2: also max_stress,
-//                                 vertex_stress; with stress=1 probes=4 for them to be computed)
+//                                 vertex_stress; with stress=1, and probes=N for N probes)
 //                                 static_stress=P (the clamp's stress under a static pressure P: JSON)
 //                                 series=FILE (CSV of the outputs every communication step;
 //                                 its writing is outside the timed loop's cost only roughly)
@@ -276,9 +276,11 @@ int main(int argc, char** argv) {
     p.memoryLimit = num("memory_limit", 0.0);
     p.dampingMass = num("damping_mass", 0.0);
     p.dampingStiffness = num("damping_stiffness", 0.0);
-    // stress=1 (stress_outputs: the root's peak tracked every step), probes=N (probe_count)
+    // stress=1 (stress_outputs: the root's peak tracked every step), probes=N (N probes, all at
+    // corner_1's point: their cost does not depend on where they are)
     p.stressOutputs = num("stress", 0.0) != 0.0;
-    p.probeCount = static_cast<int>(num("probes", 0.0));
+    p.probeX.assign(static_cast<std::size_t>(num("probes", 0.0)), p.length);
+    p.probeY.assign(p.probeX.size(), 0.0);
     if (args.count("export")) return exportMatrices(p, args["export"]);
     if (num("estimate_only", 0) != 0) return printEstimate(p);
     if (args.count("static_stress")) return staticStress(p, num("static_stress", 1000.0));
@@ -335,6 +337,7 @@ int main(int argc, char** argv) {
             sim.advance(std::min(perComm, steps - done), base, plate::InputSignal{});
             // Outputs are read every communication step; port=1 reads the port's too (§14).
             energySum += sim.outputs(readPort, readField).energy;
+            if (fieldLevel >= 1 && !p.probeX.empty()) energySum += 1e-300 * sim.probes().displacement[0];
             if (fieldLevel >= 2) energySum += 1e-300 * sim.vertexStress()[0];  // the FMI 3.0 array as well
             record(amplitude * std::sin(omega * sim.time()));
         }
@@ -360,13 +363,15 @@ int main(int argc, char** argv) {
             "%.6g, "
             "\"step_cpu_s\": %.6g, \"floor_cpu_s\": %.6g, "
             "\"floor_solve_s\": %.6g, \"step_over_floor\": %.4g, \"qp_iterations_total\": %.0f, "
-            "\"energy_dissipated\": %.10g, \"impacts_lower\": %.0f, \"impacts_upper\": %.0f, \"checksum\": %.10g, "
+            "\"energy_dissipated\": %.10g, \"contact_onsets_lower\": %.0f, \"contact_onsets_upper\": %.0f, "
+            "\"checksum\": %.10g, "
             "\"error_estimate\": %.6g, \"capped_steps\": %.0f, %s%s}\n",
             p.element == plate::ElementType::Fvs ? "fvs" : "argyris", p.nx, p.ny, p.dt, p.beta, p.modes,
             sim.engine().c_str(), static_cast<long>(sim.dofCount()), steps,
             std::chrono::duration<double>(t1 - t0).count(), std::chrono::duration<double>(t3 - t2).count(), perStep,
-            (cpu3 - cpu2) / steps, floorCpu, floor, perStep / floor, o.contactSolves, o.energyDissipated, o.impacts[0],
-            o.impacts[1], energySum, o.errorEstimate, o.cappedSteps, resources.c_str(), spectrum.c_str());
+            (cpu3 - cpu2) / steps, floorCpu, floor, perStep / floor, o.contactSolves, o.energyDissipated,
+            o.contactOnsets[0], o.contactOnsets[1], energySum, o.errorEstimate, o.cappedSteps, resources.c_str(),
+            spectrum.c_str());
     } catch (const std::exception& e) {
         std::fprintf(stderr, "plate_bench: %s\n", e.what());
         return 1;

@@ -14,7 +14,7 @@ namespace plate {
 // matrices, the modal basis or the condensed operators, add it to the keys below if it does, then
 // write the new size here. (The same on every platform the FMU is built for: LP64 and LLP64 lay
 // doubles, ints, enums and bools out alike.)
-static_assert(sizeof(PlateParameters) == 288,
+static_assert(sizeof(PlateParameters) == 272,
               "PlateParameters changed: check the discretization cache's keys (DiscretizationCache.cpp)");
 
 CacheKey& CacheKey::add(double x) {
@@ -69,11 +69,11 @@ CacheKey modalPlateKey(const PlateParameters& p, bool completeEngine) {
 }
 
 // condense(clamped, R, the output rows, modes, the recovery functionals): the functionals are the
-// probes' points (all kProbeCount of them, whatever probe_count) and samples the space fixes.
+// probes' points (their count, then each) and samples the space fixes.
 CacheKey condensedPlateKey(const PlateParameters& p) {
     CacheKey key("condensed plate");
-    addPlate(key, p).add(p.modes);
-    for (int k = 0; k < kProbeCount; ++k) key.add(p.probeX[std::size_t(k)]).add(p.probeY[std::size_t(k)]);
+    addPlate(key, p).add(p.modes).add(double(p.probeCount()));
+    for (std::size_t k = 0; k < p.probeCount(); ++k) key.add(p.probeX[k]).add(p.probeY[k]);
     return key;
 }
 

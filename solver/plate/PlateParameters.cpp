@@ -127,16 +127,23 @@ void validate(const PlateParameters& p) {
     requireRange("damping_stiffness", p.dampingStiffness, kDampingStiffness);
     requireRange("memory_limit", p.memoryLimit, kMemoryLimit);  // MB; 0 = no limit
     validateCarrier(p);
-    requireRange("probe_count", p.probeCount, kProbeCountRange);
     // The probes (docs/theory.md §23): inside the plate, whose size the table's range cannot know.
-    for (int k = 0; k < kProbeCount; ++k) {
-        const std::string x = "probe_" + std::to_string(k + 1) + "_x", y = "probe_" + std::to_string(k + 1) + "_y";
-        const Range along{0.0, p.length}, across{0.0, p.width};
-        const std::size_t i = std::size_t(k);
+    // Named as the FMI 2.0 FMU's scalars (probe_1_x) and the FMI 3.0 FMU's arrays (probe_x[0]) name them.
+    if (p.probeX.size() != p.probeY.size())
+        throw ParameterError("invalid probes: " + std::to_string(p.probeX.size()) + " x coordinates and " +
+                             std::to_string(p.probeY.size()) + " y coordinates (allowed: one of each per probe)");
+    const Range along{0.0, p.length}, across{0.0, p.width};
+    for (std::size_t i = 0; i < p.probeX.size(); ++i) {
+        const std::string k = std::to_string(i + 1), at = "[" + std::to_string(i) + "]";
+        const std::string x = "probe_" + k + "_x", y = "probe_" + k + "_y";
         if (!along.contains(p.probeX[i]))
-            reject(x.c_str(), p.probeX[i], (rangeText(x.c_str(), along) + " = length: a point of the plate").c_str());
+            reject(x.c_str(), p.probeX[i],
+                   (rangeText(x.c_str(), along) + " = length: a point of the plate; probe_x" + at + " in FMI 3.0")
+                       .c_str());
         if (!across.contains(p.probeY[i]))
-            reject(y.c_str(), p.probeY[i], (rangeText(y.c_str(), across) + " = width: a point of the plate").c_str());
+            reject(y.c_str(), p.probeY[i],
+                   (rangeText(y.c_str(), across) + " = width: a point of the plate; probe_y" + at + " in FMI 3.0")
+                       .c_str());
     }
 }
 

@@ -3,14 +3,12 @@
 #include <array>
 #include <stdexcept>
 #include <string>
+#include <vector>
 
 #include "base/Errors.h"
 #include "fe/FiniteElementSpace.h"
 
 namespace plate {
-
-// Probe slots (docs/theory.md §23): points of the plate whose motion is an output.
-inline constexpr int kProbeCount = 4;
 
 // The plate's mass matrix (docs/theory.md §11): the consistent one of (3.4), or a singular
 // (redistributed) mass B C⁻¹ Bᵀ projected on piecewise constants (P0) or on discontinuous
@@ -78,14 +76,14 @@ struct PlateParameters {
     double armatureStiffness = 3158.0;  // N/m (2 Hz with 20 kg)
     double armatureDamping = 50.0;  // N·s/m
     double tlmImpedance = 2.0e4;  // N·s/m, the line's characteristic impedance
-    // The probes (docs/theory.md §23): points (x, y) of the plate, m; each within
-    // [0, length] × [0, width] (validate). At the clamp's corner (0, 0) unless set.
-    std::array<double, kProbeCount> probeX{}, probeY{};
-    // What the recovery computes (§23), off by default so that a master that records every output
-    // (fmpy's default) pays nothing for it: the stress outputs (the root's peak then tracked every
-    // step), and the first probeCount probes. What is off reads 0.
+    // The probes (docs/theory.md §23): any number of points (probeX[k], probeY[k]) of the plate, m,
+    // each within [0, length] × [0, width] (validate); the two vectors have one entry per probe.
+    // None by default: a master that records every output (fmpy's default) pays nothing for them.
+    std::vector<double> probeX, probeY;
+    // The stress outputs (§23), off by default for the same reason (the root's peak is then tracked
+    // every step). Off, they read 0.
     bool stressOutputs = false;
-    int probeCount = 0;
+    std::size_t probeCount() const { return probeX.size(); }
 
     double bendingStiffness() const {
         return youngsModulus * thickness * thickness * thickness / (12.0 * (1.0 - poissonRatio * poissonRatio));
@@ -132,7 +130,7 @@ constexpr Range kMemoryLimit{0.0, 1e9};  // MB; 0 = no limit
 constexpr Range kArmatureMass{0.0, 1e9, true}, kArmatureStiffness{0.0, 1e12}, kArmatureDamping{0.0, 1e12};
 constexpr Range kTlmImpedance{0.0, 1e12, true};
 // A probe's coordinate: what the table can declare; validate() checks it against length and width.
-constexpr Range kProbeCoordinate{0.0, 1e4}, kProbeCountRange{0, kProbeCount};
+constexpr Range kProbeCoordinate{0.0, 1e4};
 }  // namespace ranges
 
 // Checks everything that can be checked without assembling (throws ParameterError).

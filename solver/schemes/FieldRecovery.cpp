@@ -26,16 +26,16 @@ FieldRecovery::FieldRecovery(const FiniteElementSpace& space, const ClampedPlate
       nu_(p.poissonRatio),
       rootFactor_(moment_ * std::sqrt(1.0 - nu_ + nu_ * nu_)),
       stress_(p.stressOutputs),
-      probeCount_(p.probeCount),
+      probeCount_(Eigen::Index(p.probeCount())),
       vertexCount_(space.mesh().vertexCount()) {
     rootSamples_ = clampedEdgeSamples(space);
     const std::vector<PointLocation>& root = rootSamples_;
     fieldSamples_ = vertexSamples(space, fieldVertex_);
-    rootFirst_ = kProbeCount;
+    rootFirst_ = probeCount_;
     fieldFirst_ = rootFirst_ + Eigen::Index(root.size());
     const Eigen::Index rows = fieldFirst_ + 3 * Eigen::Index(fieldSamples_.size());
     std::vector<Eigen::Triplet<double>> entries;
-    for (int k = 0; k < kProbeCount; ++k)
+    for (Eigen::Index k = 0; k < probeCount_; ++k)
         addRow(pointFunctional(space, locate(space, {p.probeX[std::size_t(k)], p.probeY[std::size_t(k)]}),
                                PointQuantity::Value),
                clamped, k, entries);
@@ -49,7 +49,7 @@ FieldRecovery::FieldRecovery(const FiniteElementSpace& space, const ClampedPlate
     functionals_.resize(rows, Eigen::Index(clamped.freeDofs.size()));
     functionals_.setFromTriplets(entries.begin(), entries.end());
     root_.resize(Eigen::Index(root.size()));
-    probes_.resize(kProbeCount);
+    heights_.resize(probeCount_, 3);
     field_.resize(3 * Eigen::Index(fieldSamples_.size()));
 }
 
@@ -66,26 +66,14 @@ double FieldRecovery::rootCurvature(const Scheme& scheme) const {
 
 void FieldRecovery::fieldValues(const Scheme& scheme) const { scheme.recover(fieldFirst_, 0, field_); }
 
-void FieldRecovery::fill(const Scheme& scheme, double dt, PlateOutputs& o, bool plate) const {
+void FieldRecovery::fill(const Scheme& scheme, PlateOutputs& o, bool plate) const {
     // What is off reads 0 and is not computed (NaN would say it better, but masters and checks take a
     // NaN output for a failed run: measured with fmpy's, libcosim's and this suite's own).
     constexpr double off = 0.0;
-    for (int k = probeCount_; k < kProbeCount; ++k) o.probe[k] = o.probeVelocity[k] = o.probeAcceleration[k] = off;
-    if (!stress_) o.rootStress = o.maxStress = o.maxStressX = o.maxStressY = off;
-    // The probes' absolute heights at the three levels; velocity and acceleration as the corners'.
-    double heights[3][kProbeCount];
-    for (int level = 0; level < 3 && probeCount_ > 0; ++level) {
-        scheme.recover(0, level, probes_);
-        for (int k = 0; k < kProbeCount; ++k) heights[level][k] = scheme.clampHeight(level) + probes_[k];
+    if (!stress_) {
+        o.rootStress = o.maxStress = o.maxStressX = o.maxStressY = off;
+        return;
     }
-    const double dt2 = dt * dt;
-    for (int k = 0; k < probeCount_; ++k) {
-        const double now = heights[0][k], prev = heights[1][k], prev2 = heights[2][k];
-        o.probe[k] = now;
-        o.probeVelocity[k] = backwardVelocity(now, prev, prev2, dt);
-        o.probeAcceleration[k] = centralAcceleration(now, prev, prev2, dt2);
-    }
-    if (!stress_) return;
     scheme.recover(rootFirst_, 0, root_);
     o.rootStress = rootStress(root_.size() > 0 ? root_.cwiseAbs().maxCoeff() : 0.0);
     if (!plate) return;
@@ -111,6 +99,26 @@ void FieldRecovery::fill(const Scheme& scheme, double dt, PlateOutputs& o, bool 
             o.maxStressX = fieldSamples_[i].point.x();
             o.maxStressY = fieldSamples_[i].point.y();
         }
+    }
+}
+
+void FieldRecovery::fillProbes(const Scheme& scheme, double dt, ProbeOutputs& o) const {
+    if (o.displacement.size() != probeCount_) o.resize(probeCount_);
+    if (probeCount_ == 0) return;
+    // The probes' absolute heights at the three levels; velocity and acceleration as the corners'.
+    // One row at a time: a product over several dense rows rounds a row differently with their
+    // number (Eigen's kernels block the rows), and a probe's value must not depend on how many
+    // others are asked for.
+    for (int level = 0; level < 3; ++level) {
+        for (Eigen::Index k = 0; k < probeCount_; ++k) scheme.recover(k, level, heights_.col(level).segment(k, 1));
+        heights_.col(level).array() += scheme.clampHeight(level);
+    }
+    const double dt2 = dt * dt;
+    for (Eigen::Index k = 0; k < probeCount_; ++k) {
+        const double now = heights_(k, 0), prev = heights_(k, 1), prev2 = heights_(k, 2);
+        o.displacement[k] = now;
+        o.velocity[k] = backwardVelocity(now, prev, prev2, dt);
+        o.acceleration[k] = centralAcceleration(now, prev, prev2, dt2);
     }
 }
 

@@ -30,11 +30,14 @@ public:
     // The root's von Mises stress of the curvature w_xx: on x = 0 the clamp makes w and w_x vanish
     // identically, so w_yy = w_xy = 0 there and σ_vm = 6D/t² |w_xx| √(1 − ν + ν²) (§23).
     double rootStress(double curvature) const { return rootFactor_ * curvature; }
-    // The root's stress now, the probes (absolute w, velocity, acceleration as the port's points:
-    // setPortKinematics) and the largest von Mises stress over the plate's samples (vertices, the
-    // root's) with its position.
-    // `plate`: the largest over the plate too (rows at every vertex), else the points' only.
-    void fill(const Scheme& scheme, double dt, PlateOutputs& o, bool plate) const;
+    // The root's stress now and the largest von Mises stress over the plate's samples (vertices, the
+    // root's) with its position. `plate`: the largest over the plate too (rows at every vertex), else
+    // the root's only.
+    void fill(const Scheme& scheme, PlateOutputs& o, bool plate) const;
+    // The probes (absolute w, velocity, acceleration as the port's points: setPortKinematics) into
+    // `o`, sized to the probes (no allocation when it already is).
+    void fillProbes(const Scheme& scheme, double dt, ProbeOutputs& o) const;
+    Eigen::Index probeCount() const { return probeCount_; }
     // The von Mises stress at every mesh vertex (the largest over its samples).
     std::vector<double> vertexStress(const Scheme& scheme) const;
 
@@ -46,13 +49,14 @@ private:
 
     double moment_ = 0.0, nu_ = 0.0, rootFactor_ = 0.0;  // 6D/t², ν, 6D/t² √(1 − ν + ν²)
     bool stress_ = false;  // stress_outputs: else the stresses read 0 (not computed)
-    int probeCount_ = 0;  // probe_count: the probes past it read 0 (not computed)
+    Eigen::Index probeCount_ = 0;  // the probes' rows come first
     Eigen::Index rootFirst_ = 0, fieldFirst_ = 0;
     std::vector<PointLocation> rootSamples_, fieldSamples_;
     std::vector<int> fieldVertex_;
     int vertexCount_ = 0;
     SparseRows functionals_;
-    mutable Eigen::VectorXd root_, probes_, field_;  // scratch of the reads
+    mutable Eigen::VectorXd root_, field_;  // scratch of the reads
+    mutable Eigen::MatrixXd heights_;  // the probes' absolute heights at the three levels (a column each)
 };
 
 }  // namespace plate

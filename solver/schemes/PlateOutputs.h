@@ -1,5 +1,6 @@
 #pragma once
 // What the plate reports at a communication point, whatever engine computed it.
+#include <Eigen/Core>
 #include <iterator>
 
 #include "base/FieldTable.h"
@@ -22,20 +23,34 @@ struct PlateOutputs {
     double clampForce = 0, clampMoment = 0;  // what the plate exerts on the clamp, N, N·m
     double clampDisplacement = 0, clampVelocity = 0, clampAcceleration = 0;  // z, ż, z̈
     double contactForce[2] = {0, 0}, contactImpulse[2] = {0, 0};  // lower, upper: N, N·s
-    double impacts[2] = {0, 0};  // counts: contact onsets per obstacle
+    double impacts[2] = {0, 0};  // counts: impact episodes per obstacle (docs/theory.md §14)
+    double contactOnsets[2] = {0, 0};  // counts: (sub-)steps whose contact force starts from zero, per obstacle
     double velocity[3] = {0, 0, 0}, acceleration[3] = {0, 0, 0};  // corner1, corner2, freeEdgeMid
     // time_scheme = flow with a tolerance (docs/theory.md §22): the accumulated estimate of the
     // displacement error (m) and the contact steps whose sub-steps the cap bounded (count).
     double errorEstimate = 0, cappedSteps = 0;
-    // Stress and probes (docs/theory.md §23). The root's peak is tracked every step (PlateSimulation);
-    // the rest is computed only when asked for (PlateSimulation::outputs(…, field)).
+    // Stress (docs/theory.md §23). The root's peak is tracked every step (PlateSimulation); the rest
+    // is computed only when asked for (PlateSimulation::outputs(…, field)). The probes, as many as
+    // the parameters place, are ProbeOutputs below.
     double rootStress = 0, rootStressPeak = 0;  // largest von Mises stress on x = 0 now, since t = 0, Pa
     double maxStress = 0, maxStressX = 0, maxStressY = 0;  // largest over the plate's vertices, Pa, and where, m
-    double probe[4] = {0, 0, 0, 0}, probeVelocity[4] = {0, 0, 0, 0}, probeAcceleration[4] = {0, 0, 0, 0};
 };
 
-// Which of the stress and probe outputs (docs/theory.md §23) to compute: none, those at points (the
-// probes and the root's stress: a few rows), or the plate's too (its largest stress and where: rows
+// The probes' absolute motion (docs/theory.md §23), one entry per probe (PlateParameters::probeX):
+// w, its velocity (as corner_1_velocity) and acceleration (as corner_1_acceleration). Computed
+// when asked for (PlateSimulation::probes()), interpolated between grid points as the quantities
+// of PlateOutputs are.
+struct ProbeOutputs {
+    Eigen::VectorXd displacement, velocity, acceleration;
+    void resize(Eigen::Index n) {
+        displacement.setZero(n);
+        velocity.setZero(n);
+        acceleration.setZero(n);
+    }
+};
+
+// Which of the stress outputs (docs/theory.md §23) to compute: none, the root's (a few rows), or
+// the plate's too (its largest stress and where: rows
 // at every vertex).
 enum class FieldOutputs { None, Points, Plate };
 
@@ -111,23 +126,13 @@ inline constexpr OutputField kOutputFields[] = {
     {"rootStress",        Between::Interpolated, fieldOf<&PlateOutputs::rootStress>},
     {"rootStressPeak",    Between::Interpolated, fieldOf<&PlateOutputs::rootStressPeak>},
     {"maxStress",         Between::Interpolated, fieldOf<&PlateOutputs::maxStress>},
-    {"probe[0]",          Between::Interpolated, fieldOf<&PlateOutputs::probe, 0>},
-    {"probe[1]",          Between::Interpolated, fieldOf<&PlateOutputs::probe, 1>},
-    {"probe[2]",          Between::Interpolated, fieldOf<&PlateOutputs::probe, 2>},
-    {"probe[3]",          Between::Interpolated, fieldOf<&PlateOutputs::probe, 3>},
-    {"probeVelocity[0]",  Between::Interpolated, fieldOf<&PlateOutputs::probeVelocity, 0>},
-    {"probeVelocity[1]",  Between::Interpolated, fieldOf<&PlateOutputs::probeVelocity, 1>},
-    {"probeVelocity[2]",  Between::Interpolated, fieldOf<&PlateOutputs::probeVelocity, 2>},
-    {"probeVelocity[3]",  Between::Interpolated, fieldOf<&PlateOutputs::probeVelocity, 3>},
-    {"probeAcceleration[0]", Between::Interpolated, fieldOf<&PlateOutputs::probeAcceleration, 0>},
-    {"probeAcceleration[1]", Between::Interpolated, fieldOf<&PlateOutputs::probeAcceleration, 1>},
-    {"probeAcceleration[2]", Between::Interpolated, fieldOf<&PlateOutputs::probeAcceleration, 2>},
-    {"probeAcceleration[3]", Between::Interpolated, fieldOf<&PlateOutputs::probeAcceleration, 3>},
     {"contactVertices",   Between::Held,         fieldOf<&PlateOutputs::contactVertices>},
     {"contactSolves",     Between::Held,         fieldOf<&PlateOutputs::contactSolves>},
     {"contactIterationsMax",Between::Held,         fieldOf<&PlateOutputs::contactIterationsMax>},
     {"impacts[0]",        Between::Held,         fieldOf<&PlateOutputs::impacts, 0>},
     {"impacts[1]",        Between::Held,         fieldOf<&PlateOutputs::impacts, 1>},
+    {"contactOnsets[0]",  Between::Held,         fieldOf<&PlateOutputs::contactOnsets, 0>},
+    {"contactOnsets[1]",  Between::Held,         fieldOf<&PlateOutputs::contactOnsets, 1>},
     {"errorEstimate",     Between::Held,         fieldOf<&PlateOutputs::errorEstimate>},
     {"cappedSteps",       Between::Held,         fieldOf<&PlateOutputs::cappedSteps>},
     {"maxStressX",        Between::Held,         fieldOf<&PlateOutputs::maxStressX>},  // a place, not a quantity

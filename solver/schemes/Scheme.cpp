@@ -23,8 +23,8 @@ PlateOutputs Scheme::outputs(bool port) const {
     o.contactVertices = s.contactPoints;
     o.contactSolves = double(s.contactSolves);
     o.contactIterationsMax = s.contactIterationsMax;
-    o.impacts[0] = double(s.impactCount[0]);
-    o.impacts[1] = double(s.impactCount[1]);
+    o.contactOnsets[0] = double(s.contactOnsets[0]);
+    o.contactOnsets[1] = double(s.contactOnsets[1]);
     addOutputs(o);
     if (!port) return o;
     clampLoad(o.clampForce, o.clampMoment);

@@ -44,10 +44,11 @@ struct SchemeState {
     int contactPoints = 0;  // vertices (Newmark) or rows (condensed) held by an obstacle at t_n
     // The port (docs/theory.md §14) over the last step, per obstacle (0 lower, 1 upper): the contact
     // force, its moment about the clamp line (both obstacles), the cumulative impulse and the contact
-    // onsets so far.
+    // onsets so far: (sub-)steps whose force starts from zero, every chatter of a vertex among them
+    // (the impact episodes are PlateSimulation's, docs/theory.md §14).
     double stepContactForce[2] = {0, 0}, stepContactMoment = 0;
     double contactImpulseSum[2] = {0, 0};
-    long long impactCount[2] = {0, 0};
+    long long contactOnsets[2] = {0, 0};
 };
 
 // The base's share of every scheme's flat form (base/StateArchive.h), first after the scheme's
@@ -67,7 +68,7 @@ void sharedMembers(State& s, Archive& v, double maxContacts) {
     for (auto* x : {&s.stepContactForce[0], &s.stepContactForce[1]}) v.real(*x, "contact force");
     v.real(s.stepContactMoment, "contact moment");
     for (auto* x : {&s.contactImpulseSum[0], &s.contactImpulseSum[1]}) v.real(*x, "contact impulse");
-    for (auto* k : {&s.impactCount[0], &s.impactCount[1]}) v.count(*k, "impacts");
+    for (auto* k : {&s.contactOnsets[0], &s.contactOnsets[1]}) v.count(*k, "contact onsets");
 }
 
 class Scheme {
@@ -91,6 +92,10 @@ public:
         return atLevel(level, s.z, s.zPrev, s.zPrev2);
     }
     int contactVertices() const { return shared().contactPoints; }  // points held by an obstacle at t_n
+    // Per obstacle (0 lower, 1 upper): the contact force of the last (sub-)step and the contact onsets
+    // so far (§14); what the impact episodes are counted from (PlateSimulation, §14).
+    double contactForce(int k) const { return shared().stepContactForce[k]; }
+    long long contactOnsets(int k) const { return shared().contactOnsets[k]; }
     // The outputs at t_n, written once for every scheme; `port` adds the port's fields (§14).
     PlateOutputs outputs(bool port) const;
     // Absolute height of every mesh vertex at t_n.
@@ -133,7 +138,7 @@ protected:
     // an onset where an obstacle's force was zero the step before (docs/theory.md §14).
     static void bookContact(SchemeState& s, const double (&force)[2], double h) {
         for (int k = 0; k < 2; ++k) {
-            s.impactCount[k] += force[k] != 0.0 && s.stepContactForce[k] == 0.0;
+            s.contactOnsets[k] += force[k] != 0.0 && s.stepContactForce[k] == 0.0;
             s.stepContactForce[k] = force[k];
             s.contactImpulseSum[k] += force[k] * h;
         }

@@ -37,7 +37,7 @@ PlateParameters scene(int kind, double gap) {
         case 3: p.nx = 8, p.ny = 3, p.mass = MassModel::SingularP0, p.timeScheme = TimeScheme::Conserving; break;
         default:
             p.nx = 8, p.ny = 3, p.mass = MassModel::SingularP1dg, p.timeScheme = TimeScheme::Flow;
-            p.probeCount = 1, p.probeX[0] = 1.0, p.probeY[0] = 0.3, p.stressOutputs = true;
+            p.probeX = {1.0}, p.probeY = {0.3}, p.stressOutputs = true;
             break;
     }
     return p;
@@ -54,7 +54,8 @@ std::vector<double> run(const PlateParameters& p, double frequency, int steps = 
         InputSignal base{0.015 * std::sin(w * t), 0.015 * w * std::cos(w * t), -0.015 * w * w * std::sin(w * t)};
         s.advance(100, base, InputSignal{});
         const PlateOutputs o = s.outputs(true, FieldOutputs::Plate);
-        out.insert(out.end(), {o.corner1, o.corner2, o.freeEdgeMid, o.energy, o.clampForce, o.rootStress, o.probe[0],
+        const double probe = p.probeCount() > 0 ? s.probes().displacement[0] : 0.0;
+        out.insert(out.end(), {o.corner1, o.corner2, o.freeEdgeMid, o.energy, o.clampForce, o.rootStress, probe,
                                o.maxStress, o.contactVertices});
     }
     const std::vector<double> state = s.saveState();

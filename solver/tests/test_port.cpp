@@ -79,7 +79,7 @@ TEST(Port, ClampForceAndMomentAreTheClampedRowsResidual) {
         largestForce = std::max(largestForce, std::abs(force));
         uPrev = u;
         u = uNext;
-        impacts = s.impactCount[0] + s.impactCount[1];
+        impacts = s.contactOnsets[0] + s.contactOnsets[1];
     }
     std::printf("[ port ] clamp force up to %.4g N; worst |residual - (T.14a)| %.3g N, moment %.3g N.m; %lld onsets\n",
                 largestForce, worstForce, worstMoment, impacts);

@@ -71,7 +71,7 @@ NewmarkState sampleState(Eigen::Index n, std::size_t m, Eigen::Index k) {
     s.contactPoints = 2;
     s.stepContactForce[0] = 4.0, s.stepContactForce[1] = -5.0, s.stepContactMoment = 0.75;
     s.contactImpulseSum[0] = 6.0, s.contactImpulseSum[1] = -7.0;
-    s.impactCount[0] = 8, s.impactCount[1] = 9;
+    s.contactOnsets[0] = 8, s.contactOnsets[1] = 9;
     return s;
 }
 
@@ -83,7 +83,7 @@ TEST(StateTables, NewmarkStateRoundTripIsIdentical) {
     EXPECT_EQ(plate::serialize(back), flat);
     EXPECT_EQ(back.step, s.step);
     EXPECT_EQ(back.contactSolves, s.contactSolves);
-    EXPECT_EQ(back.impactCount[1], 9);
+    EXPECT_EQ(back.contactOnsets[1], 9);
     EXPECT_EQ(back.contactState, s.contactState);
     EXPECT_EQ(back.wPrev2, s.wPrev2);
     EXPECT_EQ(back.contactImpulsePrev, s.contactImpulsePrev);
@@ -135,14 +135,14 @@ TEST(StateTables, NewmarkStateRefusesCorruptCountsAndSizes) {
         return std::string("accepted");
     };
     const std::size_t step = at(123456789012.0), total = at(98765432109.0), most = at(17.0);
-    const std::size_t vertices = at(2.0), impacts = at(9.0), z = at(1e-3);
+    const std::size_t vertices = at(2.0), onsets = at(9.0), z = at(1e-3);
     EXPECT_EQ(refused(step, 1.5), "corrupt state: step is not a count in range");
     EXPECT_EQ(refused(step, -1.0), "corrupt state: step is not a count in range");
     EXPECT_EQ(refused(step, 1e16), "corrupt state: step is not a count in range");
     EXPECT_EQ(refused(total, std::nan("")), "corrupt state: contact solves is not a count in range");
     EXPECT_EQ(refused(most, 4294967296.0), "corrupt state: contact iterations is not a count in range");
     EXPECT_EQ(refused(vertices, 4.0), "corrupt state: contact points is not a count in range");  // > m
-    EXPECT_EQ(refused(impacts, HUGE_VAL), "corrupt state: impacts is not a count in range");
+    EXPECT_EQ(refused(onsets, HUGE_VAL), "corrupt state: contact onsets is not a count in range");
     EXPECT_EQ(refused(z, std::nan("")), "corrupt state: z is not finite");
     EXPECT_EQ(refused(at(-1.0), 2.0), "corrupt contact state");
     EXPECT_EQ(refused(4, HUGE_VAL), "corrupt state: non-finite displacement");

@@ -1,0 +1,83 @@
+// The plate's plausibility warnings at build (PlateModel::build): a result that is computed but likely
+// not what the user meant, each a message naming the cause and the fix.
+#include "binding/PlateWarnings.h"
+
+#include <cstdio>
+
+namespace plateimpact {
+
+std::string format(const char* fmt, double a, double b, double c) {
+    char text[400];
+    std::snprintf(text, sizeof text, fmt, a, b, c);
+    return text;
+}
+
+namespace {
+
+// dt against the plate's first period (plate::PlateParameters::firstFrequencyEstimate; dt above
+// T1/2 is refused by the solver): fewer than 20 steps per period give visibly wrong amplitudes
+// and phases.
+void warnOfCoarseStep(const PlateValues& values, std::vector<std::string>& out) {
+    const plate::PlateParameters& p = values.parameters;
+    const double period = 1.0 / p.firstFrequencyEstimate();
+    if (p.dt <= period / 20.0) return;
+    out.push_back(format("dt = %g s is %.3g of the plate's first period T1 = %.4g s", p.dt, p.dt / period, period) +
+                  " (fewer than 20 steps per period): the outputs resolve the first mode only roughly; take dt <= " +
+                  format("%.4g s (T1/20) for accurate results", period / 20.0, 0.0));
+}
+// A tolerance or sub-step count only the flow law uses (docs/theory.md §21–22), set for another
+// scheme: said at build.
+void warnOfUnusedTolerance(const PlateValues& values, std::vector<std::string>& out) {
+    const plate::PlateParameters& p = values.parameters;
+    if (p.timeScheme == plate::TimeScheme::Flow) return;
+    if (p.tolerance > 0.0)
+        out.push_back(
+            format("tolerance = %g m is used by time_scheme = flow only (3): this run's scheme ignores it, and "
+                   "error_estimate stays 0",
+                   p.tolerance, 0.0));
+    const plate::PlateParameters defaults;
+    if (p.contactSubsteps != defaults.contactSubsteps)
+        out.push_back(
+            format("contact_substeps = %g is used by time_scheme = flow only (3): this run's scheme ignores it",
+                   double(p.contactSubsteps), 0.0));
+    if (p.maxContactSubsteps != defaults.maxContactSubsteps)
+        out.push_back(
+            format("max_contact_substeps = %g is used by time_scheme = flow with a tolerance only: this run's "
+                   "scheme ignores it",
+                   double(p.maxContactSubsteps), 0.0));
+}
+// Probes (docs/theory.md §23) that are not what they seem, among those the importer placed or
+// counted: an FMI 2.0 probe placed but not counted (it reads 0), one counted but on the clamped
+// edge x = 0 (unplaced: the default (0, 0)), which moves with the clamp.
+void warnOfProbes(const PlateValues& values, bool arrays, std::vector<std::string>& out) {
+    const ProbePlaces& probes = values.probes;
+    if (!probes.placed) return;
+    for (std::size_t k = 0; k < probes.x.size(); ++k) {
+        const double x = probes.x[k], y = probes.y[k];
+        const std::string index = std::to_string(k + 1), at = "[" + std::to_string(k) + "]";
+        const std::string name = arrays ? "probe" + at : "probe_" + index;
+        const std::string placeX = arrays ? "probe_x" + at : name + "_x";
+        if (k >= probes.count && !arrays && (x != 0.0 || y != 0.0))
+            out.push_back(name + format(" is placed at (%g, %g) m", x, y) +
+                          format(" but probe_count = %g leaves it off: it reads 0; set probe_count >= %g to compute it",
+                                 double(probes.count), double(k + 1)));
+        if (k < probes.count && x == 0.0)
+            out.push_back(name +
+                          format(" at (%g, %g) m is counted (probe_count = %g) but lies on the clamped edge x = 0", x,
+                                 y, double(probes.count)) +
+                          ": it reads the clamp's motion; place it with " + placeX + " > 0 (" +
+                          (y == 0.0 ? placeX + " and its y were never set)" : placeX + " is 0)"));
+    }
+}
+
+}  // namespace
+
+std::vector<std::string> buildWarnings(const PlateValues& values, bool arrays) {
+    std::vector<std::string> out;
+    warnOfCoarseStep(values, out);
+    warnOfUnusedTolerance(values, out);
+    warnOfProbes(values, arrays, out);
+    return out;
+}
+
+}  // namespace plateimpact

@@ -1,0 +1,17 @@
+#pragma once
+// The plate's plausibility warnings at build (PlateWarnings.cpp), and the message formatting the
+// binding's messages share.
+#include <string>
+#include <vector>
+
+#include "binding/PlateVariables.h"
+
+namespace plateimpact {
+
+// printf of up to three numbers into a message.
+std::string format(const char* fmt, double a, double b, double c = 0.0);
+// The warnings of a build from these values, in order: dt against the first period, tolerances the
+// scheme ignores, probes that are not what they seem (arrays: the FMI 3.0 FMU's names).
+std::vector<std::string> buildWarnings(const PlateValues& values, bool arrays);
+
+}  // namespace plateimpact
