@@ -33,12 +33,11 @@ import argparse
 import csv
 import math
 import time
-from pathlib import Path
 
 import numpy as np
 
 from plateimpact import PlateImpactFMU, sine
-from plateimpact.fmufile import require_fmu
+from plateimpact.fmufile import output_dir, require_fmu
 from plateimpact.scenes import AMPLITUDE
 
 MESHES = {"argyris": (14, 5), "fvs": (20, 7)}
@@ -346,8 +345,7 @@ def main(argv=None):
     ap.add_argument("--quick", action="store_true", help="short horizons (smoke test)")
     args = ap.parse_args(argv)
     args.fmu = str(require_fmu(args.fmu, "paper_scenes"))
-    out = Path(args.out)
-    out.mkdir(parents=True, exist_ok=True)
+    out = output_dir(args.out, args.quick)  # --quick: <out>/quick/, never a full run's files
     q = args.quick
     meshes, meshes_free = MESHES, MESHES_FREE
     if q:  # coarse meshes: the Argyris 14x5 setup alone takes about a second

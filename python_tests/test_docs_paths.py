@@ -26,9 +26,7 @@ def tracked():
 
 
 def pages(files):
-    return [
-        f for f in files if f.endswith(".md") and not f.startswith("third_party/") and "/templates/" not in f
-    ]
+    return [f for f in files if f.endswith(".md") and not f.startswith("third_party/") and "/templates/" not in f]
 
 
 def path_pattern(files):
