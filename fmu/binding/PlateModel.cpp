@@ -11,6 +11,7 @@
 #include <utility>
 
 #include "core/Model.h"
+#include "binding/PlateAdvice.h"
 #include "binding/PlateArrays.h"
 #include "PlateImpactGuid.h"  // generated at build time: FMU_GUID
 #include "binding/PlateVariables.h"
@@ -94,7 +95,10 @@ public:
     const fmu::ModelInfo& info() const override { return kInfo; }
     const std::vector<fmu::Variable>& variables() const override { return plateVariables(); }
 
-    double get(const fmu::Variable& v) const override { return getValue(values_, v); }
+    double get(const fmu::Variable& v) const override {
+        adviseOnRead(v.vr, v.name);
+        return getValue(values_, v);
+    }
     void set(const fmu::Variable& v, double x) override {
         setValue(values_, v, x);
         // Set while the simulation runs (not the start value of initialization mode): the drive is driven.
@@ -110,6 +114,7 @@ public:
     const std::vector<fmu::Terminal>& terminals() const override { return plateTerminals(); }
     void getArray(const fmu::ArrayOutput& a, double* out, std::size_t n) const override {
         if (!simulation_) throw fmu::ModelError("internal error: no simulation to read an array from");
+        adviseOnRead(a.vr, a.name);
         getPlateArray(*simulation_, a, out, n);
     }
     // FMI 3.0 intermediate update with inputs: the clamp's height and the load, set by the master at
@@ -176,8 +181,9 @@ public:
         const plate::PlateParameters& p = values_.parameters;
         trace(format("simulation built (nx = %g, ny = %g, dt = %g s)", p.nx, p.ny, p.dt));
         warnOfCoarseStep();
-        driveSet_ = interpolationWarned_ = errorWarned_ = cappedWarned_ = false;
+        driveSet_ = interpolationWarned_ = errorWarned_ = cappedWarned_ = stressReadWarned_ = longStepWarned_ = false;
         warnOfUnusedTolerance();
+        say(capAdvice(p));
         warnOfProbes();
     }
     void terminate() override {
@@ -222,6 +228,7 @@ public:
                        "values take h a whole multiple of dt, or a smaller dt",
                        h, values_.parameters.dt));
         }
+        adviseOnStep(h, t);
         for (InputPort* port : ports()) {
             port->beginStep(now);
             port->reach = plan.offset + double(plan.steps) * values_.parameters.dt;  // the last grid point read
@@ -358,6 +365,23 @@ private:
         warn(format("dt = %g s is %.3g of the plate's first period T1 = %.4g s", p.dt, p.dt / period, period) +
              " (fewer than 20 steps per period): the outputs resolve the first mode only roughly; take dt <= " +
              format("%.4g s (T1/20) for accurate results", period / 20.0, 0.0));
+    }
+    // The checks of PlateAdvice.h, each said once per build.
+    void say(const std::string& advice) const {
+        if (!advice.empty()) warn(advice);
+    }
+    void adviseOnRead(fmu::ValueReference vr, const char* name) const {
+        if (stressReadWarned_ || !isStressOutput(vr)) return;
+        stressReadWarned_ = !values_.parameters.stressOutputs;
+        say(stressReadAdvice(name, values_.parameters));
+    }
+    void adviseOnStep(double h, double t) {
+        if (longStepWarned_ || h <= longestCommunicationStep(values_.parameters)) return;
+        InputPort& drive = drivePort();
+        const char* input = inputChanged(drive) ? driveName() : inputChanged(values_.load) ? "load" : nullptr;
+        if (!input) return;
+        longStepWarned_ = true;
+        say(longStepAdvice(values_.parameters, h, t, input));
     }
     // A tolerance or sub-step count only the flow law uses (docs/theory.md §21–22), set for another
     // scheme: said at build.
@@ -545,6 +569,8 @@ private:
     bool interpolationWarned_ = false;  // the warning of steps shorter than two grid steps, once
     bool errorWarned_ = false;  // the warning of the error estimate past the tolerance, once
     bool cappedWarned_ = false;  // the warning of a contact step the sub-step cap bounded, once
+    mutable bool stressReadWarned_ = false;  // a stress output read while stress_outputs = false, once
+    bool longStepWarned_ = false;  // a communication step too long for the plate and the inputs, once
     bool stopAtContactChange_ = false;  // inside doStepUntilEvent
     bool endedAtEvent_ = false;  // the last step of doStepUntilEvent ended at a contact change
     bool returnRequested_ = false;  // ... or where the master's intermediate update asked
