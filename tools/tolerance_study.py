@@ -13,8 +13,8 @@ Scenes (solver/bench/plate_bench, singular_p0 mass, dt = 1e-5 s):
            0–0.07 s (beyond, the scene is chaotic: docs/performance.md, "Predictability").
 Cost: process CPU per internal step, pure stepping, best of three interleaved runs; the front:
 error against CPU per simulated second for the conserving law at four dt and the flow law at
-three tolerances. Worst step: one 1e-4 s communication step through fmpy (tools/step_latency.py),
-median, p99 and maximum over 1 s (10^4 steps).
+three tolerances. The worst communication step of these laws is tools/step_latency.py's (one table
+of it, docs/performance.md).
 """
 
 from __future__ import annotations
@@ -30,7 +30,6 @@ from pathlib import Path
 import numpy as np
 
 sys.path.insert(0, str(Path(__file__).resolve().parent))
-from step_latency import latencies  # noqa: E402
 
 DT = 1e-5
 SCENES = {
@@ -81,7 +80,7 @@ def cpu_best(repo: Path, scene: str, laws: dict[str, list[str]], repeats: int) -
 def main() -> None:
     parser = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
     parser.add_argument("--repo", type=Path, default=Path("."))
-    parser.add_argument("--quick", action="store_true", help="one scene, two tolerances, no fmpy latency")
+    parser.add_argument("--quick", action="store_true", help="one scene, two tolerances")
     parser.add_argument("--json", type=Path, default=Path("docs/tolerance.json"))
     args = parser.parse_args()
     repo = args.repo.resolve()
@@ -139,33 +138,6 @@ def main() -> None:
                         row["error_ratio_at_equal_cpu"] = at / row["error_m"]
             report["scenes"][scene] = entry
             print(json.dumps({scene: entry}, indent=1, ensure_ascii=False), flush=True)
-    if not args.quick:
-        fmu = repo / "build" / "PlateImpact.fmu"
-        lat = {}
-        fmu_laws = {
-            "conserving": {"mass": "singular_p0", "time_scheme": "conserving"},
-            "flow 16": {"mass": "singular_p0", "time_scheme": "flow"},
-            "flow tol=1e-05": {"mass": "singular_p0", "time_scheme": "flow", "tolerance": 1e-5},
-            "conserving m=20": {"mass": "singular_p0", "time_scheme": "conserving", "modes": 20},
-            "flow 16 m=20": {"mass": "singular_p0", "time_scheme": "flow", "modes": 20},
-            "flow tol=1e-05 m=20": {"mass": "singular_p0", "time_scheme": "flow", "tolerance": 1e-5, "modes": 20},
-            "flow tol=1e-05 cap 4": {
-                "mass": "singular_p0",
-                "time_scheme": "flow",
-                "tolerance": 1e-5,
-                "max_contact_substeps": 4,
-            },
-        }
-        for scene, params in FMU_SCENES.items():
-            for key, law in fmu_laws.items():
-                us = latencies(fmu, law, params, 1.0)
-                lat[f"{scene}: {key}"] = {
-                    "median_us": float(np.median(us)),
-                    "p99_us": float(np.percentile(us, 99)),
-                    "max_us": float(us.max()),
-                }
-                print(scene, key, lat[f"{scene}: {key}"], flush=True)
-        report["latency_fmpy_h1e-4"] = lat
     args.json.write_text(json.dumps(report, indent=1, ensure_ascii=False) + "\n")
     print(f"wrote {args.json}")
 
