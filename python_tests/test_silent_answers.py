@@ -4,8 +4,8 @@ the setting and what to do.
 
 - max_contact_substeps under time_scheme = flow with tolerance = 0: the cap bounds the step doubling
   only, so corner_1 is the same bits with or without it, and the FMU says so at initialization.
-- root_stress, max_stress and FMI 3.0's vertex_stress read while stress_outputs = false: 0, and the
-  first read is warned (once, whichever is read first).
+- root_stress, max_stress read while stress_outputs = false: 0, and the first read is warned (once,
+  whichever is read first; FMI 3.0's vertex_stress: test_fmi3.py).
 - A communication step longer than T1/10 (T1 the plate's first period) over which the base moved:
   the README's 10 Hz sine at h = 1 s is sampled at its zeros (corner_1 stays at 1e-19 m), a 0.4 Hz
   sine at h = 1 s pumps energy into the plate that the same input at h = 1e-3 s does not. The FMU
@@ -16,9 +16,8 @@ the setting and what to do.
 import re
 from pathlib import Path
 
-import fmpy
 import numpy as np
-from fmpy.fmi3 import FMU3Slave
+from long_steps import simulate
 from plate_fmu import PlateRun
 
 REPO = Path(__file__).resolve().parent.parent
@@ -33,32 +32,6 @@ def warnings(run):
 def read(run, name):
     """One Real output read by the master (fmi2GetReal), as any importer reads it."""
     return run.fmu.getReal([run.vars[name].valueReference])[0]
-
-
-def simulate(fmu, stop, h, frequency, amplitude, **start_values):
-    """fmpy.simulate_fmu with the base as an input table (values only, as the README's snippet) and
-    the FMU's warnings collected."""
-    t = np.linspace(0.0, stop, round(stop / 1e-3) + 1)
-    signal = np.array(
-        list(zip(t, amplitude * np.sin(2 * np.pi * frequency * t))),
-        dtype=[("time", float), ("base_displacement", float)],
-    )
-    said = []
-
-    def logger(component, instance, status, category, message):
-        if status == 1:
-            said.append(message.decode())
-
-    result = fmpy.simulate_fmu(
-        str(fmu),
-        stop_time=stop,
-        output_interval=h,
-        input=signal,
-        output=["corner_1", "energy"],
-        start_values=start_values,
-        logger=logger,
-    )
-    return result, [m for m in said if "communicationStepSize" in m]
 
 
 # -- a cap that cannot act ------------------------------------------------------------------------
@@ -94,28 +67,6 @@ def test_a_stress_output_read_while_off_is_said_once(fmu_path):
     with PlateRun(fmu_path, stress_outputs=True, initial_load=8600.0) as run:  # bent: stressed
         run.step(H)
         assert read(run, "max_stress") > 0.0 and warnings(run) == []
-
-
-def test_vertex_stress_read_while_off_is_said(fmu3, tmp_path):
-    md = fmpy.read_model_description(str(fmu3))
-    vr = {v.name: v.valueReference for v in md.modelVariables}
-    s = FMU3Slave(
-        guid=md.guid,
-        unzipDirectory=fmpy.extract(str(fmu3), str(tmp_path / "fmu")),
-        modelIdentifier="PlateImpact",
-        instanceName="t",
-    )
-    said = []
-    s.instantiate(logMessage=lambda env, status, category, message: said.append((status, message.decode())))
-    s.enterInitializationMode(startTime=0.0)
-    s.exitInitializationMode()
-    s.doStep(0.0, 1e-3)
-    values = s.getFloat64([vr["vertex_stress"]], nValues=90)
-    warned = [m for status, m in said if status == 1]
-    s.terminate()
-    s.freeInstance()
-    assert values == [0.0] * 90
-    assert len(warned) == 1 and "vertex_stress was read while stress_outputs = false" in warned[0], warned
 
 
 # -- a communication step too long for the plate and the inputs -----------------------------------
