@@ -37,7 +37,7 @@ from pathlib import Path
 import numpy as np
 from cosim import run_system, run_system_fmpy_ssp, system_energy
 
-from plateimpact.fmufile import require_fmu
+from plateimpact.fmufile import output_dir, require_fmu
 
 # The plate: the default 14x5 Argyris plate (37.3 kg, first mode 5.95 Hz) with 2 % Rayleigh
 # (mass-proportional) damping at its first mode, internal step dt = 1e-4 s.
@@ -490,8 +490,7 @@ def main(argv=None):
     if args.goals:  # the line in fmpy's SSP master; the reference's own dt dependence, 20 kg
         rows += run_ssp_runs(paths, masses, steps, duration, gap, rows, log=lambda s: print(s, file=sys.stderr))
         refinement = run_refinement(paths, 20.0, LADDER, duration, gap, log=lambda s: print(s, file=sys.stderr))
-    out = Path(args.out)
-    out.mkdir(parents=True, exist_ok=True)
+    out = output_dir(args.out, args.quick)  # --quick: <out>/quick/, never a full run's files
     command = "demos/shaker.py " + " ".join(argv if argv is not None else sys.argv[1:])
     (out / "shaker.json").write_text(json.dumps(document(rows, refinement, command), indent=1, default=float))
     figure([r for r in rows if r.get("master") != "fmpy-ssp"], out / "shaker.png")  # libcosim's curves

@@ -29,6 +29,7 @@ from pathlib import Path
 
 from cosim import make_ssp, run_fmpy_ssp, run_libcosim, run_libcosim_ssp
 
+from plateimpact.fmufile import output_dir
 from plateimpact.scenes import DT, FIRST_IMPACT, errors, run_derivatives
 
 HERE = Path(__file__).resolve().parent
@@ -75,8 +76,7 @@ def main(argv=None):
     steps = [1e-3] if args.quick else [float(s) for s in args.steps.split(",")]
     stop = 0.07 if args.quick else args.stop_time
     rows, traces, ref = measure(args.sweep_fmu, args.fmu, steps, stop, args.masters.split(","))
-    out = Path(args.out)
-    out.mkdir(parents=True, exist_ok=True)
+    out = output_dir(args.out, args.quick)  # --quick: <out>/quick/, never a full run's files
     data = dict(stop=stop, first_impact=FIRST_IMPACT["smooth"], dt=DT, rows=rows)
     (out / "system_model.json").write_text(json.dumps(data, indent=1))
     print(f"wrote {out / 'system_model.json'} (docs/system-model.md: --out docs/figures, then tools/render_docs.py)")

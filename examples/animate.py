@@ -15,7 +15,7 @@ from pathlib import Path
 import fmpy
 import numpy as np
 
-from plateimpact.fmufile import require_fmu
+from plateimpact.fmufile import output_dir, require_fmu
 
 
 def simulate(fmu, start, stop, interval):
@@ -85,7 +85,8 @@ def main(argv=None):
     args.fmu = str(require_fmu(args.fmu, "animate"))
     if args.quick:
         args.stop, args.interval = 0.06, 5e-3
-    args.gif, args.png = (str(Path(args.out) / f"plate_impact.{ext}") for ext in ("gif", "png"))
+    out = output_dir(args.out, args.quick)  # --quick: <out>/quick/, never the README's figures
+    args.gif, args.png = (str(out / f"plate_impact.{ext}") for ext in ("gif", "png"))
 
     import matplotlib
 

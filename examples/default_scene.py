@@ -1,7 +1,7 @@
 """The default scene (the paper's §5.1 forced oscillation): base 0.09 sin(2π·10 t) m,
 obstacles at ±0.1 m, 14×5 Argyris cells, dt = 1e-5 s, 1 s simulated, communication step 1e-4 s
 with input derivatives. Writes <out>/default_scene.csv + .png (the 1 s scene the README describes;
---quick writes <out>/default_scene_quick.csv + .png, the figure marked as a smoke run) and prints
+--quick writes the same into <out>/quick/, the figure marked as a smoke run) and prints
 the wall time; with --bench, also the per-step time beside the time of one solve with A's factor,
 measured in the same run."""
 
@@ -12,10 +12,9 @@ import csv
 import json
 import subprocess
 import time
-from pathlib import Path
 
 from plateimpact import PlateImpactFMU, default_base
-from plateimpact.fmufile import require_fmu
+from plateimpact.fmufile import output_dir, require_fmu
 from plateimpact.scenes import AMPLITUDE, FREQUENCY
 
 
@@ -31,15 +30,14 @@ def main(argv=None):
     ap.add_argument(
         "--quick",
         action="store_true",
-        help="smoke run: --stop-time 0.1 (the first 0.1 s), written to default_scene_quick.csv/.png",
+        help="smoke run: --stop-time 0.1 (the first 0.1 s), written to <out>/quick/",
     )
     args = ap.parse_args(argv)
     args.fmu = str(require_fmu(args.fmu, "default_scene"))
     if args.quick:
         args.stop_time = 0.1
 
-    out = Path(args.out)
-    out.mkdir(parents=True, exist_ok=True)
+    out = output_dir(args.out, args.quick)  # --quick: <out>/quick/, never the 1 s scene's files
     n = round(args.stop_time / args.step)
     rows = []
     t0 = time.perf_counter()
@@ -57,7 +55,7 @@ def main(argv=None):
         f"({1e6 * wall / steps:.1f} us/step through fmpy, real-time factor {args.stop_time / wall:.2f})"
     )
 
-    name = "default_scene_quick" if args.quick else "default_scene"  # a smoke run keeps the 1 s scene's files
+    name = "default_scene"
     csv_path = out / f"{name}.csv"
     with csv_path.open("w", newline="") as f:
         w = csv.DictWriter(f, fieldnames=list(rows[0]))

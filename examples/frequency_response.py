@@ -28,7 +28,7 @@ import statistics
 import time
 from pathlib import Path
 
-from plateimpact.fmufile import require_fmu
+from plateimpact.fmufile import output_dir, require_fmu
 from plateimpact.response_map import CSV_COLUMNS, dask_map, grid
 
 
@@ -122,8 +122,7 @@ def main(argv=None):
     if args.quick:
         args.frequencies, args.gaps = [8.0, 30.0], [0.012, 0.05]
         args.stop_time, args.settle, args.nx, args.ny = 0.1, 0.05, 6, 2
-    out = Path(args.out)
-    out.mkdir(parents=True, exist_ok=True)
+    out = output_dir(args.out, args.quick)  # --quick: <out>/quick/, never a full run's files
     points = grid(args.frequencies, args.gaps)
     kw = dict(
         amplitude=args.amplitude,

@@ -34,7 +34,7 @@ from pathlib import Path
 import numpy as np
 
 from plateimpact import PlateImpactFMU, unzipped
-from plateimpact.fmufile import require_fmu
+from plateimpact.fmufile import output_dir, require_fmu
 from plateimpact.scenes import DT, FIRST_IMPACT, base, errors, run_derivatives
 
 MODES = {"hold": 1, "linear": 2, "quadratic": 3}
@@ -189,8 +189,7 @@ def main(argv=None):
     scenes = ["smooth"] if args.quick else args.scenes.split(",")
     rows = measure(args.fmu, steps, stop, scenes, args.ways.split(","))
     cost = None if args.no_speed or args.quick else speed(args.fmu)
-    out = Path(args.out)
-    out.mkdir(parents=True, exist_ok=True)
+    out = output_dir(args.out, args.quick)  # --quick: <out>/quick/, never a full run's files
     data = dict(stop=stop, dt=DT, first_impact=FIRST_IMPACT, rows=rows, cost=cost)
     (out / "input_accuracy.json").write_text(json.dumps(data, indent=1))
     print(

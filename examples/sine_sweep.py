@@ -26,7 +26,7 @@ import csv
 import time
 from pathlib import Path
 
-from plateimpact.fmufile import require_fmu
+from plateimpact.fmufile import output_dir, require_fmu
 from plateimpact.scenes import AMPLITUDE
 from plateimpact.sweep import CSV_COLUMNS, SineSweep, rayleigh_for_band, run_sweep
 
@@ -135,8 +135,7 @@ def main(argv=None):
     else:
         params.update(obstacle_lower_enabled=False, obstacle_upper_enabled=False)
 
-    out = Path(args.out)
-    out.mkdir(parents=True, exist_ok=True)
+    out = output_dir(args.out, args.quick)  # --quick: <out>/quick/, never a full run's files
     n = round(stop / args.step)
     bar = None
     if not args.no_progress and n * args.step / args.dt >= 1e5:  # long runs only

@@ -8,7 +8,7 @@ displacement amplitude over the base's — at the accelerometer's point (--probe
 Writes <out>/stress_sweep.csv (every communication point: time, frequency, base, root_stress,
 root_stress_peak, probe_1, probe_1_acceleration), <out>/stress_envelope.csv (per frequency bin:
 the bin's centre, the largest root_stress, root_stress_peak at its end, the transmissibility)
-and <out>/stress_sweep.png; --quick writes the same as stress_sweep_quick*.csv/.png, the figure
+and <out>/stress_sweep.png; --quick writes the same into <out>/quick/, the figure
 marked as a smoke run. A parameter the FMU refuses (a probe off the plate, ...) ends the run with
 the FMU's message and exit status 2.
 
@@ -26,7 +26,7 @@ import numpy as np
 
 from plateimpact import PlateImpactFMU
 from plateimpact.driver import FMUError
-from plateimpact.fmufile import require_fmu
+from plateimpact.fmufile import output_dir, require_fmu
 from plateimpact.sweep import SineSweep, rayleigh_for_band
 
 SERIES = ("time", "frequency", "base", "root_stress", "root_stress_peak", "probe_1", "probe_1_acceleration")
@@ -114,7 +114,7 @@ def main(argv=None):
     ap = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
     ap.add_argument("--fmu", default="build/PlateImpact.fmu")
     ap.add_argument("--out", default="out", help="directory for the CSV files and the figure")
-    ap.add_argument("--quick", action="store_true", help="a 0.05 s smoke run, written to stress_sweep_quick*.csv/.png")
+    ap.add_argument("--quick", action="store_true", help="a 0.05 s smoke run, written to <out>/quick/")
     ap.add_argument("--amplitude", type=float, default=0.005, help="base amplitude, m")
     ap.add_argument("--f-start", type=float, default=3.0)
     ap.add_argument("--f-end", type=float, default=10.0)
@@ -134,11 +134,9 @@ def main(argv=None):
         print(f"stress_sweep.py: the FMU refused the run: {'; '.join(e.messages) or e}", file=sys.stderr)
         return 2
     env = envelope(rows, 5 if args.quick else args.bins)
-    out = Path(args.out)
-    out.mkdir(parents=True, exist_ok=True)
-    suffix = "_quick" if args.quick else ""  # a smoke run keeps the full sweep's files
+    out = output_dir(args.out, args.quick)  # --quick: <out>/quick/, never the full sweep's files
     series, envelope_csv, png = (
-        out / f"stress_{n}{suffix}.{e}" for n, e in (("sweep", "csv"), ("envelope", "csv"), ("sweep", "png"))
+        out / f"stress_{n}.{e}" for n, e in (("sweep", "csv"), ("envelope", "csv"), ("sweep", "png"))
     )
     write_csv(series, SERIES, rows)
     write_csv(envelope_csv, ENVELOPE, env)

@@ -29,10 +29,13 @@ def fmu(fmu_path):
 
 
 def run_example(script, fmu, out, *extra):
+    """Runs `script --quick` into `out`; returns the folder it wrote to, `out/quick/` (the README's one
+    rule: a smoke run never writes beside a full run's files), having checked it wrote nothing else."""
     cmd = [sys.executable, str(EXAMPLES / script), "--quick", "--fmu", fmu, "--out", str(out), *extra]
     r = subprocess.run(cmd, capture_output=True, text=True, timeout=240, cwd=REPO)
     assert r.returncode == 0, f"{script} failed:\n{r.stdout[-2000:]}\n{r.stderr[-4000:]}"
-    return r
+    assert sorted(p.name for p in Path(out).iterdir()) == ["quick"], f"{script} --quick wrote beside a full run's files"
+    return Path(out) / "quick"
 
 
 def read_csv(path, columns):
@@ -53,16 +56,16 @@ def assert_finite(rows, columns):
 
 # -- each example runs in quick mode and writes its outputs -------------------------------------
 def test_sine_sweep_quick(fmu, tmp_path):
-    run_example("sine_sweep.py", fmu, tmp_path)
+    q = run_example("sine_sweep.py", fmu, tmp_path)
     cols = CSV_COLUMNS  # the columns plateimpact.sweep documents
-    rows = read_csv(tmp_path / "sine_sweep.csv", cols)
+    rows = read_csv(q / "sine_sweep.csv", cols)
     assert_finite(rows, cols)
     assert len(rows) == 51  # 0.05 s at 1 ms, plus t = 0
-    assert (tmp_path / "sine_sweep.png").stat().st_size > 10_000
+    assert (q / "sine_sweep.png").stat().st_size > 10_000
 
 
 def test_paper_scenes_quick(fmu, tmp_path):
-    run_example("paper_scenes.py", fmu, tmp_path)
+    q = run_example("paper_scenes.py", fmu, tmp_path)
     for png in (
         "paper_fig05-07_forced",
         "paper_fig08_gap",
@@ -72,8 +75,8 @@ def test_paper_scenes_quick(fmu, tmp_path):
         "paper_fig17-18_energy",
         "paper_dt_convergence",
     ):
-        assert (tmp_path / f"{png}.png").stat().st_size > 10_000, png
-    runs = read_csv(tmp_path / "paper_scenes.csv", None)  # the script's own columns
+        assert (q / f"{png}.png").stat().st_size > 10_000, png
+    runs = read_csv(q / "paper_scenes.csv", None)  # the script's own columns
     RUN_COLUMNS = list(runs[0])
     assert len(runs) == 2 * (5 + 2 + 6 + 5)
     numeric = [
@@ -84,20 +87,24 @@ def test_paper_scenes_quick(fmu, tmp_path):
     assert_finite(runs, numeric)
     for r in runs:  # the FMU's energy ledger holds in every scene
         assert float(r["ledger_residual"]) <= 1e-9 * max(1.0, float(r["energy_input"]), float(r["energy_initial"]))
-    pairs = read_csv(tmp_path / "paper_scenes_elements.csv", None)
+    # issue 56: --quick stopped the free vibration (and the forced one) before the first impact
+    for r in runs:
+        if r["scene"] in ("forced", "free"):
+            assert int(r["contact_episodes"]) > 0, (r["scene"], r["element"], r["dt"])
+    pairs = read_csv(q / "paper_scenes_elements.csv", None)
     assert_finite(pairs, [c for c in pairs[0] if c != "scene"])
 
 
 def test_frequency_response_quick(fmu, tmp_path):
-    run_example("frequency_response.py", fmu, tmp_path, "--no-progress")
+    q = run_example("frequency_response.py", fmu, tmp_path, "--no-progress")
     cols = RESULT_COLUMNS + ("wall_s", "setup_s")
-    rows = read_csv(tmp_path / "frequency_response.csv", cols + ("plate_shared",))
+    rows = read_csv(q / "frequency_response.csv", cols + ("plate_shared",))
     assert len(rows) == 4
     assert_finite(rows, cols)
     # 4 points on 2 worker processes: each process builds the plate once, the other points share it
     if os.environ.get("PLATEIMPACT_CACHE_MB") != "0":
         assert sum(r["plate_shared"] == "True" for r in rows) >= 2, rows
-    assert (tmp_path / "frequency_response.png").stat().st_size > 10_000
+    assert (q / "frequency_response.png").stat().st_size > 10_000
 
 
 # -- the sweep controller -------------------------------------------------------------------------
@@ -248,20 +255,17 @@ def smoke_mark(png):
 
 
 def test_stress_sweep_quick(fmu, tmp_path):
-    run_example("stress_sweep.py", fmu, tmp_path)
+    q = run_example("stress_sweep.py", fmu, tmp_path)
     series = ("time", "frequency", "base", "root_stress", "root_stress_peak", "probe_1", "probe_1_acceleration")
-    assert not (tmp_path / "stress_sweep.csv").exists()  # a smoke run keeps the full sweep's files
-    rows = read_csv(tmp_path / "stress_sweep_quick.csv", series)
+    rows = read_csv(q / "stress_sweep.csv", series)
     assert_finite(rows, series)
     assert len(rows) == 50  # 0.05 s at 1 ms
     peaks = [float(r["root_stress_peak"]) for r in rows]
     assert peaks == sorted(peaks) and all(float(r["root_stress"]) <= p for r, p in zip(rows, peaks))
-    env = read_csv(
-        tmp_path / "stress_envelope_quick.csv", ("frequency", "root_stress_max", "root_stress_peak", "transmissibility")
-    )
+    env = read_csv(q / "stress_envelope.csv", ("frequency", "root_stress_max", "root_stress_peak", "transmissibility"))
     assert_finite(env, ("frequency", "root_stress_max", "root_stress_peak", "transmissibility"))
-    assert (tmp_path / "stress_sweep_quick.png").stat().st_size > 10_000
-    assert smoke_mark(tmp_path / "stress_sweep_quick.png").startswith("smoke run (--quick)")
+    assert (q / "stress_sweep.png").stat().st_size > 10_000
+    assert smoke_mark(q / "stress_sweep.png").startswith("smoke run (--quick)")
 
 
 def test_stress_sweep_probe_off_the_plate_is_the_fmus_message(fmu, tmp_path):
@@ -278,12 +282,11 @@ def test_stress_sweep_probe_off_the_plate_is_the_fmus_message(fmu, tmp_path):
 
 def test_default_scene_quick_keeps_the_full_scene_and_says_smoke(fmu, tmp_path):
     """Issue 46: a quick default_scene wrote out/default_scene.csv, the README's 1 s scene, with an
-    unmarked figure; it writes default_scene_quick.* now, the figure marked as a smoke run."""
-    run_example("default_scene.py", fmu, tmp_path)
-    assert not (tmp_path / "default_scene.csv").exists() and not (tmp_path / "default_scene.png").exists()
-    rows = read_csv(tmp_path / "default_scene_quick.csv", None)
+    unmarked figure; it writes into <out>/quick/ now (issue 56: every example), the figure marked as a smoke run."""
+    q = run_example("default_scene.py", fmu, tmp_path)
+    rows = read_csv(q / "default_scene.csv", None)
     assert float(rows[-1]["time"]) == pytest.approx(0.1)
-    assert smoke_mark(tmp_path / "default_scene_quick.png") == "smoke run (--quick): the first 0.1 s only"
+    assert smoke_mark(q / "default_scene.png") == "smoke run (--quick): the first 0.1 s only"
 
 
 # -- every example takes the options the README promises ----------------------------------------

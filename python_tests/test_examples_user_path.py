@@ -157,3 +157,16 @@ def test_paper_scene_titles_count_the_mesh_they_ran():
     spec.loader.exec_module(module)
     assert module.mesh_text({"argyris": (7, 2), "fvs": (10, 3)}) == "Argyris 28 (7×2), FVS 30 (10×3) elements"
     assert module.mesh_text(module.MESHES) == "Argyris 140 (14×5), FVS 140 (20×7) elements"
+
+
+@pytest.mark.parametrize("script", [*SCRIPTS, "examples/stress_sweep.py", "demos/system_model.py"])
+def test_quick_writes_into_its_own_folder(script):
+    """Issue 56: `--quick` runs of five examples overwrote the full runs' files. One rule for every
+    example (README, "Examples"): a smoke run writes into <out>/quick/ — each main takes its folder
+    from plateimpact.fmufile.output_dir(args.out, args.quick)."""
+    calls = [
+        ast.unparse(n)
+        for n in ast.walk(main_function(script))
+        if isinstance(n, ast.Call) and ast.unparse(n.func) == "output_dir"
+    ]
+    assert calls == ["output_dir(args.out, args.quick)"], f"{script}: {calls or 'no output_dir call'}"

@@ -258,6 +258,20 @@ def test_vertex_displacement_array(fmu3, tmp_path):
     s.freeInstance()
 
 
+def test_vertex_stress_read_while_off_is_said(fmu3, tmp_path):
+    """Issue 56: vertex_stress reads 0 unless stress_outputs = true; the first read says so."""
+    md, s, messages = slave(fmu3, tmp_path)
+    vr = {v.name: v.valueReference for v in md.modelVariables}
+    s.enterInitializationMode(startTime=0.0)
+    s.exitInitializationMode()
+    s.doStep(0.0, 1e-3)
+    assert s.getFloat64([vr["vertex_stress"]], nValues=90) == [0.0] * 90
+    s.getFloat64([vr["vertex_stress"]], nValues=90)
+    said = [m for m in messages if "stress_outputs = false" in m]
+    s.freeInstance()
+    assert len(said) == 1 and "vertex_stress was read while stress_outputs = false" in said[0], messages
+
+
 def test_vertex_output_switches_the_array_off(fmu3, tmp_path):
     """vertex_output = 0 (the array's first extent) empties vertex_displacement: it needs zero
     values and reads as none, beside the scalars; the run itself is the same bits as with the

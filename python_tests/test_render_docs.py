@@ -4,6 +4,7 @@ number on a page is one the study measured, and editing either without the other
 value the JSON lacks is an error, never an empty cell or a number the renderer makes up."""
 
 import json
+import re
 import shutil
 from pathlib import Path
 
@@ -45,3 +46,39 @@ def test_a_new_law_brings_its_rows(tmp_path):
     (tmp_path / "impact_speed_error.json").write_text(json.dumps(laws))
     text = render_docs.render("performance.md", tmp_path)
     assert text.count("new scheme") == 3
+
+
+# -- the README quotes the studies: each figure marked with its expression (tools/render_docs.py) ---
+README = DOCS.parent / "README.md"
+MARKED = render_docs.FIGURE
+
+
+def test_readme_figures_are_their_json():
+    """Issue 56: the README said the conserving law's worst step "is about 3× its median" while the
+    studies' tables said 88× and 6.4×. Each speed or error figure of the README is now its expression
+    over the JSON of one study's run; editing either alone fails here."""
+    text = README.read_text()
+    assert len(MARKED.findall(text)) >= 9, "the README's marked figures are gone (the check would be empty)"
+    assert render_docs.fill_figures(text) == text, "README.md's figures are not their JSON: run tools/render_docs.py"
+
+
+def test_a_changed_measurement_changes_the_readme(tmp_path):
+    data = json.loads((DOCS / "step_latency.json").read_text())
+    for r in data["rows"]:
+        r["cpu_max_us"] = 123456.0
+    (tmp_path / "step_latency.json").write_text(json.dumps(data))
+    text = README.read_text()
+    filled = render_docs.fill_figures(text, tmp_path)
+    assert filled != text and "-->123456<!--/-->" in filled
+
+
+def test_the_law_table_states_no_unmarked_figure():
+    """In "Which impact law to pick" every cost and error a law achieves is a marked figure (µs, ×,
+    m in e-notation): nothing copied by hand from a study's page."""
+    text = README.read_text()
+    table = text[text.index("## Which impact law to pick") :]
+    table = table[: table.index("\n\n", table.index("|---"))]
+    bare = MARKED.sub("", table)
+    bare = "\n".join(line.split("|", 2)[-1] for line in bare.splitlines())  # "you need" asks, it measures nothing
+    copied = re.findall(r"\d[\d.]*(?:e-?\d+)?\s*(?:µs|×(?!\s*\d))|\d(?:\.\d+)?e-\d+ m", bare)
+    assert not copied, copied

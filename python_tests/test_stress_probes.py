@@ -207,6 +207,7 @@ def test_flow_settings_under_another_scheme_are_warned_about(fmu_path, parameter
     without a word (a tolerance there was warned about already)."""
     said = warnings_of(fmu_path, **parameters)
     assert any(named in m and "time_scheme = flow" in m and "ignores it" in m for m in said), said
-    assert (
-        warnings_of(fmu_path, mass=2, time_scheme=3, **{k: v for k, v in parameters.items() if "substeps" in k}) == []
-    )
+    flow = {k: v for k, v in parameters.items() if "substeps" in k}
+    if "max_contact_substeps" in flow:  # the cap acts on a tolerance's sub-steps only (issue 56)
+        flow["tolerance"] = 1e-5
+    assert warnings_of(fmu_path, mass=2, time_scheme=3, **flow) == []

@@ -9,6 +9,12 @@ JSON lacks is an error (StrictUndefined), not an empty cell.
     python tools/render_docs.py --check              # exit 1 if a page is not its template + data
     python tools/render_docs.py --figures            # also redraw the figures drawn from the JSON
     python tools/render_docs.py --data /tmp/perf --out /tmp/perf performance.md   # a study's --out
+
+Hand-written pages (FIGURE_PAGES: the README) quote the studies too: each number that describes speed
+or error is marked `<!--= EXPRESSION -->number<!--/-->`, the expression over the JSON files their
+`<!-- figures: name=file ... -->` line names (paths from the repository root). Rendering rewrites the
+number from the expression, --check fails where one differs, so a figure is stated in one place (the
+JSON of one study's run) and quoted, never copied.
 """
 
 from __future__ import annotations
@@ -25,6 +31,10 @@ import jinja2
 
 DOCS = Path(__file__).resolve().parent.parent / "docs"
 DATA_LINE = re.compile(r"\{#\s*data:(.*?)#\}")
+REPO = DOCS.parent
+FIGURE_PAGES = ["README.md"]  # hand-written pages with marked figures (from the repository root)
+FIGURES_LINE = re.compile(r"<!-- figures:(.*?)-->")
+FIGURE = re.compile(r"<!--=\s*(.*?)\s*-->(.*?)<!--/-->", re.S)
 
 
 def g(x, digits=3):
@@ -50,6 +60,14 @@ def cell(text):
     return str(text).replace("\\|", "|").replace("|", "\\|")
 
 
+def row(rows, **match):
+    """The first of `rows` (dicts) whose keys have the values given: `row(laws.costs, law="flow")`."""
+    found = next((r for r in rows if all(r.get(k) == v for k, v in match.items())), None)
+    if found is None:
+        raise jinja2.UndefinedError(f"no row with {match}")
+    return found
+
+
 def environment(templates):
     env = jinja2.Environment(
         loader=jinja2.FileSystemLoader(str(templates)),
@@ -59,7 +77,8 @@ def environment(templates):
         lstrip_blocks=True,
     )
     env.filters.update(g=g, f=f, cell=cell, e1=lambda x: "—" if x is None else f(x, ".1e").replace("e-0", "e-"))
-    env.globals.update(isfinite=lambda x: x is not None and math.isfinite(x))
+    # the filters as functions too: a README table's figure cannot hold a "|" (it would split the cell)
+    env.globals.update(isfinite=lambda x: x is not None and math.isfinite(x), row=row, g=g, f=f)
     env.tests.update(starting=lambda text, prefix: str(text).startswith(prefix))
     return env
 
@@ -92,6 +111,30 @@ def render(page, data_dir=DOCS, templates=DOCS / "templates"):
     names = ", ".join(data_files(source).values())
     head = f"<!-- written by tools/render_docs.py from docs/templates/{page} and {names or 'no data'}; edit those -->\n"
     return head + text.lstrip("\n")
+
+
+def fill_figures(text, data_dir=None):
+    """A hand-written page with each marked figure recomputed from its expression; data_dir: where
+    the JSON files are instead of the paths the figures line names (a study's --out)."""
+    line = FIGURES_LINE.search(text)
+    if not line:
+        return text
+    files = dict(item.split("=", 1) for item in line.group(1).split())
+    data = {
+        name: load(
+            Path(data_dir) / Path(file).name
+            if data_dir and (Path(data_dir) / Path(file).name).exists()
+            else REPO / file
+        )
+        for name, file in files.items()
+    }
+    env = environment(DOCS / "templates")
+
+    def figure(m):
+        value = env.from_string("{{ " + m.group(1) + " }}").render(**data)
+        return f"<!--= {m.group(1)} -->{value}<!--/-->"
+
+    return FIGURE.sub(figure, text)
 
 
 def draw_figures(page, data_dir, out):
@@ -127,6 +170,15 @@ def main(argv=None):
         print(f"render_docs: wrote {target}")
         if args.figures:
             draw_figures(page, args.data, args.out)
+    for page in FIGURE_PAGES if not args.pages and args.out == DOCS else []:
+        text = (REPO / page).read_text()
+        filled = fill_figures(text, None if args.data == DOCS else args.data)
+        if args.check:
+            if filled != text:
+                stale.append(page)
+        elif filled != text:
+            (REPO / page).write_text(filled)
+            print(f"render_docs: rewrote the figures of {page}")
     if stale:
         print(f"render_docs: not their template + data: {', '.join(stale)} (run tools/render_docs.py)")
         return 1

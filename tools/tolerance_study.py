@@ -18,8 +18,8 @@ The horizon: the default scene over 0.3 s, the time the FMU says the tolerance i
 docs/predictability.json's t* of the dt ladder.
 Cost: process CPU per simulated second over 0.3 s, pure stepping, best of three interleaved runs,
 through plate_bench (§5.2 and the default scene, full and modes = 20) and through fmpy (the FMU, a
-1e-3 s communication step, inputs with derivatives, the stepping loop's process CPU); the worst
-communication step through fmpy (h = 1e-4 s, 10^4 steps: median, p99, max).
+1e-3 s communication step, inputs with derivatives, the stepping loop's process CPU). The worst
+communication step of every law, a tolerance's included: tools/step_latency.py.
 """
 
 from __future__ import annotations
@@ -29,17 +29,13 @@ import csv
 import json
 import math
 import subprocess
-import sys
 import tempfile
 import time
 from pathlib import Path
 
 import numpy as np
 
-sys.path.insert(0, str(Path(__file__).resolve().parent))
-from step_latency import latencies  # noqa: E402
-
-from plateimpact import PlateImpactFMU  # noqa: E402
+from plateimpact import PlateImpactFMU
 
 DT = 1e-5
 LAW = ["mass=singular_p0"]
@@ -168,6 +164,9 @@ def main() -> None:
             m = min(len(c), len(ref))
             entry["flow 16"] = {"error_m": float(np.abs(c[:m] - ref[:m]).max())}
             entry["flow 16"]["contact_solves"] = r16["qp_iterations_total"]
+            _, _, c, _ = run(repo, scene, ["scheme=conserving"], DT, window, tmp, "conserving")
+            m = min(len(c), len(ref))
+            entry["conserving"] = {"error_m": float(np.abs(c[:m] - ref[:m]).max())}
             for tol in tolerances:
                 r, t, c, e = run(repo, scene, ["scheme=flow", f"tolerance={tol:g}"], DT, window, tmp, "tol")
                 row = promise(t, c, e, ref, tol, spread)
@@ -216,17 +215,6 @@ def main() -> None:
                 for k, v in best.items()
             }
             print("fmpy", scene, report["cost_fmpy"][scene], flush=True)
-        lat = {}
-        for scene, params in FMU_SCENES.items():
-            for key in ["conserving", "flow 16", "flow tol=1e-05"]:
-                us = latencies(fmu, FMU_LAWS[key], params, 1.0)
-                lat[f"{scene}: {key}"] = {
-                    "median_us": float(np.median(us)),
-                    "p99_us": float(np.percentile(us, 99)),
-                    "max_us": float(us.max()),
-                }
-                print(scene, key, lat[f"{scene}: {key}"], flush=True)
-        report["latency_fmpy_h1e-4"] = lat
     report["run"] = {"wall_s": time.time() - started, "cpu_s": time.process_time() - cpu0}
     args.json.write_text(json.dumps(report, indent=1, ensure_ascii=False) + "\n")
     print(f"wrote {args.json}")

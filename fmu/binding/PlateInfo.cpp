@@ -29,8 +29,10 @@ whose impacts keep their energy as dt &rarr; 0, a restitution coefficient and Ra
 base_displacement = 0.09 sin(2&pi; 10 t) m it hits the obstacles from t &asymp; 0.05 s on.</p>
 <h2>Using it</h2>
 <ul>
-<li>Any communication step: the scheme keeps its fixed grid of dt and interpolates the outputs between grid
-points; steps that are whole multiples of dt (relative tolerance 1e-9) run exactly on the grid.</li>
+<li>Any communication step up to a tenth of the plate's first period (T1/10: 0.0163 s for the default plate): the
+scheme keeps its fixed grid of dt and interpolates the outputs between grid points; steps that are whole multiples
+of dt (relative tolerance 1e-9) run exactly on the grid. A longer step over which an input changed is warned of
+once: its samples cannot carry what the input does at the plate's frequencies.</li>
 <li>Inputs: {fmi2:give their first and second derivatives (fmiXSetRealInputDerivatives) when you can; otherwise
 }the FMU {fmi2:extrapolates}{fmi3:holds or extrapolates} the communicated values (base_input_mode, load_input_mode).</li>
 <li>Switches (element, mass, base_drive, base_input_mode, load_input_mode) are Integers: the description of each

@@ -12,6 +12,7 @@
 
 #include "core/Model.h"
 #include "binding/BaseDrives.h"
+#include "binding/PlateAdvice.h"
 #include "binding/PlateArrays.h"
 #include "binding/PlateWarnings.h"
 #include "PlateImpactGuid.h"  // generated at build time: FMU_GUID
@@ -26,7 +27,10 @@ public:
     const fmu::ModelInfo& info() const override { return plateInfo(); }
     const std::vector<fmu::Variable>& variables() const override { return plateVariables(); }
 
-    double get(const fmu::Variable& v) const override { return getValue(values_, v); }
+    double get(const fmu::Variable& v) const override {
+        adviseOnRead(v.vr, v.name);
+        return getValue(values_, v);
+    }
     void set(const fmu::Variable& v, double x) override {
         setValue(values_, v, x);
         // Set while the simulation runs (not the start value of initialization mode): the drive is
@@ -46,6 +50,7 @@ public:
     const std::vector<fmu::ArrayVariable>& arrayVariables() const override { return plateArrays(); }
     const std::vector<fmu::Terminal>& terminals() const override { return plateTerminals(); }
     void getArray(const fmu::ArrayVariable& a, double* out, std::size_t n) const override {
+        adviseOnRead(a.vr, a.name);
         getPlateArray(values_, a, out, n);
     }
     void setArray(const fmu::ArrayVariable& a, const double* values, std::size_t n) override {
@@ -130,7 +135,8 @@ public:
         const plate::PlateParameters& p = values_.parameters;
         trace(format("simulation built (nx = %g, ny = %g, dt = %g s)", p.nx, p.ny, p.dt));
         for (const std::string& message : buildWarnings(values_, fmiVersion() == 3)) warn(message);
-        driveSet_ = interpolationWarned_ = errorWarned_ = cappedWarned_ = false;
+        driveSet_ = interpolationWarned_ = errorWarned_ = cappedWarned_ = stressReadWarned_ = longStepWarned_ = false;
+        say(capAdvice(p));
         otherMotionSet_ = nullptr;
     }
     void terminate() override {
@@ -183,6 +189,7 @@ public:
                        "values take h a whole multiple of dt, or a smaller dt",
                        h, values_.parameters.dt));
         }
+        adviseOnStep(h, t);
         for (InputPort* port : ports()) {
             port->beginStep(now);
             port->reach = plan.offset + double(plan.steps) * values_.parameters.dt;  // the last grid point read
@@ -306,6 +313,23 @@ private:
     bool carried() const { return mode().carried; }
     InputPort& drivePort() { return values_.*mode().port; }  // the input base_drive chooses
     const char* driveName() const { return mode().input; }
+    // The checks of PlateAdvice.h, each said once per build.
+    void say(const std::string& advice) const {
+        if (!advice.empty()) warn(advice);
+    }
+    void adviseOnRead(fmu::ValueReference vr, const char* name) const {
+        if (stressReadWarned_ || !isStressOutput(vr)) return;
+        stressReadWarned_ = !values_.parameters.stressOutputs;
+        say(stressReadAdvice(name, values_.parameters));
+    }
+    void adviseOnStep(double h, double t) {
+        if (longStepWarned_ || h <= longestCommunicationStep(values_.parameters)) return;
+        InputPort& drive = drivePort();
+        const char* input = inputChanged(drive) ? driveName() : inputChanged(values_.load) ? "load" : nullptr;
+        if (!input) return;
+        longStepWarned_ = true;
+        say(longStepAdvice(values_.parameters, h, t, input));
+    }
     bool isMotionInput(fmu::ValueReference vr) {
         for (int k = 0; k < kDriveModeCount; ++k)
             if (!driveModes()[k].carried && &(values_.*driveModes()[k].port) == values_.inputPort(vr)) return true;
@@ -424,6 +448,8 @@ private:
     bool interpolationWarned_ = false;  // the warning of steps shorter than two grid steps, once
     bool errorWarned_ = false;  // the warning of the error estimate past the tolerance, once
     bool cappedWarned_ = false;  // the warning of a contact step the sub-step cap bounded, once
+    mutable bool stressReadWarned_ = false;  // a stress output read while stress_outputs = false, once
+    bool longStepWarned_ = false;  // a communication step too long for the plate and the inputs, once
     bool stopAtContactChange_ = false;  // inside doStepUntilEvent
     bool endedAtEvent_ = false;  // the last step of doStepUntilEvent ended at a contact change
     bool returnRequested_ = false;  // ... or where the master's intermediate update asked

@@ -65,6 +65,8 @@ def _explained(method):
     return run
 
 
+# The outputs that read 0 unless the parameter stress_outputs is true.
+STRESS_OUTPUTS = ("root_stress", "root_stress_peak", "max_stress", "max_stress_x", "max_stress_y")
 ITEMS = re.compile(r"\((\d+ = \w+(?:, \d+ = \w+)*)\)$")
 
 
@@ -157,6 +159,7 @@ class PlateImpactFMU:
         self.instantiated = self._initialized = False
         # every output the model description declares, in its order
         self._out_refs = [(v.name, v) for v in self.md.modelVariables if v.causality == "output"]
+        self._stress_on = False  # stress_outputs: off, the stress outputs read 0 and are not read (below)
         if instantiate:
             self.instantiate(logging_on=logger is not None)
         if instantiate and initialize:
@@ -206,6 +209,8 @@ class PlateImpactFMU:
     @_explained
     def set(self, name, value):
         v = self.vars[name]
+        if name == "stress_outputs":
+            self._stress_on = bool(value)
         if v.type == "Real":
             self.fmu.setReal([v.valueReference], [float(value)])
         elif v.type == "Integer":
@@ -222,10 +227,14 @@ class PlateImpactFMU:
 
     @_explained
     def outputs(self):
-        real = [(n, v) for n, v in self._out_refs if v.type == "Real"]
+        # The stress outputs read 0 while stress_outputs is off, and the FMU warns of a read then (a
+        # zero it never computed): they are not read, their 0 is given here.
+        off = () if self._stress_on else STRESS_OUTPUTS
+        real = [(n, v) for n, v in self._out_refs if v.type == "Real" and n not in off]
         ints = [(n, v) for n, v in self._out_refs if v.type == "Integer"]
-        out = dict(zip((n for n, _ in real), self.fmu.getReal([v.valueReference for _, v in real])))
-        out.update(zip((n for n, _ in ints), self.fmu.getInteger([v.valueReference for _, v in ints])))
+        read = dict(zip((n for n, _ in real), self.fmu.getReal([v.valueReference for _, v in real])))
+        read.update(zip((n for n, _ in ints), self.fmu.getInteger([v.valueReference for _, v in ints])))
+        out = {n: read.get(n, 0.0) for n, _ in self._out_refs if n in read or n in off}
         out["time"] = self.time
         return out
 

@@ -44,3 +44,11 @@ def require_fmu(path, prog: str) -> Path:
     except FMUFileError as e:
         print(f"{prog}: {e}", file=sys.stderr)
         raise SystemExit(2) from None
+
+
+def output_dir(out, quick: bool) -> Path:
+    """Where an example writes: `--out`, or for a smoke run (`--quick`) its `quick/` subfolder, so that
+    a smoke run never overwrites a full run's files (one rule for every example: README, "Examples")."""
+    folder = Path(out) / "quick" if quick else Path(out)
+    folder.mkdir(parents=True, exist_ok=True)
+    return folder

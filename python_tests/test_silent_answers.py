@@ -1,0 +1,112 @@
+"""No silent wrong answer (issue 56): a setting that cannot act, an output read while it is not
+computed, and a communication step too long for the plate and its inputs are each said once, naming
+the setting and what to do.
+
+- max_contact_substeps under time_scheme = flow with tolerance = 0: the cap bounds the step doubling
+  only, so corner_1 is the same bits with or without it, and the FMU says so at initialization.
+- root_stress, max_stress read while stress_outputs = false: 0, and the first read is warned (once,
+  whichever is read first; FMI 3.0's vertex_stress: test_fmi3.py).
+- A communication step longer than T1/10 (T1 the plate's first period) over which the base moved:
+  the README's 10 Hz sine at h = 1 s is sampled at its zeros (corner_1 stays at 1e-19 m), a 0.4 Hz
+  sine at h = 1 s pumps energy into the plate that the same input at h = 1e-3 s does not. The FMU
+  warns at the first such step with the criterion of docs/input-accuracy.md, and not for a step
+  within it, nor for a long step over which no input changed (§5.2's free vibration).
+"""
+
+import re
+from pathlib import Path
+
+import numpy as np
+from long_steps import simulate
+from plate_fmu import PlateRun
+
+REPO = Path(__file__).resolve().parent.parent
+H = 1e-4
+FLOW = dict(mass="singular_p0", time_scheme="flow")
+
+
+def warnings(run):
+    return [m for s, _, m in run.log if s == 1]
+
+
+def read(run, name):
+    """One Real output read by the master (fmi2GetReal), as any importer reads it."""
+    return run.fmu.getReal([run.vars[name].valueReference])[0]
+
+
+# -- a cap that cannot act ------------------------------------------------------------------------
+def test_a_cap_without_tolerance_changes_nothing_and_is_said(fmu_path):
+    corners = {}
+    for cap in (None, 4):
+        extra = {} if cap is None else {"max_contact_substeps": cap}
+        with PlateRun(fmu_path, **FLOW, **extra) as run:
+            corners[cap] = np.array([run.step(H, base=0.0)["corner_1"] for _ in range(50)])
+            said = [m for m in warnings(run) if "max_contact_substeps" in m]
+        if cap is None:
+            assert said == [], said
+        else:
+            assert len(said) == 1, warnings(run)
+            assert "max_contact_substeps = 4" in said[0] and "tolerance = 0" in said[0], said
+            assert "set contact_substeps" in said[0], said  # what to do
+    assert np.array_equal(corners[None], corners[4])  # the cap did not act: the same bits
+    with PlateRun(fmu_path, **FLOW, tolerance=1e-5, max_contact_substeps=4) as run:
+        assert not [m for m in warnings(run) if "ignores the cap" in m], warnings(run)  # with a tolerance it acts
+
+
+# -- a stress output read while off ---------------------------------------------------------------
+def test_a_stress_output_read_while_off_is_said_once(fmu_path):
+    with PlateRun(fmu_path) as run:
+        run.step(H)
+        assert warnings(run) == []  # the driver does not read what is off
+        for name in ("max_stress", "root_stress", "max_stress"):
+            assert read(run, name) == 0.0
+        said = [m for m in warnings(run) if "stress_outputs" in m]
+        assert len(said) == 1, warnings(run)
+        assert said[0].startswith("fmi2GetReal: max_stress was read while stress_outputs = false"), said
+        assert "reads 0, not computed" in said[0] and "set the parameter stress_outputs = true" in said[0]
+    with PlateRun(fmu_path, stress_outputs=True, initial_load=8600.0) as run:  # bent: stressed
+        run.step(H)
+        assert read(run, "max_stress") > 0.0 and warnings(run) == []
+
+
+# -- a communication step too long for the plate and the inputs -----------------------------------
+def test_the_readme_sine_at_one_second_steps_is_warned(fmu_path):
+    result, said = simulate(fmu_path, 2.0, 1.0, 10.0, 0.09)
+    assert np.abs(result["corner_1"]).max() < 1e-12  # sampled at its zeros: the plate never moves
+    assert len(said) == 1, said
+    assert "communicationStepSize h = 1 s at t = 1" in said[0], said
+    assert "base_displacement changed over it" in said[0] and "take h <= 0.0163 s" in said[0], said
+
+
+def test_a_slow_sine_at_long_steps_is_wrong_and_warned_and_within_the_criterion_is_not(fmu_path):
+    """0.4 Hz, 0.05 m: quasi-static for the 6.1 Hz plate. At h = 1 s the energy at the end is
+    orders of magnitude above the h = 1e-3 s run's (the reconstruction kicks the plate at every
+    communication point); at h = T1/10 it is within 30 % of it and nothing is said."""
+    stop = 10.0
+    fine, said_fine = simulate(fmu_path, stop, 1e-3, 0.4, 0.05)
+    at_limit, said_limit = simulate(fmu_path, stop, 0.016, 0.4, 0.05)
+    coarse, said_coarse = simulate(fmu_path, stop, 1.0, 0.4, 0.05)
+    e_fine, e_limit, e_coarse = (r["energy"][-1] for r in (fine, at_limit, coarse))
+    assert said_fine == [] and said_limit == [], (said_fine, said_limit)
+    assert len(said_coarse) == 1 and "at t = 1 " in said_coarse[0], said_coarse
+    assert e_coarse > 100 * e_fine, (e_coarse, e_fine)
+    assert abs(e_limit - e_fine) <= 0.3 * e_fine, (e_limit, e_fine)
+
+
+def test_a_long_step_with_no_input_change_is_not_warned(fmu_path):
+    """§5.2's free vibration at h = 0.05 s: the base stays put, the outputs are exact samples of
+    the motion (coarse, not wrong)."""
+    with PlateRun(fmu_path, initial_load=8600.0, obstacle_upper_enabled=False) as run:
+        for _ in range(4):
+            run.step(0.05, base=0.0, derivatives=False)
+        assert not [m for m in warnings(run) if "communicationStepSize" in m], warnings(run)
+
+
+def test_the_readme_states_the_fmus_longest_step(fmu_path):
+    """The README's numbers for the default plate are those the FMU states."""
+    _, said = simulate(fmu_path, 2.0, 1.0, 10.0, 0.09)
+    period, longest = re.search(r"T1 = ([0-9.]+) s.*take h <= ([0-9.]+) s", said[0]).groups()
+    readme = (REPO / "README.md").read_text()
+    assert f"T1 = {float(period):.3g} s" in readme and f"h ≤ {longest} s" in readme, (period, longest)
+    doc = (REPO / "docs" / "input-accuracy.md").read_text()
+    assert "## How long a communication step may be" in doc and "T1/10" in doc
