@@ -37,7 +37,7 @@ double velocityAt(const InputSignal& base, double span) {
 double accelerationAt(const InputSignal& base, double span) { return InputSignal{base.d2, base.d3, base.d4}.at(span); }
 
 // base_drive's items in order; a carried clamp never ends a step early, so its inputAt is not read.
-const DriveMode kModes[kDriveModeCount] = {
+const DriveMode kDriveModes[kDriveModeCount] = {
     {BaseDrive::Displacement, "displacement", "base_displacement", &PlateValues::baseDisplacement, false,
      displacementPath, displacementAt},
     {BaseDrive::Velocity, "velocity", "base_velocity", &PlateValues::baseVelocity, false, velocityPath, velocityAt},
@@ -49,8 +49,8 @@ const DriveMode kModes[kDriveModeCount] = {
 
 }  // namespace
 
-const DriveMode& driveMode(BaseDrive drive) { return kModes[static_cast<int>(drive) - 1]; }
+const DriveMode& driveMode(BaseDrive drive) { return kDriveModes[static_cast<int>(drive) - 1]; }
 
-const DriveMode* driveModes() { return kModes; }
+const DriveMode* driveModes() { return kDriveModes; }
 
 }  // namespace plateimpact
