@@ -62,8 +62,10 @@ def write_plan(path, exp, variables):
     params = []
     if exp.state is None:
         for name, (kind, text) in exp.parameters.items():
-            if name not in variables:  # FMI 3.0: probes are arrays sized in Configuration Mode (issue 53),
-                continue  # which this scalar driver does not do; fmpy replays them (test_probe_arrays.py)
+            # FMI 3.0: probes are arrays sized by a structural parameter in Configuration Mode (issue
+            # 53), which this scalar driver does not do; fmpy replays them (test_probe_arrays.py).
+            if name not in variables or variables[name].causality == "structuralParameter":
+                continue
             v = variables[name]
             value = typed(text, kind, v)
             text = repr(float(value)) if v.type == "Float64" else str(int(value))
