@@ -100,9 +100,16 @@ def promise(t, corner, estimate, ref, tolerance, spread) -> dict:
     lowest = float((estimate[compared] / error[compared]).min()) if compared.any() else None
     held = passed is None
     ratio = float(estimate[-1] / error[-1]) if error[-1] > 0 else None
-    kept = (held and ratio is not None and 1.0 <= ratio <= 3.0 and (lowest is None or lowest >= 1.0)) or (
-        not held and said is not None and said <= passed
-    )
+    # Kept: held with the estimate within [1, 3] times the error, or said before the error passed the
+    # tolerance (an early word, with the error still inside, over-states: allowed, §22). Past the word,
+    # between two obstacles, the estimate is their gap: its ratio is then not the estimate's quality.
+    if said is None:
+        verdict = "held" if held and ratio is not None and 1.0 <= ratio <= 3.0 and (lowest or 1.0) >= 1.0 else "broken"
+    elif held:
+        verdict = "said, error held"
+    else:
+        verdict = "said before passing" if said <= passed else "broken"
+    kept = verdict != "broken"
     return {
         "error_m": float(error[-1]),
         "error_estimate_m": float(estimate[-1]),
@@ -110,6 +117,7 @@ def promise(t, corner, estimate, ref, tolerance, spread) -> dict:
         "lowest_estimate_over_error": lowest,
         "error_passed_tolerance_s": passed,
         "said_s": said,
+        "verdict": verdict,
         "promise_kept": bool(kept),
     }
 

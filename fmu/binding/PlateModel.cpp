@@ -347,8 +347,8 @@ private:
                         simulation_->time()) +
                  ": the flow law cannot hold the tolerance from this time on (errors made at earlier impacts grew at "
                  "later ones, or the sub-step cap bounded a step): this is the scene's horizon for this tolerance. "
-                 "Later contact steps take contact_substeps sub-steps and error_estimate goes on "
-                 "(docs/theory.md section 22)");
+                 "Later contact steps take contact_substeps sub-steps; between two obstacles error_estimate reads "
+                 "their gap from now on, the one bound left (docs/theory.md section 22)");
         }
         if (!cappedWarned_ && o.cappedSteps > 0) {
             cappedWarned_ = true;

@@ -80,6 +80,7 @@ private:
     void companion(double zNext, double pNext, int level);  // from start_ + E: E carried, into errorNext*
     void rotateError(long long toStep);  // E by the exact free flow from errorStep to toStep
     void sampleError();  // the reported points' error implied by E, into the running maximum
+    bool boundedByGap() const;  // both obstacles: two motions differ by their gap at most at a row
     double localTarget() const;  // what this contact step may add at the reported points, m
     double localError();  // the kept run's own error, into local*: at the reported points, m
 
@@ -125,6 +126,10 @@ private:
     Eigen::VectorXd qIntegral_;  // ∫ q over the exact step
     // The levels t_n, t_{n−1} kept across the sub-steps of one step.
     Eigen::VectorXd qAtStart_, qBeforeStart_, forceAtStart_, forceBeforeStart_;
+    // In free flight the global error only rotates (docs/theory.md §22): its value at the reported
+    // points is sampled every kSample steps (8e-5 s at the default Δt, finer than the default
+    // communication step), and at every contact step.
+    static constexpr long long kSample = 8;
 };
 
 }  // namespace plate

@@ -6,6 +6,7 @@
 
 #include <Eigen/Dense>
 #include <cmath>
+#include <limits>
 #include <memory>
 
 #include "fe/Assembly.h"
@@ -320,9 +321,11 @@ struct CornerRun {
     CondensedState end;
     FlowState flow;
 };
-CornerRun releaseRun(const std::shared_ptr<const CondensedPlate>& plate, double dt, ContactRefinement refinement) {
+CornerRun releaseRun(const std::shared_ptr<const CondensedPlate>& plate, double dt, ContactRefinement refinement,
+                     double upper = std::numeric_limits<double>::infinity()) {
     Obstacles obstacles;
     obstacles.lower = -0.08;
+    obstacles.upper = upper;
     OutputRows corner;  // the estimate measured where the run is compared: row 0
     corner.probes = {0, 0, 0};
     FlowScheme scheme(plate, obstacles, dt, refinement, 0.0, 0.0, corner);
@@ -383,6 +386,23 @@ TEST(FlowTolerance, CapBoundsTheWorkAndCountsTheSteps) {
     EXPECT_GT(capped.flow.lostAt, 0.05);  // at the first impact, near 0.07 s
     EXPECT_LT(capped.flow.lostAt, 0.1);
     EXPECT_GT(capped.flow.contactSteps, 10);
+}
+
+// Past the horizon between two obstacles (§22) the estimate is their gap, the one bound that still
+// holds, and the contact steps take contact_substeps sub-steps without a pair or a companion: the
+// same contact solves as the run without a tolerance from the loss on, far fewer than a run that
+// kept estimating. Before the loss both runs are the same run.
+TEST(FlowTolerance, PastTheHorizonBetweenTwoObstaclesTheEstimateIsTheGap) {
+    const Condensed s(ElementType::Argyris, 8, 3, MassProjection::P0);
+    auto plate = std::make_shared<const CondensedPlate>(s.c);
+    const double upper = 0.08, gap = upper - (-0.08);
+    const CornerRun lost = releaseRun(plate, 2e-5, ContactRefinement{16, 1e-12, 2}, upper);
+    EXPECT_GE(lost.flow.lostAt, 0.0);  // 1e-12 m: lost at the first contact step
+    EXPECT_EQ(lost.flow.errorEstimate, gap);
+    EXPECT_TRUE(lost.flow.errorQ.isZero(0.0) && lost.flow.errorMomentum.isZero(0.0));
+    // The one-obstacle run of the same scene goes on estimating: no bound to stop at.
+    const CornerRun open = releaseRun(plate, 2e-5, ContactRefinement{16, 1e-12, 2});
+    EXPECT_LT(open.flow.errorEstimate, gap);
 }
 
 // The controller's state is part of the scheme's state: a run saved and restored into a fresh

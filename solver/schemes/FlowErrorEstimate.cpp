@@ -1,0 +1,231 @@
+// The flow law's global error estimate and its control (docs/theory.md §22): the contact step's
+// pair of runs and its companion from the perturbed start, E carried through free flight by the exact
+// flow, sampled at the reported points, and each contact step's share of the tolerance.
+#include <algorithm>
+#include <cmath>
+
+#include "base/Errors.h"
+#include "schemes/FlowScheme.h"
+
+namespace plate {
+
+namespace {
+
+// The kept run takes at least 2^2 sub-steps: at 2 against 1 the pair is too coarse for its
+// difference to say what the finer one missed (measured: estimates at half the error at the first
+// impact of a contact-rich scene, docs/performance.md).
+constexpr int kLowestLevel = 2;
+// The observed order of held contact steps is a running mean over the last ~kOrderMemory rises.
+constexpr double kOrderMemory = 8.0;
+
+}  // namespace
+
+// tolerance > 0 (docs/theory.md §22). The contact step from t_n is taken at level j (2^j sub-steps,
+// kept) and at level j − 1 from the same start x_n; their difference says what the kept run missed
+// (localError). While that local error exceeds the step's share of the tolerance the
+// level rises (the kept run becomes the coarse one) up to the cap. The global error E_n carried to
+// t_n goes through the step by the step itself: a companion at level j − 1 from x_n + E_n, whose
+// difference from the coarse run is E carried through the contact (its growth at an impact
+// included). E_{n+1} = that + the kept run's local error. Every run is a sequence of
+// discrete-gradient sub-steps: the energy identity holds at any level; the coarse runs and the
+// companion leave no trace but their work count.
+void FlowScheme::refine(double zNext, double pNext) {
+    CondensedState& s = state_;
+    const int top = static_cast<int>(levels_.size());
+    const auto level = [&](int j) -> const MidpointOperator& { return j == 0 ? full_ : *levels_[j - 1]; };
+    // Past the time the estimate passed the tolerance (the scene's horizon for it: no sub-step brings
+    // it back) the contact steps take contact_substeps sub-steps, as without a tolerance; the estimate
+    // goes on where no gap bounds it (sampleError).
+    const bool lost = flow_.lostAt >= 0.0;
+    int j = std::clamp(lost ? fixedLevel_ : std::max(flow_.refinementLevel, kLowestLevel), 1, top);
+    ++flow_.contactSteps;
+    if (lost && boundedByGap()) {
+        // The estimate already reads the gap, the bound no later step changes: no pair, no companion.
+        substeps(zNext, pNext, 1 << j, level(j));
+        return;
+    }
+    rotateError(s.step);
+    const double target = lost ? HUGE_VAL : localTarget();
+    save(start_);
+    substeps(zNext, pNext, 1 << (j - 1), level(j - 1));
+    long long discardedSolves = s.contactSolves - start_.state.contactSolves;
+    save(coarse_);
+    double local = 0.0, before = HUGE_VAL, differenceBefore = 0.0;
+    bool smoothBefore = false;
+    for (;;) {
+        restore(start_);
+        substeps(zNext, pNext, 1 << j, level(j));
+        local = localError();
+        // Two differences of a smooth step at successive levels measure its order (their ratio
+        // is 2^p): the held contact's order is learnt from the run's own rises.
+        if (smoothBefore && smooth_ && difference_ > 0.0 && differenceBefore > difference_) {
+            const double order = std::clamp(std::log2(differenceBefore / difference_), 1.0, 2.0);
+            flow_.smoothOrder += (order - flow_.smoothOrder) / kOrderMemory;
+        }
+        if (local <= target || j == top || local > 0.5 * before) break;
+        discardedSolves += s.contactSolves - start_.state.contactSolves;
+        save(coarse_);
+        before = local;
+        differenceBefore = difference_;
+        smoothBefore = smooth_;
+        ++j;
+    }
+    save(fine_);
+    discardedSolves += carryThroughStep(zNext, pNext, j - 1);
+    restore(fine_);
+    s.contactSolves += discardedSolves;
+    carryError();
+    flow_.cappedSteps += !lost && local > target && j == top;
+    // One level lower next time when the pair one level down would still be well inside the target
+    // (a level down multiplies the local error by about 4 where the sub-steps are second order).
+    if (!lost) flow_.refinementLevel = j > 1 && 8.0 * local < target ? j - 1 : j;
+}
+
+// A step the computed motion takes in free flight (kept: exact) while a row is within the carried
+// error's reach of an obstacle: E goes through it by its companion against a coarse run from the
+// same start (at the coarse level of the last contact step, in every row); the step adds no error
+// of its own.
+void FlowScheme::nearMiss(double zNext, double pNext) {
+    CondensedState& s = state_;
+    const int top = static_cast<int>(levels_.size());
+    const int level = std::clamp(std::max(flow_.refinementLevel, kLowestLevel), 1, top) - 1;
+    save(fine_);
+    restore(start_);
+    allRows_ = true;
+    substeps(zNext, pNext, 1 << level, level == 0 ? full_ : *levels_[std::size_t(level - 1)]);
+    long long solves = s.contactSolves - start_.state.contactSolves;
+    save(coarse_);
+    solves += carryThroughStep(zNext, pNext, level);
+    restore(fine_);
+    s.contactSolves += solves;
+    localQ_.setZero();
+    localMomentum_.setZero();
+    carryError();
+}
+
+// E from t_n through the step to t_{n+1} into errorNext*: the companion at `level` against coarse_
+// (its work returned), or the free flow when E is zero or the companion cannot be taken (past the
+// horizon E is as large as the motion and may put rows deep past an obstacle).
+long long FlowScheme::carryThroughStep(double zNext, double pNext, int level) {
+    const auto freeFlow = [this] {
+        errorNextQ_ = flow11_.cwiseProduct(flow_.errorQ) + flow12_.cwiseProduct(flow_.errorMomentum);
+        errorNextMomentum_ = flow21_.cwiseProduct(flow_.errorQ) + flow22_.cwiseProduct(flow_.errorMomentum);
+    };
+    if (flow_.errorQ.isZero(0.0) && flow_.errorMomentum.isZero(0.0)) {
+        freeFlow();
+        return 0;
+    }
+    try {
+        companion(zNext, pNext, level);
+        return state_.contactSolves - start_.state.contactSolves;
+    } catch (const StepError&) {
+        freeFlow();
+        return 0;
+    }
+}
+
+// E_{n+1} = E carried through the step + the kept run's own error, at t_{n+1}; sampled at the
+// reported points, and its reach over the rows in free flight: ‖G_i‖ max times the modes' error
+// amplitudes (constant undamped, decaying damped). Past the horizon (lost) E is as large as the
+// motion's own differences: every step would be near, and the steps are no longer chosen for the
+// tolerance.
+void FlowScheme::carryError() {
+    flow_.errorQ = errorNextQ_ + localQ_;
+    flow_.errorMomentum = errorNextMomentum_ + localMomentum_;
+    flow_.errorStep = state_.step;
+    sampleError();
+    amplitude_.array() = flow_.errorQ.array().square() + (flow_.errorMomentum.array() * inverseOmega_.array()).square();
+    errorReach_ = flow_.lostAt >= 0.0 ? 0.0 : plate_->rowModeNormMax * std::sqrt(amplitude_.sum());
+}
+
+// The companion of the contact step: from start_ with the global error added to the massive modes
+// (the massless part's contact force and energy at t_n solved again for the perturbed rows, so the
+// discrete gradient starts from its own ψ), taken at `level`; E carried through the step is its end
+// less the coarse run's (coarse_, the same level from the unperturbed start).
+void FlowScheme::companion(double zNext, double pNext, int level) {
+    CondensedState& s = state_;
+    restore(start_);
+    s.q += flow_.errorQ;
+    s.momentum += flow_.errorMomentum;
+    gatherRows(s.q, s.p, s.z, r0_);
+    int solves = 0;
+    solveContact(*endQP_, r0_, s.rowState, s.force, y_, solves);
+    s.boundary = 0.5 * s.force.dot(y_ - r0_);
+    s.contactSolves += solves;
+    refreshDerived();
+    substeps(zNext, pNext, 1 << level, level == 0 ? full_ : *levels_[std::size_t(level - 1)]);
+    errorNextQ_ = s.q - coarse_.state.q;
+    errorNextMomentum_ = s.momentum - coarse_.state.momentum;
+}
+
+// The kept run's own error, from the coarse run's difference to it: kSmoothWeight of it where no
+// row changed sides over the step, all of it across an onset or a release (first order). Into localQ_, localMomentum_; returned measured at the reported points as the
+// amplitude of their sum of modal oscillations, √Σ(G_ik a_k)², a_k = √(δq_k² + (δP_k/ω_k)²).
+double FlowScheme::localError() {
+    const CondensedState& s = state_;
+    smooth_ = s.rowState == start_.state.rowState && coarse_.state.rowState == start_.state.rowState;
+    localQ_ = coarse_.state.q - s.q;
+    localMomentum_ = coarse_.state.momentum - s.momentum;
+    amplitude_.array() = localQ_.array().square() + (localMomentum_.array() * inverseOmega_.array()).square();
+    rowBound_.noalias() = measuredRows_.cwiseAbs2() * amplitude_;
+    difference_ = rowBound_.size() > 0 ? std::sqrt(rowBound_.maxCoeff()) : 0.0;
+    // Order p: the kept run's error is the difference / (2^p − 1).
+    const double weight = smooth_ ? 1.0 / (std::exp2(flow_.smoothOrder) - 1.0) : 1.0;
+    localQ_ *= weight;
+    localMomentum_ *= weight;
+    return weight * difference_;
+}
+
+// E from errorStep to toStep by the exact free flow of each mode (the error obeys the homogeneous
+// equation: the base and the load are the same for the computed and the exact motion).
+void FlowScheme::rotateError(long long toStep) {
+    Eigen::VectorXd& u = flow_.errorQ;
+    Eigen::VectorXd& v = flow_.errorMomentum;
+    for (; flow_.errorStep + kSample <= toStep; flow_.errorStep += kSample) {
+        scratchQ_ = sample11_.cwiseProduct(u) + sample12_.cwiseProduct(v);
+        v = sample21_.cwiseProduct(u) + sample22_.cwiseProduct(v);
+        u.swap(scratchQ_);
+    }
+    for (; flow_.errorStep < toStep; ++flow_.errorStep) {
+        scratchQ_ = flow11_.cwiseProduct(u) + flow12_.cwiseProduct(v);
+        v = flow21_.cwiseProduct(u) + flow22_.cwiseProduct(v);
+        u.swap(scratchQ_);
+    }
+}
+
+// The reported points' error implied by E now, into the running maximum. Two motions between both
+// obstacles differ at a constraint row by the gap at most: past the horizon, where E grows with the
+// motion's sensitivity, the estimate stops there (and E with it).
+void FlowScheme::sampleError() {
+    rowBound_.noalias() = measuredRows_ * flow_.errorQ;
+    const double now = rowBound_.size() > 0 ? rowBound_.cwiseAbs().maxCoeff() : 0.0;
+    const double gap = obstacles_.upper - obstacles_.lower;
+    if (!(now < gap)) {  // also a non-finite E
+        const double scale = std::isfinite(now) && now > 0.0 ? gap / now : 0.0;
+        flow_.errorQ *= scale;
+        flow_.errorMomentum *= scale;
+    }
+    flow_.errorEstimate = std::max(flow_.errorEstimate, std::isfinite(now) ? std::min(now, gap) : gap);
+    if (flow_.lostAt < 0.0 && flow_.errorEstimate > refinement_.tolerance) flow_.lostAt = double(flow_.errorStep) * dt_;
+    if (flow_.lostAt >= 0.0 && boundedByGap()) {
+        // Past the horizon between two obstacles the estimate is their gap from now on: the one bound
+        // that holds whatever the motion's sensitivity does (docs/theory.md §22), and E is no longer
+        // carried (every later step would otherwise pay a pair and a companion for it).
+        flow_.errorEstimate = gap;
+        flow_.errorQ.setZero();
+        flow_.errorMomentum.setZero();
+    }
+}
+
+bool FlowScheme::boundedByGap() const { return std::isfinite(obstacles_.upper - obstacles_.lower); }
+
+// The step's share of the tolerance (docs/theory.md §22): what is left of it, over the contact steps
+// still to come. Their number is unknown; it lies between the contact steps so far (the run goes on
+// as it went) and all steps so far (contact at every step from now on), and the share takes their
+// geometric mean.
+double FlowScheme::localTarget() const {
+    const double left = std::max(refinement_.tolerance - flow_.errorEstimate, 0.5 * refinement_.tolerance);
+    return left / std::sqrt(double(flow_.contactSteps) * double(state_.step + 1));
+}
+
+}  // namespace plate
