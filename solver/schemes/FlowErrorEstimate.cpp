@@ -45,8 +45,7 @@ void FlowScheme::refine(double zNext, double pNext) {
         return;
     }
     rotateError(s.step);
-    const double target = lost ? HUGE_VAL : localTarget();
-    save(start_);
+    const double target = lost ? HUGE_VAL : localTarget();  // (start_: saved by advance)
     substeps(zNext, pNext, 1 << (j - 1), level(j - 1));
     long long discardedSolves = s.contactSolves - start_.state.contactSolves;
     save(coarse_);
@@ -92,10 +91,15 @@ void FlowScheme::nearMiss(double zNext, double pNext) {
     save(fine_);
     restore(start_);
     allRows_ = true;
-    substeps(zNext, pNext, 1 << level, level == 0 ? full_ : *levels_[std::size_t(level - 1)]);
-    long long solves = s.contactSolves - start_.state.contactSolves;
-    save(coarse_);
-    solves += carryThroughStep(zNext, pNext, level);
+    long long solves = 0;
+    try {
+        substeps(zNext, pNext, 1 << level, level == 0 ? full_ : *levels_[std::size_t(level - 1)]);
+        solves = s.contactSolves - start_.state.contactSolves;
+        save(coarse_);
+        solves += carryThroughStep(zNext, pNext, level);
+    } catch (const StepError&) {  // the coarse run cannot be taken: E by the free flow (the step is kept)
+        carryByFreeFlow();
+    }
     restore(fine_);
     s.contactSolves += solves;
     localQ_.setZero();
@@ -107,21 +111,22 @@ void FlowScheme::nearMiss(double zNext, double pNext) {
 // (its work returned), or the free flow when E is zero or the companion cannot be taken (past the
 // horizon E is as large as the motion and may put rows deep past an obstacle).
 long long FlowScheme::carryThroughStep(double zNext, double pNext, int level) {
-    const auto freeFlow = [this] {
-        errorNextQ_ = flow11_.cwiseProduct(flow_.errorQ) + flow12_.cwiseProduct(flow_.errorMomentum);
-        errorNextMomentum_ = flow21_.cwiseProduct(flow_.errorQ) + flow22_.cwiseProduct(flow_.errorMomentum);
-    };
     if (flow_.errorQ.isZero(0.0) && flow_.errorMomentum.isZero(0.0)) {
-        freeFlow();
+        carryByFreeFlow();
         return 0;
     }
     try {
         companion(zNext, pNext, level);
         return state_.contactSolves - start_.state.contactSolves;
     } catch (const StepError&) {
-        freeFlow();
+        carryByFreeFlow();
         return 0;
     }
+}
+
+void FlowScheme::carryByFreeFlow() {
+    errorNextQ_ = flow11_.cwiseProduct(flow_.errorQ) + flow12_.cwiseProduct(flow_.errorMomentum);
+    errorNextMomentum_ = flow21_.cwiseProduct(flow_.errorQ) + flow22_.cwiseProduct(flow_.errorMomentum);
 }
 
 // E_{n+1} = E carried through the step + the kept run's own error, at t_{n+1}; sampled at the

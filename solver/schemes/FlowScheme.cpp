@@ -138,11 +138,23 @@ void FlowScheme::advance(double zNext, double pNext) {
     // may touch where the computed one does not (§22).
     const Look look = lookAtRows(zNext, pNext, errorReach_);
     if (look == Look::Contact) {
-        selectRows(zNext, pNext);
-        if (refinement_.tolerance > 0.0)
-            refine(zNext, pNext);
-        else
-            substeps(zNext, pNext, refinement_.substeps, sub_);
+        // One snapshot restores the step: whatever throws in it (a contact solve, a sub-step's non-finite
+        // result) leaves the scheme as it was (Scheme.h); the tolerance's runs start from it too.
+        save(start_);
+        flowAtStart_ = flow_;
+        try {
+            selectRows(zNext, pNext);
+            if (refinement_.tolerance > 0.0)
+                refine(zNext, pNext);
+            else
+                substeps(zNext, pNext, refinement_.substeps, sub_);
+        } catch (...) {
+            if (inRows_) leaveRows();
+            op_ = &full_;
+            restore(start_);
+            flow_ = flowAtStart_;
+            throw;
+        }
         return;
     }
     const bool near = look == Look::Near;
@@ -206,10 +218,9 @@ void FlowScheme::substeps(double zNext, double pNext, int m, const MidpointOpera
             op_ = &op;
         }
         midpointSubsteps(zNext, pNext, m);
-    } catch (...) {
+    } catch (...) {  // the caller restores its start (advance, refine's companion)
         if (inRows_) leaveRows();
         op_ = &full_;
-        if (inRows) restore(retry_);
         throw;
     }
     if (inRows_) leaveRows();

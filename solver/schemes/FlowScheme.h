@@ -76,6 +76,7 @@ private:
     void refine(double zNext, double pNext);
     void nearMiss(double zNext, double pNext);  // a free step within E's reach of an obstacle
     long long carryThroughStep(double zNext, double pNext, int level);  // E through the step
+    void carryByFreeFlow();  // E through the step by the free flow, into errorNext*
     void carryError();  // E_{n+1} = carried + local; sampled; its reach
     void companion(double zNext, double pNext, int level);  // from start_ + E: E carried, into errorNext*
     void rotateError(long long toStep);  // E by the exact free flow from errorStep to toStep
@@ -107,7 +108,8 @@ private:
     MidpointOperator sub_;  // sub-steps of Δt/m (tolerance = 0)
     // tolerance > 0: level j takes 2^j sub-steps of Δt/2^j (level 0 is full_).
     std::vector<std::unique_ptr<MidpointOperator>> levels_;
-    Snapshot start_, coarse_, fine_;
+    Snapshot start_, coarse_, fine_;  // start_: the contact step's start (advance), restored on a throw
+    FlowState flowAtStart_;
     double errorReach_ = 0.0;
     bool smooth_ = false;  // the last localError's pair: no row changed sides
     double difference_ = 0.0;  // and its difference at the reported points, m
