@@ -185,11 +185,7 @@ void CondensedScheme::midpointStep(double zNext, double pNext) {
     multiplierUsed_ = contact;
     if (!forceNextZero_) forceNext_.setZero();
     if (contact) {
-        // The rows at the start: those the last sub-step ended with (time_scheme = flow), else G q.
-        if (rowsCachedValid_)
-            r0_ = rowsCached_;
-        else
-            gatherRows(s.q, s.p, s.z, r0_);
+        rowsAtStart();
         drFree_ = r1_ - r0_;
         discreteGradient(s.boundary);
         // Δq = Δq_free + ½Δt² H⁻¹ Gᵀ Λ.
@@ -227,10 +223,7 @@ void CondensedScheme::midpointStep(double zNext, double pNext) {
     }
     bookContact(st, sums, dt);
     commit(zNext, pNext, work, damped, iterations_);
-    // FlowScheme: the rows at this step's end start the next sub-step (r1 is G q⁺ + … when the
-    // rows were looked at, r0 + Δr after a contact solve).
-    rowsCachedValid_ = keepRows_ && rowsLooked;
-    if (rowsCachedValid_) rowsCached_ = r1_;
+    rowsAtEnd(rowsLooked);  // r1 is G q⁺ + … when the rows were looked at, r0 + Δr after a contact solve
 }
 
 // Λ = λ*(r_mid) + c_g Δr with c_g = (ψ0 − ψ1 − λ*(r_mid)·Δr)/|Δr|² (T.17c), so that Λ·Δr = ψ0 − ψ1.
@@ -396,24 +389,6 @@ void CondensedScheme::restoreOwn(const std::vector<double>& own) {
     if (!own.empty()) throw std::invalid_argument("state does not belong to this plate (size or format differs)");
 }
 
-void CondensedScheme::save(Snapshot& to) const {
-    to.state = state_;
-    to.midForce = midForce_;
-    to.endForce = endForce_;
-    to.rowsCached = rowsCached_;
-    to.rowsCachedValid = rowsCachedValid_;
-}
-
-void CondensedScheme::restore(const Snapshot& from) {
-    state_ = from.state;
-    refreshDerived();
-    midForce_ = from.midForce;
-    endForce_ = from.endForce;
-    rowsCached_ = from.rowsCached;
-    rowsCachedValid_ = from.rowsCachedValid;
-    freeFlight_.reset();
-}
-
 void CondensedScheme::refreshDerived() {
     const CondensedState& s = state_;
     forceZero_ = {s.force.isZero(0.0), s.forcePrev.isZero(0.0), s.forcePrev2.isZero(0.0)};
@@ -421,7 +396,6 @@ void CondensedScheme::refreshDerived() {
     forceNextZero_ = true;
     multiplier_.setZero();
     multiplierUsed_ = false;
-    rowsCachedValid_ = false;
     stateReplaced();
 }
 

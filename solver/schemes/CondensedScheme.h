@@ -117,17 +117,12 @@ protected:
     };
     void buildOperator(MidpointOperator& op, double h) const;
     static std::unique_ptr<ContactColumns> denseColumns(const Eigen::MatrixXd& matrix);  // its columns, as they are
-    // The state with what the next step's solves start from (their warm starts): a step can be
-    // taken again from a snapshot, bit for bit as the first time (FlowScheme's step doubling). The
-    // first save sizes a snapshot (the first contact step); later ones copy into its storage.
-    struct Snapshot {
-        CondensedState state;
-        Eigen::VectorXd midForce, endForce, rowsCached;
-        bool rowsCachedValid = false;
-    };
-    void save(Snapshot& to) const;
-    void restore(const Snapshot& from);
     void midpointStep(double zNext, double pNext);  // one step of op_->h (T.17b–c)
+    // Where a contact step's rows at t_n come from (r0_): G q + p c_p + z here; FlowScheme keeps the
+    // rows the last (sub-)step ended with. And what a step's end leaves for the next (rowsLooked: r1_
+    // holds the rows at the end).
+    virtual void rowsAtStart() { gatherRows(state_.q, state_.p, state_.z, r0_); }
+    virtual void rowsAtEnd(bool /*rowsLooked*/) {}
     // The contact check after a trial step to (qNext_, zNext, pNext): Skipped while the free-flight
     // bound holds (inline: the common case of both schemes), else lookAtRowsNow.
     // Near (FlowScheme with a tolerance): free, but a row is within `reserve` of an obstacle.
@@ -153,11 +148,6 @@ protected:
     OutputRows rows_;
     MidpointOperator full_;  // steps of Δt
     const MidpointOperator* op_ = &full_;  // the one the midpoint step takes (FlowScheme: its sub-steps')
-    // FlowScheme: the rows at the end of the last (sub-)step start the next one; the midpoint
-    // rule recomputes them (its results stay what they always were).
-    bool keepRows_ = false;
-    Eigen::VectorXd rowsCached_;  // the rows at the end of the last (sub-)step
-    bool rowsCachedValid_ = false;
 
     Eigen::MatrixXd endMatrix_;  // D
     std::unique_ptr<ContactColumns> endColumns_;

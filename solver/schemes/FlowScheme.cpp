@@ -52,7 +52,6 @@ FlowScheme::FlowScheme(std::shared_ptr<const CondensedPlate> plate, Obstacles ob
       refinement_(refinement) {
     const CondensedPlate& c = *plate_;
     const Eigen::Index m = c.modes(), rows = c.rows();
-    keepRows_ = true;
     flow_.errorQ = flow_.errorMomentum = Eigen::VectorXd::Zero(m);
     if (refinement_.tolerance > 0.0) {
         // Levels 1 … log2(maxSubsteps): 2^j sub-steps of Δt/2^j (level 0 is the step itself, full_).
@@ -196,6 +195,36 @@ void FlowScheme::advance(double zNext, double pNext) {
         rotateError(st.step);
         sampleError();
     }
+}
+
+void FlowScheme::rowsAtStart() {
+    if (rowsCachedValid_)
+        r0_ = rowsCached_;
+    else
+        gatherRows(state_.q, state_.p, state_.z, r0_);
+}
+
+void FlowScheme::rowsAtEnd(bool rowsLooked) {
+    rowsCachedValid_ = rowsLooked;
+    if (rowsCachedValid_) rowsCached_ = r1_;
+}
+
+void FlowScheme::save(Snapshot& to) const {
+    to.state = state_;
+    to.midForce = midForce_;
+    to.endForce = endForce_;
+    to.rowsCached = rowsCached_;
+    to.rowsCachedValid = rowsCachedValid_;
+}
+
+void FlowScheme::restore(const Snapshot& from) {
+    state_ = from.state;
+    refreshDerived();
+    midForce_ = from.midForce;
+    endForce_ = from.endForce;
+    rowsCached_ = from.rowsCached;
+    rowsCachedValid_ = from.rowsCachedValid;
+    freeFlight_.reset();
 }
 
 // The step from t_n as m midpoint sub-steps of Δt/m, the base and the load linear in between (as

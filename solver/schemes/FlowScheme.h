@@ -56,6 +56,21 @@ public:
 
 private:
     void advance(double zNext, double pNext) override;  // exact free flight, or the sub-steps on contact
+    // The rows at the end of the last (sub-)step start the next one (the midpoint rule of the
+    // conserving law recomputes them: its results stay what they always were).
+    void rowsAtStart() override;
+    void rowsAtEnd(bool rowsLooked) override;
+    void stateReplaced() override { rowsCachedValid_ = false; }
+    // The state with what the next step's solves start from (their warm starts): a step can be
+    // taken again from a snapshot, bit for bit as the first time (step doubling, a retry in every
+    // row, a throw). The first save sizes a snapshot; later ones copy into its storage.
+    struct Snapshot {
+        CondensedState state;
+        Eigen::VectorXd midForce, endForce, rowsCached;
+        bool rowsCachedValid = false;
+    };
+    void save(Snapshot& to) const;
+    void restore(const Snapshot& from);
     void addOutputs(PlateOutputs& o) const override;
     std::vector<double> saveOwn() const override;
     void restoreOwn(const std::vector<double>& own) override;
@@ -101,6 +116,8 @@ private:
             rowsCached, force, forcePrev, forcePrev2;
         std::vector<signed char> rowState, midState, rowTrial, midTrial;
     } touch_;
+    Eigen::VectorXd rowsCached_;  // the rows at the end of the last (sub-)step
+    bool rowsCachedValid_ = false;
     bool inRows_ = false, allRows_ = false;
     long long rowSpaceSteps_ = 0, rowSpaceRetries_ = 0;
     Snapshot retry_;
