@@ -1,20 +1,14 @@
 #include "binding/PlateAdvice.h"
 
 #include <cmath>
-#include <cstdio>
 
 #include "binding/PlateArrays.h"
 #include "binding/PlateVariables.h"
+#include "binding/PlateWarnings.h"
 
 namespace plateimpact {
 
 namespace {
-
-std::string text(const char* fmt, double a, double b = 0.0, double c = 0.0, double d = 0.0) {
-    char text[600];
-    std::snprintf(text, sizeof text, fmt, a, b, c, d);
-    return text;
-}
 
 // Three significant digits, rounded down: a step of the stated length passes the check.
 double roundedDown(double x) {
@@ -29,7 +23,7 @@ std::string capAdvice(const plate::PlateParameters& p) {
     if (p.timeScheme != plate::TimeScheme::Flow || p.tolerance > 0.0 ||
         p.maxContactSubsteps == defaults.maxContactSubsteps)
         return "";
-    return text(
+    return format(
         "max_contact_substeps = %g caps the sub-steps of time_scheme = flow with a tolerance > 0 only; with "
         "tolerance = 0 every contact step takes contact_substeps = %g sub-steps and this run ignores the cap: "
         "to bound a contact step's work set contact_substeps (e.g. %g), or a tolerance in m",
@@ -71,13 +65,65 @@ std::string longStepAdvice(const plate::PlateParameters& p, double h, double t, 
     const double longest = longestCommunicationStep(p);
     if (h <= longest) return "";
     const double period = 1.0 / p.firstFrequencyEstimate();
-    return text("communicationStepSize h = %.6g s at t = %.17g is longer than T1/%g = %.3g s", h, t,
-                kCommunicationPointsPerPeriod, longest) +
-           text(" (T1 = %.3g s, the plate's first period)", period) + ", and " + input +
+    return format("communicationStepSize h = %.6g s at t = %.17g is longer than T1/%g = %.3g s", h, t,
+                  kCommunicationPointsPerPeriod, longest) +
+           format(" (T1 = %.3g s, the plate's first period)", period) + ", and " + input +
            " changed over it: sampled this rarely, the input's motion at the plate's frequencies is not in its "
            "values and the reconstruction between them (base_input_mode, load_input_mode) kicks the plate at "
            "every communication point, so the outputs can be far off (docs/input-accuracy.md); take h <= " +
-           text("%.3g s", roundedDown(longest));
+           format("%.3g s", roundedDown(longest));
+}
+
+void PlateAdvisor::say(const std::string& advice) {
+    if (!advice.empty()) warn_(advice);
+}
+
+void PlateAdvisor::onBuild(const plate::PlateParameters& p) {
+    interpolationWarned_ = errorWarned_ = cappedWarned_ = stressReadWarned_ = longStepWarned_ = false;
+    say(capAdvice(p));
+}
+
+void PlateAdvisor::onRead(fmu::ValueReference vr, const char* name, const plate::PlateParameters& p) {
+    if (stressReadWarned_ || !isStressOutput(vr)) return;
+    stressReadWarned_ = !p.stressOutputs;
+    say(stressReadAdvice(name, p));
+}
+
+void PlateAdvisor::onStep(const plate::PlateParameters& p, const plate::StepPlan& plan, double h, double t,
+                          const InputPort& drive, const char* driveName, const InputPort& load) {
+    if (!plan.endsOnGrid && plan.steps < 2 && !interpolationWarned_) {
+        interpolationWarned_ = true;
+        warn_(
+            format("communicationStepSize h = %.17g is shorter than two internal steps of dt = %g: the outputs "
+                   "are interpolated between the grid points around t (docs/theory.md §15); for the scheme's own "
+                   "values take h a whole multiple of dt, or a smaller dt",
+                   h, p.dt));
+    }
+    if (longStepWarned_ || h <= longestCommunicationStep(p)) return;
+    const char* input = inputChanged(drive) ? driveName : inputChanged(load) ? "load" : nullptr;
+    if (!input) return;
+    longStepWarned_ = true;
+    say(longStepAdvice(p, h, t, input));
+}
+
+void PlateAdvisor::afterStep(const plate::PlateParameters& p, const plate::PlateOutputs& o, double t) {
+    if (p.tolerance <= 0.0 || p.timeScheme != plate::TimeScheme::Flow) return;
+    if (!errorWarned_ && o.errorEstimate > p.tolerance) {
+        errorWarned_ = true;
+        warn_(
+            format("error_estimate = %.3g m passed tolerance = %.3g m at t = %.17g", o.errorEstimate, p.tolerance, t) +
+            ": the flow law cannot hold the tolerance from this time on (errors made at earlier impacts grew at "
+            "later ones, or the sub-step cap bounded a step): this is the scene's horizon for this tolerance. "
+            "Later contact steps take contact_substeps sub-steps; between two obstacles error_estimate reads "
+            "their gap from now on, the one bound left (docs/theory.md section 22)");
+    }
+    if (!cappedWarned_ && o.cappedSteps > 0) {
+        cappedWarned_ = true;
+        warn_(format("a contact step before t = %.17g needed more than max_contact_substeps = %g sub-steps for "
+                     "its target",
+                     t, double(p.maxContactSubsteps)) +
+              "; raise max_contact_substeps (capped_steps counts such steps; error_estimate includes them)");
+    }
 }
 
 }  // namespace plateimpact

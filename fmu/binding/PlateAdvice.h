@@ -1,7 +1,10 @@
 #pragma once
-// Settings and steps whose answer the FMU computes but that the user likely did not mean (issue 56:
-// no silent wrong answer). Each function returns the warning to log, naming the setting and what to
-// do, or "" when there is nothing to say; PlateModel.cpp logs each once. No state here.
+// The FMU's advice while it runs (issue 56: no silent wrong answer): settings, reads and steps whose
+// answer the FMU computes but that the user likely did not mean, each warned once per build, naming the
+// setting and what to do. The checks are free functions returning the warning, or "" when there is
+// nothing to say; PlateAdvisor (at the end) holds which were said and says them. The warnings of the
+// values alone, at build, are PlateWarnings.h's.
+#include <functional>
 #include <string>
 
 #include "binding/PlateVariables.h"
@@ -32,5 +35,37 @@ constexpr double kCommunicationPointsPerPeriod = 10.0;
 bool inputChanged(const InputPort& port);
 double longestCommunicationStep(const plate::PlateParameters& p);
 std::string longStepAdvice(const plate::PlateParameters& p, double h, double t, const char* input);
+
+// The advice of one model (PlateModel.cpp), each warned once per build through `warn` (the model's
+// fmu::Model::warn, which the instance may replace: held by reference).
+class PlateAdvisor {
+public:
+    using Sink = std::function<void(const std::string&)>;
+    explicit PlateAdvisor(const Sink& warn) : warn_(warn) {}
+    PlateAdvisor(const PlateAdvisor&) = delete;  // bound to its model's sink
+    PlateAdvisor& operator=(const PlateAdvisor&) = delete;
+    // At build: every advice may be said again; a cap that cannot act (capAdvice) is said now.
+    void onBuild(const plate::PlateParameters& p);
+    // A read of the variable or array `vr` named `name`: a stress output while stress_outputs is off.
+    void onRead(fmu::ValueReference vr, const char* name, const plate::PlateParameters& p);
+    // Before a communication step of h from t planned as `plan`, the drive's input (its port and
+    // name) and the load as the master set them: a step shorter than two grid steps (the outputs
+    // interpolated, docs/theory.md §15), a step too long for the plate and the inputs (longStepAdvice).
+    void onStep(const plate::PlateParameters& p, const plate::StepPlan& plan, double h, double t,
+                const InputPort& drive, const char* driveName, const InputPort& load);
+    // After a step, the simulation at time t with outputs o: under tolerance > 0 (docs/theory.md §22)
+    // the error estimate past the tolerance (the scene's horizon for it), a contact step the cap bounded.
+    void afterStep(const plate::PlateParameters& p, const plate::PlateOutputs& o, double t);
+
+private:
+    void say(const std::string& advice);
+
+    const Sink& warn_;
+    bool interpolationWarned_ = false;  // a step shorter than two grid steps
+    bool longStepWarned_ = false;  // a communication step too long for the plate and the inputs
+    bool stressReadWarned_ = false;  // a stress output read while stress_outputs = false
+    bool errorWarned_ = false;  // the error estimate past the tolerance
+    bool cappedWarned_ = false;  // a contact step the sub-step cap bounded
+};
 
 }  // namespace plateimpact

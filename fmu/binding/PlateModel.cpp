@@ -4,7 +4,6 @@
 #include <algorithm>
 #include <array>
 #include <cmath>
-#include <cstdio>
 #include <memory>
 #include <new>
 #include <string>
@@ -28,7 +27,7 @@ public:
     const std::vector<fmu::Variable>& variables() const override { return plateVariables(); }
 
     double get(const fmu::Variable& v) const override {
-        adviseOnRead(v.vr, v.name);
+        advisor_.onRead(v.vr, v.name, values_.parameters);
         return getValue(values_, v);
     }
     void set(const fmu::Variable& v, double x) override {
@@ -50,7 +49,7 @@ public:
     const std::vector<fmu::ArrayVariable>& arrayVariables() const override { return plateArrays(); }
     const std::vector<fmu::Terminal>& terminals() const override { return plateTerminals(); }
     void getArray(const fmu::ArrayVariable& a, double* out, std::size_t n) const override {
-        adviseOnRead(a.vr, a.name);
+        advisor_.onRead(a.vr, a.name, values_.parameters);
         getPlateArray(values_, a, out, n);
     }
     void setArray(const fmu::ArrayVariable& a, const double* values, std::size_t n) override {
@@ -135,8 +134,8 @@ public:
         const plate::PlateParameters& p = values_.parameters;
         trace(format("simulation built (nx = %g, ny = %g, dt = %g s)", p.nx, p.ny, p.dt));
         for (const std::string& message : buildWarnings(values_, fmiVersion() == 3)) warn(message);
-        driveSet_ = interpolationWarned_ = errorWarned_ = cappedWarned_ = stressReadWarned_ = longStepWarned_ = false;
-        say(capAdvice(p));
+        driveSet_ = false;
+        advisor_.onBuild(p);
         otherMotionSet_ = nullptr;
     }
     void terminate() override {
@@ -181,15 +180,7 @@ public:
                 "the clamp is carried inside the FMU, which takes communication steps on the grid of dt only",
                 h, values_.parameters.dt));
         const double now = simulation_->time();
-        if (!plan.endsOnGrid && plan.steps < 2 && !interpolationWarned_) {
-            interpolationWarned_ = true;
-            warn(
-                format("communicationStepSize h = %.17g is shorter than two internal steps of dt = %g: the outputs "
-                       "are interpolated between the grid points around t (docs/theory.md §15); for the scheme's own "
-                       "values take h a whole multiple of dt, or a smaller dt",
-                       h, values_.parameters.dt));
-        }
-        adviseOnStep(h, t);
+        advisor_.onStep(values_.parameters, plan, h, t, drivePort(), driveName(), values_.load);
         for (InputPort* port : ports()) {
             port->beginStep(now);
             port->reach = plan.offset + double(plan.steps) * values_.parameters.dt;  // the last grid point read
@@ -204,7 +195,7 @@ public:
                 format("step from t = %.17g failed at t = %.17g: ", t, t + simulation_->time() - now) + e.what());
         }
         refreshOutputs();
-        warnOfErrorEstimate();
+        advisor_.afterStep(values_.parameters, values_.outputs, simulation_->time());
         trace(format("t = %.17g, h = %.17g, %g steps", t, h, double(plan.steps)));
     }
 
@@ -313,50 +304,10 @@ private:
     bool carried() const { return mode().carried; }
     InputPort& drivePort() { return values_.*mode().port; }  // the input base_drive chooses
     const char* driveName() const { return mode().input; }
-    // The checks of PlateAdvice.h, each said once per build.
-    void say(const std::string& advice) const {
-        if (!advice.empty()) warn(advice);
-    }
-    void adviseOnRead(fmu::ValueReference vr, const char* name) const {
-        if (stressReadWarned_ || !isStressOutput(vr)) return;
-        stressReadWarned_ = !values_.parameters.stressOutputs;
-        say(stressReadAdvice(name, values_.parameters));
-    }
-    void adviseOnStep(double h, double t) {
-        if (longStepWarned_ || h <= longestCommunicationStep(values_.parameters)) return;
-        InputPort& drive = drivePort();
-        const char* input = inputChanged(drive) ? driveName() : inputChanged(values_.load) ? "load" : nullptr;
-        if (!input) return;
-        longStepWarned_ = true;
-        say(longStepAdvice(values_.parameters, h, t, input));
-    }
     bool isMotionInput(fmu::ValueReference vr) {
         for (int k = 0; k < kDriveModeCount; ++k)
             if (!driveModes()[k].carried && &(values_.*driveModes()[k].port) == values_.inputPort(vr)) return true;
         return false;
-    }
-    // tolerance > 0 (docs/theory.md §22): the global error estimate passing the tolerance (the scene's
-    // horizon for it), and a contact step the cap bounded, are each said once per build.
-    void warnOfErrorEstimate() {
-        const plate::PlateParameters& p = values_.parameters;
-        const plate::PlateOutputs& o = values_.outputs;
-        if (p.tolerance <= 0.0 || p.timeScheme != plate::TimeScheme::Flow) return;
-        if (!errorWarned_ && o.errorEstimate > p.tolerance) {
-            errorWarned_ = true;
-            warn(format("error_estimate = %.3g m passed tolerance = %.3g m at t = %.17g", o.errorEstimate, p.tolerance,
-                        simulation_->time()) +
-                 ": the flow law cannot hold the tolerance from this time on (errors made at earlier impacts grew at "
-                 "later ones, or the sub-step cap bounded a step): this is the scene's horizon for this tolerance. "
-                 "Later contact steps take contact_substeps sub-steps; between two obstacles error_estimate reads "
-                 "their gap from now on, the one bound left (docs/theory.md section 22)");
-        }
-        if (!cappedWarned_ && o.cappedSteps > 0) {
-            cappedWarned_ = true;
-            warn(format("a contact step before t = %.17g needed more than max_contact_substeps = %g sub-steps for "
-                        "its target",
-                        simulation_->time(), double(p.maxContactSubsteps)) +
-                 "; raise max_contact_substeps (capped_steps counts such steps; error_estimate includes them)");
-        }
     }
     // A clamp moved by one input only (docs/theory.md §16–18): a force-driven or line-carried clamp
     // whose motion inputs are set as well, or a motion-driven one given a force, is refused.
@@ -445,11 +396,8 @@ private:
     double clampPosition_ = 0.0, clampVelocity_ = 0.0;
     bool driveSet_ = false;  // the drive input was set during the run (terminate tells otherwise)
     const char* otherMotionSet_ = nullptr;  // the first motion input of another drive set during the run
-    bool interpolationWarned_ = false;  // the warning of steps shorter than two grid steps, once
-    bool errorWarned_ = false;  // the warning of the error estimate past the tolerance, once
-    bool cappedWarned_ = false;  // the warning of a contact step the sub-step cap bounded, once
-    mutable bool stressReadWarned_ = false;  // a stress output read while stress_outputs = false, once
-    bool longStepWarned_ = false;  // a communication step too long for the plate and the inputs, once
+    // The advice said once per build (PlateAdvice.h); mutable: a read may say it.
+    mutable PlateAdvisor advisor_{warn};
     bool stopAtContactChange_ = false;  // inside doStepUntilEvent
     bool endedAtEvent_ = false;  // the last step of doStepUntilEvent ended at a contact change
     bool returnRequested_ = false;  // ... or where the master's intermediate update asked

@@ -4,7 +4,7 @@
 
 namespace plateimpact {
 
-// The terminal kinds (documented on the model's page, PlateModel.cpp):
+// The terminal kinds (documented on the model's page, PlateInfo.cpp):
 //   org.plateimpact.TranslationalFlange  a vertical translational flange: s [m], v [m/s],
 //       a [m/s2] the flange's motion, f [N] the force on it; members of equal memberName
 //       connect (a causal connection: one side's output feeds the other's input).

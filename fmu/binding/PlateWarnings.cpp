@@ -6,9 +6,9 @@
 
 namespace plateimpact {
 
-std::string format(const char* fmt, double a, double b, double c) {
-    char text[400];
-    std::snprintf(text, sizeof text, fmt, a, b, c);
+std::string format(const char* fmt, double a, double b, double c, double d) {
+    char text[600];
+    std::snprintf(text, sizeof text, fmt, a, b, c, d);
     return text;
 }
 
