@@ -97,3 +97,41 @@ def pytest_collection_modifyitems(config, items):
     # The slow ones first (a stable sort): pytest-xdist hands tests out in this order, so the long
     # ones start while the short ones fill the other worker, instead of running alone at the end.
     items.sort(key=lambda item: item.get_closest_marker("slow") is None)
+
+
+# fmpy formats FMI 2.0 log messages in a native proxy that keeps one global pointer to the last Python
+# logger registered (fmpy.logging.addLoggerProxy). A simulate_fmu(..., logger=f) registers f's ctypes
+# callback and drops it when it returns, so the next FMU that logs through fmpy's default callbacks in
+# the same process calls freed memory (a segfault of an xdist worker, seen in test_fmi3 after
+# test_silent_answers). After every test the global points at one logger this module keeps alive.
+_KEPT_LOGGER: list = []
+
+
+@pytest.fixture(autouse=True)
+def _fmpy_logger_proxy_kept_alive():
+    yield
+    from ctypes import byref
+
+    from fmpy.fmi2 import (
+        calloc,
+        fmi2CallbackAllocateMemoryTYPE,
+        fmi2CallbackFreeMemoryTYPE,
+        fmi2CallbackFunctions,
+        fmi2CallbackLoggerTYPE,
+        free,
+        printLogMessage,
+    )
+    from fmpy.logging import addLoggerProxy
+
+    if not _KEPT_LOGGER:
+        callbacks = fmi2CallbackFunctions()
+        callbacks.logger = fmi2CallbackLoggerTYPE(printLogMessage)
+        callbacks.allocateMemory = fmi2CallbackAllocateMemoryTYPE(calloc)
+        callbacks.freeMemory = fmi2CallbackFreeMemoryTYPE(free)
+        _KEPT_LOGGER.append((callbacks, callbacks.logger))
+    python_logger = _KEPT_LOGGER[0][1]
+    fresh = fmi2CallbackFunctions()  # the proxy replaces the struct's logger: register a fresh one
+    fresh.logger = python_logger
+    addLoggerProxy(byref(fresh))
+    _KEPT_LOGGER.append(fresh)
+    del _KEPT_LOGGER[1:-1]
