@@ -82,3 +82,14 @@ def test_the_law_table_states_no_unmarked_figure():
     bare = "\n".join(line.split("|", 2)[-1] for line in bare.splitlines())  # "you need" asks, it measures nothing
     copied = re.findall(r"\d[\d.]*(?:e-?\d+)?\s*(?:µs|×(?!\s*\d))|\d(?:\.\d+)?e-\d+ m", bare)
     assert not copied, copied
+
+
+def test_the_flow_laws_cost_is_stated_once():
+    """Issue 56: docs/performance.md gave the flow law's CPU against the conserving law as 3.3× and 4.6×
+    (the per-step table of impact_speed_error.json, measured before contact rows and the new error
+    estimate), 2.09× (a bullet) and 1.67× / 2.07× (the tolerance study). The tolerance study's table,
+    which times the flow law with and without a tolerance against the conserving law in one run, is
+    now the one statement: the other study times no flow row, and the page and the README quote it."""
+    laws = json.loads((DOCS / "impact_speed_error.json").read_text())
+    assert not [r for r in laws["costs"] if r["law"].startswith("flow")], "a second statement of the flow law's cost"
+    assert "cpu_ratio" not in laws["goals"]["release_dt_1e-5"]
