@@ -52,8 +52,8 @@ fi
 
 # The packages of build/ first (a no-op after run.sh); those of the other stages in the
 # background while the unit tests run (downloads and dpkg beside the CPU): clang first, so that
-# the instrumented build can start as soon as the unit tests are done, then the cross compilers
-# and the emulators, each group in one apt-get call (scripts/packages.sh).
+# the instrumented build can start beside the unit tests, then the cross compilers and the
+# emulators, each in one apt-get call (scripts/packages.sh).
 bash scripts/packages.sh base
 bash scripts/setup.sh
 bash scripts/check-format.sh
@@ -74,11 +74,40 @@ rm -f "$clang_ready"
   bash scripts/packages.sh "${groups[@]}"
 ) >build/logs/packages.log 2>&1 &
 packages_pid=$!
+lane() {  # lane <name> <command...>: in the background, its log in build/logs/<name>.log
+  local name="$1"
+  shift
+  "$@" >"build/logs/$name.log" 2>&1 &
+  lanes+=("$name:$!")
+}
+wait_lanes() {  # wait_lanes: prints each lane's log; fails if any lane failed
+  local entry name lane_status failed=0
+  for entry in "${lanes[@]}"; do
+    name="${entry%%:*}" lane_status=0
+    wait "${entry#*:}" || lane_status=$?
+    echo "test.sh: --- build/logs/$name.log"
+    cat "build/logs/$name.log"
+    [ "$lane_status" = 0 ] || { echo "test.sh: the $name build FAILED (log above)" >&2; failed=1; }
+  done
+  lanes=()
+  return "$failed"
+}
+after_clang() {  # after_clang <command...>: runs it once clang is installed (fails if that failed)
+  while [ ! -e "$clang_ready" ]; do
+    kill -0 "$packages_pid" 2>/dev/null || [ -e "$clang_ready" ] || return 1
+    sleep 1
+  done
+  "$@"
+}
+lanes=()
+# The instrumented build starts as soon as clang is there: beside the unit tests and the packages.
+[ ${#asan_targets[@]} -eq 0 ] || lane asan after_clang bash scripts/build-asan.sh "${asan_targets[@]}"
 ctest_status=0
 (cd build && ctest --output-on-failure -j"$(nproc)") || ctest_status=$?
-took "ctest (beside the packages)"
+took "ctest (beside the packages and the instrumented build)"
 if [ "$ctest_status" != 0 ]; then
   wait "$packages_pid" || true
+  wait_lanes || true
   echo "test.sh: ctest FAILED" >&2
   exit 1
 fi
@@ -89,45 +118,25 @@ fi
 # others' gaps on two cores:
 #  - the instrumented build (scripts/build-asan.sh): one clang build, ASan + UBSan + libFuzzer's
 #    coverage hooks, at -O1 as a unity build: the FMUs of the sanitizer stage and the harnesses
-#    of the fuzz stage from the same object files; it starts once clang is installed, while the
-#    other packages still are;
+#    of the fuzz stage from the same object files; it starts (above) once clang is installed,
+#    beside the unit tests and the other packages;
 #  - win64 (scripts/build-win64.sh: for test_win64.py under Wine);
 #  - aarch64 (scripts/build-aarch64.sh: for test_aarch64.py under qemu-aarch64).
 # The C masters of build/ that both cross scripts build first are built here once, and
 # build/dist/ is packaged once all are done (scripts/package-dist.sh: every platform's binary).
-lane() {  # lane <name> <command...>: in the background, its log in build/logs/<name>.log
-  local name="$1"
-  shift
-  "$@" >"build/logs/$name.log" 2>&1 &
-  lanes+=("$name:$!")
-}
-lanes=()
-while [ ! -e "$clang_ready" ] && kill -0 "$packages_pid" 2>/dev/null; do sleep 1; done
-if [ ${#asan_targets[@]} -gt 0 ] && [ -e "$clang_ready" ]; then
-  lane asan bash scripts/build-asan.sh "${asan_targets[@]}"
-fi
 packages_status=0
 wait "$packages_pid" || packages_status=$?
 cat build/logs/packages.log
 if [ "$packages_status" != 0 ]; then
-  for entry in "${lanes[@]}"; do wait "${entry#*:}" || true; done
+  wait_lanes || true
   echo "test.sh: installing packages FAILED (log above)" >&2
   exit 1
 fi
-took "packages (beside the unit tests and the instrumented build)"
+took "packages (beside the instrumented build)"
 cmake --build build -j"$(nproc)" --target fmu_driver fmu3_driver -- --no-print-directory >/dev/null
 on PLATEIMPACT_WIN64_STAGE && lane win64 bash scripts/build-win64.sh
 on PLATEIMPACT_AARCH64_STAGE && lane aarch64 bash scripts/build-aarch64.sh
-build_status=0
-for entry in "${lanes[@]}"; do
-  name="${entry%%:*}"
-  lane_status=0
-  wait "${entry#*:}" || lane_status=$?
-  echo "test.sh: --- build/logs/$name.log"
-  cat "build/logs/$name.log"
-  [ "$lane_status" = 0 ] || { echo "test.sh: the $name build FAILED (log above)" >&2; build_status=1; }
-done
-[ "$build_status" = 0 ] || exit 1
+wait_lanes || exit 1
 bash scripts/package-dist.sh
 took "builds (asan + fuzz | win64 | aarch64)"
 
@@ -137,40 +146,10 @@ took pytest
 
 status=0
 # --- Sanitizer stage ------------------------------------------------------------------------
-# A sanitized shared object needs the sanitizer runtimes loaded first: preload them into Python
-# (and so into the catalogue's child processes). No leak check here: CPython leaks by design;
-# test_valgrind.py checks the FMU's leaks. halt_on_error: the first report ends the process
-# with exit code 1 (a failed child in the catalogue, pytest itself otherwise). Reports go to
-# files (pytest would swallow the stderr of a process that dies under its capture): any report
-# fails the stage and is printed, whatever pytest says.
+# The tests marked `sanitizer` but not `repeats_paths` against build-asan/'s FMUs, the sanitizer
+# runtime preloaded; any report fails it (scripts/sanitizer-stage.sh, which runs it alone too).
 if on PLATEIMPACT_SANITIZER_STAGE; then
-  # clang's ASan runtime holds its UBSan runtime too
-  runtime="$(clang -print-runtime-dir)/libclang_rt.asan-x86_64.so"
-  [ -f "$runtime" ] || { echo "test.sh: $runtime not found (clang -print-runtime-dir)" >&2; exit 1; }
-  reports="$repo/build-asan/sanitizer-reports"
-  rm -rf "$reports" && mkdir -p "$reports"
-  # What runs: the files marked `sanitizer` (pytest.ini) — the FMI layer, the port, the physics,
-  # a second importer, inputs without derivatives, damaged states, random call sequences, the
-  # stability cases — but the tests marked `repeats_paths` (convergence studies and the stability
-  # cases that repeat a covered path at more cost). Markers, not name substrings: a renamed test
-  # keeps its place. Not here: valgrind (test_valgrind.py) and the packaging checks (a sanitizer
-  # build's packaging is not the product's).
-  sanitizer_marks="sanitizer and not repeats_paths"
-  echo "test.sh: sanitizer stage: pytest -m \"$sanitizer_marks\" against build-asan/PlateImpact.fmu"
-  LD_PRELOAD="$runtime${LD_PRELOAD:+ $LD_PRELOAD}" \
-  ASAN_OPTIONS="detect_leaks=0:halt_on_error=1:log_path=$reports/asan${ASAN_OPTIONS:+:$ASAN_OPTIONS}" \
-  UBSAN_OPTIONS="halt_on_error=1:print_stacktrace=1:log_path=$reports/ubsan${UBSAN_OPTIONS:+:$UBSAN_OPTIONS}" \
-  PLATEIMPACT_FMU="$repo/build-asan/PlateImpact.fmu" \
-    "$py" -m pytest -q "${workers[@]}" python_tests -m "$sanitizer_marks" "$@" || status=$?
-  if [ -n "$(ls -A "$reports")" ]; then
-    for report in "$reports"/*; do
-      echo "test.sh: sanitizer report $report:" >&2
-      cat "$report" >&2
-    done
-    echo "test.sh: sanitizer stage FAILED: $(ls "$reports" | wc -l) report(s) in $reports" >&2
-    exit 1
-  fi
-  [ "$status" = 0 ] || echo "test.sh: sanitizer stage FAILED (pytest exit code $status)" >&2
+  bash scripts/sanitizer-stage.sh "$@" || status=1
   took sanitizer
 fi
 
