@@ -26,12 +26,13 @@ runtime="$(clang -print-runtime-dir)/libclang_rt.asan-x86_64.so"
 reports="$repo/build-asan/sanitizer-reports"
 rm -rf "$reports" && mkdir -p "$reports"
 
-# What runs: the files marked `sanitizer` — the FMI layer, the port, the physics, a second
-# importer, inputs without derivatives, damaged states, random call sequences, the stability
-# cases, the shared discretizations — but the tests marked `repeats_paths` (convergence studies
-# and cases that repeat a covered path at more cost; each names what still covers it). Markers,
-# not name substrings: a renamed test keeps its place. Not here: valgrind (test_valgrind.py) and
-# the packaging checks (a sanitizer build's packaging is not the product's).
+# What runs: the files marked `sanitizer` — the FMI layer, every engine's stepping and FMU states,
+# reset and threads, the port, inputs without derivatives, damaged states, random call sequences,
+# stability cases — but the tests marked `repeats_paths` (studies, and runs that repeat the code
+# paths of a test here at more cost: each names the tests here, or the fuzz harness, that run
+# them; python_tests/test_sanitizer_selection.py checks the names). Markers, not name
+# substrings: a renamed test keeps its place. Not here: valgrind (test_valgrind.py) and the
+# packaging checks (a sanitizer build's packaging is not the product's).
 marks="sanitizer and not repeats_paths"
 selection=(python_tests -m "$marks")
 for arg in "$@"; do
