@@ -84,9 +84,104 @@ SLOW = {
 }
 
 
+# The sanitizer stage (scripts/sanitizer-stage.sh) runs the tests marked `sanitizer` but not
+# `repeats_paths`. A test of a `sanitizer` file left out of it is marked
+# `repeats_paths(<covering>...)`: each argument names what runs its code paths under ASan + UBSan
+# instead: a test of the stage (its node id, as `pytest --collect-only -q` prints it from
+# python_tests/), or a libFuzzer harness (fuzz/<harness>.cpp, the fuzz stage, the same build).
+# test_sanitizer_selection.py checks that every name is one. Where a test's parameters differ in
+# this, the decorator cannot say it: the node ids here, each with what covers it.
+LEFT_OUT_OF_THE_SANITIZER_STAGE = {
+    "test_physics.py::test_static_beam_limit_is_exact[argyris]": (
+        "test_physics.py::test_static_beam_limit_is_exact[fvs]",  # the static solve, the other element
+        "test_fmi_conformance.py::test_fmu_state_get_set_and_serialize_are_bit_identical[argyris]",
+    ),
+    "test_physics.py::test_energy_is_conserved_without_contact_and_input[argyris-0.25]": (
+        "test_physics.py::test_energy_is_conserved_without_contact_and_input[argyris-0.5]",  # β changes numbers only
+    ),
+    "test_physics.py::test_energy_is_conserved_without_contact_and_input[fvs-0.25]": (
+        "test_physics.py::test_energy_is_conserved_without_contact_and_input[fvs-0.5]",
+    ),
+    "test_physics.py::test_free_vibration_dissipates_at_impacts_and_respects_the_obstacle[argyris]": (
+        "test_fmi_conformance.py::test_fmu_state_get_set_and_serialize_are_bit_identical[argyris]",  # impacts
+        "test_conserving.py::test_no_reported_displacement_passes_an_obstacle[scene1]",  # the released shape
+    ),
+    "test_physics.py::test_free_vibration_dissipates_at_impacts_and_respects_the_obstacle[fvs]": (
+        "test_fmi_conformance.py::test_fmu_state_get_set_and_serialize_are_bit_identical[fvs]",
+    ),
+    # base motion, load and both obstacles: the scene of test_fmi_conformance.py's CONFIGS
+    "test_physics.py::test_energy_ledger_with_base_load_and_both_obstacles[argyris]": (
+        "test_fmi_conformance.py::test_fmu_state_get_set_and_serialize_are_bit_identical[argyris]",
+    ),
+    "test_physics.py::test_energy_ledger_with_base_load_and_both_obstacles[fvs]": (
+        "test_fmi_conformance.py::test_fmu_state_get_set_and_serialize_are_bit_identical[fvs]",
+    ),
+    "test_physics.py::test_energy_ledger_of_the_reduced_model[argyris-6]": (
+        "test_physics.py::test_energy_ledger_of_the_reduced_model[fvs-6]",
+        "test_fmi_conformance.py::test_fmu_state_get_set_and_serialize_are_bit_identical[reduced_modal]",
+    ),
+    "test_physics.py::test_energy_ledger_of_the_reduced_model[argyris-20]": (
+        "test_fmi_conformance.py::test_fmu_state_get_set_and_serialize_are_bit_identical[reduced_modal]",
+    ),
+    "test_physics.py::test_energy_ledger_of_the_reduced_model[fvs-20]": (
+        "test_physics.py::test_energy_ledger_of_the_reduced_model[fvs-6]",
+    ),
+    "test_conserving.py::test_the_paper_scheme_lets_free_edge_mid_pass_the_obstacle": (
+        "test_conserving.py::test_no_reported_displacement_passes_an_obstacle[scene0]",  # the same scene, conserving
+        "test_fmi_conformance.py::test_fmu_state_get_set_and_serialize_are_bit_identical[argyris]",  # the paper's
+    ),
+    "test_conserving.py::test_momentum_balance_of_the_port": (
+        "test_conserving.py::test_work_of_the_clamp_force_is_the_energy_input_through_impacts[0]",  # the port sums
+        "test_port.py::test_velocity_and_acceleration_drives_give_the_displacement_drive[velocity]",
+    ),
+    "test_conserving.py::test_flow_scheme_closes_the_ledger_through_impacts[1e-05]": (
+        "test_conserving.py::test_flow_scheme_closes_the_ledger_through_impacts[4e-05]",  # dt changes numbers only
+    ),
+    "test_conserving.py::test_flow_scheme_closes_the_ledger_through_impacts[2e-05]": (
+        "test_conserving.py::test_flow_scheme_closes_the_ledger_through_impacts[4e-05]",
+    ),
+    "test_port.py::test_2048_hz_signal_through_simulate_fmu": (
+        "test_fmi_conformance.py::test_simulate_fmu_runs",  # fmpy's simulate_fmu
+        "test_port.py::test_a_step_of_half_dt_interpolates_the_grid",  # steps off the grid
+        "test_input_reconstruction.py::test_reconstruction_with_varying_steps_and_a_master_time_with_roundoff",
+    ),
+    "test_port.py::test_probe_velocity_and_acceleration_are_the_differences_of_the_displacements": (
+        "test_port.py::test_velocity_and_acceleration_drives_give_the_displacement_drive[velocity]",
+        "test_port.py::test_port_outputs_at_t0_describe_the_initial_state[scene0-law0]",
+    ),
+    "test_input_reconstruction.py::test_fmpy_simulate_with_an_input_file_meets_the_goal": (
+        "test_input_reconstruction.py::test_reconstruction_is_exact_for_the_polynomials_it_represents[ramp-linear]",
+        "test_fmi_conformance.py::test_simulate_fmu_runs",
+    ),
+    # libcosim's run: values only at every step, steps an importer rounds, its order of calls
+    "test_libcosimpy.py::test_libcosimpy_and_fmpy_give_the_same_outputs": (
+        "test_input_reconstruction.py::test_held_load_step_is_applied_as_a_step_under_the_default_mode",
+        "test_fmi_conformance.py::test_status_functions_and_tolerant_step_sizes",
+        "fuzz/call_sequence.cpp",  # call orders, legal and not
+    ),
+    "test_libcosimpy.py::test_libcosimpy_sets_the_integer_switches_on_the_unmodified_fmu": (
+        "test_input_reconstruction.py::test_unknown_mode_is_rejected[base_input_mode-4]",  # an Integer switch set
+        "fuzz/parameters.cpp",  # every Integer parameter, its edges and past them
+    ),
+    # the cache's sharing runs in every test here that makes a second instance of a plate
+    "test_discretization_cache.py::test_a_shared_plate_gives_the_golden_output_bit_for_bit": (
+        "test_fmi_conformance.py::test_fmu_state_get_set_and_serialize_are_bit_identical[argyris]",
+        "test_fmi_conformance.py::test_two_threads_match_sequential_runs[flow]",
+    ),
+}
+
+
 def pytest_collection_modifyitems(config, items):
+    list_repeats_paths = os.environ.get("PLATEIMPACT_LIST_REPEATS_PATHS") == "1"
     for item in items:
         file = item.path.name
+        covering = LEFT_OUT_OF_THE_SANITIZER_STAGE.get(f"{file}::{item.name}")
+        if covering:
+            item.add_marker(pytest.mark.repeats_paths(*covering))
+        if list_repeats_paths and item.get_closest_marker("sanitizer"):
+            left_out = item.get_closest_marker("repeats_paths")
+            if left_out:  # for test_sanitizer_selection.py
+                print(f"repeats_paths {item.nodeid} -> {' '.join(left_out.args)}")
         if file in SERIAL:
             item.add_marker(pytest.mark.xdist_group(SERIAL[file]))
         for key in (file, f"{file}::{item.originalname}"):

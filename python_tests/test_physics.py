@@ -17,6 +17,9 @@ from plateimpact.scenes import AMPLITUDE, FREQUENCY, default_base
 
 # The sanitizer stage of test.sh runs this file against the ASan+UBSan build (pytest.ini).
 pytestmark = pytest.mark.sanitizer
+# What a test left out of the sanitizer stage names (repeats_paths, conftest.py): every engine's
+# stepping and state code under ASan, one configuration each.
+STATE = "test_fmi_conformance.py::test_fmu_state_get_set_and_serialize_are_bit_identical"
 
 L, W, THICKNESS, YOUNG, NU = 1.2, 0.4, 0.01, 2.1e11, 0.3
 
@@ -81,7 +84,9 @@ def test_static_beam_limit_is_exact(fmu_path, element):
         assert all(3.7 <= p <= 4.3 for p in orders), orders  # O(h⁴), measured 4.0
 
 
-@pytest.mark.repeats_paths
+@pytest.mark.repeats_paths(
+    "test_physics.py::test_static_beam_limit_is_exact[fvs]", f"{STATE}[argyris]"
+)  # static solves
 def test_static_corner_converges_between_cylindrical_and_beam_bending(fmu_path):
     """ν = 0.3, Argyris, nx x ny = 3x1 … 48x16 (square cells).
 
@@ -116,7 +121,7 @@ def test_static_corner_converges_between_cylindrical_and_beam_bending(fmu_path):
     assert 0.95 < corners[-1] / beam < 0.975
 
 
-@pytest.mark.repeats_paths
+@pytest.mark.repeats_paths("test_physics.py::test_static_beam_limit_is_exact[fvs]", f"{STATE}[argyris]")
 def test_static_fvs_converges_to_the_argyris_limit(fmu_path):
     """FVS and Argyris discretize the same plate: their corner deflections must agree in the
     limit. Measured at ν = 0.3: FVS 24x8 0.0142482, 48x16 0.0142572 vs Argyris 48x16 0.0142621
@@ -168,7 +173,10 @@ def corner_at(fmu_path, element, nx, ny, dt, t_end, base):
 
 
 @pytest.mark.parametrize("element", ELEMENTS)
-@pytest.mark.repeats_paths
+@pytest.mark.repeats_paths(
+    "test_physics.py::test_energy_is_conserved_without_contact_and_input[argyris-0.5]",  # free flight
+    "test_physics.py::test_energy_is_conserved_without_contact_and_input[fvs-0.5]",
+)
 def test_time_scheme_is_second_order(fmu_path, element):
     """Newmark γ = ½ is second order in Δt for a smooth solution: corner_1 at t = 0.05 s,
     Δt = 4e-4, 2e-4, 1e-4, 5e-5, 6x2 mesh, no obstacles, base (1 − cos)² start.
@@ -189,7 +197,9 @@ def test_time_scheme_is_second_order(fmu_path, element):
     assert all(1.8 <= p <= 2.2 for p in orders), (orders, values)
 
 
-@pytest.mark.repeats_paths
+@pytest.mark.repeats_paths(
+    "test_physics.py::test_energy_is_conserved_without_contact_and_input[argyris-0.5]", f"{STATE}[argyris]"
+)
 def test_time_scheme_is_second_order_for_the_sine_start_once_the_mesh_is_resolved(fmu_path):
     """The paper's sine base with its velocity jump at t = 0, on a mesh coarse enough for the
     time step to resolve all its modes: Argyris 1x1 (ω_max = 3.9e4 s⁻¹), Δt = 1e-6, 5e-7,
@@ -299,7 +309,7 @@ def test_free_vibration_dissipates_at_impacts_and_respects_the_obstacle(fmu_path
 
 
 @pytest.mark.parametrize("element,nx,ny", [("argyris", 14, 6), ("fvs", 20, 8)])
-@pytest.mark.repeats_paths
+@pytest.mark.repeats_paths(f"{STATE}[argyris]", f"{STATE}[fvs]")  # contact at the vertices
 def test_free_edge_midpoint_respects_the_obstacle_when_it_is_a_vertex(fmu_path, element, nx, ny):
     """Contact is enforced at the mesh vertices only (docs/theory.md). With ny odd (the paper's
     meshes) free_edge_mid = w(L, W/2) lies between vertices and may dip below the obstacle by

@@ -15,6 +15,9 @@ from plateimpact.scenes import AMPLITUDE, FREQUENCY
 
 # The sanitizer stage of test.sh runs this file against the ASan+UBSan build (pytest.ini).
 pytestmark = pytest.mark.sanitizer
+# What a test left out of the sanitizer stage names (repeats_paths, conftest.py): every engine's
+# stepping and state code under ASan, one configuration each.
+STATE = "test_fmi_conformance.py::test_fmu_state_get_set_and_serialize_are_bit_identical"
 
 DT = 1e-5
 
@@ -64,7 +67,11 @@ LAWS = {
 
 
 @pytest.mark.parametrize("law", LAWS)
-@pytest.mark.repeats_paths
+@pytest.mark.repeats_paths(
+    "test_conserving.py::test_work_of_the_clamp_force_is_the_energy_input_through_impacts[0]",  # the port sums
+    f"{STATE}[singular_laws]",  # the laws
+    f"{STATE}[modal_restitution_damping]",
+)
 def test_work_of_the_clamp_force_is_the_energy_input_through_impacts(fmu_path, law):
     # Σ_n F_n (z_{n+1} − z_{n−1})/2 over the steps, F_n the force the clamp exerts on the plate
     # (−clamp_force, centred at t_n), is the ledger's energy_input (load 0) identically (§14).
@@ -81,7 +88,9 @@ def test_work_of_the_clamp_force_is_the_energy_input_through_impacts(fmu_path, l
     assert np.max(np.abs(work - energy_input)) <= 1e-8 * scale
 
 
-@pytest.mark.repeats_paths
+@pytest.mark.repeats_paths(
+    "test_port.py::test_port_outputs_at_t0_describe_the_initial_state[scene0-law0]", f"{STATE}[argyris]"
+)
 def test_contact_sums_are_consistent(fmu_path):
     rows = run_every_step(fmu_path, 7000)
     lower = np.array([r["contact_force_lower"] for r in rows])

@@ -18,27 +18,42 @@ from stability import CASES, FMICallException, failures, run_case
 pytestmark = pytest.mark.sanitizer
 
 
-# The cases the sanitizer stage runs (the others repeat their code paths at more cost): many
-# contacts, large dt, beta = 0 and its bound, the sparse engine (56 x 20), a start pressed onto
-# an obstacle, the impact laws (singular mass, restitution, damping).
-SANITIZER_CASES = {
-    "gap_1e-4",
-    "dt_1e-2",
-    "beta_0_0.9x_bound",
-    "beta_0_1.1x_bound",
-    "beta_0_1.1x_bound_14x5",
-    "grid_56x20",
-    "pressed_held",
-    "singular_p0_dt_1e-3",
-    "restitution_1_dt_1e-3",
-    "all_laws",
+# The cases the sanitizer stage runs: a large dt (contact at most steps), beta = 0 refused at its
+# bound (the spectrum's largest eigenvalue; coarse and default cells), the singular mass at a large
+# dt. Every other case repeats code paths the stage runs elsewhere (conftest.py): the default
+# engine through impacts (NEWMARK) and what COVERED_BY adds for a case; the stability checks
+# themselves run on every case in the pytest stage.
+SANITIZER_CASES = {"dt_1e-2", "beta_0_1.1x_bound", "beta_0_1.1x_bound_14x5", "singular_p0_dt_1e-3"}
+STATE_TEST = "test_fmi_conformance.py::test_fmu_state_get_set_and_serialize_are_bit_identical"
+NEWMARK = ("test_stability.py::test_stability_case[dt_1e-2]", f"{STATE_TEST}[argyris]")
+LAWS = (f"{STATE_TEST}[singular_laws]", f"{STATE_TEST}[modal_restitution_damping]")
+SINGULAR = ("test_stability.py::test_stability_case[singular_p0_dt_1e-3]",)
+COVERED_BY = {
+    "grid_56x20": (f"{STATE_TEST}[argyris_fine]",),  # the sparse factor (28 x 10 cells)
+    "beta_0_0.9x_bound": ("test_stability.py::test_stability_case[beta_0_1.1x_bound]",),  # beta: numbers only
+    "pressed_held": ("test_conserving.py::test_no_reported_displacement_passes_an_obstacle[scene2]",),
+    "pressed_released": ("test_conserving.py::test_no_reported_displacement_passes_an_obstacle[scene2]",),
+    "singular_p0": SINGULAR,
+    "singular_p1dg": ("fuzz/parameters.cpp",),  # every mass, initialized and stepped on small plates
+    "singular_p0_fvs": (*SINGULAR, f"{STATE_TEST}[fvs]"),
+    "restitution_0.5": LAWS,
+    "restitution_1": LAWS,
+    "restitution_1_dt_1e-3": LAWS,
+    "damping": LAWS,
+    "all_laws": (f"{STATE_TEST}[singular_laws]",),  # the same four laws at once
+    "load_steps_1e5": (
+        "test_input_reconstruction.py::test_held_load_step_is_applied_as_a_step_under_the_default_mode",
+    ),
 }
 
 
-@pytest.mark.parametrize(
-    "case",
-    [pytest.param(c, id=c.name, marks=() if c.name in SANITIZER_CASES else pytest.mark.repeats_paths) for c in CASES],
-)
+def sanitizer_marks(case):
+    if case.name in SANITIZER_CASES:
+        return ()
+    return pytest.mark.repeats_paths(*NEWMARK, *COVERED_BY.get(case.name, ()))
+
+
+@pytest.mark.parametrize("case", [pytest.param(c, id=c.name, marks=sanitizer_marks(c)) for c in CASES])
 def test_stability_case(case, fmu_path):
     r = run_case(case, fmu_path)
     if case.refused:

@@ -1,8 +1,9 @@
 #!/usr/bin/env bash
 # Coverage-guided fuzzing of the FMU's C API (fuzz/): builds the libFuzzer harnesses with clang,
-# ASan and UBSan in build-fuzz/ and runs each on a working copy of its seed corpus
+# ASan and UBSan in build-asan/ (scripts/build-asan.sh: the build whose FMUs the sanitizer stage
+# runs, the same object files) and runs each on a working copy of its seed corpus
 # (fuzz/corpus/<harness>). Any crash, leak, timeout or sanitizer report fails the run; the
-# input that caused it is left in build-fuzz/findings/ (copy it into fuzz/corpus/<harness> as a
+# input that caused it is left in build-asan/findings/ (copy it into fuzz/corpus/<harness> as a
 # regression case once fixed).
 #
 #   bash scripts/fuzz.sh                       # 60 s per harness (test.sh: --seconds 20 --parallel)
@@ -10,7 +11,7 @@
 #   bash scripts/fuzz.sh --runs 1000000        # a number of executions per harness
 #   bash scripts/fuzz.sh --parallel ...        # the three harnesses at once (one process each)
 #   bash scripts/fuzz.sh --harness parameters  # one harness only (repeatable)
-#   bash scripts/fuzz.sh --build-only          # build the harnesses, run nothing (test.sh: beside other builds)
+#   bash scripts/fuzz.sh --build-only          # build the harnesses, run nothing
 #   bash scripts/fuzz.sh --coverage            # replay the corpora with source-based coverage:
 #                                              # line coverage of fmu/ and solver/ (build-cov/)
 #   bash scripts/fuzz.sh --merge               # minimize the working corpora into fuzz/corpus/
@@ -38,24 +39,13 @@ if [ ${#chosen[@]} -gt 0 ]; then harnesses=("${chosen[@]}"); fi
 
 bash "$repo/scripts/packages.sh" fuzz  # when missing
 
-build() {  # build <dir> <extra cmake args...>
-  local dir="$1"; shift
-  if [ ! -f "$dir/CMakeCache.txt" ]; then
-    # -O1 and a unity build (sources compiled a few at a time): half the compile time of -O3
-    CC=clang CXX=clang++ cmake -S "$repo" -B "$dir" -DCMAKE_BUILD_TYPE=Release -DPLATEIMPACT_FUZZ=ON \
-      "-DCMAKE_CXX_FLAGS_RELEASE=-O1 -DNDEBUG" "-DCMAKE_C_FLAGS_RELEASE=-O1 -DNDEBUG" -DCMAKE_UNITY_BUILD=ON \
-      -DPLATEIMPACT_TESTS=OFF "$@" >/dev/null
-  fi
-  cmake --build "$dir" -j"$(nproc)" --target fuzzers -- --no-print-directory >/dev/null
-}
-
 if [ "$mode" = coverage ]; then
-  build "$repo/build-cov" -DPLATEIMPACT_COVERAGE=ON
+  bash "$repo/scripts/build-asan.sh" --coverage fuzzers
   profiles="$repo/build-cov/profiles"
   rm -rf "$profiles" && mkdir -p "$profiles"
   objects=()
   for h in "${harnesses[@]}"; do
-    corpus="$repo/build-fuzz/corpus/$h"
+    corpus="$repo/build-asan/corpus/$h"
     [ -d "$corpus" ] || corpus="$repo/fuzz/corpus/$h"
     LLVM_PROFILE_FILE="$profiles/$h.profraw" ASAN_OPTIONS=detect_leaks=0 \
       "$repo/build-cov/fuzz/fuzz_$h" -runs=0 "$corpus" >/dev/null 2>&1
@@ -72,16 +62,16 @@ if [ "$mode" = coverage ]; then
   exit 0
 fi
 
-build "$repo/build-fuzz"
+bash "$repo/scripts/build-asan.sh" fuzzers
 [ "$mode" = build ] && exit 0
-findings="$repo/build-fuzz/findings"
+findings="$repo/build-asan/findings"
 mkdir -p "$findings"
 
 fuzz_one() {  # fuzz_one <harness>: runs it, prints its verdict, returns non-zero on a finding
-  local h="$1" corpus="$repo/build-fuzz/corpus/$1" log="$repo/build-fuzz/$1.log"
+  local h="$1" corpus="$repo/build-asan/corpus/$1" log="$repo/build-asan/$1.log"
   mkdir -p "$corpus"
   # The seed corpus first (regressions included), then new inputs into the working copy.
-  if "$repo/build-fuzz/fuzz/fuzz_$h" "${limit[@]}" -timeout=30 -rss_limit_mb=4096 -print_final_stats=1 \
+  if "$repo/build-asan/fuzz/fuzz_$h" "${limit[@]}" -timeout=30 -rss_limit_mb=4096 -print_final_stats=1 \
        -artifact_prefix="$findings/$h-" "$corpus" "$repo/fuzz/corpus/$h" >"$log" 2>&1; then
     local runs
     runs=$(grep -o 'stat::number_of_executed_units: [0-9]*' "$log" | grep -o '[0-9]*$' || true)
@@ -96,10 +86,10 @@ fuzz_one() {  # fuzz_one <harness>: runs it, prints its verdict, returns non-zer
 status=0
 if [ "$mode" = merge ]; then
   for h in "${harnesses[@]}"; do
-    corpus="$repo/build-fuzz/corpus/$h"
+    corpus="$repo/build-asan/corpus/$h"
     mkdir -p "$corpus"
     rm -rf "$repo/fuzz/corpus/$h.new" && mkdir -p "$repo/fuzz/corpus/$h.new"
-    "$repo/build-fuzz/fuzz/fuzz_$h" -merge=1 "$repo/fuzz/corpus/$h.new" "$repo/fuzz/corpus/$h" "$corpus" 2>/dev/null
+    "$repo/build-asan/fuzz/fuzz_$h" -merge=1 "$repo/fuzz/corpus/$h.new" "$repo/fuzz/corpus/$h" "$corpus" 2>/dev/null
     rm -rf "$repo/fuzz/corpus/$h" && mv "$repo/fuzz/corpus/$h.new" "$repo/fuzz/corpus/$h"
     echo "fuzz.sh: $h: $(ls "$repo/fuzz/corpus/$h" | wc -l) inputs in fuzz/corpus/$h"
   done

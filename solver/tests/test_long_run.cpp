@@ -1,16 +1,19 @@
-// A long run: 10^6 internal steps (10 s) of the default sine scene — 14 x 5 Argyris cells,
-// Δt = 1e-5 s, obstacles at ±0.1 m, base 0.09 sin(2π·10 t) given with its derivatives at every
-// communication step of 1e-4 s, as the FMU runs it (the engine the FMU picks). Checked at every
-// communication step: every output finite; energy ≤ E0 + energy_input (slack 1e-9 of the
+// A long run of the default sine scene — 14 x 5 Argyris cells, Δt = 1e-5 s, obstacles at ±0.1 m,
+// base 0.09 sin(2π·10 t) given with its derivatives at every communication step of 1e-4 s, as the
+// FMU runs it (the engine the FMU picks): 10^5 internal steps (1 s, through ~10 periods of the base
+// and their impacts) in ctest; the campaign of 10^6 steps (10 s) with the same checks is
+// tools/long_run.sh (PLATEIMPACT_LONG_RUN_STEPS, issue 54: out of the suite's time). Checked at
+// every communication step: every output finite; energy ≤ E0 + energy_input (slack 1e-9 of the
 // largest energy so far, E_max = max(|E0|, max |energy|)); energy_dissipated never decreasing;
 // the ledger energy = E0 + energy_input − energy_dissipated closed to 1e-9 E_max; every QP's
-// KKT residual ≤ 1e-10. ~10 µs of CPU per step: ~10 s.
+// KKT residual ≤ 1e-10. ~10 µs of CPU per step.
 #include <gtest/gtest.h>
 
 #include <algorithm>
 #include <chrono>
 #include <cmath>
 #include <cstdio>
+#include <cstdlib>
 
 #include "PlateSimulation.h"
 
@@ -27,10 +30,16 @@ bool allFinite(const plate::PlateOutputs& o) {
            std::isfinite(o.maxKktResidual);
 }
 
+long long longRunSteps() {  // PLATEIMPACT_LONG_RUN_STEPS, a multiple of 10; default 10^5
+    const char* text = std::getenv("PLATEIMPACT_LONG_RUN_STEPS");
+    const long long steps = text != nullptr ? std::atoll(text) : 100000;
+    return steps >= 10 ? steps - steps % 10 : 100000;
+}
+
 }  // namespace
 
-TEST(LongRun, MillionStepsOfTheSineSceneStayFiniteBoundedAndBalanced) {
-    constexpr long long kSteps = 1000000;
+TEST(LongRun, StepsOfTheSineSceneStayFiniteBoundedAndBalanced) {
+    const long long kSteps = longRunSteps();
     constexpr long long kPerComm = 10;  // communication step 1e-4 s
     const plate::PlateParameters p;  // the default scene
     plate::PlateSimulation sim(p, sineBase(0.0).value);
@@ -66,7 +75,7 @@ TEST(LongRun, MillionStepsOfTheSineSceneStayFiniteBoundedAndBalanced) {
     EXPECT_EQ(sim.stepCount(), kSteps);
     EXPECT_NEAR(sim.time(), kSteps * p.dt, 1e-9);
     // The scene is not trivial: it hits the obstacles often and loses energy there.
-    EXPECT_GT(impactSteps, 1000);
+    EXPECT_GT(impactSteps, kSteps / 1000);  // 1000 of the 10^5 communication steps of 10 s
     EXPECT_GT(end.energyDissipated, 0.0);
     // The corners are vertices of the mesh: never past an obstacle by more than roundoff.
     EXPECT_LE(maxCorner, 0.1 + 1e-12);
