@@ -8,7 +8,8 @@ The whole-plate obstacle holds the clamp too (§25): the drive must stay above i
 scene is the default plate driven by 0.045 sin(2 pi 10 t) m with the lower obstacle at -0.05 m and
 the upper one off; both variants hit the obstacle (contact_onsets_lower > 0 is printed).
 
-    .venv/bin/python tools/stop_cost.py --bench build/solver/bench/plate_bench [--mesh 28x10]
+    .venv/bin/python tools/stop_cost.py --json docs/stop_cost.json   # the numbers docs/performance.md quotes
+    .venv/bin/python tools/render_docs.py performance.md            # the section "Stops"
 """
 
 from __future__ import annotations
@@ -16,6 +17,7 @@ from __future__ import annotations
 import argparse
 import json
 import subprocess
+from pathlib import Path
 
 LAWS = {
     "newmark (consistent)": ("mass=consistent",),
@@ -41,6 +43,7 @@ def main(argv=None):
     ap.add_argument("--steps", type=int, default=20000, help="internal steps of 1e-5 s (20000: 0.2 s)")
     ap.add_argument("--mesh", default="14x5", help="nx x ny (the default plate: 14x5)")
     ap.add_argument("--laws", default=",".join(LAWS), help="comma-separated subset of the laws")
+    ap.add_argument("--json", type=Path, help="also write the table as JSON (docs/stop_cost.json)")
     args = ap.parse_args(argv)
     nx, ny = (int(v) for v in args.mesh.split("x"))
     laws = [law for law in args.laws.split(",") if law]
@@ -56,6 +59,7 @@ def main(argv=None):
                     for field in ("step_cpu_s", "setup_cpu_s"):
                         best[key][field] = min(best[key][field], r[field])
     dt = 1e-5
+    table = []
     print(f"mesh {nx}x{ny}, {args.steps} steps of {dt} s, best of {args.rounds} rounds (CPU time)")
     header = (
         f"{'law':>26} {'stop':>12} {'rows':>5} {'onsets':>6} {'engine':>16} {'CPU s/sim s':>12} {'setup CPU s':>12}"
@@ -69,10 +73,26 @@ def main(argv=None):
                 f"{r['step_cpu_s'] / dt:>12.4f} {r['setup_cpu_s']:>12.4f}"
             )
         whole, tip = best[(law, "whole plate")], best[(law, "tip stop")]
+        table.append(
+            dict(
+                law=law,
+                engine=[whole["engine"], tip["engine"]],
+                rows=[whole["contact_vertices"], tip["contact_vertices"]],
+                onsets=[whole["contact_onsets_lower"], tip["contact_onsets_lower"]],
+                cpu_per_simulated_s=[whole["step_cpu_s"] / dt, tip["step_cpu_s"] / dt],
+                setup_cpu_s=[whole["setup_cpu_s"], tip["setup_cpu_s"]],
+                step_ratio=tip["step_cpu_s"] / whole["step_cpu_s"],
+                setup_ratio=tip["setup_cpu_s"] / whole["setup_cpu_s"],
+            )
+        )
         print(
             f"{law:>26} {'tip/whole':>12} {tip['contact_vertices'] / whole['contact_vertices']:>5.2f} {'':>6} {'':>16} "
             f"{tip['step_cpu_s'] / whole['step_cpu_s']:>12.3f} {tip['setup_cpu_s'] / whole['setup_cpu_s']:>12.3f}"
         )
+    if args.json:
+        command = f"tools/stop_cost.py --mesh {args.mesh} --steps {args.steps} --rounds {args.rounds}"
+        data = dict(command=command, mesh=[nx, ny], steps=args.steps, dt=dt, scene=list(SCENE), laws=table)
+        args.json.write_text(json.dumps(data, indent=1) + "\n")
 
 
 if __name__ == "__main__":
