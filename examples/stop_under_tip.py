@@ -17,7 +17,7 @@ from plateimpact import PlateImpactFMU, default_base
 from plateimpact.fmufile import output_dir, require_fmu
 
 STOP = dict(obstacle_lower=-0.05, obstacle_lower_x_min=1.0, obstacle_upper_enabled=False)
-PROBE = dict(probe_1_x=0.6, probe_1_y=0.2)
+PROBE = dict(probe_count=1, probe_1_x=0.6, probe_1_y=0.2)
 
 
 def main(argv=None):

@@ -27,16 +27,16 @@ def test_the_stops_are_parameters_whose_default_is_the_whole_plate(fmu_path):
 def test_tip_stop_holds_the_corners_and_lets_the_middle_pass(fmu_path, law):
     """The corners (1.2, 0) and (1.2, 0.4) are contact points of the stop x >= 1.0: never below
     −0.05 m by more than roundoff (1e-12 m, as test_stops.cpp), while the probe at (0.6, 0.2), off
-    the stop, and the clamp go well below it (the base reaches −0.09 m)."""
+    the stop, passes below it (as the clamp does: the base reaches −0.09 m)."""
     lowest = {"corner_1": 1.0, "corner_2": 1.0, "probe_1": 1.0}
-    with PlateImpactFMU(fmu_path, **STOP, **law, probe_1_x=0.6, probe_1_y=0.2) as plate:
-        for k in range(1500):  # 0.15 s: the tip lands on the stop from ≈ 0.03 s on
+    with PlateImpactFMU(fmu_path, **STOP, **law, probe_count=1, probe_1_x=0.6, probe_1_y=0.2) as plate:
+        for k in range(10000):  # 1 s: the tip lands on the stop from ≈ 0.03 s on
             out = plate.step(1e-4, base=default_base(k * 1e-4))
             for name in lowest:
                 lowest[name] = min(lowest[name], out[name])
         assert out["contact_onsets_lower"] > 0 and out["contact_onsets_upper"] == 0
     assert lowest["corner_1"] >= -0.05 - 1e-12 and lowest["corner_2"] >= -0.05 - 1e-12, lowest
-    assert lowest["probe_1"] < -0.06, lowest
+    assert lowest["probe_1"] < -0.05, lowest
 
 
 @pytest.mark.parametrize(

@@ -79,6 +79,7 @@ def main(argv=None):
                 engine=[whole["engine"], tip["engine"]],
                 rows=[whole["contact_vertices"], tip["contact_vertices"]],
                 onsets=[whole["contact_onsets_lower"], tip["contact_onsets_lower"]],
+                qp_iterations=[whole["qp_iterations_total"], tip["qp_iterations_total"]],
                 cpu_per_simulated_s=[whole["step_cpu_s"] / dt, tip["step_cpu_s"] / dt],
                 setup_cpu_s=[whole["setup_cpu_s"], tip["setup_cpu_s"]],
                 step_ratio=tip["step_cpu_s"] / whole["step_cpu_s"],

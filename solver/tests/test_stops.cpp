@@ -64,7 +64,7 @@ TEST_P(TipStop, HoldsTheVerticesUnderItAndNoOthers) {
         if (mesh.point(v).x() >= kTipFrom - 1e-12) under.push_back(v);
     ASSERT_GT(under.size(), 0u);
     double lowestUnder = INFINITY, lowestProbe = INFINITY;
-    for (int k = 0; k < 2500; ++k) {  // 0.25 s in communication steps of 1e-4 s
+    for (int k = 0; k < 10000; ++k) {  // 1 s in communication steps of 1e-4 s
         sim.advance(10, sineBase(sim.time()), plate::InputSignal{});
         const std::vector<double> u = sim.vertexDisplacements();
         for (int v : under) lowestUnder = std::min(lowestUnder, u[std::size_t(v)]);
@@ -73,8 +73,8 @@ TEST_P(TipStop, HoldsTheVerticesUnderItAndNoOthers) {
     const plate::PlateOutputs o = sim.outputs(true);
     EXPECT_GT(o.contactOnsets[0], 0) << c.name << ": the stop was never hit";
     EXPECT_GE(lowestUnder, kStop - kPenetration) << c.name;
-    // The base itself goes to −0.09 m: the middle of the plate follows it well past the stop's height.
-    EXPECT_LT(lowestProbe, kStop - 0.01) << c.name;
+    // The middle of the plate is under no stop: it passes below the stop's height.
+    EXPECT_LT(lowestProbe, kStop) << c.name;
     EXPECT_EQ(o.contactOnsets[1], 0) << c.name << ": the upper obstacle is off";
 }
 
@@ -128,7 +128,7 @@ TEST(WholePlateStop, IsTheDefaultBitForBit) {
         b.lowerStop = {0.0, b.length, 0.0, b.width};
         b.upperStop = {0.0, b.length, 0.0, b.width};
         plate::PlateSimulation simA(a, 0.0), simB(b, 0.0);
-        for (int k = 0; k < 300; ++k) {
+        for (int k = 0; k < 700; ++k) {  // 0.07 s: the first impacts from ≈ 0.05 s on
             simA.advance(10, sineBase(simA.time()), plate::InputSignal{});
             simB.advance(10, sineBase(simB.time()), plate::InputSignal{});
         }
