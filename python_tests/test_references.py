@@ -85,13 +85,16 @@ def test_the_experiments_the_issue_asks_for():
     related = validate.read_manifest(FMU2)
     roles = {Path(r.path).stem: r.role for r in related if r.role.startswith("experiment")}
     assert roles["smoke"] == "experiment/smoke-test"
-    for name in ("forced", "release", "conserving", "velocity", "load", "fvs"):
+    for name in ("forced", "release", "conserving", "velocity", "load", "fvs", "stop"):
         assert roles[name] == "experiment/validation"
     by_name = {e.name: e for e in references.EXPERIMENTS}
     assert by_name["conserving"].parameters["time_scheme"] == 2 and by_name["conserving"].parameters["mass"] == 2
     assert by_name["velocity"].parameters["base_drive"] == 2 and "base_velocity" in by_name["velocity"].stimuli
     assert "load" in by_name["load"].stimuli
     assert by_name["fvs"].parameters["element"] == 2
+    # Issue 52: a stop under the tip, the upper obstacle off (docs/theory.md §25).
+    assert by_name["stop"].parameters["obstacle_lower_x_min"] == 1.0
+    assert by_name["stop"].parameters["obstacle_upper_enabled"] is False
     assert by_name["release"].parameters["initial_load"] == 8600.0
     assert all(0.05 <= e.stop <= 0.1 for e in references.EXPERIMENTS)
     # Every experiment meets an impact inside its horizon (the tolerances cover what impacts do).

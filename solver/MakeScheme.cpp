@@ -11,6 +11,7 @@
 #include "plate/FullOrderPlate.h"
 #include "plate/ModalPlate.h"
 #include "plate/Spectrum.h"
+#include "plate/Stops.h"
 #include "plate/StaticEquilibrium.h"
 #include "schemes/FieldRecovery.h"
 #include "schemes/FlowScheme.h"
@@ -112,21 +113,26 @@ std::size_t condensedBytes(const CondensedPlate& c) {
 
 // time_scheme = conserving and flow (docs/theory.md §17): the output points become constraint rows
 // — a corner, or a free_edge_mid on a vertex, is its contact vertex's row; a free_edge_mid between
-// vertices (ny odd) a row of its own.
+// vertices (ny odd), or a corner no stop covers (§25), a row of its own, held by the obstacles whose
+// stops cover it.
 std::shared_ptr<const CondensedPlate> condensedPlate(const SchemeSetup& s, OutputRows& rows) {
     const PlateParameters& p = s.parameters;
     const Mesh& mesh = s.space->mesh();
+    const StopMap stops(p);
     std::vector<int> vertexRows(static_cast<std::size_t>(mesh.vertexCount()), -1);
     for (std::size_t i = 0; i < s.clamped->contactVertices.size(); ++i)
         vertexRows[static_cast<std::size_t>(s.clamped->contactVertices[i])] = static_cast<int>(i);
     std::vector<ConstraintRow> extra;
-    std::array<int, 3> probeRows{vertexRows[mesh.vertex(p.nx, 0)], vertexRows[mesh.vertex(p.nx, p.ny)], -1};
-    if (p.ny % 2 == 0) {
-        probeRows[2] = vertexRows[mesh.vertex(p.nx, p.ny / 2)];
-    } else {
-        extra.push_back({s.clamped->probe(*s.space, p.length, 0.5 * p.width), p.length});
-        probeRows[2] = static_cast<int>(s.clamped->contactVertices.size());
-    }
+    const auto rowOf = [&](const Eigen::Vector2d& x) {
+        extra.push_back({s.clamped->probe(*s.space, x.x(), x.y()), x.x(), stops.at(x)});
+        return static_cast<int>(s.clamped->contactVertices.size() + extra.size() - 1);
+    };
+    const auto vertexRow = [&](int v) {  // (rows.vertices stays the contact vertices': FieldRecovery has the rest)
+        const int row = vertexRows[static_cast<std::size_t>(v)];
+        return row >= 0 ? row : rowOf(mesh.point(v));
+    };
+    std::array<int, 3> probeRows{vertexRow(mesh.vertex(p.nx, 0)), vertexRow(mesh.vertex(p.nx, p.ny)), -1};
+    probeRows[2] = p.ny % 2 == 0 ? vertexRow(mesh.vertex(p.nx, p.ny / 2)) : rowOf({p.length, 0.5 * p.width});
     rows.probes = probeRows;
     rows.vertices = std::move(vertexRows);
     return cached<CondensedPlate>(

@@ -15,6 +15,7 @@
 #include "fe/SingularMass.h"
 #include "plate/DiscretizationCache.h"
 #include "plate/Spectrum.h"
+#include "plate/Stops.h"
 #include "schemes/Armature.h"
 #include "schemes/FieldRecovery.h"
 #include "schemes/Scheme.h"
@@ -30,13 +31,6 @@ constexpr double kStepMultipleTolerance = 1e-9;
 // is also the shortest step: anything shorter cannot be told from no step at all.
 constexpr double kGridSnap = 1e-9;
 
-Obstacles obstaclesOf(const PlateParameters& p) {
-    Obstacles o;
-    if (p.obstacleLowerEnabled) o.lower = p.obstacleLower;
-    if (p.obstacleUpperEnabled) o.upper = p.obstacleUpper;
-    return o;
-}
-
 // What every scheme starts from (one entry of the discretization cache, DiscretizationCache.h):
 // the space, the clamped M and K, and the singular mass's B and R on the free rows (empty with the
 // consistent mass).
@@ -48,7 +42,7 @@ struct ClampedDiscretization {
         const ClampedPlate& c = *clamped;
         return heapBytes(c.mass) + heapBytes(c.stiffness) + heapBytes(couplingFree) + heapBytes(rootFree) +
                heapBytes(c.pressureLoad) + heapBytes(c.baseInertia) + heapBytes(c.rotationInertia) +
-               sizeof(Eigen::Index) * (c.freeDofs.size() + 2 * c.contactDofs.size());
+               sizeof(Eigen::Index) * (c.freeDofs.size() + 2 * c.contactDofs.size()) + c.contactStops.size();
     }
 };
 
@@ -65,7 +59,9 @@ ClampedDiscretization clampedDiscretization(const PlateParameters& p, std::share
         coupling = std::move(singular.coupling);
         root = std::move(singular.root);
     }
-    d.clamped = std::make_shared<const ClampedPlate>(clamp(*d.space, matrices));
+    const StopMap stops(p);  // only the vertices under a stop are contact rows (docs/theory.md §25)
+    d.clamped = std::make_shared<const ClampedPlate>(
+        clamp(*d.space, matrices, [&stops](const Eigen::Vector2d& x) { return stops.at(x); }));
     if (p.singularMass()) {
         d.couplingFree = freeRows(coupling, *d.clamped);
         requireMasslessContact(d.couplingFree, *d.clamped,
@@ -354,7 +350,11 @@ PlateOutputs PlateSimulation::gridOutputs(bool port, FieldOutputs field) const {
 
 std::vector<double> PlateSimulation::vertexStress() const { return impl_->recovery->vertexStress(*impl_->scheme); }
 
-std::vector<double> PlateSimulation::vertexDisplacements() const { return impl_->scheme->vertexDisplacements(); }
+std::vector<double> PlateSimulation::vertexDisplacements() const {
+    std::vector<double> heights = impl_->scheme->vertexDisplacements();
+    impl_->recovery->addFreeVertices(*impl_->scheme, heights);  // the vertices off every stop (§25)
+    return heights;
+}
 
 const ResourceEstimate& PlateSimulation::resources() const { return impl_->resources; }
 

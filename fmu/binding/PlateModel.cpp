@@ -14,6 +14,7 @@
 #include "binding/PlateAdvice.h"
 #include "binding/PlateArrays.h"
 #include "binding/PlateWarnings.h"
+#include "plate/Stops.h"
 #include "PlateImpactGuid.h"  // generated at build time: FMU_GUID
 #include "binding/PlateVariables.h"
 
@@ -334,8 +335,9 @@ private:
     // reconstructed clamp stays between the obstacles the master's values respect.
     plate::InputSignal clampSignal(double now, double span) {
         const plate::PlateParameters& p = simulation_->parameters();
-        const double lower = p.obstacleLowerEnabled ? p.obstacleLower : -plate::kMaxDisplacement;
-        const double upper = p.obstacleUpperEnabled ? p.obstacleUpper : plate::kMaxDisplacement;
+        const plate::Obstacles obstacles = plate::obstaclesOf(p);  // those whose stops reach the clamp
+        const double lower = std::max(obstacles.clampLower(), -plate::kMaxDisplacement);
+        const double upper = std::min(obstacles.clampUpper(), plate::kMaxDisplacement);
         return mode().path(values_, {clampPosition_, clampVelocity_}, now, span, lower, upper);
     }
     // simulation_->communicate, or with stopAtContactChange_ (FMI 3.0 early return) up to the

@@ -123,6 +123,11 @@ double getQpIterationsTotal(const PlateValues& v) { return saturate(v.outputs.co
 #define INPUT(member) \
     [](const PlateValues& v) { return v.member.signal.value; }, [](PlateValues& v, double x) { v.member.setValue(x); }
 #define OUTPUT(field) [](const PlateValues& v) { return double(v.outputs.field); }
+// An edge of an obstacle's stop (docs/theory.md §25): obstacle_<side>_<edge>, m.
+#define STOP_EDGE(vr, side, edge, member, more)                                                                \
+    parameter(vr, "obstacle_" side "_" edge, "m", kStopCoordinate, PARAMETER(member),                          \
+              "Edge " edge " of the " side " obstacle's stop: the mesh vertices inside its rectangle (clipped to " \
+              "the plate) are its contact points" more)
 #define PORT(field) [](const PlateValues& v) { return v.port().field; }
 #define FIELD(member) [](const PlateValues& v) { return v.field().member; }
 #define PLATE_FIELD(member) [](const PlateValues& v) { return v.plateField().member; }
@@ -166,6 +171,14 @@ const Row kRows[] = {
         "Whether the lower obstacle is present"),
     booleanParameter(kVrObstacleUpperEnabled, "obstacle_upper_enabled", PARAMETER(obstacleUpperEnabled),
         "Whether the upper obstacle is present"),
+    STOP_EDGE(kVrObstacleLowerXMin, "lower", "x_min", lowerStop.xMin, ""),
+    STOP_EDGE(kVrObstacleLowerXMax, "lower", "x_max", lowerStop.xMax, " (default 1e4: to the plate's edge)"),
+    STOP_EDGE(kVrObstacleLowerYMin, "lower", "y_min", lowerStop.yMin, ""),
+    STOP_EDGE(kVrObstacleLowerYMax, "lower", "y_max", lowerStop.yMax, " (default 1e4: to the plate's edge)"),
+    STOP_EDGE(kVrObstacleUpperXMin, "upper", "x_min", upperStop.xMin, ""),
+    STOP_EDGE(kVrObstacleUpperXMax, "upper", "x_max", upperStop.xMax, " (default 1e4: to the plate's edge)"),
+    STOP_EDGE(kVrObstacleUpperYMin, "upper", "y_min", upperStop.yMin, ""),
+    STOP_EDGE(kVrObstacleUpperYMax, "upper", "y_max", upperStop.yMax, " (default 1e4: to the plate's edge)"),
     parameter(kVrDt,                "dt",                 "s",     kDt,                PARAMETER(dt),
         "Internal time step of the scheme's fixed grid; a communication step of any length is taken on it, the "
         "outputs interpolated between grid points"),

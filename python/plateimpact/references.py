@@ -197,6 +197,26 @@ EXPERIMENTS = (
         dict(QUADRATIC, **STRESS, element=2, nx=20, ny=7, dt=1e-4),
         {"base_displacement": forced_base},
     ),
+    Experiment(
+        "stop",
+        "validation",
+        "Stop under the tip (docs/theory.md section 25): the forced scene's plate and base with the lower obstacle a "
+        "stop over x >= 1.0 m at -0.05 m (obstacle_lower_x_min = 1.0), the upper obstacle off; the tip hits the "
+        "stop while the clamp swings past its height; dt = 1e-4 s, 0.1 s communicated every 1e-3 s",
+        0.1,
+        1e-3,
+        dict(
+            QUADRATIC,
+            **STRESS,
+            nx=14,
+            ny=5,
+            dt=1e-4,
+            obstacle_lower=-0.05,
+            obstacle_lower_x_min=1.0,
+            obstacle_upper_enabled=False,
+        ),
+        {"base_displacement": forced_base},
+    ),
 )
 
 

@@ -4,6 +4,8 @@
 //   plate_bench [key=value ...]   keys: element=argyris|fvs nx ny dt beta steps amplitude
 //                                 frequency gap (both obstacles at ±gap; gap=0 disables them)
 //                                 modes initial_load lower_only=0|1 damping_mass damping_stiffness
+//                                 lower=H lower_x_min lower_x_max lower_y_min lower_y_max (a stop,
+//                                 docs/theory.md §25; upper_x_min … the upper obstacle's)
 //                                 mass=consistent|singular_p0|singular_p1dg
 //                                 scheme=newmark|conserving|flow (time_scheme, docs/theory.md §17, §21)
 //                                 substeps=N (contact_substeps of scheme=flow)
@@ -257,6 +259,11 @@ int main(int argc, char** argv) {
     p.obstacleLowerEnabled = p.obstacleUpperEnabled = gap > 0.0;
     if (gap > 0.0) p.obstacleLower = -gap, p.obstacleUpper = gap;
     if (num("lower_only", 0) != 0) p.obstacleUpperEnabled = false;
+    // A stop (docs/theory.md §25): lower=H the lower obstacle's height; lower_x_min, lower_x_max,
+    // lower_y_min, lower_y_max its rectangle (the upper_… keys the upper one's).
+    p.obstacleLower = num("lower", p.obstacleLower);
+    p.lowerStop = {num("lower_x_min", 0.0), num("lower_x_max", 1e4), num("lower_y_min", 0.0), num("lower_y_max", 1e4)};
+    p.upperStop = {num("upper_x_min", 0.0), num("upper_x_max", 1e4), num("upper_y_min", 0.0), num("upper_y_max", 1e4)};
     if (args.count("engine")) {
         const std::string e = args["engine"];
         p.engine = e == "sparse"  ? plate::PlateParameters::Engine::SparseFactor
@@ -288,12 +295,14 @@ int main(int argc, char** argv) {
     const double amplitude = num("amplitude", 0.09), frequency = num("frequency", 10.0);
     try {
         const double rssBefore = peakRssMB();
+        const double cpu0 = processCpuSeconds();
         const auto t0 = std::chrono::steady_clock::now();
         const plate::ProgressLog log = [&args](const std::string& line) {
             if (args.count("verbose")) std::fprintf(stderr, "[peak RSS %.1f MB] %s\n", peakRssMB(), line.c_str());
         };
         plate::PlateSimulation sim(p, 0.0, 0.0, log);
         const auto t1 = std::chrono::steady_clock::now();
+        const double cpu1 = processCpuSeconds();
         const std::string resources = resourceJson(sim, std::chrono::duration<double>(t1 - t0).count(), rssBefore);
         if (num("init_only", 0) != 0) {
             std::printf("{\"element\": \"%s\", \"nx\": %d, \"ny\": %d, \"engine\": \"%s\", \"dofs\": %ld, %s}\n",
@@ -359,7 +368,8 @@ int main(int argc, char** argv) {
         }
         std::printf(
             "{\"element\": \"%s\", \"nx\": %d, \"ny\": %d, \"dt\": %g, \"beta\": %g, \"modes\": %d, "
-            "\"engine\": \"%s\", \"dofs\": %ld, \"steps\": %lld, \"setup_s\": %.6g, \"wall_s\": %.6g, \"step_s\": "
+            "\"engine\": \"%s\", \"dofs\": %ld, \"steps\": %lld, \"setup_s\": %.6g, \"setup_cpu_s\": %.6g, \"wall_s\": "
+            "%.6g, \"step_s\": "
             "%.6g, "
             "\"step_cpu_s\": %.6g, \"floor_cpu_s\": %.6g, "
             "\"floor_solve_s\": %.6g, \"step_over_floor\": %.4g, \"qp_iterations_total\": %.0f, "
@@ -368,8 +378,8 @@ int main(int argc, char** argv) {
             "\"error_estimate\": %.6g, \"capped_steps\": %.0f, %s%s}\n",
             p.element == plate::ElementType::Fvs ? "fvs" : "argyris", p.nx, p.ny, p.dt, p.beta, p.modes,
             sim.engine().c_str(), static_cast<long>(sim.dofCount()), steps,
-            std::chrono::duration<double>(t1 - t0).count(), std::chrono::duration<double>(t3 - t2).count(), perStep,
-            (cpu3 - cpu2) / steps, floorCpu, floor, perStep / floor, o.contactSolves, o.energyDissipated,
+            std::chrono::duration<double>(t1 - t0).count(), cpu1 - cpu0, std::chrono::duration<double>(t3 - t2).count(),
+            perStep, (cpu3 - cpu2) / steps, floorCpu, floor, perStep / floor, o.contactSolves, o.energyDissipated,
             o.contactOnsets[0], o.contactOnsets[1], energySum, o.errorEstimate, o.cappedSteps, resources.c_str(),
             spectrum.c_str());
     } catch (const std::exception& e) {

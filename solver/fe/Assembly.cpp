@@ -2,6 +2,8 @@
 
 #include <algorithm>
 
+#include "plate/Obstacles.h"
+
 namespace plate {
 
 PlateMatrices assemble(const FiniteElementSpace& space, double surfaceDensity, double bendingStiffness,
@@ -75,7 +77,7 @@ Eigen::SparseMatrix<double> restrict(const Eigen::SparseMatrix<double>& a, const
 
 }  // namespace
 
-ClampedPlate clamp(const FiniteElementSpace& space, const PlateMatrices& matrices) {
+ClampedPlate clamp(const FiniteElementSpace& space, const PlateMatrices& matrices, const StopsAt& stopsAt) {
     const Eigen::Index n = space.dofCount();
     std::vector<Eigen::Index> freeIndex(n, 0);
     for (auto d : space.clampedDofs()) freeIndex[d] = -1;
@@ -103,13 +105,16 @@ ClampedPlate clamp(const FiniteElementSpace& space, const PlateMatrices& matrice
     const Mesh& mesh = space.mesh();
     for (int v = 0; v < mesh.vertexCount(); ++v) {
         const auto f = freeIndex[space.vertexValueDof(v)];
-        if (f >= 0) {
-            p.contactVertices.push_back(v);
-            p.contactDofs.push_back(f);
-            p.contactAbscissae.push_back(mesh.point(v).x());
-        } else {
+        if (f < 0) {
             p.clampedVertices.push_back(v);
+            continue;
         }
+        const unsigned char stops = stopsAt ? stopsAt(mesh.point(v)) : static_cast<unsigned char>(kUnderBoth);
+        if (stops == 0) continue;
+        p.contactVertices.push_back(v);
+        p.contactStops.push_back(stops);
+        p.contactDofs.push_back(f);
+        p.contactAbscissae.push_back(mesh.point(v).x());
     }
     return p;
 }

@@ -2,6 +2,7 @@
 // Assembly of the plate matrices of §3.1 — mass (3.4), stiffness (3.5), uniform-pressure
 // load — from any FiniteElementSpace, and their reduction to the clamped (free) dofs.
 #include <Eigen/Sparse>
+#include <functional>
 #include <vector>
 
 #include "fe/FiniteElementSpace.h"
@@ -48,13 +49,19 @@ struct ClampedPlate {
     double loadMoment = 0.0;  // Xᵀ F = ∫ x: its moment about the clamp line
     std::vector<double> contactAbscissae;  // x of each contact vertex (its lever arm)
     std::vector<Eigen::Index> freeDofs;  // full index of each free dof
-    std::vector<int> contactVertices;  // mesh vertices carrying a contact bound
+    // The free mesh vertices under a stop (docs/theory.md §25): only they carry a contact bound.
+    std::vector<int> contactVertices;
+    std::vector<unsigned char> contactStops;  // which obstacles hold each (plate/Obstacles.h's StopBits)
     std::vector<Eigen::Index> contactDofs;  // their vertex-value dof (free index)
     std::vector<int> clampedVertices;  // vertices on x = 0 (they move with z)
 
     PointProbe probe(const FiniteElementSpace& space, double x, double y) const;
 };
 
-ClampedPlate clamp(const FiniteElementSpace& space, const PlateMatrices& matrices);
+// Which obstacles' stops cover a point (StopBits; 0: none, the vertex is no contact row).
+using StopsAt = std::function<unsigned char(const Eigen::Vector2d&)>;
+
+// Without `stopsAt`, every free vertex is a contact row under both obstacles (the whole plate).
+ClampedPlate clamp(const FiniteElementSpace& space, const PlateMatrices& matrices, const StopsAt& stopsAt = {});
 
 }  // namespace plate

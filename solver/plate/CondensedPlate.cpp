@@ -141,7 +141,11 @@ CondensedPlate condense(const ClampedPlate& plate, const Eigen::SparseMatrix<dou
         c.clampMassMoment = plate.totalMassMoment - c.modalRotationInertia.dot(c.modalBaseInertia);
     }
     c.rowAbscissae = plate.contactAbscissae;
-    for (const ConstraintRow& r : extraRows) c.rowAbscissae.push_back(r.x);
+    c.rowStops = plate.contactStops;
+    for (const ConstraintRow& r : extraRows) {
+        c.rowAbscissae.push_back(r.x);
+        c.rowStops.push_back(r.stops);
+    }
     if (rows > 0) c.rowModeNormMax = c.rowModesT.colwise().norm().maxCoeff();
     return c;
 }

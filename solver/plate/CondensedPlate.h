@@ -17,6 +17,7 @@
 
 #include "fe/Assembly.h"
 #include "plate/LinearRows.h"
+#include "plate/Obstacles.h"
 
 namespace plate {
 
@@ -37,6 +38,7 @@ struct CondensedPlate {
     int massiveCount = 0;  // dimension of the massive space (retained: omega2.size())
     int contactRows = 0;  // the first rows: the contact vertices of ClampedPlate, in its order
     std::vector<double> rowAbscissae;  // x of each row (its lever arm about the clamp line)
+    std::vector<unsigned char> rowStops;  // which obstacles hold each row (StopBits, docs/theory.md §25)
     double rowModeNormMax = 0.0;  // max_i ‖G_i‖₂ (the free-flight bound)
     // The recovery functionals L (probes, stress samples: docs/theory.md §23) of
     // w = V q + Q0 S⁻¹ Q0ᵀ (p F + Cᵀλ): L w = recoveryModes q + p recoveryLoad + recoveryRows λ.
@@ -51,6 +53,7 @@ struct CondensedPlate {
 struct ConstraintRow {
     PointProbe functional;
     double x = 0.0;
+    unsigned char stops = kUnderBoth;  // the obstacles whose stops cover the point (StopBits)
 };
 
 // Builds the condensed plate. `root` is R over the free dofs (M_s = R Rᵀ), `extraRows` the output

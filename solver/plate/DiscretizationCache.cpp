@@ -8,13 +8,15 @@
 #include <stdexcept>
 #include <unordered_map>
 
+#include "plate/Stops.h"
+
 namespace plate {
 
 // A field added to PlateParameters changes its size: decide whether it determines the space, the
 // matrices, the modal basis or the condensed operators, add it to the keys below if it does, then
 // write the new size here. (The same on every platform the FMU is built for: LP64 and LLP64 lay
 // doubles, ints, enums and bools out alike.)
-static_assert(sizeof(PlateParameters) == 272,
+static_assert(sizeof(PlateParameters) == 336,
               "PlateParameters changed: check the discretization cache's keys (DiscretizationCache.cpp)");
 
 CacheKey& CacheKey::add(double x) {
@@ -38,7 +40,22 @@ CacheKey& addSpace(CacheKey& key, const PlateParameters& p) {
     return key.add(static_cast<int>(p.element)).add(p.length).add(p.width).add(p.nx).add(p.ny);
 }
 
-// The space and the material: assemble (ρt, D, ν), the singular mass.
+// Which vertices are contact rows (docs/theory.md §25): every free vertex when the stops cover the
+// whole plate (the key is then the one it was before stops), else the present obstacles' rectangles.
+CacheKey& addStops(CacheKey& key, const PlateParameters& p) {
+    const bool whole = StopMap(p).wholePlate();
+    key.add(whole ? 0 : 1);
+    if (whole) return key;
+    const bool present[2] = {p.obstacleLowerEnabled, p.obstacleUpperEnabled};
+    const PlateParameters::StopRect* rect[2] = {&p.lowerStop, &p.upperStop};
+    for (int k = 0; k < 2; ++k) {
+        key.add(present[k] ? 1 : 0);
+        if (present[k]) key.add(rect[k]->xMin).add(rect[k]->xMax).add(rect[k]->yMin).add(rect[k]->yMax);
+    }
+    return key;
+}
+
+// The space, the material (assemble: ρt, D, ν; the singular mass) and the contact rows.
 CacheKey& addPlate(CacheKey& key, const PlateParameters& p) {
     addSpace(key, p)
         .add(p.thickness)
@@ -46,7 +63,7 @@ CacheKey& addPlate(CacheKey& key, const PlateParameters& p) {
         .add(p.poissonRatio)
         .add(p.density)
         .add(static_cast<int>(p.mass));
-    return key;
+    return addStops(key, p);
 }
 
 }  // namespace

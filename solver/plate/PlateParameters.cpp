@@ -1,5 +1,7 @@
 #include "plate/PlateParameters.h"
 
+#include "plate/Stops.h"
+
 #include <cmath>
 #include <sstream>
 
@@ -127,6 +129,7 @@ void validate(const PlateParameters& p) {
     requireRange("damping_stiffness", p.dampingStiffness, kDampingStiffness);
     requireRange("memory_limit", p.memoryLimit, kMemoryLimit);  // MB; 0 = no limit
     validateCarrier(p);
+    validateStops(p);  // each obstacle's stop (docs/theory.md §25)
     // The probes (docs/theory.md §23): inside the plate, whose size the table's range cannot know.
     // Named as the FMI 2.0 FMU's scalars (probe_1_x) and the FMI 3.0 FMU's arrays (probe_x[0]) name them.
     if (p.probeX.size() != p.probeY.size())

@@ -37,6 +37,12 @@ struct PlateParameters {
     double obstacleUpper = 0.1;  // m
     bool obstacleLowerEnabled = true;
     bool obstacleUpperEnabled = true;
+    // Where each obstacle is (docs/theory.md §25): a stop over the rectangle [xMin, xMax] × [yMin, yMax]
+    // of the plate, clipped to it. The defaults reach past any plate the ranges allow: the whole plate.
+    struct StopRect {
+        double xMin = 0.0, xMax = 1e4, yMin = 0.0, yMax = 1e4;  // m
+    };
+    StopRect lowerStop, upperStop;
     double dt = 1e-5;  // s
     double beta = 0.5;
     double initialLoad = 0.0;  // Pa
@@ -131,6 +137,8 @@ constexpr Range kArmatureMass{0.0, 1e9, true}, kArmatureStiffness{0.0, 1e12}, kA
 constexpr Range kTlmImpedance{0.0, 1e12, true};
 // A probe's coordinate: what the table can declare; validate() checks it against length and width.
 constexpr Range kProbeCoordinate{0.0, 1e4};
+// A stop's edge (docs/theory.md §25): validate() checks the rectangle against the plate and its mesh.
+constexpr Range kStopCoordinate{0.0, 1e4};
 }  // namespace ranges
 
 // Checks everything that can be checked without assembling (throws ParameterError).

@@ -6,6 +6,7 @@
 #include <sstream>
 
 #include "plate/SparseCholesky.h"
+#include "plate/Stops.h"
 
 namespace plate {
 
@@ -120,13 +121,14 @@ void requireMeshWithinBudget(const PlateParameters& p) {
     }
 }
 
-ProblemSize countEntries(const FiniteElementSpace& space) {
+ProblemSize countEntries(const FiniteElementSpace& space, const StopsAt& stopsAt) {
     ProblemSize s;
     s.fullDofs = space.dofCount();
     const std::vector<int> freeIndex = freeIndexOf(space);
     s.dofs = std::count_if(freeIndex.begin(), freeIndex.end(), [](int f) { return f >= 0; });
     for (int v = 0; v < space.mesh().vertexCount(); ++v)
-        s.contactVertices += freeIndex[static_cast<std::size_t>(space.vertexValueDof(v))] >= 0;
+        s.contactVertices += freeIndex[static_cast<std::size_t>(space.vertexValueDof(v))] >= 0 &&
+                             (!stopsAt || stopsAt(space.mesh().point(v)) != 0);  // under a stop (§25)
     s.elements = space.elementCount();
     for (int e = 0; e < space.elementCount(); ++e) {
         const auto k = static_cast<long long>(space.elementDofs(e).size());
@@ -378,7 +380,8 @@ void InitProgress::done(double peakEstimateMB) {
 }
 
 ResourceEstimate planResources(const PlateParameters& p, const FiniteElementSpace& space, const ProgressLog& log) {
-    ProblemSize size = countEntries(space);
+    const StopMap stops(p);
+    ProblemSize size = countEntries(space, [&stops](const Eigen::Vector2d& x) { return stops.at(x); });
     const ResourceEstimate lowerBound = estimateResources(p, size);
     requireWithinBudget(p, lowerBound);  // the assembly alone exceeds the budget: refuse now
     analyzePattern(space, size);

@@ -17,6 +17,7 @@
 #include <functional>
 #include <string>
 
+#include "fe/Assembly.h"
 #include "fe/FiniteElementSpace.h"
 #include "plate/PlateParameters.h"
 
@@ -53,7 +54,7 @@ void requireMeshWithinBudget(const PlateParameters& p);
 constexpr double kPredictionMargin = 1.5;
 
 // Stage 1: counts from the space alone.
-ProblemSize countEntries(const FiniteElementSpace& space);
+ProblemSize countEntries(const FiniteElementSpace& space, const StopsAt& stopsAt = {});
 // Stage 2: the free pattern (O(T) time, O(nnz) memory) and its symbolic factor.
 void analyzePattern(const FiniteElementSpace& space, ProblemSize& size);
 

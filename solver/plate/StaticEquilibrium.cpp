@@ -16,13 +16,14 @@ namespace {
 // the obstacles (clamp at z0); returns λ, one entry per contact vertex. `failure` opens the
 // message of the ParameterError thrown if the QP does not converge.
 Eigen::VectorXd solveStaticContact(ContactColumns& columns, const ContactColumns::GatherFn& gather,
-                                   const Obstacles& obstacles, double z0, Eigen::VectorXd& w,
-                                   const std::string& failure) {
+                                   const Obstacles& obstacles, const std::vector<unsigned char>& stops, double z0,
+                                   Eigen::VectorXd& w, const std::string& failure) {
     const int m = columns.count();
-    Eigen::VectorXd yFree, y, mu = Eigen::VectorXd::Zero(m);
+    Eigen::VectorXd yFree, y, mu = Eigen::VectorXd::Zero(m), lower, upper;
     gather(w, yFree);
-    const Eigen::VectorXd lower = Eigen::VectorXd::Constant(m, obstacles.lower - z0);
-    const Eigen::VectorXd upper = Eigen::VectorXd::Constant(m, obstacles.upper - z0);
+    obstacles.rowBounds(stops, lower, upper);  // each row's obstacles (docs/theory.md §25)
+    lower.array() -= z0;
+    upper.array() -= z0;
     std::vector<signed char> state(m, 0);
     BoxQP qp(columns);
     const QPResult r = qp.solve(yFree, lower, upper, state, mu, y);
@@ -59,7 +60,8 @@ Eigen::VectorXd staticEquilibrium(const DiscretePlate& plate, const Obstacles& o
         gather);
     std::ostringstream what;
     what << "invalid parameter initial_load = " << p0 << ": the static contact problem for the initial state";
-    const Eigen::VectorXd mu = solveStaticContact(columns, gather, obstacles, z0, w, what.str());
+    const Eigen::VectorXd mu =
+        solveStaticContact(columns, gather, obstacles, plate.clamped().contactStops, z0, w, what.str());
     if (contactForce) *contactForce = mu;
     return w;
 }
@@ -112,7 +114,7 @@ Eigen::VectorXd masslessEquilibrium(const ClampedPlate& plate, const Eigen::Spar
             correction(c, z);
         },
         gather);
-    const Eigen::VectorXd mu = solveStaticContact(columns, gather, obstacles, z0, w,
+    const Eigen::VectorXd mu = solveStaticContact(columns, gather, obstacles, plate.contactStops, z0, w,
                                                   "the contact problem of the singular mass's initial equilibrium");
     contactForce = mu;
     return w;

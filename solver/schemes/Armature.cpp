@@ -151,7 +151,7 @@ void NewmarkScheme::stepCarried(double fNext, double pNext) {
     carrierShift_ = 0.0;
     if (law_) contact = resolveContact(zNext, iterations, kkt, contactCount);
     zNext += carrierShift_;
-    if (!std::isfinite(zNext) || zNext < obstacles_.lower || zNext > obstacles_.upper) {
+    if (!std::isfinite(zNext) || zNext < obstacles_.clampLower() || zNext > obstacles_.clampUpper()) {
         std::ostringstream msg;
         msg.precision(15);
         msg << "the carried clamp reached z = " << zNext << " at t = " << (s.step + 1) * dt()

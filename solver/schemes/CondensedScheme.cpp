@@ -58,8 +58,7 @@ CondensedScheme::CondensedScheme(std::shared_ptr<const CondensedPlate> plate, Ob
     for (Eigen::VectorXd* v : {&forceNext_, &multiplier_, &r0_, &r1_, &drFree_, &dr_, &base_, &e_, &y_})
         v->resize(rows);
     midForce_ = endForce_ = Eigen::VectorXd::Zero(rows);
-    lower_ = Eigen::VectorXd::Constant(rows, obstacles_.lower);
-    upper_ = Eigen::VectorXd::Constant(rows, obstacles_.upper);
+    obstacles_.rowBounds(c.rowStops, lower_, upper_);  // each row's obstacles (docs/theory.md §25)
     if (rows > 0) rowLoadMax_ = c.rowLoad.cwiseAbs().maxCoeff();
     freeFlight_.setup(m, c.rowModeNormMax, rowLoadMax_);
 }
@@ -160,7 +159,7 @@ CondensedScheme::Look CondensedScheme::lookAtRowsNow(double zNext, double pNext,
     gatherRows(qNext_, pNext, zNext, r1_);
     double margin = std::numeric_limits<double>::infinity();
     for (Eigen::Index i = 0; i < r1_.size(); ++i)
-        margin = std::min(margin, std::min(r1_[i] - obstacles_.lower, obstacles_.upper - r1_[i]));
+        margin = std::min(margin, std::min(r1_[i] - lower_[i], upper_[i] - r1_[i]));
     freeFlight_.reset();
     if (s.contactPoints > 0 || margin < 0.0) return Look::Contact;
     freeFlight_.restart(qNext_, zNext, pNext, margin);
@@ -209,13 +208,13 @@ void CondensedScheme::midpointStep(double zNext, double pNext) {
     st.clampMoment = c.modalRotationInertia.dot(rhs_) - pMid * c.loadMoment;
     st.stepContactMoment = 0.0;
     double sums[2] = {0.0, 0.0};
-    const double middle = std::isfinite(obstacles_.lower) && std::isfinite(obstacles_.upper)
-                              ? 0.5 * (obstacles_.lower + obstacles_.upper)
-                              : (std::isfinite(obstacles_.lower) ? HUGE_VAL : -HUGE_VAL);
     if (contact) {
         for (Eigen::Index i = 0; i < multiplier_.size(); ++i) {
             if (multiplier_[i] == 0.0) continue;
-            // Each row's force goes to the obstacle nearer to it at the midpoint.
+            // Each row's force goes to the obstacle nearer to it at the midpoint (of those holding it).
+            const double lo = lower_[i], hi = upper_[i];
+            const double middle =
+                std::isfinite(lo) && std::isfinite(hi) ? 0.5 * (lo + hi) : (std::isfinite(lo) ? HUGE_VAL : -HUGE_VAL);
             sums[0.5 * (r0_[i] + r1_[i]) >= middle] += multiplier_[i];
             st.stepContactMoment += multiplier_[i] * (*space_.x)[static_cast<std::size_t>(i)];
         }
@@ -448,7 +447,7 @@ std::vector<double> CondensedScheme::serialize() const {
 
 CondensedState CondensedScheme::deserialize(const std::vector<double>& data) const {
     CondensedState s = archive::load<CondensedState>(data, kFormat, sizes(), condensedMembers);
-    if (s.z < obstacles_.lower || s.z > obstacles_.upper)
+    if (s.z < obstacles_.clampLower() || s.z > obstacles_.clampUpper())
         throw std::invalid_argument("corrupt state: clamp past an obstacle");
     return s;
 }

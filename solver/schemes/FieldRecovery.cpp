@@ -33,7 +33,13 @@ FieldRecovery::FieldRecovery(const FiniteElementSpace& space, const ClampedPlate
     fieldSamples_ = vertexSamples(space, fieldVertex_);
     rootFirst_ = probeCount_;
     fieldFirst_ = rootFirst_ + Eigen::Index(root.size());
-    const Eigen::Index rows = fieldFirst_ + 3 * Eigen::Index(fieldSamples_.size());
+    valueFirst_ = fieldFirst_ + 3 * Eigen::Index(fieldSamples_.size());
+    const Mesh& mesh = space.mesh();
+    std::vector<bool> isRow(std::size_t(mesh.vertexCount()), false);
+    for (int v : clamped.contactVertices) isRow[std::size_t(v)] = true;
+    for (int v = 0; v < mesh.vertexCount(); ++v)
+        if (!mesh.isClamped(v) && !isRow[std::size_t(v)]) valueVertex_.push_back(v);
+    const Eigen::Index rows = valueFirst_ + Eigen::Index(valueVertex_.size());
     std::vector<Eigen::Triplet<double>> entries;
     for (Eigen::Index k = 0; k < probeCount_; ++k)
         addRow(pointFunctional(space, locate(space, {p.probeX[std::size_t(k)], p.probeY[std::size_t(k)]}),
@@ -46,11 +52,24 @@ FieldRecovery::FieldRecovery(const FiniteElementSpace& space, const ClampedPlate
         for (int c = 0; c < 3; ++c)
             addRow(pointFunctional(space, fieldSamples_[i], curvatures[c]), clamped,
                    fieldFirst_ + 3 * Eigen::Index(i) + c, entries);
+    for (std::size_t k = 0; k < valueVertex_.size(); ++k) {
+        const Eigen::Vector2d x = mesh.point(valueVertex_[k]);
+        addRow(pointFunctional(space, locate(space, x), PointQuantity::Value), clamped, valueFirst_ + Eigen::Index(k),
+               entries);
+    }
     functionals_.resize(rows, Eigen::Index(clamped.freeDofs.size()));
     functionals_.setFromTriplets(entries.begin(), entries.end());
     root_.resize(Eigen::Index(root.size()));
     heights_.resize(probeCount_, 3);
     field_.resize(3 * Eigen::Index(fieldSamples_.size()));
+    values_.resize(Eigen::Index(valueVertex_.size()));
+}
+
+void FieldRecovery::addFreeVertices(const Scheme& scheme, std::vector<double>& heights) const {
+    if (valueVertex_.empty()) return;
+    scheme.recover(valueFirst_, 0, values_);
+    for (std::size_t k = 0; k < valueVertex_.size(); ++k)
+        heights[std::size_t(valueVertex_[k])] += values_[Eigen::Index(k)];
 }
 
 double FieldRecovery::vonMises(double wxx, double wyy, double wxy) const {

@@ -40,6 +40,9 @@ public:
     Eigen::Index probeCount() const { return probeCount_; }
     // The von Mises stress at every mesh vertex (the largest over its samples).
     std::vector<double> vertexStress(const Scheme& scheme) const;
+    // The vertices no stop covers carry no contact row (docs/theory.md §25): the scheme reports them
+    // at the clamp's height; this adds their w (the heights of every vertex, vertex_output).
+    void addFreeVertices(const Scheme& scheme, std::vector<double>& heights) const;
 
     // σ_vm = 6D/t² · √(a² − ab + b² + 3c²), a = w_xx + ν w_yy, b = w_yy + ν w_xx, c = (1 − ν) w_xy (§23).
     double vonMises(double wxx, double wyy, double wxy) const;
@@ -50,12 +53,13 @@ private:
     double moment_ = 0.0, nu_ = 0.0, rootFactor_ = 0.0;  // 6D/t², ν, 6D/t² √(1 − ν + ν²)
     bool stress_ = false;  // stress_outputs: else the stresses read 0 (not computed)
     Eigen::Index probeCount_ = 0;  // the probes' rows come first
-    Eigen::Index rootFirst_ = 0, fieldFirst_ = 0;
+    Eigen::Index rootFirst_ = 0, fieldFirst_ = 0, valueFirst_ = 0;
     std::vector<PointLocation> rootSamples_, fieldSamples_;
     std::vector<int> fieldVertex_;
+    std::vector<int> valueVertex_;  // the free vertices that are no contact row (w at each, last)
     int vertexCount_ = 0;
     SparseRows functionals_;
-    mutable Eigen::VectorXd root_, field_;  // scratch of the reads
+    mutable Eigen::VectorXd root_, field_, values_;  // scratch of the reads
     mutable Eigen::MatrixXd heights_;  // the probes' absolute heights at the three levels (a column each)
 };
 

@@ -323,11 +323,11 @@ bool FlowScheme::selectRows(double zNext, double pNext) {
         gatherRows(s.q, s.p, s.z, rowsStart_);
     const double reach =
         2.0 * (c.rowModeNormMax * (qNext_ - s.q).norm() + std::abs(zNext - s.z) + std::abs(pNext - s.p) * rowLoadMax_);
-    const auto gap = [this](double r) { return std::min(r - obstacles_.lower, obstacles_.upper - r); };
+    const auto gap = [this](int i, double r) { return std::min(r - lower_[i], upper_[i] - r); };  // §25
     const int rows = c.rows();
     for (int i = 0; i < rows; ++i) {
         const auto k = static_cast<std::size_t>(i);
-        if (s.rowState[k] != 0 || s.midState[k] != 0 || gap(rowsStart_[i]) < reach || gap(r1_[i]) < reach)
+        if (s.rowState[k] != 0 || s.midState[k] != 0 || gap(i, rowsStart_[i]) < reach || gap(i, r1_[i]) < reach)
             touch_.index.push_back(i);
     }
     if (int(touch_.index.size()) == rows) {
@@ -343,8 +343,8 @@ bool FlowScheme::selectRows(double zNext, double pNext) {
     touch_.endColumns = denseColumns(touch_.delassus);
     touch_.endQP = std::make_unique<BoxQP>(*touch_.endColumns);
     touch_.from = nullptr;
-    touch_.lower = Eigen::VectorXd::Constant(n, obstacles_.lower);
-    touch_.upper = Eigen::VectorXd::Constant(n, obstacles_.upper);
+    touch_.lower = lower_(touch_.index);
+    touch_.upper = upper_(touch_.index);
     for (Eigen::VectorXd* v :
          {&touch_.forceNext, &touch_.multiplier, &touch_.r0, &touch_.r1, &touch_.drFree, &touch_.dr, &touch_.base,
           &touch_.e, &touch_.y, &touch_.w2v, &touch_.midForce, &touch_.endForce, &touch_.rowsCached, &touch_.force,
@@ -457,7 +457,7 @@ bool FlowScheme::rowsOutsideStayFree() {
         double y = rowsCached_[i];
         for (std::size_t a = 0; a < touch_.index.size(); ++a)
             if (s.force[touch_.index[a]] != 0.0) y += c.delassus(i, touch_.index[a]) * s.force[touch_.index[a]];
-        if (y < obstacles_.lower || y > obstacles_.upper) return false;
+        if (y < lower_[i] || y > upper_[i]) return false;
     }
     return true;
 }

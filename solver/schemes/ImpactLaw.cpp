@@ -15,17 +15,18 @@ namespace {
 // product): FreeFlightBound.
 class InelasticImpact final : public ImpactLaw {
 public:
-    InelasticImpact(const DiscretePlate& plate, const Obstacles& obstacles) : plate_(plate), obstacles_(obstacles) {
+    InelasticImpact(const DiscretePlate& plate, const Obstacles& obstacles) : plate_(plate) {
+        obstacles.rowBounds(plate.clamped().contactStops, rowLower_, rowUpper_);
         freeFlight_.setup(plate.size(), plate.contactRowNormBound());
     }
 
     bool bounds(const NewmarkState&, const Eigen::VectorXd& wFree, double zNext, ContactBuffers& b) override {
-        const double lo = obstacles_.lower - zNext, hi = obstacles_.upper - zNext;
         bool violated = false;
         if (!freeFlight_.holds(wFree, zNext)) {
             plate_.gatherContact(wFree, b.yFree);
             double margin = std::numeric_limits<double>::infinity();
             for (int i = 0; i < b.yFree.size(); ++i) {
+                const double lo = rowLower_[i] - zNext, hi = rowUpper_[i] - zNext;
                 violated = violated || b.yFree[i] < lo || b.yFree[i] > hi;
                 margin = std::min(margin, std::min(b.yFree[i] - lo, hi - b.yFree[i]));
             }
@@ -33,8 +34,8 @@ public:
             if (!violated) freeFlight_.restart(wFree, zNext, 0.0, margin);
         }
         if (violated) {
-            b.lower.setConstant(lo);
-            b.upper.setConstant(hi);
+            b.lower.array() = rowLower_.array() - zNext;
+            b.upper.array() = rowUpper_.array() - zNext;
         }
         return violated;
     }
@@ -67,7 +68,7 @@ public:
 
 private:
     const DiscretePlate& plate_;
-    Obstacles obstacles_;
+    Eigen::VectorXd rowLower_, rowUpper_;  // each contact row's obstacles (±∞ off its stops, §25)
     FreeFlightBound freeFlight_;
 };
 
@@ -84,12 +85,12 @@ public:
         if (e_ > 0.0) {
             for (int i = 0; i < b.yFree.size(); ++i) {
                 const double uPrev = b.yPrev[i] + s.zPrev;
-                b.lower[i] = (1.0 + e_) * obstacles_.lower - e_ * uPrev - zNext;
-                b.upper[i] = (1.0 + e_) * obstacles_.upper - e_ * uPrev - zNext;
+                b.lower[i] = (1.0 + e_) * rowLower_[i] - e_ * uPrev - zNext;
+                b.upper[i] = (1.0 + e_) * rowUpper_[i] - e_ * uPrev - zNext;
             }
         } else {
-            b.lower.setConstant(obstacles_.lower - zNext);
-            b.upper.setConstant(obstacles_.upper - zNext);
+            b.lower.array() = rowLower_.array() - zNext;
+            b.upper.array() = rowUpper_.array() - zNext;
         }
         bool violated = false;
         for (int i = 0; i < b.yFree.size(); ++i)
@@ -99,7 +100,9 @@ public:
 
 protected:
     VertexImpact(const DiscretePlate& plate, const Obstacles& obstacles, double restitution)
-        : plate_(plate), obstacles_(obstacles), e_(restitution) {}
+        : plate_(plate), e_(restitution) {
+        obstacles.rowBounds(plate.clamped().contactStops, rowLower_, rowUpper_);
+    }
 
     // ½ τᵀ(u⁺ − u⁻)/Δt² with τ_i = impulse(i, μ_i) the whole impulse at vertex i (μ_i = 0 where
     // the QP did not run): at a vertex on the law's constraint u⁺ − u⁻ = (1+e)(obstacle − u⁻) (§12).
@@ -125,7 +128,7 @@ protected:
     }
 
     const DiscretePlate& plate_;
-    Obstacles obstacles_;
+    Eigen::VectorXd rowLower_, rowUpper_;  // each contact row's obstacles (±∞ off its stops, §25)
     double e_;
 };
 

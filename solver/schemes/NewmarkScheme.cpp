@@ -72,10 +72,12 @@ void NewmarkScheme::initialize(const Eigen::VectorXd& w0, double z0, double p0) 
     if (obstacles_.any()) {
         Eigen::VectorXd& y = contact_.y;
         plate_->gatherContact(w0, y);
+        Eigen::VectorXd lower, upper;  // each row's obstacles (docs/theory.md §25)
+        obstacles_.rowBounds(plate_->clamped().contactStops, lower, upper);
         for (int i = 0; i < y.size(); ++i) {
             const double u = y[i] + z0;
-            if (u <= obstacles_.lower) s.contactState[i] = -1;
-            if (u >= obstacles_.upper) s.contactState[i] = +1;
+            if (u <= lower[i]) s.contactState[i] = -1;
+            if (u >= upper[i]) s.contactState[i] = +1;
             s.contactPoints += s.contactState[i] != 0;
         }
     }

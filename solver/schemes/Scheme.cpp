@@ -47,8 +47,8 @@ void Scheme::refuseInputs(double zNext, double pNext, bool finite, bool inRange)
             << " (allowed: |base_displacement| <= " << kMaxDisplacement << " m, |load| <= " << kMaxLoad << " Pa)";
     } else {
         msg << "base_displacement = " << zNext << " at t = " << t << " puts the clamped edge past "
-            << (zNext < obstacles_.lower ? "obstacle_lower = " : "obstacle_upper = ")
-            << (zNext < obstacles_.lower ? obstacles_.lower : obstacles_.upper)
+            << (zNext < obstacles_.clampLower() ? "obstacle_lower = " : "obstacle_upper = ")
+            << (zNext < obstacles_.clampLower() ? obstacles_.clampLower() : obstacles_.clampUpper())
             << " (allowed: obstacle_lower <= base_displacement <= obstacle_upper)";
     }
     throw StepError(msg.str());

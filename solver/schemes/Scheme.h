@@ -143,12 +143,12 @@ protected:
             s.contactImpulseSum[k] += force[k] * h;
         }
     }
-    // The inputs of a step: finite, in range, the clamp between the obstacles (inline: every step
+    // The inputs of a step: finite, in range, the clamp between the obstacles whose stops reach it (inline: every step
     // asks; refuseInputs builds the message only for a refusal).
     void checkInputs(double zNext, double pNext) const {
         const bool finite = std::isfinite(zNext) && std::isfinite(pNext);
         const bool inRange = std::fabs(zNext) <= kMaxDisplacement && std::fabs(pNext) <= kMaxLoad;
-        const bool between = zNext >= obstacles_.lower && zNext <= obstacles_.upper;
+        const bool between = zNext >= obstacles_.clampLower() && zNext <= obstacles_.clampUpper();  // §25
         if (!(finite && inRange && between)) refuseInputs(zNext, pNext, finite, inRange);
     }
     double nextTime() const { return double(shared().step + 1) * dt_; }  // t_{n+1}, for messages

@@ -41,6 +41,7 @@ public:
         if (factor_.info() != Eigen::Success) throw std::runtime_error("bar step matrix not SPD");
         zero_ = Eigen::VectorXd::Zero(n_);
         clamped_.contactAbscissae = {0.0};
+        clamped_.contactStops = {kUnderBoth};  // the end under both obstacles
     }
     Eigen::Index size() const override { return n_; }
     void applyStiffness(const Eigen::VectorXd& w, Eigen::VectorXd& out) const override { out = stiffness_ * w; }

@@ -1,0 +1,55 @@
+"""Stops through fmpy (docs/theory.md §25, issue 52): the parameters in the table of variables with
+the whole plate as their default, the tip-stop scene as a master drives it, and the refusals."""
+
+from __future__ import annotations
+
+import fmpy
+import pytest
+
+from plateimpact import FMUError, PlateImpactFMU, default_base
+
+STOP = dict(obstacle_lower=-0.05, obstacle_lower_x_min=1.0, obstacle_upper_enabled=False)
+EDGES = [f"obstacle_{side}_{c}" for side in ("lower", "upper") for c in ("x_min", "x_max", "y_min", "y_max")]
+
+
+def test_the_stops_are_parameters_whose_default_is_the_whole_plate(fmu_path):
+    md = fmpy.read_model_description(str(fmu_path))
+    variables = {v.name: v for v in md.modelVariables}
+    for name in EDGES:
+        v = variables[name]
+        assert v.causality == "parameter" and v.type == "Real" and v.unit == "m"
+        # The default rectangle reaches past the largest plate the ranges allow (length, width <= 1e4 m).
+        assert float(v.start) == (1e4 if name.endswith("max") else 0.0), name
+        assert float(v.min) == 0.0 and float(v.max) == 1e4
+
+
+@pytest.mark.parametrize("law", [{}, {"time_scheme": "flow", "mass": "singular_p0"}])
+def test_tip_stop_holds_the_corners_and_lets_the_middle_pass(fmu_path, law):
+    """The corners (1.2, 0) and (1.2, 0.4) are contact points of the stop x >= 1.0: never below
+    −0.05 m by more than roundoff (1e-12 m, as test_stops.cpp), while the probe at (0.6, 0.2), off
+    the stop, passes below it (as the clamp does: the base reaches −0.09 m)."""
+    lowest = {"corner_1": 1.0, "corner_2": 1.0, "probe_1": 1.0}
+    with PlateImpactFMU(fmu_path, **STOP, **law, probe_count=1, probe_1_x=0.6, probe_1_y=0.2) as plate:
+        for k in range(10000):  # 1 s: the tip lands on the stop from ≈ 0.03 s on
+            out = plate.step(1e-4, base=default_base(k * 1e-4))
+            for name in lowest:
+                lowest[name] = min(lowest[name], out[name])
+        assert out["contact_onsets_lower"] > 0 and out["contact_onsets_upper"] == 0
+    assert lowest["corner_1"] >= -0.05 - 1e-12 and lowest["corner_2"] >= -0.05 - 1e-12, lowest
+    assert lowest["probe_1"] < -0.05, lowest
+
+
+@pytest.mark.parametrize(
+    "bad, says",
+    [
+        (dict(obstacle_lower_x_min=1.1, obstacle_lower_x_max=1.0), "x_min <= x_max"),
+        (dict(obstacle_upper_y_min=0.5), "meets the plate"),
+        (dict(obstacle_lower_x_min=0.96, obstacle_lower_x_max=1.0), "nearest to this one is (0.942857142857143, 0)"),
+        (dict(obstacle_lower_x_min=2e4), "every edge in [0, 1e4] m"),
+    ],
+)
+def test_bad_stops_are_refused_with_the_allowed_range(fmu_path, bad, says):
+    with pytest.raises(FMUError) as refused:
+        with PlateImpactFMU(fmu_path, **bad):
+            pass
+    assert says in str(refused.value)

@@ -1,0 +1,97 @@
+#include "plate/Stops.h"
+
+#include <algorithm>
+#include <cmath>
+#include <sstream>
+
+#include "base/Errors.h"
+
+namespace plate {
+
+namespace {
+
+constexpr double kSlack = 1e-9;  // relative to the plate's size: far above i·length/nx's roundoff
+
+bool covers(const PlateParameters::StopRect& r, const Eigen::Vector2d& x, double slack) {
+    return x.x() >= r.xMin - slack && x.x() <= r.xMax + slack && x.y() >= r.yMin - slack && x.y() <= r.yMax + slack;
+}
+
+const PlateParameters::StopRect& stopOf(const PlateParameters& p, int k) { return k == 0 ? p.lowerStop : p.upperStop; }
+bool presentOf(const PlateParameters& p, int k) { return k == 0 ? p.obstacleLowerEnabled : p.obstacleUpperEnabled; }
+
+// The distance from a point to a rectangle (0 inside it).
+double distance(const PlateParameters::StopRect& r, const Eigen::Vector2d& x) {
+    const double dx = std::max({r.xMin - x.x(), 0.0, x.x() - r.xMax});
+    const double dy = std::max({r.yMin - x.y(), 0.0, x.y() - r.yMax});
+    return std::hypot(dx, dy);
+}
+
+}  // namespace
+
+StopMap::StopMap(const PlateParameters& p) : slack_(kSlack * std::max(p.length, p.width)) {
+    whole_ = true;
+    for (int k = 0; k < 2; ++k) {
+        rect_[k] = stopOf(p, k);
+        present_[k] = presentOf(p, k);
+        const auto& r = rect_[k];
+        if (present_[k])
+            whole_ = whole_ && r.xMin <= 0.0 && r.yMin <= 0.0 && r.xMax >= p.length && r.yMax >= p.width;
+    }
+}
+
+unsigned char StopMap::at(const Eigen::Vector2d& x) const {
+    if (!present_[0] && !present_[1]) return kUnderBoth;
+    unsigned char bits = 0;
+    if (present_[0] && covers(rect_[0], x, slack_)) bits |= kUnderLower;
+    if (present_[1] && covers(rect_[1], x, slack_)) bits |= kUnderUpper;
+    return bits;
+}
+
+Obstacles obstaclesOf(const PlateParameters& p) {
+    Obstacles o;
+    if (p.obstacleLowerEnabled) o.lower = p.obstacleLower;
+    if (p.obstacleUpperEnabled) o.upper = p.obstacleUpper;
+    o.lowerAtClamp = p.lowerStop.xMin <= 0.0;
+    o.upperAtClamp = p.upperStop.xMin <= 0.0;
+    return o;
+}
+
+void validateStops(const PlateParameters& p) {
+    const char* names[2] = {"obstacle_lower", "obstacle_upper"};
+    const double slack = kSlack * std::max(p.length, p.width);
+    for (int k = 0; k < 2; ++k) {
+        if (!presentOf(p, k)) continue;
+        const PlateParameters::StopRect& r = stopOf(p, k);
+        const std::string n = names[k];
+        std::ostringstream msg;
+        msg.precision(15);
+        msg << "invalid stop of " << n << ": " << n << "_x_min..x_max = " << r.xMin << ".." << r.xMax << ", " << n
+            << "_y_min..y_max = " << r.yMin << ".." << r.yMax << " m (allowed: ";
+        const double coordinates[4] = {r.xMin, r.xMax, r.yMin, r.yMax};
+        for (double c : coordinates)
+            if (!ranges::kStopCoordinate.contains(c))
+                throw ParameterError(msg.str() + "every edge in [0, 1e4] m; 1e4 reaches past any plate)");
+        if (r.xMin > r.xMax || r.yMin > r.yMax)
+            throw ParameterError(msg.str() + "x_min <= x_max and y_min <= y_max)");
+        if (r.xMin > p.length + slack || r.yMin > p.width + slack) {
+            msg << "a rectangle that meets the plate [0, " << p.length << "] x [0, " << p.width << "] m)";
+            throw ParameterError(msg.str());
+        }
+        // The contact points: vertex (i, j) at (i length/nx, j width/ny), i ≥ 1 (Mesh.h).
+        Eigen::Vector2d nearest(0.0, 0.0);
+        double best = HUGE_VAL;
+        for (int i = 1; i <= p.nx && best > 0.0; ++i)
+            for (int j = 0; j <= p.ny && best > 0.0; ++j) {
+                const Eigen::Vector2d x(i * (p.length / p.nx), j * (p.width / p.ny));
+                const double d = covers(r, x, slack) ? 0.0 : distance(r, x);
+                if (d < best) best = d, nearest = x;
+            }
+        if (best > 0.0) {
+            msg << "a rectangle holding at least one contact point, a mesh vertex (i length/nx, j width/ny) with i >= 1; "
+                << "the nearest to this one is (" << nearest.x() << ", " << nearest.y() << ") m)";
+            throw ParameterError(msg.str());
+        }
+    }
+}
+
+}  // namespace plate
