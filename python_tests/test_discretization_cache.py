@@ -45,3 +45,17 @@ def test_a_shared_plate_gives_the_golden_output_bit_for_bit(fmu_path, monkeypatc
     assert shared == parts >= 3  # the space, the clamped plate, the modal basis
     assert mismatches(golden, alone) == []
     assert mismatches(golden, second) == []
+
+
+def test_a_plate_built_with_one_obstacle_is_not_shared_with_one_that_has_both(fmu_path):
+    """Each contact row knows which obstacles hold it (docs/theory.md §25): a plate discretized with
+    the upper obstacle off must not be served to an instance with both (its rows would ignore the
+    upper one). After the one-obstacle instance, the golden window of the default scene, with both
+    obstacles, still matches the golden output bit for bit."""
+    golden = read_golden()[: QEMU_WINDOW + 1]
+    inputs = golden_inputs(golden)
+    with PlateImpactFMU(fmu_path, obstacle_upper_enabled=False) as plate:
+        plate.step(STEP, base=inputs[0])
+    rows, _ = run(fmu_path, inputs, QEMU_WINDOW)
+    assert not mismatches(golden, rows)
+    assert rows[-1]["contact_onsets_upper"] > 0  # the window reaches the upper obstacle

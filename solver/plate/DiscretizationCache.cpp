@@ -40,18 +40,18 @@ CacheKey& addSpace(CacheKey& key, const PlateParameters& p) {
     return key.add(static_cast<int>(p.element)).add(p.length).add(p.width).add(p.nx).add(p.ny);
 }
 
-// Which vertices are contact rows (docs/theory.md §25): every free vertex when the stops cover the
-// whole plate (the key is then the one it was before stops), else the present obstacles' rectangles.
+// Which vertices are contact rows and which obstacles hold each (docs/theory.md §25): the present
+// obstacles (a row's bits name them, whole plate or not), and their rectangles unless they cover
+// the whole plate.
 CacheKey& addStops(CacheKey& key, const PlateParameters& p) {
+    const bool present[2] = {p.obstacleLowerEnabled, p.obstacleUpperEnabled};
+    key.add(present[0] ? 1 : 0).add(present[1] ? 1 : 0);
     const bool whole = StopMap(p).wholePlate();
     key.add(whole ? 0 : 1);
     if (whole) return key;
-    const bool present[2] = {p.obstacleLowerEnabled, p.obstacleUpperEnabled};
     const PlateParameters::StopRect* rect[2] = {&p.lowerStop, &p.upperStop};
-    for (int k = 0; k < 2; ++k) {
-        key.add(present[k] ? 1 : 0);
+    for (int k = 0; k < 2; ++k)
         if (present[k]) key.add(rect[k]->xMin).add(rect[k]->xMax).add(rect[k]->yMin).add(rect[k]->yMax);
-    }
     return key;
 }
 
