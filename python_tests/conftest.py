@@ -194,11 +194,8 @@ def pytest_collection_modifyitems(config, items):
     items.sort(key=lambda item: item.get_closest_marker("slow") is None)
 
 
-# fmpy formats FMI 2.0 log messages in a native proxy that keeps one global pointer to the last Python
-# logger registered (fmpy.logging.addLoggerProxy). A simulate_fmu(..., logger=f) registers f's ctypes
-# callback and drops it when it returns, so the next FMU that logs through fmpy's default callbacks in
-# the same process calls freed memory (a segfault of an xdist worker, seen in test_fmi3 after
-# test_silent_answers). After every test the global points at one logger this module keeps alive.
+# After every test fmpy's native logger proxy points at a logger this module keeps alive (why:
+# fmpy_callbacks.py; seen in test_fmi3 after test_silent_answers).
 _KEPT_LOGGER: list = []
 
 
@@ -207,26 +204,14 @@ def _fmpy_logger_proxy_kept_alive():
     yield
     from ctypes import byref
 
-    from fmpy.fmi2 import (
-        calloc,
-        fmi2CallbackAllocateMemoryTYPE,
-        fmi2CallbackFreeMemoryTYPE,
-        fmi2CallbackFunctions,
-        fmi2CallbackLoggerTYPE,
-        free,
-        printLogMessage,
-    )
+    from fmpy.fmi2 import printLogMessage
     from fmpy.logging import addLoggerProxy
+    from fmpy_callbacks import callbacks
 
     if not _KEPT_LOGGER:
-        callbacks = fmi2CallbackFunctions()
-        callbacks.logger = fmi2CallbackLoggerTYPE(printLogMessage)
-        callbacks.allocateMemory = fmi2CallbackAllocateMemoryTYPE(calloc)
-        callbacks.freeMemory = fmi2CallbackFreeMemoryTYPE(free)
-        _KEPT_LOGGER.append((callbacks, callbacks.logger))
-    python_logger = _KEPT_LOGGER[0][1]
-    fresh = fmi2CallbackFunctions()  # the proxy replaces the struct's logger: register a fresh one
-    fresh.logger = python_logger
+        _KEPT_LOGGER.append(callbacks(printLogMessage).logger)
+    fresh = callbacks(printLogMessage)  # the proxy replaces the struct's logger: a fresh struct each time
+    fresh.logger = _KEPT_LOGGER[0]
     addLoggerProxy(byref(fresh))
     _KEPT_LOGGER.append(fresh)
     del _KEPT_LOGGER[1:-1]

@@ -17,16 +17,9 @@ import numpy as np
 import pytest
 from fmpy import extract, read_model_description
 from fmpy.fmi1 import FMICallException
-from fmpy.fmi2 import (
-    FMU2Slave,
-    calloc,
-    fmi2CallbackAllocateMemoryTYPE,
-    fmi2CallbackFreeMemoryTYPE,
-    fmi2CallbackFunctions,
-    fmi2CallbackLoggerTYPE,
-    free,
-)
+from fmpy.fmi2 import FMU2Slave
 from fmpy.validation import validate_fmu
+from fmpy_callbacks import callbacks as own_callbacks
 
 from plateimpact.scenes import AMPLITUDE, DT, errors, run_derivatives
 
@@ -44,13 +37,8 @@ def sweep_instance(path, **parameters):
     md = read_model_description(str(path))
     vr = {v.name: v.valueReference for v in md.modelVariables}
     fmu = FMU2Slave(guid=md.guid, unzipDirectory=extract(str(path)), modelIdentifier="SineSweep", instanceName="sweep")
-    # Callbacks of the instance's own, kept alive with it: fmpy's default ones log through a native
-    # proxy whose one global logger an earlier fmpy.simulate_fmu in the same process may have left
-    # pointing at a freed Python callback (a segfault at the first message, seen under xdist).
-    callbacks = fmi2CallbackFunctions()
-    callbacks.logger = fmi2CallbackLoggerTYPE(lambda *args: None)
-    callbacks.allocateMemory = fmi2CallbackAllocateMemoryTYPE(calloc)
-    callbacks.freeMemory = fmi2CallbackFreeMemoryTYPE(free)
+    # Callbacks of the instance's own, kept alive with it (fmpy_callbacks.py says why).
+    callbacks = own_callbacks(lambda *args: None)
     fmu.keepAlive = callbacks
     fmu.instantiate(callbacks=callbacks)
     fmu.setupExperiment(startTime=0.0)
