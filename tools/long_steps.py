@@ -28,9 +28,15 @@ from fmpy.logging import addLoggerProxy
 # returns; every later FMI 2.0 FMU of the process that logs through fmpy's default callbacks then calls
 # freed memory (a segfault: test_fmi3.py's fmi2GetReal warning after test_silent_answers.py's
 # simulate, in one pytest worker). After each run the proxy points again at fmpy's printing logger,
-# kept alive here.
-_PRINTING = fmi2CallbackFunctions()
-_PRINTING.logger = fmi2CallbackLoggerTYPE(printLogMessage)
+# kept alive here (a fresh struct each time: addLoggerProxy replaces the struct's logger by the proxy).
+_PRINTING = fmi2CallbackLoggerTYPE(printLogMessage)
+
+
+def _restore_fmpy_logger():
+    callbacks = fmi2CallbackFunctions()
+    callbacks.logger = _PRINTING
+    addLoggerProxy(byref(callbacks))  # the proxy keeps the function pointer, _PRINTING's
+
 
 STEPS = [1e-3, 4e-3, 8e-3, 0.016, 0.032, 0.064, 0.1, 0.25, 1.0]
 FREQUENCY, AMPLITUDE, STOP = 0.4, 0.05, 10.0
@@ -61,7 +67,7 @@ def simulate(fmu, stop: float, h: float, frequency: float, amplitude: float, **s
             logger=logger,
         )
     finally:
-        addLoggerProxy(byref(_PRINTING))  # not the dead callback (above)
+        _restore_fmpy_logger()  # not the dead callback (above)
     return result, warned
 
 
