@@ -16,6 +16,7 @@ the setting and what to do.
 import re
 from pathlib import Path
 
+import fmpy
 import numpy as np
 from long_steps import simulate
 from plate_fmu import PlateRun
@@ -110,3 +111,14 @@ def test_the_readme_states_the_fmus_longest_step(fmu_path):
     assert f"T1 = {float(period):.3g} s" in readme and f"h ≤ {longest} s" in readme, (period, longest)
     doc = (REPO / "docs" / "input-accuracy.md").read_text()
     assert "## How long a communication step may be" in doc and "T1/10" in doc
+
+
+def test_an_fmu_warning_after_a_run_with_its_own_logger_is_printed(fmu_path, capfd):
+    """tools/long_steps.simulate gives fmpy a logger of its own; fmpy's native logger proxy kept it
+    after the run, freed, and the next FMU's warning through fmpy's default logger called it: a
+    segfault of the process (test_fmi3.py's bit-identity run after this file's runs, in one worker).
+    Twice: a restored logger must survive the next run's restoring too."""
+    for _ in range(2):
+        simulate(fmu_path, 0.002, 1e-3, 10.0, 0.09)
+    fmpy.simulate_fmu(str(fmu_path), stop_time=2e-4, output_interval=1e-4, output=["root_stress"])
+    assert "root_stress was read while stress_outputs = false" in capfd.readouterr().out

@@ -14,10 +14,29 @@ import json
 import subprocess
 import sys
 import time
+from ctypes import byref
 from pathlib import Path
 
 import fmpy
 import numpy as np
+from fmpy.fmi1 import printLogMessage
+from fmpy.fmi2 import fmi2CallbackFunctions, fmi2CallbackLoggerTYPE
+from fmpy.logging import addLoggerProxy
+
+# fmpy's native logger proxy (fmpy/logging) holds one global logger, the last one given to
+# addLoggerProxy. simulate_fmu(logger=...) sets it to a ctypes callback that dies when simulate_fmu
+# returns; every later FMI 2.0 FMU of the process that logs through fmpy's default callbacks then calls
+# freed memory (a segfault: test_fmi3.py's fmi2GetReal warning after test_silent_answers.py's
+# simulate, in one pytest worker). After each run the proxy points again at fmpy's printing logger,
+# kept alive here (a fresh struct each time: addLoggerProxy replaces the struct's logger by the proxy).
+_PRINTING = fmi2CallbackLoggerTYPE(printLogMessage)
+
+
+def _restore_fmpy_logger():
+    callbacks = fmi2CallbackFunctions()
+    callbacks.logger = _PRINTING
+    addLoggerProxy(byref(callbacks))  # the proxy keeps the function pointer, _PRINTING's
+
 
 STEPS = [1e-3, 4e-3, 8e-3, 0.016, 0.032, 0.064, 0.1, 0.25, 1.0]
 FREQUENCY, AMPLITUDE, STOP = 0.4, 0.05, 10.0
@@ -37,15 +56,18 @@ def simulate(fmu, stop: float, h: float, frequency: float, amplitude: float, **s
         if status == 1 and b"communicationStepSize" in message:
             warned.append(message.decode())
 
-    result = fmpy.simulate_fmu(
-        str(fmu),
-        stop_time=stop,
-        output_interval=h,
-        input=signal,
-        output=["corner_1", "energy"],
-        start_values=start_values,
-        logger=logger,
-    )
+    try:
+        result = fmpy.simulate_fmu(
+            str(fmu),
+            stop_time=stop,
+            output_interval=h,
+            input=signal,
+            output=["corner_1", "energy"],
+            start_values=start_values,
+            logger=logger,
+        )
+    finally:
+        _restore_fmpy_logger()  # not the dead callback (above)
     return result, warned
 
 
