@@ -285,7 +285,7 @@ constexpr double kMaxBaseAcceleration = 1e7;  // m/s^2
 const std::vector<fmu::Variable>& plateVariables();
 // FMI 3.0 terminals over the table's variables (terminalsAndIcons.xml): the clamp as a vertical
 // translational flange, driven by motion (clamp) or by force (armature), and the transmission
-// line's end (line). The kinds are documented in the model's page (PlateModel.cpp).
+// line's end (line). The kinds are documented in the model's page (PlateInfo.cpp).
 const std::vector<fmu::Terminal>& plateTerminals();
 // The fixed part of modelDescription.xml and the documentation page (PlateInfo.cpp).
 const fmu::ModelInfo& plateInfo();

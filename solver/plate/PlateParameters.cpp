@@ -41,7 +41,7 @@ namespace {
 
 // Fewer than two steps per first period resolve nothing of the plate's motion (every output
 // would be the static state or noise): refused, whatever the scheme. Finer than T1/20 for an
-// accurate output: the FMU says so (fmu/binding/PlateModel.cpp).
+// accurate output: the FMU says so (fmu/binding/PlateWarnings.cpp).
 void requireFirstPeriodResolved(const PlateParameters& p) {
     const double period = 1.0 / p.firstFrequencyEstimate();
     if (p.dt > 0.5 * period) {

@@ -163,9 +163,10 @@ void FlowScheme::companion(double zNext, double pNext, int level) {
     errorNextMomentum_ = s.momentum - coarse_.state.momentum;
 }
 
-// The kept run's own error, from the coarse run's difference to it: kSmoothWeight of it where no
-// row changed sides over the step, all of it across an onset or a release (first order). Into localQ_, localMomentum_; returned measured at the reported points as the
-// amplitude of their sum of modal oscillations, √Σ(G_ik a_k)², a_k = √(δq_k² + (δP_k/ω_k)²).
+// The kept run's own error, from the coarse run's difference to it: 1/(2^p − 1) of it where no row
+// changed sides over the step (p the learnt order), all of it across an onset or a release (first
+// order). Into localQ_, localMomentum_; returned measured at the reported points as the amplitude
+// of their sum of modal oscillations, √Σ(G_ik a_k)², a_k = √(δq_k² + (δP_k/ω_k)²).
 double FlowScheme::localError() {
     const CondensedState& s = state_;
     smooth_ = s.rowState == start_.state.rowState && coarse_.state.rowState == start_.state.rowState;
