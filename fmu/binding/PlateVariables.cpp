@@ -124,9 +124,10 @@ double getQpIterationsTotal(const PlateValues& v) { return saturate(v.outputs.co
     [](const PlateValues& v) { return v.member.signal.value; }, [](PlateValues& v, double x) { v.member.setValue(x); }
 #define OUTPUT(field) [](const PlateValues& v) { return double(v.outputs.field); }
 // An edge of an obstacle's stop (docs/theory.md §25): obstacle_<side>_<edge>, m.
-#define STOP_EDGE(vr, side, edge, member, more)                                                                \
-    parameter(vr, "obstacle_" side "_" edge, "m", kStopCoordinate, PARAMETER(member),                          \
-              "Edge " edge " of the " side " obstacle's stop: the mesh vertices inside its rectangle (clipped to " \
+#define STOP_EDGE(vr, side, edge, member, more)                                       \
+    parameter(vr, "obstacle_" side "_" edge, "m", kStopCoordinate, PARAMETER(member), \
+              "Edge " edge " of the " side                                            \
+              " obstacle's stop: the mesh vertices inside its rectangle (clipped to " \
               "the plate) are its contact points" more)
 #define PORT(field) [](const PlateValues& v) { return v.port().field; }
 #define FIELD(member) [](const PlateValues& v) { return v.field().member; }

@@ -34,8 +34,7 @@ StopMap::StopMap(const PlateParameters& p) : slack_(kSlack * std::max(p.length, 
         rect_[k] = stopOf(p, k);
         present_[k] = presentOf(p, k);
         const auto& r = rect_[k];
-        if (present_[k])
-            whole_ = whole_ && r.xMin <= 0.0 && r.yMin <= 0.0 && r.xMax >= p.length && r.yMax >= p.width;
+        if (present_[k]) whole_ = whole_ && r.xMin <= 0.0 && r.yMin <= 0.0 && r.xMax >= p.length && r.yMax >= p.width;
     }
 }
 
@@ -71,8 +70,7 @@ void validateStops(const PlateParameters& p) {
         for (double c : coordinates)
             if (!ranges::kStopCoordinate.contains(c))
                 throw ParameterError(msg.str() + "every edge in [0, 1e4] m; 1e4 reaches past any plate)");
-        if (r.xMin > r.xMax || r.yMin > r.yMax)
-            throw ParameterError(msg.str() + "x_min <= x_max and y_min <= y_max)");
+        if (r.xMin > r.xMax || r.yMin > r.yMax) throw ParameterError(msg.str() + "x_min <= x_max and y_min <= y_max)");
         if (r.xMin > p.length + slack || r.yMin > p.width + slack) {
             msg << "a rectangle that meets the plate [0, " << p.length << "] x [0, " << p.width << "] m)";
             throw ParameterError(msg.str());
@@ -87,7 +85,8 @@ void validateStops(const PlateParameters& p) {
                 if (d < best) best = d, nearest = x;
             }
         if (best > 0.0) {
-            msg << "a rectangle holding at least one contact point, a mesh vertex (i length/nx, j width/ny) with i >= 1; "
+            msg << "a rectangle holding at least one contact point, a mesh vertex (i length/nx, j width/ny) with i >= "
+                   "1; "
                 << "the nearest to this one is (" << nearest.x() << ", " << nearest.y() << ") m)";
             throw ParameterError(msg.str());
         }

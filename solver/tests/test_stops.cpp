@@ -78,18 +78,17 @@ TEST_P(TipStop, HoldsTheVerticesUnderItAndNoOthers) {
     EXPECT_EQ(o.contactOnsets[1], 0) << c.name << ": the upper obstacle is off";
 }
 
-INSTANTIATE_TEST_SUITE_P(
-    Laws, TipStop,
-    ::testing::Values(LawCase{Law::Newmark, plate::ElementType::Argyris, "newmark argyris"},
-                      LawCase{Law::Newmark, plate::ElementType::Fvs, "newmark fvs"},
-                      LawCase{Law::Conserving, plate::ElementType::Argyris, "conserving argyris"},
-                      LawCase{Law::Flow, plate::ElementType::Argyris, "flow argyris"},
-                      LawCase{Law::Flow, plate::ElementType::Fvs, "flow fvs"}),
-    [](const ::testing::TestParamInfo<LawCase>& info) {
-        std::string name = info.param.name;
-        std::replace(name.begin(), name.end(), ' ', '_');
-        return name;
-    });
+INSTANTIATE_TEST_SUITE_P(Laws, TipStop,
+                         ::testing::Values(LawCase{Law::Newmark, plate::ElementType::Argyris, "newmark argyris"},
+                                           LawCase{Law::Newmark, plate::ElementType::Fvs, "newmark fvs"},
+                                           LawCase{Law::Conserving, plate::ElementType::Argyris, "conserving argyris"},
+                                           LawCase{Law::Flow, plate::ElementType::Argyris, "flow argyris"},
+                                           LawCase{Law::Flow, plate::ElementType::Fvs, "flow fvs"}),
+                         [](const ::testing::TestParamInfo<LawCase>& info) {
+                             std::string name = info.param.name;
+                             std::replace(name.begin(), name.end(), ' ', '_');
+                             return name;
+                         });
 
 // The energy identity (T.17d) of the conserving and flow laws holds step by step with the stop:
 // E_{n+1} − E_n = (work put in) − (damped) − (dissipated) to 1e-10 of the energy scale per step
