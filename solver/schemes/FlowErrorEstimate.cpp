@@ -205,7 +205,7 @@ void FlowScheme::rotateError(long long toStep) {
 void FlowScheme::sampleError() {
     rowBound_.noalias() = measuredRows_ * flow_.errorQ;
     const double now = rowBound_.size() > 0 ? rowBound_.cwiseAbs().maxCoeff() : 0.0;
-    const double gap = obstacles_.upper - obstacles_.lower;
+    const double gap = gapBound_;
     if (!(now < gap)) {  // also a non-finite E
         const double scale = std::isfinite(now) && now > 0.0 ? gap / now : 0.0;
         flow_.errorQ *= scale;
@@ -223,7 +223,7 @@ void FlowScheme::sampleError() {
     }
 }
 
-bool FlowScheme::boundedByGap() const { return std::isfinite(obstacles_.upper - obstacles_.lower); }
+bool FlowScheme::boundedByGap() const { return std::isfinite(gapBound_); }
 
 // The step's share of the tolerance (docs/theory.md §22): what is left of it, over the contact steps
 // still to come. Their number is unknown; it lies between the contact steps so far (the run goes on

@@ -67,6 +67,8 @@ FlowScheme::FlowScheme(std::shared_ptr<const CondensedPlate> plate, Obstacles ob
         if (measured.empty())
             for (int i = 0; i < rows; ++i) measured.push_back(i);
         measuredRows_ = c.rowModesT(Eigen::all, measured).transpose();
+        // Two motions differ at a row by its gap at most, where both obstacles' stops cover it (§22, §25).
+        for (int i : measured) gapBound_ = std::max(gapBound_, upper_[i] - lower_[i]);
 
         inverseOmega_ = c.omega2.cwiseSqrt().cwiseInverse();
         for (Eigen::VectorXd* v :

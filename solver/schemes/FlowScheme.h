@@ -96,7 +96,8 @@ private:
     void companion(double zNext, double pNext, int level);  // from start_ + E: E carried, into errorNext*
     void rotateError(long long toStep);  // E by the exact free flow from errorStep to toStep
     void sampleError();  // the reported points' error implied by E, into the running maximum
-    bool boundedByGap() const;  // both obstacles: two motions differ by their gap at most at a row
+    bool boundedByGap()
+        const;  // every reported point under both obstacles: two motions differ there by gapBound_ at most
     double localTarget() const;  // what this contact step may add at the reported points, m
     double localError();  // the kept run's own error, into local*: at the reported points, m
 
@@ -128,6 +129,7 @@ private:
     Snapshot start_, coarse_, fine_;  // start_: the contact step's start (advance), restored on a throw
     FlowState flowAtStart_;
     double errorReach_ = 0.0;
+    double gapBound_ = 0.0;  // the largest gap between the obstacles at a reported point (∞: one lacks one)
     bool smooth_ = false;  // the last localError's pair: no row changed sides
     double difference_ = 0.0;  // and its difference at the reported points, m
     int fixedLevel_ =
