@@ -22,7 +22,8 @@ BoxQP::BoxQP(ContactColumns& columns, int maxPdasIterations)
       wss_(columns.count(), columns.count()),
       rhs_(columns.count()),
       residualOnActive_(columns.count()),
-      yTrial_(columns.count()) {
+      yTrial_(columns.count()),
+      current_(columns.count()) {
     active_.reserve(columns.count());
     factoredSet_.reserve(columns.count());
 }
@@ -44,7 +45,7 @@ bool BoxQP::solveOnActive(const Eigen::VectorXd& yFree, const Eigen::VectorXd& l
     // W_SS only changes with the set: in sustained contact it is factored once.
     if (factoredSet_ != active_) {
         for (int b = 0; b < na; ++b) {
-            const Eigen::VectorXd& col = columns_.contactColumn(active_[b]);
+            const auto col = columns_.contactColumn(active_[b]);
             for (int a = 0; a < na; ++a) wss_(a, b) = col[active_[a]];
         }
         Eigen::Ref<Eigen::MatrixXd> block = wss_.topLeftCorner(na, na);
@@ -70,7 +71,8 @@ bool BoxQP::solveOnActive(const Eigen::VectorXd& yFree, const Eigen::VectorXd& l
     for (int a = 0; a < na; ++a) {
         const int i = active_[a];
         mu[i] = r[a];
-        y.noalias() += r[a] * columns_.contactColumn(i);
+        const auto column = columns_.contactColumn(i);
+        y.head(column.size()).noalias() += r[a] * column;
     }
     for (int a = 0; a < na; ++a) {
         const int i = active_[a];
@@ -136,13 +138,17 @@ bool BoxQP::primalActiveSet(const Eigen::VectorXd& yFree, const Eigen::VectorXd&
     // drop a bound whose multiplier has the wrong sign. Finite for SPD W.
     const int m = columns_.count();
     for (int i : active_) mu[i] = 0.0;
+    y = yFree;
     // Start from w = 0 (y = 0) with an empty working set when it is feasible — it is in every
     // time step, the clamp lying between the obstacles. Then every iterate stays in the range
     // of C (y = C w) and a blocking bound is always independent of the working set, so W_SS
     // stays nonsingular even for a reduced plate where rank(W) < count.
-    const bool zeroFeasible = (lower.array() <= 0.0).all() && (upper.array() >= 0.0).all();
-    Eigen::VectorXd current =
-        zeroFeasible ? Eigen::VectorXd::Zero(m) : Eigen::VectorXd(yFree.cwiseMax(lower).cwiseMin(upper));
+    const bool zeroFeasible = (lower.head(m).array() <= 0.0).all() && (upper.head(m).array() >= 0.0).all();
+    Eigen::VectorXd& current = current_;
+    if (zeroFeasible)
+        current.setZero();
+    else
+        current.head(m) = yFree.head(m).cwiseMax(lower.head(m)).cwiseMin(upper.head(m));
     for (int i = 0; i < m; ++i)
         state[i] = zeroFeasible ? 0 : (yFree[i] < lower[i] ? -1 : (yFree[i] > upper[i] ? +1 : 0));
     const int maxIterations = 10 * m + 100;
@@ -168,7 +174,7 @@ bool BoxQP::primalActiveSet(const Eigen::VectorXd& yFree, const Eigen::VectorXd&
             }
         }
         if (!moved || blocking < 0) {
-            current = yTrial_;
+            current.head(m) = yTrial_.head(m);
             // At the minimizer on the working set: drop the worst wrong-signed multiplier.
             int worst = -1;
             double worstValue = 0.0;
@@ -178,7 +184,7 @@ bool BoxQP::primalActiveSet(const Eigen::VectorXd& yFree, const Eigen::VectorXd&
                 if (scaled > worstValue) worstValue = scaled, worst = i;
             }
             if (worst < 0) {
-                y = current;
+                y.head(m) = current.head(m);
                 return true;
             }
             state[worst] = 0;
@@ -189,7 +195,7 @@ bool BoxQP::primalActiveSet(const Eigen::VectorXd& yFree, const Eigen::VectorXd&
         state[blocking] = yTrial_[blocking] < lower[blocking] ? -1 : +1;
         current[blocking] = target(blocking, state[blocking], lower, upper);
     }
-    y = current;
+    y.head(m) = current.head(m);
     return false;
 }
 

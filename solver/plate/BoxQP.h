@@ -6,7 +6,9 @@
 // state). With w_free = S⁻¹b the solution is w = w_free + S⁻¹Cᵀμ, and y = C w solves
 //     y = y_free + W μ,  lower ≤ y ≤ upper,  μ ≥ 0 ⊥ y − lower ≥ 0,  μ ≤ 0 ⊥ upper − y ≥ 0,
 // with W = C S⁻¹ Cᵀ small, dense, SPD and constant (docs/theory.md). Only the columns of W (and of
-// S⁻¹Cᵀ) of vertices that ever touch an obstacle are computed, once, when first needed.
+// S⁻¹Cᵀ) of vertices that ever touch an obstacle are computed, once, when first needed. A W that is
+// already a dense matrix (the condensed schemes') is read in place, possibly as its leading
+// count × count block (the rows a contact step can touch, docs/theory.md §24): no copy, no allocation.
 #include <Eigen/Cholesky>
 #include <Eigen/Core>
 #include <functional>
@@ -20,16 +22,22 @@ public:
     using GatherFn = std::function<void(const Eigen::VectorXd& z, Eigen::VectorXd& y)>;  // y = C z
 
     ContactColumns(int count, ColumnFn column, GatherFn gather);
+    // W given whole: its columns as they are (column() is not available).
+    explicit ContactColumns(const Eigen::MatrixXd& w) : count_(int(w.cols())), dense_(&w) {}
 
     int count() const { return count_; }
+    // Dense W only: from now on W is its leading count × count block (count ≤ its size). The solver
+    // reading it must forget its factor when the block's values change (BoxQP::forgetFactor).
+    void useLeading(int count) { count_ = count; }
     const Eigen::VectorXd& column(int j) {
         ensure(j);
         return z_[j];
     }
-    const Eigen::VectorXd& contactColumn(int j) {
+    Eigen::Map<const Eigen::VectorXd> contactColumn(int j) {  // C z_j = W e_j
+        if (dense_) return {dense_->col(j).data(), count_};
         ensure(j);
-        return w_[j];
-    }  // C z_j = W e_j
+        return {w_[j].data(), w_[j].size()};
+    }
     int computedColumns() const { return computed_; }
 
 private:
@@ -39,6 +47,7 @@ private:
     ColumnFn columnFn_;
     GatherFn gatherFn_;
     std::vector<Eigen::VectorXd> z_, w_;
+    const Eigen::MatrixXd* dense_ = nullptr;
 };
 
 struct QPResult {
@@ -56,12 +65,15 @@ public:
     explicit BoxQP(ContactColumns& columns, int maxPdasIterations = 30);
 
     // state[i]: −1 on the lower bound, +1 on the upper bound, 0 free. In: warm start; out: the
-    // solution's set. mu and y are overwritten (mu zero off the active set).
+    // solution's set. mu and y are overwritten (mu zero off the active set). The vectors may be
+    // longer than count(): the entries past it are not read, and are left as yFree's and zero.
     QPResult solve(const Eigen::VectorXd& yFree, const Eigen::VectorXd& lower, const Eigen::VectorXd& upper,
                    std::vector<signed char>& state, Eigen::VectorXd& mu, Eigen::VectorXd& y);
 
     // Active indices of the last solution.
     const std::vector<int>& active() const { return active_; }
+    // W's values changed (ContactColumns::useLeading): the kept factor no longer holds.
+    void forgetFactor() { factoredSet_.clear(); }
 
 private:
     // Solves W_SS μ_S = target_S − yFree_S on the current active list; fills y (all entries).
@@ -81,7 +93,7 @@ private:
     Eigen::MatrixXd wss_;  // capacity count x count; top-left block in use
     Eigen::VectorXd rhs_;
     Eigen::VectorXd residualOnActive_;  // y_S − target_S before snapping (for the KKT check)
-    Eigen::VectorXd yTrial_;
+    Eigen::VectorXd yTrial_, current_;  // the primal method's trial and iterate
 };
 
 }  // namespace plate

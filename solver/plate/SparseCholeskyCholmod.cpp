@@ -109,6 +109,13 @@ void SparseCholesky::solve(const Eigen::VectorXd& b, Eigen::VectorXd& x) const {
     rhs.x = const_cast<double*>(b.data());
     rhs.xtype = CHOLMOD_REAL;
     rhs.dtype = CHOLMOD_DOUBLE;
+    // cholmod_solve2's simplicial path transposes one right-hand side into Y and leaves Y shaped
+    // 1 × n (ptrans); the next call would find it "the wrong size" (it wants 4 × n, leading
+    // dimension 4) and allocate it again. Its storage holds 4 × n: give it back that shape.
+    if (ws_->y && ws_->y->nzmax >= 4 * rhs.nrow && ws_->y->ncol == rhs.nrow && ws_->y->nrow == 1) {
+        ws_->y->nrow = 4;
+        ws_->y->d = 4;
+    }
     if (!cholmod_solve2(CHOLMOD_A, ws_->factor, &rhs, nullptr, &ws_->x, nullptr, &ws_->y, &ws_->e, &ws_->common))
         throw std::runtime_error("CHOLMOD solve failed");
     x.resize(n_);

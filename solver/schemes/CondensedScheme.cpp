@@ -25,10 +25,7 @@ constexpr double kKktTolerance = 1e-10;
 }  // namespace
 
 std::unique_ptr<ContactColumns> CondensedScheme::denseColumns(const Eigen::MatrixXd& matrix) {
-    const Eigen::MatrixXd* m = &matrix;
-    return std::make_unique<ContactColumns>(
-        static_cast<int>(matrix.cols()), [m](int j, Eigen::VectorXd& z) { z = m->col(j); },
-        [](const Eigen::VectorXd& z, Eigen::VectorXd& y) { y = z; });
+    return std::make_unique<ContactColumns>(matrix);
 }
 
 void CondensedScheme::buildOperator(MidpointOperator& op, double h) const {
@@ -52,7 +49,7 @@ CondensedScheme::CondensedScheme(std::shared_ptr<const CondensedPlate> plate, Ob
     endMatrix_ = c.delassus;
     endColumns_ = denseColumns(endMatrix_);
     endQP_ = std::make_unique<BoxQP>(*endColumns_);
-    space_ = {&c.rowModesT, &c.rowLoad, &c.rowAbscissae, endQP_.get()};
+    space_ = {&c.rowModesT, &c.rowLoad, &c.rowAbscissae, endQP_.get(), rows};
     for (Eigen::VectorXd* v : {&rhs_, &dq_, &qNext_, &momentumNext_, &modalForce_, &modalScratch_}) v->resize(m);
     w2v_.resize(rows);
     for (Eigen::VectorXd* v : {&forceNext_, &multiplier_, &r0_, &r1_, &drFree_, &dr_, &base_, &e_, &y_})
@@ -68,6 +65,18 @@ CondensedScheme::CondensedScheme(std::shared_ptr<const CondensedPlate> plate, Ob
 void CondensedScheme::applyW2(const Eigen::VectorXd& v, Eigen::VectorXd& out) {
     const CondensedPlate& c = *plate_;
     const double h = op_->h;
+    const Eigen::Index n = space_.count;
+    if (n < v.size()) {  // a space of fewer rows: its leading block
+        if (2 * Eigen::Index(c.modes()) >= n) {
+            out.head(n).noalias() = op_->w2.topLeftCorner(n, n) * v.head(n);
+        } else {
+            modalScratch_.noalias() = space_.modes->leftCols(n) * v.head(n);
+            modalScratch_.array() *= (0.5 * h * h) * op_->inverseH.array();
+            out.head(n).noalias() = space_.modes->leftCols(n).transpose() * modalScratch_;
+        }
+        out.tail(v.size() - n).setZero();
+        return;
+    }
     if (2 * Eigen::Index(c.modes()) >= v.size()) {
         out.noalias() = op_->w2 * v;
         return;
@@ -78,6 +87,15 @@ void CondensedScheme::applyW2(const Eigen::VectorXd& v, Eigen::VectorXd& out) {
 }
 
 void CondensedScheme::gatherRows(const Eigen::VectorXd& q, double p, double z, Eigen::VectorXd& r) const {
+    const Eigen::Index n = space_.count;
+    if (n < r.size()) {  // a space of fewer rows: the rest stays zero
+        auto head = r.head(n);
+        head.noalias() = space_.modes->leftCols(n).transpose() * q;
+        head.noalias() += p * space_.load->head(n);
+        head.array() += z;
+        r.tail(r.size() - n).setZero();
+        return;
+    }
     r.noalias() = space_.modes->transpose() * q;
     r.noalias() += p * *space_.load;
     r.array() += z;
@@ -188,7 +206,10 @@ void CondensedScheme::midpointStep(double zNext, double pNext) {
         drFree_ = r1_ - r0_;
         discreteGradient(s.boundary);
         // Δq = Δq_free + ½Δt² H⁻¹ Gᵀ Λ.
-        modalForce_.noalias() = *space_.modes * multiplier_;
+        if (space_.count < multiplier_.size())
+            modalForce_.noalias() = space_.modes->leftCols(space_.count) * multiplier_.head(space_.count);
+        else
+            modalForce_.noalias() = *space_.modes * multiplier_;
         dq_.noalias() += (0.5 * dt * dt) * op_->inverseH.cwiseProduct(modalForce_);
         qNext_.noalias() = s.q + dq_;
     } else {
@@ -200,7 +221,8 @@ void CondensedScheme::midpointStep(double zNext, double pNext) {
     const double damped = dq_.dot(damping_.cwiseProduct(dq_)) / dt;
     rhs_.noalias() =
         pMid * c.modalLoad - 0.5 * c.omega2.cwiseProduct(s.q + qNext_) + modalForce_ - damping_.cwiseProduct(dq_) / dt;
-    const double contactSum = contact ? multiplier_.sum() : 0.0, onLoad = contact ? multiplier_.dot(*space_.load) : 0.0;
+    const double contactSum = contact ? live(multiplier_).sum() : 0.0,
+                 onLoad = contact ? live(multiplier_).dot(live(*space_.load)) : 0.0;
     const double onRigid = c.modalBaseInertia.dot(rhs_) - contactSum;  // clamp + load on the plate
     const double work = pMid * c.modalLoad.dot(dq_) - dp * onLoad + dz * onRigid;
     CondensedState& st = state_;
@@ -252,12 +274,12 @@ void CondensedScheme::discreteGradient(double psi0) {
         r1_.noalias() = r0_ + dr_;
         solveContact(*space_.endQP, r1_, rowTrial_, endForce_, y_, solves_);
         forceNext_ = endForce_;
-        const double psi1 = 0.5 * forceNext_.dot(y_ - r1_);  // ½ λ1ᵀ D λ1
+        const double psi1 = 0.5 * live(forceNext_).dot(live(y_) - live(r1_));  // ½ λ1ᵀ D λ1
         boundaryNext_ = psi1;
-        const double residual = psi0 - psi1 - lambda.dot(dr_);
-        const double scale = psi0 + psi1 + std::abs(lambda.dot(dr_)) + energyScale;
+        const double residual = psi0 - psi1 - live(lambda).dot(live(dr_));
+        const double scale = psi0 + psi1 + std::abs(live(lambda).dot(live(dr_))) + energyScale;
         iterations_ = it;
-        const double norm2 = dr_.squaredNorm();
+        const double norm2 = live(dr_).squaredNorm();
         if (std::abs(residual) <= kGradientTolerance * scale || norm2 == 0.0) return;
         if (it == kGradientIterations) {
             std::ostringstream msg;
@@ -266,7 +288,7 @@ void CondensedScheme::discreteGradient(double psi0) {
             throw StepError(msg.str());
         }
         // e ← c_g Δr with c_g from λ*(r_mid) = Λ − e.
-        e_ = ((psi0 - psi1 - (lambda - e_).dot(dr_)) / norm2) * dr_;
+        e_ = ((psi0 - psi1 - (live(lambda) - live(e_)).dot(live(dr_))) / norm2) * dr_;
     }
 }
 
@@ -279,8 +301,8 @@ void CondensedScheme::commit(double zNext, double pNext, double work, double dam
     const double zDot = (s.z - s.zPrev) / dt, zDotNext = (zNext - s.z) / dt;
     const bool nextZero = solves_ == 0;  // a free step leaves λ_{n+1} = 0
     const double loadTerms =
-        (nextZero ? 0.0 : pNext * forceNext_.dot(*space_.load)) + 0.5 * pNext * pNext * c.loadFlexibility -
-        ((forceZero_[0] ? 0.0 : s.p * s.force.dot(*space_.load)) + 0.5 * s.p * s.p * c.loadFlexibility);
+        (nextZero ? 0.0 : pNext * live(forceNext_).dot(live(*space_.load))) + 0.5 * pNext * pNext * c.loadFlexibility -
+        ((forceZero_[0] ? 0.0 : s.p * live(s.force).dot(live(*space_.load))) + 0.5 * s.p * s.p * c.loadFlexibility);
     s.energyInput += work + 0.5 * c.clampMass * (zDotNext * zDotNext - zDot * zDot) + loadTerms;
     s.energyDamped += damped;
     // The clamp-carried mass's inertia at t_n (its work pairs with (z⁺ − z⁻)/2, §17).

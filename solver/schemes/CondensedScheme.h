@@ -156,13 +156,19 @@ protected:
     // (the conserving law, and the state between steps), or the rows FlowScheme found can touch
     // during a contact step. The row-sized buffers below and the state's row vectors are then of
     // that space's size.
+    // The row-sized vectors keep every row's length: a space of fewer rows uses their leading
+    // `count` entries and keeps the rest zero (its bounds ∓∞), so that a contact step allocates nothing.
     struct RowSpace {
-        const Eigen::MatrixXd* modes;  // Gᵀ (massive modes × the space's rows)
-        const Eigen::VectorXd* load;  // c_p at those rows
+        const Eigen::MatrixXd* modes;  // Gᵀ: its leading `count` columns (massive modes × the space's rows)
+        const Eigen::VectorXd* load;  // c_p at those rows (zero past them)
         const std::vector<double>* x;  // their lever arms about the clamp line
         BoxQP* endQP;  // the contact problem with their D
+        Eigen::Index count;  // how many rows
     };
     RowSpace space_{};
+    // A row vector's entries in the space: reductions over them alone add what a vector of the
+    // space's own length would, in the same order.
+    auto live(const Eigen::VectorXd& v) const { return v.head(space_.count); }
     CondensedState state_;
     // Step buffers, allocated once.
     Eigen::VectorXd rhs_, dq_, qNext_, momentumNext_, forceNext_, multiplier_, modalForce_;

@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
 
 #include "base/Errors.h"
 #include "base/PortableMath.h"
@@ -91,6 +92,32 @@ FlowScheme::FlowScheme(std::shared_ptr<const CondensedPlate> plate, Obstacles ob
     for (Eigen::Index k = 0; k < m; ++k)
         modalFlow(c.omega2[k], damping_[k], dt, flow11_[k], flow12_[k], flow21_[k], flow22_[k]);
     for (Eigen::VectorXd* v : {&forceAtStart_, &forceBeforeStart_}) v->resize(rows);
+    if (refinement_.rowSpace && rows > 0) sizeRowSpace();
+}
+
+void FlowScheme::sizeRowSpace() {
+    const CondensedPlate& c = *plate_;
+    const Eigen::Index m = c.modes(), rows = c.rows();
+    TouchRows& t = touch_;
+    t.index.reserve(std::size_t(rows));
+    t.gathered.reserve(std::size_t(rows));
+    t.modes.resize(m, rows);
+    t.delassus.resize(rows, rows);
+    t.load.resize(rows);
+    t.x.resize(std::size_t(rows));
+    t.endColumns = denseColumns(t.delassus);
+    t.endQP = std::make_unique<BoxQP>(*t.endColumns);
+    MidpointOperator& r = t.op;
+    r.inverseH.resize(m);
+    r.w2.resize(rows, rows);
+    r.midpointMatrix.resize(rows, rows);
+    r.midColumns = denseColumns(r.midpointMatrix);
+    r.midQP = std::make_unique<BoxQP>(*r.midColumns);
+    for (Eigen::VectorXd* v :
+         {&t.forceNext, &t.multiplier, &t.r0, &t.r1, &t.drFree, &t.dr, &t.base, &t.e, &t.y, &t.w2v, &t.lower, &t.upper,
+          &t.midForce, &t.endForce, &t.rowsCached, &t.force, &t.forcePrev, &t.forcePrev2})
+        v->setZero(rows);
+    for (auto* v : {&t.rowState, &t.midState, &t.rowTrial, &t.midTrial}) v->assign(std::size_t(rows), 0);
 }
 
 // time_scheme = flow (docs/theory.md §21). Over a step the base moves linearly (ż = v = Δz/Δt, the
@@ -154,6 +181,7 @@ void FlowScheme::advance(double zNext, double pNext) {
             op_ = &full_;
             restore(start_);
             flow_ = flowAtStart_;
+            touch_.gathered.clear();  // C's data gathered again by the next contact step
             throw;
         }
         return;
@@ -336,38 +364,53 @@ bool FlowScheme::selectRows(double zNext, double pNext) {
         touch_.index.clear();
         return false;
     }
-    const Eigen::Index n = Eigen::Index(touch_.index.size());
-    touch_.modes = c.rowModesT(Eigen::all, touch_.index);
-    touch_.delassus = c.delassus(touch_.index, touch_.index);
-    touch_.load = c.rowLoad(touch_.index);
-    touch_.x.resize(touch_.index.size());
-    for (std::size_t k = 0; k < touch_.index.size(); ++k) touch_.x[k] = c.rowAbscissae[std::size_t(touch_.index[k])];
-    touch_.endColumns = denseColumns(touch_.delassus);
-    touch_.endQP = std::make_unique<BoxQP>(*touch_.endColumns);
-    touch_.from = nullptr;
-    touch_.lower = lower_(touch_.index);
-    touch_.upper = upper_(touch_.index);
-    for (Eigen::VectorXd* v :
-         {&touch_.forceNext, &touch_.multiplier, &touch_.r0, &touch_.r1, &touch_.drFree, &touch_.dr, &touch_.base,
-          &touch_.e, &touch_.y, &touch_.w2v, &touch_.midForce, &touch_.endForce, &touch_.rowsCached, &touch_.force,
-          &touch_.forcePrev, &touch_.forcePrev2})
-        v->setZero(n);
-    for (auto* v : {&touch_.rowState, &touch_.midState, &touch_.rowTrial, &touch_.midTrial})
-        v->assign(touch_.index.size(), 0);
+    // C's data, gathered when C changed (in held contact it often does not): its leading columns and block.
+    TouchRows& t = touch_;
+    const Eigen::Index n = Eigen::Index(t.index.size());
+    if (t.index != t.gathered) {
+        t.gathered.assign(t.index.begin(), t.index.end());  // within the reserved capacity
+        for (Eigen::Index k = 0; k < n; ++k) {
+            const int i = t.index[std::size_t(k)];
+            t.modes.col(k) = c.rowModesT.col(i);
+            t.load[k] = c.rowLoad[i];
+            t.x[std::size_t(k)] = c.rowAbscissae[std::size_t(i)];
+            for (Eigen::Index a = 0; a < n; ++a) t.delassus(a, k) = c.delassus(t.index[std::size_t(a)], i);
+        }
+        t.load.tail(c.rows() - n).setZero();
+        std::fill(t.x.begin() + n, t.x.end(), 0.0);
+        t.endColumns->useLeading(int(n));
+        t.endQP->forgetFactor();
+        t.from = nullptr;
+    }
+    // Past C the bounds are ∓∞: those entries never bind (RowSpace).
+    constexpr double infinity = std::numeric_limits<double>::infinity();
+    t.lower.setConstant(-infinity);
+    t.upper.setConstant(infinity);
+    for (Eigen::Index k = 0; k < n; ++k) {
+        t.lower[k] = lower_[t.index[std::size_t(k)]];
+        t.upper[k] = upper_[t.index[std::size_t(k)]];
+    }
     return true;
 }
 
-// W₂ and the midpoint contact problem ½W₂ + D of op's sub-step length, in C.
+// W₂ and the midpoint contact problem ½W₂ + D of op's sub-step length, in C (their leading block).
 void FlowScheme::buildRowOperator(const MidpointOperator& op) {
-    MidpointOperator& r = touch_.op;
-    if (touch_.from == &op) return;
-    touch_.from = &op;
+    TouchRows& t = touch_;
+    MidpointOperator& r = t.op;
+    if (t.from == &op) return;
+    t.from = &op;
     r.h = op.h;
     r.inverseH = op.inverseH;
-    r.w2 = op.w2(touch_.index, touch_.index);
-    r.midpointMatrix = 0.5 * r.w2 + touch_.delassus;
-    r.midColumns = denseColumns(r.midpointMatrix);
-    r.midQP = std::make_unique<BoxQP>(*r.midColumns);
+    const Eigen::Index n = Eigen::Index(t.index.size());
+    for (Eigen::Index b = 0; b < n; ++b) {
+        const int j = t.index[std::size_t(b)];
+        for (Eigen::Index a = 0; a < n; ++a) {
+            r.w2(a, b) = op.w2(t.index[std::size_t(a)], j);
+            r.midpointMatrix(a, b) = 0.5 * r.w2(a, b) + t.delassus(a, b);
+        }
+    }
+    r.midColumns->useLeading(int(n));
+    r.midQP->forgetFactor();
 }
 
 // The state's row vectors and the step's row buffers exchanged with C's (the swaps move no data).
@@ -404,6 +447,12 @@ void FlowScheme::swapRowBuffers() {
 void FlowScheme::enterRows() {
     CondensedState& s = state_;
     TouchRows& t = touch_;
+    const Eigen::Index n = Eigen::Index(t.index.size()), rest = plate_->rows() - n;
+    // Past C every row buffer is zero (RowSpace), whatever an earlier C left there.
+    for (Eigen::VectorXd* v : {&t.forceNext, &t.multiplier, &t.r0, &t.r1, &t.drFree, &t.dr, &t.base, &t.e, &t.y, &t.w2v,
+                               &t.midForce, &t.endForce, &t.rowsCached, &t.force, &t.forcePrev, &t.forcePrev2})
+        v->tail(rest).setZero();
+    for (auto* v : {&t.rowState, &t.midState, &t.rowTrial, &t.midTrial}) std::fill(v->begin() + n, v->end(), 0);
     for (std::size_t k = 0; k < t.index.size(); ++k) {
         const auto i = t.index[k];
         const auto j = Eigen::Index(k);
@@ -418,7 +467,7 @@ void FlowScheme::enterRows() {
     forceNextZero_ = true;
     multiplierUsed_ = false;
     swapRowBuffers();
-    space_ = {&t.modes, &t.load, &t.x, t.endQP.get()};
+    space_ = {&t.modes, &t.load, &t.x, t.endQP.get(), n};
     op_ = &t.op;
     inRows_ = true;
 }
@@ -428,7 +477,7 @@ void FlowScheme::leaveRows() {
     CondensedState& s = state_;
     TouchRows& t = touch_;
     swapRowBuffers();
-    space_ = {&plate_->rowModesT, &plate_->rowLoad, &plate_->rowAbscissae, endQP_.get()};
+    space_ = {&plate_->rowModesT, &plate_->rowLoad, &plate_->rowAbscissae, endQP_.get(), plate_->rows()};
     inRows_ = false;
     s.force.setZero();
     std::fill(s.rowState.begin(), s.rowState.end(), 0);

@@ -81,6 +81,7 @@ private:
     // midpoint operator of a sub-step length in them; entering swaps the row-sized buffers and the
     // state's row vectors for theirs, leaving scatters the results back.
     bool selectRows(double zNext, double pNext);  // false: every row can touch
+    void sizeRowSpace();  // the constructor: C's buffers at every row's size
     void buildRowOperator(const MidpointOperator& op);
     void enterRows();
     void leaveRows();
@@ -103,8 +104,10 @@ private:
 
     ContactRefinement refinement_;
     FlowState flow_;
+    // Sized to every row once (the constructor); a contact step fills the leading |C| entries, columns
+    // and blocks (RowSpace) and allocates nothing. The matrices are kept while C stays the same.
     struct TouchRows {
-        std::vector<int> index;  // C: the rows that can touch, ascending
+        std::vector<int> index, gathered;  // C: the rows that can touch, ascending; the C the matrices hold
         Eigen::MatrixXd modes, delassus;  // G_Cᵀ, D_CC
         Eigen::VectorXd load;
         std::vector<double> x;
