@@ -108,6 +108,25 @@ def test_verdicts_quote_the_port_cost_and_the_speed_report(tmp_path):
     assert "-->7.50<!--/-->×" in render_docs.fill_figures(text, tmp_path)
 
 
+def test_the_resources_table_is_one_run_of_resource_scaling(tmp_path):
+    """Issue 56: performance.md's "Resources" table and its findings (0.87–1.04, 2–4×, the largest
+    meshes under 10 s) were pasted from an older run of scripts/resource_scaling.py and no file
+    kept. The template now holds no measured row or ratio: they come from docs/resource_scaling.json
+    (one run), and a new measurement changes the page."""
+    template = (DOCS / "templates" / "performance.md").read_text()
+    resources = template[template.index("## Resources") : template.index("\n## ", template.index("## Resources"))]
+    bare = re.sub(r"\{\{.*?\}\}|\{%.*?%\}", "", resources, flags=re.S)
+    assert not re.search(r"^\| (argyris|fvs) \|", bare, re.M), "a hand-typed row in the Resources table"
+    assert not re.findall(r"\d\.\d+\s*[–-]\s*\d\.\d+|\d[\d.]*\s*(?:ms|GB)\b", bare), "a hand-typed finding"
+    data = json.loads((DOCS / "resource_scaling.json").read_text())
+    measured = next(r for r in data["rows"] if "rss_mb" in r)
+    measured["rss_mb"] = 4321.0
+    data["comparisons"]["memory_ratio"]["sparse"]["max"] = 7.77
+    (tmp_path / "resource_scaling.json").write_text(json.dumps(data))
+    text = render_docs.render("performance.md", tmp_path)
+    assert "| 4321 |" in text and "–7.77 (" in text
+
+
 def test_a_changed_measurement_changes_the_readme(tmp_path):
     data = json.loads((DOCS / "step_latency.json").read_text())
     for r in data["rows"]:
