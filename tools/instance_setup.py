@@ -155,7 +155,9 @@ def main(argv=None):
         }
     if args.json:
         report.update(
-            commit=subprocess.run(["git", "rev-parse", "--short", "HEAD"], capture_output=True, text=True).stdout.strip(),
+            commit=subprocess.run(
+                ["git", "rev-parse", "--short", "HEAD"], capture_output=True, text=True
+            ).stdout.strip(),
             date=time.strftime("%Y-%m-%d"),
             load_average=os.getloadavg()[0],
             cores=os.cpu_count(),
