@@ -62,6 +62,75 @@ def test_readme_figures_are_their_json():
     assert render_docs.fill_figures(text) == text, "README.md's figures are not their JSON: run tools/render_docs.py"
 
 
+@pytest.mark.parametrize("page", render_docs.FIGURE_PAGES)
+def test_marked_pages_are_their_json(page):
+    """Every hand-written page with marked figures (the README, docs/verdicts.md) is its JSON."""
+    text = (DOCS.parent / page).read_text()
+    assert len(MARKED.findall(text)) >= 9, f"{page}'s marked figures are gone (the check would be empty)"
+    assert render_docs.fill_figures(text) == text, f"{page}'s figures are not their JSON: run tools/render_docs.py"
+
+
+def section(text, heading, end):
+    """The text from `heading` to `end` (exclusive), with the marked figures taken out."""
+    part = text[text.index(heading) :]
+    return MARKED.sub("", part[: part.index(end)])
+
+
+def test_the_performance_table_is_one_run_of_instance_setup(tmp_path):
+    """Issue 56: the README's "Performance" table gave the setup times (0.60 s, 0.014 s) and the
+    Dask map's (8.5 s against 52.5 s, 10.0 s against 33.8 s) by hand, from runs nobody could
+    repeat. Each is now a figure over docs/instance_setup.json (tools/instance_setup.py, one run):
+    no unmarked time or share is left in the table, and a new measurement changes it."""
+    text = README.read_text()
+    table = section(text, "## Performance", "**The discretization cache.**")
+    assert not re.findall(r"\d[\d.]*\s*(?:s\b|%)", table), "a time or share in the Performance table is not marked"
+    data = json.loads((DOCS / "instance_setup.json").read_text())
+    data["first_cpu_s"] = 98.765
+    data["map"]["cache_off"]["wall_s"] = 4321.0
+    (tmp_path / "instance_setup.json").write_text(json.dumps(data))
+    filled = render_docs.fill_figures(text, tmp_path)
+    assert "-->98.77<!--/--> s CPU" in filled and "-->4321.0<!--/--> s" in filled
+
+
+def test_verdicts_quote_the_port_cost_and_the_speed_report(tmp_path):
+    """Issue 56: docs/verdicts.md said the port's outputs cost 0.98x and 1.10x of a pre-port step
+    while docs/port_cost.json, the run performance.md renders, measured 1.05x against a run that
+    does not read them; its headline step (9.2 us, 0.34 of the floor), its `modes`, baseline and
+    convergence figures and its table of the elements' speed were older than speed_vs_error.json's.
+    They are figures over the JSON now (the elements' table is performance.md's)."""
+    text = (DOCS / "verdicts.md").read_text()
+    port = section(text, "- Cost (`tools/port_cost.py`", "\n- ")
+    assert not re.findall(r"\d[\d.]*×(?!\s*\d)", port), "an unmarked ratio in the port's cost"
+    measured = r"(?<![≥≤] )(?<![≥≤])\b\d[\d.]*(?:e-?\d+)?\s*(?:µs|×(?!\s*\d)|J\b|s wall)"  # not a goal's bound
+    speed = section(text, "## Performance", "## Inputs")
+    assert not re.findall(measured, speed), "an unmarked speed or error figure in the Performance section"
+    elements = section(text, "Speed at matched accuracy", "On the *same*")
+    assert not re.findall(measured, elements) and "|" not in elements, "a hand-typed speed table of the elements"
+    data = json.loads((DOCS / "port_cost.json").read_text())
+    data["read_over_not_read"] = 7.5
+    (tmp_path / "port_cost.json").write_text(json.dumps(data))
+    assert "-->7.50<!--/-->×" in render_docs.fill_figures(text, tmp_path)
+
+
+def test_the_resources_table_is_one_run_of_resource_scaling(tmp_path):
+    """Issue 56: performance.md's "Resources" table and its findings (0.87–1.04, 2–4×, the largest
+    meshes under 10 s) were pasted from an older run of scripts/resource_scaling.py and no file
+    kept. The template now holds no measured row or ratio: they come from docs/resource_scaling.json
+    (one run), and a new measurement changes the page."""
+    template = (DOCS / "templates" / "performance.md").read_text()
+    resources = template[template.index("## Resources") : template.index("\n## ", template.index("## Resources"))]
+    bare = re.sub(r"\{\{.*?\}\}|\{%.*?%\}", "", resources, flags=re.S)
+    assert not re.search(r"^\| (argyris|fvs) \|", bare, re.M), "a hand-typed row in the Resources table"
+    assert not re.findall(r"\d\.\d+\s*[–-]\s*\d\.\d+|\d[\d.]*\s*(?:ms|GB)\b", bare), "a hand-typed finding"
+    data = json.loads((DOCS / "resource_scaling.json").read_text())
+    measured = next(r for r in data["rows"] if "rss_mb" in r)
+    measured["rss_mb"] = 4321.0
+    data["comparisons"]["memory_ratio"]["sparse"]["max"] = 7.77
+    (tmp_path / "resource_scaling.json").write_text(json.dumps(data))
+    text = render_docs.render("performance.md", tmp_path)
+    assert "| 4321 |" in text and "–7.77 (" in text
+
+
 def test_a_changed_measurement_changes_the_readme(tmp_path):
     data = json.loads((DOCS / "step_latency.json").read_text())
     for r in data["rows"]:

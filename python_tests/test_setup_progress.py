@@ -23,3 +23,20 @@ def test_build_progress_is_a_count():
     r = subprocess.run(["awk", program], input=make, capture_output=True, text=True, check=True)
     counts = [int(m) for m in re.findall(r"^setup:\s+built\s+(\d+)%$", r.stdout, re.M)]
     assert counts == [12, 21, 30, 42, 51, 60, 72, 81, 90, 100], r.stdout
+
+
+def test_first_run_times_each_stage_line_setup_and_run_print():
+    """tools/first_run.py times `bash run.sh` from one stage line to the next: the lines it looks
+    for are the ones setup.sh and run.sh print (renaming a stage cannot leave it timing nothing)."""
+    import first_run
+
+    setup = SETUP.read_text()
+    names = re.findall(r'^stage (\d) "([^"]*)"', setup, re.M)
+    printed = [f"setup: [{k}/4] {name}" for k, name in names]
+    run = re.search(r'^echo "(run\.sh: simulating [^"]*)"', (SETUP.parent.parent / "run.sh").read_text(), re.M)
+    printed.append(run.group(1))
+    assert len(printed) == 5 and all(first_run.STAGE.match(line) for line in printed), printed
+    lines = [(0.5, "noise"), *((10.0 * (i + 1), line) for i, line in enumerate(printed)), (55.0, "setup: built 40%")]
+    rows = first_run.stages(lines, total=80.0)
+    assert [r["stage"] for r in rows] == ["(before the first stage line)", *printed]
+    assert [r["s"] for r in rows] == [10.0, 10.0, 10.0, 10.0, 10.0, 30.0]

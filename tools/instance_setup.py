@@ -1,25 +1,39 @@
-"""The CPU an instance spends in ExitInitializationMode, first and next instances of one plate in
-one process: what the FMU's cache of discretizations saves (README, "Performance"; issue 54 asks
-the second instance for at most 5 % of the first one's CPU). Prints one line per instance and the
-ratio, measured in this run; --json FILE also writes them.
+"""What the FMU's cache of discretizations saves, measured in one run (README, "Performance";
+docs/instance_setup.json). Two measurements:
 
-    .venv/bin/python tools/instance_setup.py [--fmu FMU] [--instances 4] [key=value ...]
+- the CPU an instance spends in ExitInitializationMode, first and next instances of one plate in
+  one process (issue 54 asks the next ones for at most 5 % of the first one's CPU);
+- a response map on Dask (plateimpact.response_map, as examples/frequency_response.py runs it):
+  its points' setup summed and the map's wall time with the cache on and with it off
+  (PLATEIMPACT_CACHE_MB=0 in the workers), and whether the two maps' results agree bit for bit.
+
+Prints one line per instance and per map; --json FILE also writes the numbers (docs/instance_setup.json,
+which tools/render_docs.py quotes in the README).
+
+    .venv/bin/python tools/instance_setup.py [--fmu FMU] [--instances 4] [--map-points 16] \\
+        [--json docs/instance_setup.json] [key=value ...]
+    .venv/bin/python tools/render_docs.py
 
 key=value: parameters of the plate (nx=20 ny=7 mass=2 time_scheme=2 ...); the default plate
-without any. PLATEIMPACT_CACHE_MB=0 in the environment turns the cache off (every instance then
-pays the first one's CPU)."""
+without any. --map-points 0 leaves the map out. PLATEIMPACT_CACHE_MB=0 in the environment turns
+the cache off for the instances too (every instance then pays the first one's CPU)."""
 
 from __future__ import annotations
 
 import argparse
 import json
+import math
+import os
 import statistics
+import subprocess
 import sys
 import time
 
 from checkout import add_checkout_arguments, fmu_path
 
 from plateimpact import PlateImpactFMU
+
+TIMING = ("wall_s", "setup_s", "plate_shared")  # a map point's fields that are not its result
 
 
 def setup_cpu(fmu, parameters):
@@ -35,10 +49,63 @@ def setup_cpu(fmu, parameters):
     return cpu, wall
 
 
+def map_points(count):
+    """`count` points of a frequency × gap grid (as square as it comes), the gaps above the amplitude."""
+    from plateimpact.response_map import grid
+
+    columns = math.ceil(math.sqrt(count))
+    rows = math.ceil(count / columns)
+    frequencies = [5.0 * (i + 1) for i in range(columns)]
+    gaps = [0.02 + 0.02 * j for j in range(rows)]
+    return grid(frequencies, gaps)[:count]
+
+
+def timed_map(fmu, points, workers, stop_time, cache_mb):
+    """The response map on a fresh LocalCluster whose workers see PLATEIMPACT_CACHE_MB=cache_mb
+    (None: unset): (results, wall s from the cluster's start to the last result)."""
+    from distributed import Client, LocalCluster
+
+    from plateimpact.response_map import dask_map
+
+    saved = os.environ.get("PLATEIMPACT_CACHE_MB")
+    if cache_mb is None:
+        os.environ.pop("PLATEIMPACT_CACHE_MB", None)
+    else:
+        os.environ["PLATEIMPACT_CACHE_MB"] = str(cache_mb)  # the worker processes inherit it
+    try:
+        t0 = time.perf_counter()
+        cluster = LocalCluster(n_workers=workers, threads_per_worker=1, processes=True, dashboard_address=None)
+        client = Client(cluster)
+        try:
+            results = dask_map(client, fmu, points, progress=False, stop_time=stop_time, settle=stop_time / 2)
+        finally:
+            client.close()
+            cluster.close()
+        wall = time.perf_counter() - t0
+    finally:
+        if saved is None:
+            os.environ.pop("PLATEIMPACT_CACHE_MB", None)
+        else:
+            os.environ["PLATEIMPACT_CACHE_MB"] = saved
+    return results, wall
+
+
+def map_summary(results, wall):
+    return {
+        "setup_s": sum(r["setup_s"] for r in results),
+        "built": sum(not r["plate_shared"] for r in results),
+        "shared": sum(bool(r["plate_shared"]) for r in results),
+        "wall_s": wall,
+    }
+
+
 def main(argv=None):
     ap = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
     add_checkout_arguments(ap)
     ap.add_argument("--instances", type=int, default=4)
+    ap.add_argument("--map-points", type=int, default=16, help="points of the response map (0: no map)")
+    ap.add_argument("--map-workers", type=int, default=2, help="the map's Dask worker processes")
+    ap.add_argument("--map-stop-time", type=float, default=0.1, help="s simulated per map point")
     ap.add_argument("--json", help="also write the numbers here")
     ap.add_argument("parameters", nargs="*", help="key=value")
     args = ap.parse_args(argv)
@@ -46,16 +113,60 @@ def main(argv=None):
     for item in args.parameters:
         key, value = item.split("=", 1)
         parameters[key] = float(value) if "." in value or "e" in value else int(value)
-    fmu = fmu_path(args)
+    fmu = str(os.path.abspath(fmu_path(args)))
     runs = [setup_cpu(fmu, parameters) for _ in range(args.instances)]
     for i, (cpu, wall) in enumerate(runs):
-        print(f"instance {i + 1}: ExitInitializationMode {cpu:.4f} s CPU ({wall:.4f} s wall)")
+        print(f"instance {i + 1}: ExitInitializationMode {cpu:.4f} s CPU ({wall:.4f} s wall)", flush=True)
     first, rest = runs[0][0], statistics.median(cpu for cpu, _ in runs[1:])
-    print(f"next instances (median): {rest:.4f} s CPU = {100 * rest / first:.1f} % of the first one's")
+    print(f"next instances (median): {rest:.4f} s CPU = {100 * rest / first:.1f} % of the first one's", flush=True)
+    report = {
+        "command": "tools/instance_setup.py",
+        "parameters": parameters,
+        "cpu_s": [c for c, _ in runs],
+        "wall_s": [w for _, w in runs],
+        "first_cpu_s": first,
+        "next_cpu_s": rest,
+        "next_over_first": rest / first,
+    }
+    if args.map_points > 0:
+        points = map_points(args.map_points)
+        maps = {}
+        for name, cache_mb in (("cache_on", None), ("cache_off", 0)):
+            results, wall = timed_map(fmu, points, args.map_workers, args.map_stop_time, cache_mb)
+            maps[name] = (results, map_summary(results, wall))
+            s = maps[name][1]
+            print(
+                f"map, {name.replace('_', ' ')}: {len(points)} points, {s['built']} built the plate, "
+                f"{s['shared']} shared it; setup {s['setup_s']:.2f} s in all, {s['wall_s']:.2f} s wall",
+                flush=True,
+            )
+        strip = lambda rs: [{k: v for k, v in r.items() if k not in TIMING} for r in rs]  # noqa: E731
+        identical = strip(maps["cache_on"][0]) == strip(maps["cache_off"][0])
+        print(f"map results with and without the cache {'identical' if identical else 'DIFFER'}")
+        report["map"] = {
+            "points": len(points),
+            "frequencies": sorted({f for f, _ in points}),
+            "gaps": sorted({g for _, g in points}),
+            "stop_time": args.map_stop_time,
+            "workers": args.map_workers,
+            "cache_on": maps["cache_on"][1],
+            "cache_off": maps["cache_off"][1],
+            "identical": identical,
+        }
     if args.json:
+        report.update(
+            commit=subprocess.run(
+                ["git", "rev-parse", "--short", "HEAD"], capture_output=True, text=True
+            ).stdout.strip(),
+            date=time.strftime("%Y-%m-%d"),
+            load_average=os.getloadavg()[0],
+            cores=os.cpu_count(),
+        )
         with open(args.json, "w") as f:
-            json.dump({"parameters": parameters, "cpu_s": [c for c, _ in runs], "wall_s": [w for _, w in runs]}, f)
-    return 0
+            json.dump(report, f, indent=1)
+            f.write("\n")
+        print(f"wrote {args.json}")
+    return 0 if args.map_points == 0 or report["map"]["identical"] else 1
 
 
 if __name__ == "__main__":

@@ -10,8 +10,8 @@ JSON lacks is an error (StrictUndefined), not an empty cell.
     python tools/render_docs.py --figures            # also redraw the figures drawn from the JSON
     python tools/render_docs.py --data /tmp/perf --out /tmp/perf performance.md   # a study's --out
 
-Hand-written pages (FIGURE_PAGES: the README) quote the studies too: each number that describes speed
-or error is marked `<!--= EXPRESSION -->number<!--/-->`, the expression over the JSON files their
+Hand-written pages (FIGURE_PAGES: the README, docs/verdicts.md) quote the studies too: each number that
+describes speed or error is marked `<!--= EXPRESSION -->number<!--/-->`, the expression over the JSON files their
 `<!-- figures: name=file ... -->` line names (paths from the repository root). Rendering rewrites the
 number from the expression, --check fails where one differs, so a figure is stated in one place (the
 JSON of one study's run) and quoted, never copied.
@@ -32,7 +32,7 @@ import jinja2
 DOCS = Path(__file__).resolve().parent.parent / "docs"
 DATA_LINE = re.compile(r"\{#\s*data:(.*?)#\}")
 REPO = DOCS.parent
-FIGURE_PAGES = ["README.md"]  # hand-written pages with marked figures (from the repository root)
+FIGURE_PAGES = ["README.md", "docs/verdicts.md"]  # hand-written pages with marked figures (from the repository root)
 FIGURES_LINE = re.compile(r"<!-- figures:(.*?)-->")
 FIGURE = re.compile(r"<!--=\s*(.*?)\s*-->(.*?)<!--/-->", re.S)
 
