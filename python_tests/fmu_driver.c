@@ -4,6 +4,8 @@
  *     fmu_driver [--keep-loaded] UNZIPPED_FMU_DIR [STEPS]
  *     fmu_driver --scene OUT.csv UNZIPPED_FMU_DIR      (the default scene for 0.1 s, see below)
  *     fmu_driver --bad-step UNZIPPED_FMU_DIR           (h below the grid's resolution -> fmi2Error)
+ *     fmu_driver --latency OUT.csv UNZIPPED_FMU_DIR STEPS DRIVEN [i:VR=VALUE | b:VR=VALUE | r:VR=VALUE]...
+ *                                      (each fmi2DoStep of 1e-4 s timed, linux64: see run_latency)
  *
  * The same source builds for linux64 and, cross-compiled with mingw-w64, for win64 (run under
  * Wine by python_tests/test_win64.py): it loads UNZIPPED_FMU_DIR/binaries/linux64/PlateImpact.so
@@ -120,6 +122,7 @@ static struct {
     fmi2GetIntegerTYPE* getInteger;
     fmi2SetRealTYPE* setReal;
     fmi2SetIntegerTYPE* setInteger;
+    fmi2SetBooleanTYPE* setBoolean;
     fmi2SetRealInputDerivativesTYPE* setRealInputDerivatives;
     fmi2DoStepTYPE* doStep;
     fmi2GetFMUstateTYPE* getFMUstate;
@@ -337,6 +340,72 @@ static void run_scene(const char* out, const char* guid, const char* resources, 
     printf("fmu_driver: wrote %s\n", out);
 }
 
+#if !defined(_WIN32)
+#include <time.h>
+static double clock_us(clockid_t clock) {
+    struct timespec t;
+    clock_gettime(clock, &t);
+    return 1e6 * (double)t.tv_sec + 1e-3 * (double)t.tv_nsec;
+}
+
+/* The worst step a real-time master meets (tools/step_latency.py): the parameters given as
+ * i:VR=VALUE (Integer), b:VR=VALUE (Boolean, 0 or 1) and r:VR=VALUE (Real), then STEPS communication steps of 1e-4 s, the base
+ * driven as in run_scene (DRIVEN = 1) or left at rest (0). Each fmi2DoStep alone is timed, by the
+ * wall clock and the thread's CPU clock; one CSV row per step (µs). */
+static void run_latency(const char* out, const char* guid, const char* resources, const fmi2CallbackFunctions* cb,
+                        int steps, int driven, int argc, char** argv) {
+    fmi2Component c = F.instantiate("latency", fmi2CoSimulation, guid, resources, cb, fmi2False, fmi2False);
+    CHECK(c != NULL);
+    for (int k = 0; k < argc; ++k) {
+        unsigned vr = 0;
+        double value = 0.0;
+        CHECK(sscanf(argv[k] + 2, "%u=%lf", &vr, &value) == 2);
+        const fmi2ValueReference ref = vr;
+        if (argv[k][0] == 'i') {
+            const fmi2Integer i = (fmi2Integer)value;
+            OK(F.setInteger(c, &ref, 1, &i));
+        } else if (argv[k][0] == 'b') {
+            const fmi2Boolean b = value != 0.0 ? fmi2True : fmi2False;
+            OK(F.setBoolean(c, &ref, 1, &b));
+        } else {
+            CHECK(argv[k][0] == 'r');
+            OK(F.setReal(c, &ref, 1, &value));
+        }
+    }
+    OK(F.setupExperiment(c, fmi2False, 0.0, 0.0, fmi2False, 0.0));
+    OK(F.enterInit(c));
+    OK(F.exitInit(c));
+    double* times = malloc(2 * sizeof(double) * (size_t)steps);
+    CHECK(times != NULL);
+    const double h = 1e-4, w = 2.0 * 3.14159265358979323846 * 10.0, a = 0.09;
+    for (int k = 0; k < steps; ++k) {
+        const double t = k * h;
+        if (driven) {
+            const fmi2ValueReference base = VR_BASE;
+            const fmi2ValueReference vr2[] = {VR_BASE, VR_BASE};
+            const fmi2Integer orders[] = {1, 2};
+            double sn, cs;
+            portable_sincos(w * t, &sn, &cs);
+            const fmi2Real z = a * sn, rates[] = {a * w * cs, -a * w * w * sn};
+            OK(F.setReal(c, &base, 1, &z));
+            OK(F.setRealInputDerivatives(c, vr2, 2, orders, rates));
+        }
+        const double wall = clock_us(CLOCK_MONOTONIC), cpu = clock_us(CLOCK_THREAD_CPUTIME_ID);
+        OK(F.doStep(c, t, h, fmi2True));
+        times[2 * k + 1] = clock_us(CLOCK_THREAD_CPUTIME_ID) - cpu;
+        times[2 * k] = clock_us(CLOCK_MONOTONIC) - wall;
+    }
+    OK(F.terminate(c));
+    F.freeInstance(c);
+    FILE* f = fopen(out, "wb");
+    CHECK(f != NULL);
+    fprintf(f, "wall_us,cpu_us\n");
+    for (int k = 0; k < steps; ++k) fprintf(f, "%.3f,%.3f\n", times[2 * k], times[2 * k + 1]);
+    fclose(f);
+    free(times);
+}
+#endif
+
 /* A communication step shorter than the grid resolves (1e-9 dt): fmi2Error, and the logged
  * message says so (printed for the caller to check); the instance is then reset and freed. */
 static void run_bad_step(const char* guid, const char* resources, const fmi2CallbackFunctions* cb) {
@@ -354,7 +423,23 @@ static void run_bad_step(const char* guid, const char* resources, const fmi2Call
 int main(int argc, char** argv) {
     const char* scene_out = NULL;
     int bad_step = 0;
-    if (argc > 2 && strcmp(argv[1], "--scene") == 0) {
+    const char* latency_out = NULL;
+    int latency_steps = 0, latency_driven = 0, latency_argc = 0;
+    char** latency_argv = NULL;
+    if (argc > 5 && strcmp(argv[1], "--latency") == 0) {
+#if defined(_WIN32)
+        fprintf(stderr, "fmu_driver: --latency is linux64 only\n");
+        return 2;
+#endif
+        latency_out = argv[2];
+        latency_steps = atoi(argv[4]);
+        latency_driven = atoi(argv[5]);
+        latency_argc = argc - 6;
+        latency_argv = argv + 6;
+        CHECK(latency_steps > 0);
+        argv += 2; /* argv[1] is the FMU's folder */
+        argc = 2;
+    } else if (argc > 2 && strcmp(argv[1], "--scene") == 0) {
         scene_out = argv[2];
         argv += 2;
         argc -= 2;
@@ -403,6 +488,7 @@ int main(int argc, char** argv) {
         LOAD(fmi2GetInteger);
         LOAD(fmi2SetReal);
         LOAD(fmi2SetInteger);
+        LOAD(fmi2SetBoolean);
         LOAD(fmi2SetRealInputDerivatives);
         LOAD(fmi2DoStep);
         LOAD(fmi2GetFMUstate);
@@ -424,6 +510,7 @@ int main(int argc, char** argv) {
         F.getInteger = fmi2GetInteger;
         F.setReal = fmi2SetReal;
         F.setInteger = fmi2SetInteger;
+        F.setBoolean = fmi2SetBoolean;
         F.setRealInputDerivatives = fmi2SetRealInputDerivatives;
         F.doStep = fmi2DoStep;
         F.getFMUstate = fmi2GetFMUstate;
@@ -436,7 +523,14 @@ int main(int argc, char** argv) {
     }
 
     const fmi2CallbackFunctions callbacks = {logger, calloc, free, NULL, NULL};
-    if (scene_out || bad_step) {
+    if (scene_out || bad_step || latency_out) {
+#if !defined(_WIN32)
+        if (latency_out)
+            run_latency(latency_out, guid, resources, &callbacks, latency_steps, latency_driven, latency_argc,
+                        latency_argv);
+#else
+        (void)latency_steps, (void)latency_driven, (void)latency_argc, (void)latency_argv;
+#endif
         if (scene_out) run_scene(scene_out, guid, resources, &callbacks);
         if (bad_step) run_bad_step(guid, resources, &callbacks);
         free(guid);
