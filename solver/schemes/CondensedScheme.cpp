@@ -65,40 +65,24 @@ CondensedScheme::CondensedScheme(std::shared_ptr<const CondensedPlate> plate, Ob
 void CondensedScheme::applyW2(const Eigen::VectorXd& v, Eigen::VectorXd& out) {
     const CondensedPlate& c = *plate_;
     const double h = op_->h;
-    const Eigen::Index n = space_.count;
-    if (n < v.size()) {  // a space of fewer rows: its leading block
-        if (2 * Eigen::Index(c.modes()) >= n) {
-            out.head(n).noalias() = op_->w2.topLeftCorner(n, n) * v.head(n);
-        } else {
-            modalScratch_.noalias() = space_.modes->leftCols(n) * v.head(n);
-            modalScratch_.array() *= (0.5 * h * h) * op_->inverseH.array();
-            out.head(n).noalias() = space_.modes->leftCols(n).transpose() * modalScratch_;
-        }
-        out.tail(v.size() - n).setZero();
-        return;
+    const Eigen::Index n = space_.count;  // the space's rows lead; past them out stays zero (RowSpace)
+    if (2 * Eigen::Index(c.modes()) >= n) {
+        out.head(n).noalias() = op_->w2.topLeftCorner(n, n) * v.head(n);
+    } else {
+        modalScratch_.noalias() = space_.modes->leftCols(n) * v.head(n);
+        modalScratch_.array() *= (0.5 * h * h) * op_->inverseH.array();
+        out.head(n).noalias() = space_.modes->leftCols(n).transpose() * modalScratch_;
     }
-    if (2 * Eigen::Index(c.modes()) >= v.size()) {
-        out.noalias() = op_->w2 * v;
-        return;
-    }
-    modalScratch_.noalias() = *space_.modes * v;
-    modalScratch_.array() *= (0.5 * h * h) * op_->inverseH.array();
-    out.noalias() = space_.modes->transpose() * modalScratch_;
+    out.tail(v.size() - n).setZero();
 }
 
 void CondensedScheme::gatherRows(const Eigen::VectorXd& q, double p, double z, Eigen::VectorXd& r) const {
-    const Eigen::Index n = space_.count;
-    if (n < r.size()) {  // a space of fewer rows: the rest stays zero
-        auto head = r.head(n);
-        head.noalias() = space_.modes->leftCols(n).transpose() * q;
-        head.noalias() += p * space_.load->head(n);
-        head.array() += z;
-        r.tail(r.size() - n).setZero();
-        return;
-    }
-    r.noalias() = space_.modes->transpose() * q;
-    r.noalias() += p * *space_.load;
-    r.array() += z;
+    const Eigen::Index n = space_.count;  // the space's rows lead; past them r stays zero (RowSpace)
+    auto head = r.head(n);
+    head.noalias() = space_.modes->leftCols(n).transpose() * q;
+    head.noalias() += p * space_.load->head(n);
+    head.array() += z;
+    r.tail(r.size() - n).setZero();
 }
 
 void CondensedScheme::solveContact(BoxQP& qp, const Eigen::VectorXd& free, std::vector<signed char>& state,
@@ -206,10 +190,7 @@ void CondensedScheme::midpointStep(double zNext, double pNext) {
         drFree_ = r1_ - r0_;
         discreteGradient(s.boundary);
         // Δq = Δq_free + ½Δt² H⁻¹ Gᵀ Λ.
-        if (space_.count < multiplier_.size())
-            modalForce_.noalias() = space_.modes->leftCols(space_.count) * multiplier_.head(space_.count);
-        else
-            modalForce_.noalias() = *space_.modes * multiplier_;
+        modalForce_.noalias() = space_.modes->leftCols(space_.count) * live(multiplier_);
         dq_.noalias() += (0.5 * dt * dt) * op_->inverseH.cwiseProduct(modalForce_);
         qNext_.noalias() = s.q + dq_;
     } else {
