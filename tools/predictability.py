@@ -452,6 +452,25 @@ def study_scene(fmu, scene, base_params, args, tolerance_var):
     return result
 
 
+def run_record(repo, wall0, cpu0):
+    """How a study ran: wall and CPU seconds since perf_counter() = wall0 and process_time() = cpu0,
+    the checkout's commit, the date, the load, the machine."""
+    try:
+        commit = subprocess.run(
+            ["git", "-C", str(repo), "rev-parse", "--short", "HEAD"], capture_output=True, text=True
+        ).stdout.strip()
+    except OSError:
+        commit = "?"
+    return dict(
+        wall_s=time.perf_counter() - wall0,
+        cpu_s=time.process_time() - cpu0,
+        commit=commit,
+        date=time.strftime("%Y-%m-%d"),
+        load=os.getloadavg()[0],
+        machine=platform.machine(),
+    )
+
+
 def command(args):
     """The command line of this study's choices (not of where its files are)."""
     line = ["tools/predictability.py"]
@@ -524,12 +543,6 @@ def main(argv=None):
             for s in scenes
         ]
     results = [study_scene(fmu, s, law, args, tolerance_var) for s in scenes]
-    try:
-        commit = subprocess.run(
-            ["git", "-C", str(args.repo), "rev-parse", "--short", "HEAD"], capture_output=True, text=True
-        ).stdout.strip()
-    except OSError:
-        commit = "?"
     data = dict(
         quick=args.quick,
         command=line,
@@ -543,14 +556,7 @@ def main(argv=None):
         quiet=QUIET,
         bands=list(BANDS),
         scenes=results,
-        run=dict(
-            wall_s=time.perf_counter() - wall0,
-            cpu_s=time.process_time() - cpu0,
-            commit=commit,
-            date=time.strftime("%Y-%m-%d"),
-            load=os.getloadavg()[0],
-            machine=platform.machine(),
-        ),
+        run=run_record(args.repo, wall0, cpu0),
     )
     out = args.out or args.repo / "docs" / "predictability.json"
     out.parent.mkdir(parents=True, exist_ok=True)
