@@ -83,7 +83,15 @@ def ladder(series, stop, windows):
         if r["verdict"] == "converges":
             up_to = r["window"]
     pairs = [pr.horizon(a, b, pr.EPS) for a, b in zip(series, series[1:])]
-    levels = [dict(label=s.label, cpu=s.cpu, onsets_lower=float(s.onsets[-1, 0])) for s in series]
+    levels = [
+        dict(
+            label=s.label,
+            cpu=s.cpu,
+            onsets_lower=float(s.onsets[-1, 0]),
+            first_onset=float(s.t[np.argmax(s.onsets[:, 0] > 0)]) if s.onsets[-1, 0] > 0 else None,
+        )
+        for s in series
+    ]
     return dict(
         stop=stop,
         levels=levels,
