@@ -19,6 +19,8 @@ time_scheme = flow). Two ladders:
     rectangle has its edge on the mesh) at dt = MESH_DT; the reference is the finest. The finest
     mesh is run again at MESH_DT/2: the time error of the mesh reference, to set beside the mesh
     differences.
+  - free flight, the control: the same meshes and dt with no obstacle at all, to FREE_STOP — what
+    the law's mesh convergence is before any contact, so that what the stop adds shows.
 
 Per window [0, T] (T in WINDOWS, up to the ladder's stop): the error of each level, max |corner_1 −
 reference| over the outputs t ≤ T; the successive differences d_k = max |corner_1(k) −
@@ -48,8 +50,8 @@ LAW = pr.LAWS["flow"]
 DTS = (2e-5, 1e-5, 5e-6, 2.5e-6, 1.25e-6, 6.25e-7)  # s, on the scene's mesh
 MESHES = ((6, 2), (12, 4), (24, 8), (48, 16))  # cells: h = 0.2, 0.1, 0.05, 0.025 m
 MESH_DT = 2.5e-6  # s, the mesh ladder's step
-WINDOWS = (0.02, 0.05, 0.1, 0.15, 0.2, 0.3, 0.4, 0.5, 0.7, 1.0)  # s, the first landing is at 0.0165 s
-DT_STOP, MESH_STOP = 1.0, 0.5  # s, how long each ladder runs
+WINDOWS = (0.01, 0.02, 0.05, 0.1, 0.15, 0.2, 0.3, 0.4, 0.5, 0.7, 1.0)  # s, the first landing is at 0.0165 s
+DT_STOP, MESH_STOP, FREE_STOP = 1.0, 0.5, 0.1  # s, how long each ladder runs
 
 
 def run(fmu, params, stop, label):
@@ -108,14 +110,18 @@ def main(argv=None):
     ap.add_argument("--quick", action="store_true", help="3 time steps, 3 meshes, 0.2 s (a smoke run)")
     args = ap.parse_args(argv)
     fmu = fmu_path(args)
-    dts, meshes, dt_stop, mesh_stop = (
-        (DTS[1:4], MESHES[:3], 0.2, 0.2) if args.quick else (DTS, MESHES, DT_STOP, MESH_STOP)
+    dts, meshes, dt_stop, mesh_stop, free_stop = (
+        (DTS[1:4], MESHES[:3], 0.2, 0.2, 0.05) if args.quick else (DTS, MESHES, DT_STOP, MESH_STOP, FREE_STOP)
     )
     wall0, cpu0 = time.perf_counter(), time.process_time()
     print(SCENE.title, flush=True)
     by_dt = [run(fmu, dict(dt=dt), dt_stop, f"dt = {dt:g}") for dt in dts]
     by_mesh = [run(fmu, dict(dt=MESH_DT, nx=nx, ny=ny), mesh_stop, f"{nx}×{ny}") for nx, ny in meshes]
     nx, ny = meshes[-1]
+    free = [
+        run(fmu, dict(dt=MESH_DT, nx=nx, ny=ny, obstacle_lower_enabled=False), free_stop, f"{nx}×{ny}, no obstacle")
+        for nx, ny in meshes
+    ]
     half = run(fmu, dict(dt=MESH_DT / 2, nx=nx, ny=ny), mesh_stop, f"{nx}×{ny}, dt = {MESH_DT / 2:g}")
     dt_ladder = dict(ladder(by_dt, dt_stop, WINDOWS), values=list(dts), mesh=[SCENE.params["nx"], SCENE.params["ny"]])
     mesh_ladder = dict(ladder(by_mesh, mesh_stop, WINDOWS), values=[list(m) for m in meshes], dt=MESH_DT)
@@ -123,7 +129,8 @@ def main(argv=None):
         float(np.max(np.abs(by_mesh[-1].corner[m] - half.corner[m])))
         for m in (by_mesh[-1].t <= r["window"] + 1e-12 for r in mesh_ladder["windows"])
     ]
-    for name, lad in (("dt", dt_ladder), ("mesh", mesh_ladder)):
+    free_ladder = dict(ladder(free, free_stop, WINDOWS), values=[list(m) for m in meshes], dt=MESH_DT)
+    for name, lad in (("dt", dt_ladder), ("mesh", mesh_ladder), ("free flight", free_ladder)):
         for r in lad["windows"]:
             orders = ", ".join("—" if o is None else f"{o:.2f}" for o in r["orders"])
             print(f"{name} to {r['window']:g} s: errors {r['errors']}, orders {orders}: {r['verdict']}", flush=True)
@@ -137,6 +144,7 @@ def main(argv=None):
         eps=list(pr.EPS),
         dt=dt_ladder,
         mesh=mesh_ladder,
+        free=free_ladder,
         run=pr.run_record(args.repo, wall0, cpu0),
     )
     out = args.out or args.repo / "docs" / "stop_convergence.json"
