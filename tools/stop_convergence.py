@@ -4,7 +4,7 @@ which tools/render_docs.py renders into docs/performance.md ("Stops: convergence
 horizon"); the scene's predictability horizon is its row of docs/predictability.json
 (tools/predictability.py, scene `tip_stop`), computed there as for the other scenes.
 
-    .venv/bin/python tools/stop_convergence.py               # about 5 min CPU of one core
+    .venv/bin/python tools/stop_convergence.py               # about 2.5 min CPU of one core, most in 48×16
     .venv/bin/python tools/render_docs.py performance.md
     .venv/bin/python tools/stop_convergence.py --quick --out /tmp/sc.json   # a smoke run
 
@@ -12,7 +12,7 @@ The scene is predictability.SCENES["tip_stop"] (Argyris 12×4, a lower stop over
 −0.05 m, the upper obstacle off, base 0.09 sin(2π·10 t) m), run by predictability.simulate (fmpy,
 the base and its derivatives set at every communication point, corner_1 read every
 predictability.H) with the law of the predictability study (flow: mass = singular_p0,
-time_scheme = flow). Two ladders:
+time_scheme = flow). Two ladders and a control:
 
   - dt: the scene's mesh at dt = 2e-5 … 6.25e-7 s (halved each time); the reference is the finest.
   - mesh: 6×2, 12×4, 24×8, 48×16 cells (h halves; x = 1.0 m is a mesh line of each, so the stop's
@@ -50,7 +50,7 @@ LAW = pr.LAWS["flow"]
 DTS = (2e-5, 1e-5, 5e-6, 2.5e-6, 1.25e-6, 6.25e-7)  # s, on the scene's mesh
 MESHES = ((6, 2), (12, 4), (24, 8), (48, 16))  # cells: h = 0.2, 0.1, 0.05, 0.025 m
 MESH_DT = 2.5e-6  # s, the mesh ladder's step
-WINDOWS = (0.01, 0.02, 0.05, 0.1, 0.15, 0.2, 0.3, 0.4, 0.5, 0.7, 1.0)  # s, the first landing is at 0.0165 s
+WINDOWS = (0.01, 0.02, 0.05, 0.1, 0.15, 0.2, 0.3, 0.4, 0.5, 0.7, 1.0)  # s; the first landings: 0.015-0.017 s
 DT_STOP, MESH_STOP, FREE_STOP = 1.0, 0.5, 0.1  # s, how long each ladder runs
 
 
