@@ -1,5 +1,5 @@
 """The predictability horizon (issue 38, item 4): how long a trajectory means something, and what
-still converges beyond it, for three scenes driven through the FMU with fmpy.
+still converges beyond it, for four scenes driven through the FMU with fmpy.
 
     python tools/predictability.py                       # ~6 min of one core; writes docs/predictability.json
     python tools/render_docs.py performance.md           # the section "The predictability horizon"
@@ -8,8 +8,10 @@ still converges beyond it, for three scenes driven through the FMU with fmpy.
 
 Scenes (SCENES below): the default scene (the paper's §5.1: Argyris 14x5, obstacles +-0.1 m, base
 0.09 sin(2 pi 10 t) m), §5.2 (released from its static shape under 8600 Pa onto the lower obstacle,
-no base motion) and the FVS near-obstacle case of issue 38 (FVS 20x7, obstacles +-0.01 m, base
-0.009 sin(2 pi 35 t) m). The law is the flow scheme by default (mass = singular_p0, time_scheme =
+no base motion), the FVS near-obstacle case of issue 38 (FVS 20x7, obstacles +-0.01 m, base
+0.009 sin(2 pi 35 t) m) and the stop under the tip of issue 52 (Argyris 12x4, so that x = 1.0 m is
+a mesh line; a lower stop over x >= 1.0 m at -0.05 m, the upper obstacle off, the default base;
+its convergence before the horizon: tools/stop_convergence.py). The law is the flow scheme by default (mass = singular_p0, time_scheme =
 flow), with its knobs as options; --compare-law adds the horizon of a second law (conserving).
 
 Measured, per scene:
@@ -36,8 +38,8 @@ Measured, per scene:
     exceed it but shrink (ratio <= 0.75), 'does not converge' otherwise; 'identical' when every run
     agrees to 1e-9 relative (§5.2's energy: conserved).
 
-Cost of the default run: about 340 s CPU of one core (6.7 min wall on the shared machine); the
-statistics' windows (default 0.7-2 s, §5.2 10-14 s, FVS 0.2-1 s) and ensembles of 5 set it.
+Cost of the default run: about 450 s CPU of one core; the statistics' windows (default 0.7-2 s,
+§5.2 10-14 s, FVS 0.2-1 s, tip stop 2-5 s) and ensembles of 5 set it.
 """
 
 from __future__ import annotations
@@ -110,6 +112,17 @@ SCENES = {
         "amplitude",
         0.25,
         (0.2, 1.0),
+    ),
+    "tip_stop": Scene(
+        "tip_stop",
+        "stop under the tip (docs/theory.md §25): Argyris 12×4 (x = 1.0 m on a mesh line), a lower stop over "
+        "x ≥ 1.0 m at −0.05 m, the upper obstacle off, base 0.09 sin(2π·10 t) m",
+        {"nx": 12, "ny": 4, "obstacle_lower": -0.05, "obstacle_lower_x_min": 1.0, "obstacle_upper_enabled": False},
+        0.09,
+        10.0,
+        "amplitude",
+        2.0,
+        (2.0, 5.0),
     ),
 }
 
@@ -439,6 +452,25 @@ def study_scene(fmu, scene, base_params, args, tolerance_var):
     return result
 
 
+def run_record(repo, wall0, cpu0):
+    """How a study ran: wall and CPU seconds since perf_counter() = wall0 and process_time() = cpu0,
+    the checkout's commit, the date, the load, the machine."""
+    try:
+        commit = subprocess.run(
+            ["git", "-C", str(repo), "rev-parse", "--short", "HEAD"], capture_output=True, text=True
+        ).stdout.strip()
+    except OSError:
+        commit = "?"
+    return dict(
+        wall_s=time.perf_counter() - wall0,
+        cpu_s=time.process_time() - cpu0,
+        commit=commit,
+        date=time.strftime("%Y-%m-%d"),
+        load=os.getloadavg()[0],
+        machine=platform.machine(),
+    )
+
+
 def command(args):
     """The command line of this study's choices (not of where its files are)."""
     line = ["tools/predictability.py"]
@@ -511,12 +543,6 @@ def main(argv=None):
             for s in scenes
         ]
     results = [study_scene(fmu, s, law, args, tolerance_var) for s in scenes]
-    try:
-        commit = subprocess.run(
-            ["git", "-C", str(args.repo), "rev-parse", "--short", "HEAD"], capture_output=True, text=True
-        ).stdout.strip()
-    except OSError:
-        commit = "?"
     data = dict(
         quick=args.quick,
         command=line,
@@ -530,14 +556,7 @@ def main(argv=None):
         quiet=QUIET,
         bands=list(BANDS),
         scenes=results,
-        run=dict(
-            wall_s=time.perf_counter() - wall0,
-            cpu_s=time.process_time() - cpu0,
-            commit=commit,
-            date=time.strftime("%Y-%m-%d"),
-            load=os.getloadavg()[0],
-            machine=platform.machine(),
-        ),
+        run=run_record(args.repo, wall0, cpu0),
     )
     out = args.out or args.repo / "docs" / "predictability.json"
     out.parent.mkdir(parents=True, exist_ok=True)
