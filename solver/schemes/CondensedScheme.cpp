@@ -78,6 +78,7 @@ void CondensedScheme::applyW2(const Eigen::VectorXd& v, Eigen::VectorXd& out) {
 
 void CondensedScheme::gatherRows(const Eigen::VectorXd& q, double p, double z, Eigen::VectorXd& r) const {
     const Eigen::Index n = space_.count;  // the space's rows lead; past them r stays zero (RowSpace)
+    r.resize(plate_->rows());  // (sized once: a row vector has every row's length)
     auto head = r.head(n);
     head.noalias() = space_.modes->leftCols(n).transpose() * q;
     head.noalias() += p * space_.load->head(n);
