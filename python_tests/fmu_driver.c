@@ -303,6 +303,19 @@ static void portable_sincos(double x, double* s, double* c) {
     *c = pc;
 }
 
+/* The default scene's base at t, 0.09 sin(2 pi 10 t) m, with its first two derivatives. */
+static void set_default_base(fmi2Component c, double t) {
+    const double w = 2.0 * 3.14159265358979323846 * 10.0, a = 0.09;
+    const fmi2ValueReference base = VR_BASE;
+    const fmi2ValueReference vr2[] = {VR_BASE, VR_BASE};
+    const fmi2Integer orders[] = {1, 2};
+    double sn, cs;
+    portable_sincos(w * t, &sn, &cs);
+    const fmi2Real z = a * sn, rates[] = {a * w * cs, -a * w * w * sn};
+    OK(F.setReal(c, &base, 1, &z));
+    OK(F.setRealInputDerivatives(c, vr2, 2, orders, rates));
+}
+
 /* The default scene (14 x 5 Argyris, dt = 1e-5 s, obstacles at +-0.1 m, base 0.09 sin(2 pi 10 t)
  * given with its derivatives every h = 1e-4 s) for 0.1 s: one CSV row per communication point,
  * every Real output with 17 digits. */
@@ -314,7 +327,7 @@ static void run_scene(const char* out, const char* guid, const char* resources, 
     OK(F.setupExperiment(c, fmi2False, 0.0, 0.0, fmi2False, 0.0));
     OK(F.enterInit(c));
     OK(F.exitInit(c));
-    const double h = 1e-4, w = 2.0 * 3.14159265358979323846 * 10.0, a = 0.09;
+    const double h = 1e-4;
     fprintf(f, "time,corner_1,corner_2,free_edge_mid,energy,energy_dissipated,energy_input,qp_kkt_residual_max\n");
     for (int k = 0; k <= 1000; ++k) {
         const double t = k * h;
@@ -324,14 +337,7 @@ static void run_scene(const char* out, const char* guid, const char* resources, 
         for (size_t j = 0; j < N_REAL; ++j) fprintf(f, ",%.17g", r[j]);
         fprintf(f, "\n");
         if (k == 1000) break;
-        const fmi2ValueReference base = VR_BASE;
-        const fmi2ValueReference vr2[] = {VR_BASE, VR_BASE};
-        const fmi2Integer orders[] = {1, 2};
-        double sn, cs;
-        portable_sincos(w * t, &sn, &cs);
-        const fmi2Real z = a * sn, rates[] = {a * w * cs, -a * w * w * sn};
-        OK(F.setReal(c, &base, 1, &z));
-        OK(F.setRealInputDerivatives(c, vr2, 2, orders, rates));
+        set_default_base(c, t);
         OK(F.doStep(c, t, h, fmi2True));
     }
     OK(F.terminate(c));
@@ -377,19 +383,10 @@ static void run_latency(const char* out, const char* guid, const char* resources
     OK(F.exitInit(c));
     double* times = malloc(2 * sizeof(double) * (size_t)steps);
     CHECK(times != NULL);
-    const double h = 1e-4, w = 2.0 * 3.14159265358979323846 * 10.0, a = 0.09;
+    const double h = 1e-4;
     for (int k = 0; k < steps; ++k) {
         const double t = k * h;
-        if (driven) {
-            const fmi2ValueReference base = VR_BASE;
-            const fmi2ValueReference vr2[] = {VR_BASE, VR_BASE};
-            const fmi2Integer orders[] = {1, 2};
-            double sn, cs;
-            portable_sincos(w * t, &sn, &cs);
-            const fmi2Real z = a * sn, rates[] = {a * w * cs, -a * w * w * sn};
-            OK(F.setReal(c, &base, 1, &z));
-            OK(F.setRealInputDerivatives(c, vr2, 2, orders, rates));
-        }
+        if (driven) set_default_base(c, t);
         const double wall = clock_us(CLOCK_MONOTONIC), cpu = clock_us(CLOCK_THREAD_CPUTIME_ID);
         OK(F.doStep(c, t, h, fmi2True));
         times[2 * k + 1] = clock_us(CLOCK_THREAD_CPUTIME_ID) - cpu;
