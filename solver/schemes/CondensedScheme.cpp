@@ -285,8 +285,7 @@ void CondensedScheme::commit(double zNext, double pNext, double work, double dam
     const double loadTerms =
         (nextZero ? 0.0 : pNext * live(forceNext_).dot(live(*space_.load))) + 0.5 * pNext * pNext * c.loadFlexibility -
         ((forceZero_[0] ? 0.0 : s.p * live(s.force).dot(live(*space_.load))) + 0.5 * s.p * s.p * c.loadFlexibility);
-    s.energyInput += work + 0.5 * c.clampMass * (zDotNext * zDotNext - zDot * zDot) + loadTerms;
-    s.energyDamped += damped;
+    const double input = work + 0.5 * c.clampMass * (zDotNext * zDotNext - zDot * zDot) + loadTerms;
     // The clamp-carried mass's inertia at t_n (its work pairs with (z⁺ − z⁻)/2, §17).
     const double zAcc = (zNext - 2.0 * s.z + s.zPrev) / (dt * dt);
     s.clampForce += c.clampMass * zAcc;
@@ -301,9 +300,7 @@ void CondensedScheme::commit(double zNext, double pNext, double work, double dam
     forceNextZero_ = forceZero_[2];
     forceZero_ = {nextZero, forceZero_[0], forceZero_[1]};
     s.boundary = solves_ > 0 ? boundaryNext_ : 0.0;
-    advanceLevels(s.z, s.zPrev, s.zPrev2, zNext);
-    advanceLevels(s.p, s.pPrev, s.pPrev2, pNext);
-    ++s.step;
+    recordStep(s, zNext, pNext, {input, 0.0, damped, solves_, iterations, kkt_});
     if (solves_ > 0) {
         s.rowState.swap(rowTrial_);
         s.midState.swap(midTrial_);
@@ -313,10 +310,6 @@ void CondensedScheme::commit(double zNext, double pNext, double work, double dam
         std::fill(s.rowState.begin(), s.rowState.end(), 0);
         s.contactPoints = 0;
     }
-    s.contactSolves += solves_;
-    s.contactIterationsLast = iterations;
-    s.contactIterationsMax = std::max(s.contactIterationsMax, iterations);
-    s.maxKktResidual = std::max(s.maxKktResidual, kkt_);
 }
 
 double CondensedScheme::energy() const {

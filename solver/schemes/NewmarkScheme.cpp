@@ -207,26 +207,18 @@ void NewmarkScheme::commit(double zNext, double pNext, double sNext, double tNex
     s.w.swap(wNext_);
     s.kwPrev.swap(s.kw);
     s.kw.swap(kwNext_);
-    advanceLevels(s.z, s.zPrev, s.zPrev2, zNext);
-    advanceLevels(s.p, s.pPrev, s.pPrev2, pNext);
+    // (T.6): energy = E0 + input − dissipated − damped.
+    recordStep(s, zNext, pNext, {work, contact.dissipated, damped, iterations, iterations, kkt});
     s.pressureWorkPrev = s.pressureWork;
     s.pressureWork = sNext;
     advanceLevels(s.baseCoupling, s.baseCouplingPrev, s.baseCouplingPrev2, tNext);
     const double force[2] = {contact.sum[0] / dt2, contact.sum[1] / dt2};  // the port (§14)
     bookContact(s, force, dt);
     s.stepContactMoment = contact.moment / dt2;
-    ++s.step;
-    s.energyInput += work;  // the ledger (T.6): energy = E0 + input − dissipated − damped
-    s.energyDissipated += contact.dissipated;
-    s.energyDamped += damped;
     if (options_.dampingMass > 0.0) massVelocity_.swap(massVelocityNext_);
     if (law_) law_->commit(s);
     if (qp_) s.contactState.swap(trialState_);
     s.contactPoints = contactCount;
-    s.contactIterationsLast = iterations;
-    s.contactSolves += iterations;
-    s.contactIterationsMax = std::max(s.contactIterationsMax, iterations);
-    s.maxKktResidual = std::max(s.maxKktResidual, kkt);
 }
 
 double NewmarkScheme::energy() const {

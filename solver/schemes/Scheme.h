@@ -9,10 +9,12 @@
 // the communication grid, the inputs and the interpolation between grid points. Schemes are made
 // in one place: makeScheme (schemes/MakeScheme.cpp).
 #include <Eigen/Core>
+#include <algorithm>
 #include <cmath>
 #include <string>
 #include <vector>
 
+#include "base/History.h"
 #include "plate/Obstacles.h"
 #include "plate/PlateParameters.h"
 #include "schemes/PlateOutputs.h"
@@ -134,6 +136,27 @@ protected:
     virtual void clampLoad(double& force, double& moment) const = 0;
     virtual void addOutputs(PlateOutputs&) const {}  // a scheme's own outputs (the flow law's estimate)
 
+    // What a (sub-)step leaves in the base's share of the state, written here once for every scheme:
+    // the inputs' levels and the step count move on, the ledger's sums (T.6, T.17d) take the step's
+    // work, loss and damping, and the contact solves' statistics take the step's.
+    struct StepRecord {
+        double input = 0, dissipated = 0, damped = 0;  // J
+        long long solves = 0;
+        int iterations = 0;
+        double kkt = 0;
+    };
+    static void recordStep(SchemeState& s, double zNext, double pNext, const StepRecord& r) {
+        advanceLevels(s.z, s.zPrev, s.zPrev2, zNext);
+        advanceLevels(s.p, s.pPrev, s.pPrev2, pNext);
+        ++s.step;
+        s.energyInput += r.input;
+        s.energyDissipated += r.dissipated;
+        s.energyDamped += r.damped;
+        s.contactSolves += r.solves;
+        s.contactIterationsLast = r.iterations;
+        s.contactIterationsMax = std::max(s.contactIterationsMax, r.iterations);
+        s.maxKktResidual = std::max(s.maxKktResidual, r.kkt);
+    }
     // The step's contact force per obstacle (N) over a (sub-)step of length h into the port's sums:
     // an onset where an obstacle's force was zero the step before (docs/theory.md §14).
     static void bookContact(SchemeState& s, const double (&force)[2], double h) {
