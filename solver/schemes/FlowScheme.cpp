@@ -378,17 +378,17 @@ bool FlowScheme::selectRows(double zNext, double pNext) {
         }
         t.load.tail(c.rows() - n).setZero();
         std::fill(t.x.begin() + n, t.x.end(), 0.0);
+        // C's bounds; past C they are ∓∞: those entries never bind (RowSpace).
+        constexpr double infinity = std::numeric_limits<double>::infinity();
+        t.lower.setConstant(-infinity);
+        t.upper.setConstant(infinity);
+        for (Eigen::Index k = 0; k < n; ++k) {
+            t.lower[k] = lower_[t.index[std::size_t(k)]];
+            t.upper[k] = upper_[t.index[std::size_t(k)]];
+        }
         t.endColumns->useLeading(int(n));
         t.endQP->forgetFactor();
         t.from = nullptr;
-    }
-    // Past C the bounds are ∓∞: those entries never bind (RowSpace).
-    constexpr double infinity = std::numeric_limits<double>::infinity();
-    t.lower.setConstant(-infinity);
-    t.upper.setConstant(infinity);
-    for (Eigen::Index k = 0; k < n; ++k) {
-        t.lower[k] = lower_[t.index[std::size_t(k)]];
-        t.upper[k] = upper_[t.index[std::size_t(k)]];
     }
     return true;
 }
