@@ -49,7 +49,7 @@ CondensedScheme::CondensedScheme(std::shared_ptr<const CondensedPlate> plate, Ob
     endMatrix_ = c.delassus;
     endColumns_ = denseColumns(endMatrix_);
     endQP_ = std::make_unique<BoxQP>(*endColumns_);
-    space_ = {&c.rowModesT, &c.rowLoad, &c.rowAbscissae, endQP_.get(), rows};
+    everyRow_ = {&full_, &c.rowModesT, &c.rowLoad, &c.rowAbscissae, endQP_.get(), rows};
     for (Eigen::VectorXd* v : {&rhs_, &dq_, &qNext_, &momentumNext_, &modalForce_, &modalScratch_}) v->resize(m);
     w2v_.resize(rows);
     for (Eigen::VectorXd* v : {&forceNext_, &multiplier_, &r0_, &r1_, &drFree_, &dr_, &base_, &e_, &y_})
@@ -62,26 +62,28 @@ CondensedScheme::CondensedScheme(std::shared_ptr<const CondensedPlate> plate, Ob
 
 // W₂ v = ½Δt² G H⁻¹ Gᵀ v: through the modes when they are fewer than half the rows (a reduced
 // model: 2·rows·m operations instead of rows²).
-void CondensedScheme::applyW2(const Eigen::VectorXd& v, Eigen::VectorXd& out) {
+void CondensedScheme::applyW2(const StepSpace& space, const Eigen::VectorXd& v, Eigen::VectorXd& out) {
     const CondensedPlate& c = *plate_;
-    const double h = op_->h;
-    const Eigen::Index n = space_.count;  // the space's rows lead; past them out stays zero (RowSpace)
+    const MidpointOperator& op = *space.op;
+    const double h = op.h;
+    const Eigen::Index n = space.count;  // the space's rows lead; past them out stays zero (StepSpace)
     if (2 * Eigen::Index(c.modes()) >= n) {
-        out.head(n).noalias() = op_->w2.topLeftCorner(n, n) * v.head(n);
+        out.head(n).noalias() = op.w2.topLeftCorner(n, n) * v.head(n);
     } else {
-        modalScratch_.noalias() = space_.modes->leftCols(n) * v.head(n);
-        modalScratch_.array() *= (0.5 * h * h) * op_->inverseH.array();
-        out.head(n).noalias() = space_.modes->leftCols(n).transpose() * modalScratch_;
+        modalScratch_.noalias() = space.modes->leftCols(n) * v.head(n);
+        modalScratch_.array() *= (0.5 * h * h) * op.inverseH.array();
+        out.head(n).noalias() = space.modes->leftCols(n).transpose() * modalScratch_;
     }
     out.tail(v.size() - n).setZero();
 }
 
-void CondensedScheme::gatherRows(const Eigen::VectorXd& q, double p, double z, Eigen::VectorXd& r) const {
-    const Eigen::Index n = space_.count;  // the space's rows lead; past them r stays zero (RowSpace)
+void CondensedScheme::gatherRows(const StepSpace& space, const Eigen::VectorXd& q, double p, double z,
+                                 Eigen::VectorXd& r) const {
+    const Eigen::Index n = space.count;  // the space's rows lead; past them r stays zero (StepSpace)
     r.resize(plate_->rows());  // (sized once: a row vector has every row's length)
     auto head = r.head(n);
-    head.noalias() = space_.modes->leftCols(n).transpose() * q;
-    head.noalias() += p * space_.load->head(n);
+    head.noalias() = space.modes->leftCols(n).transpose() * q;
+    head.noalias() += p * space.load->head(n);
     head.array() += z;
     r.tail(r.size() - n).setZero();
 }
@@ -106,7 +108,7 @@ void CondensedScheme::initialize(double z0, double p0) {
     s.rowState.assign(rows, 0);
     s.midState.assign(rows, 0);
     Eigen::VectorXd r(rows);
-    gatherRows(qFree, p0, z0, r);
+    gatherRows(everyRow_, qFree, p0, z0, r);
     s.q = qFree;
     if (obstacles_.any() && rows > 0) {
         const Eigen::MatrixXd flexibility =
@@ -120,7 +122,7 @@ void CondensedScheme::initialize(double z0, double p0) {
             throw ParameterError("the initial static state's contact problem did not converge");
         s.q.noalias() += c.omega2.cwiseInverse().cwiseProduct(c.rowModesT * s.force);
         // The massless part's own contact forces at the rows: λ*(r) with r from the new q.
-        gatherRows(s.q, p0, z0, r);
+        gatherRows(everyRow_, s.q, p0, z0, r);
         int solves = 0;
         solveContact(*endQP_, r, s.rowState, endForce_, y, solves);
         s.force = endForce_;
@@ -142,7 +144,7 @@ void CondensedScheme::setLoadAtStart(double p0) {
     if (s.step != 0 || p0 == s.p) return;
     s.p = s.pPrev = s.pPrev2 = p0;
     if (obstacles_.any() && plate_->rows() > 0) {
-        gatherRows(s.q, p0, s.z, r0_);
+        gatherRows(everyRow_, s.q, p0, s.z, r0_);
         int solves = 0;
         solveContact(*endQP_, r0_, s.rowState, endForce_, y_, solves);
         s.force = endForce_;
@@ -157,9 +159,10 @@ void CondensedScheme::setLoadAtStart(double p0) {
 
 // The rows r1_ at the trial's end looked at: Contact when a row is held at the start or past an
 // obstacle at the end, Free otherwise (the free-flight bound restarts from this look).
-CondensedScheme::Look CondensedScheme::lookAtRowsNow(double zNext, double pNext, double reserve) {
+CondensedScheme::Look CondensedScheme::lookAtRowsNow(const StepSpace& space, double zNext, double pNext,
+                                                     double reserve) {
     const CondensedState& s = state_;
-    gatherRows(qNext_, pNext, zNext, r1_);
+    gatherRows(space, qNext_, pNext, zNext, r1_);
     double margin = std::numeric_limits<double>::infinity();
     for (Eigen::Index i = 0; i < r1_.size(); ++i)
         margin = std::min(margin, std::min(r1_[i] - lower_[i], upper_[i] - r1_[i]));
@@ -169,30 +172,31 @@ CondensedScheme::Look CondensedScheme::lookAtRowsNow(double zNext, double pNext,
     return margin < reserve ? Look::Near : Look::Free;
 }
 
-void CondensedScheme::midpointStep(double zNext, double pNext) {
+void CondensedScheme::midpointStep(const StepSpace& space, double zNext, double pNext) {
     const CondensedPlate& c = *plate_;
     const CondensedState& s = state_;
-    const double dt = op_->h, dz = zNext - s.z, dp = pNext - s.p, pMid = 0.5 * (s.p + pNext);
+    const MidpointOperator& op = *space.op;
+    const double dt = op.h, dz = zNext - s.z, dp = pNext - s.p, pMid = 0.5 * (s.p + pNext);
     // The free midpoint step (T.17b with Λ = 0): H Δq = Δt P − b_m Δz + ½Δt²(p̄ F_m − Ω² q).
     rhs_.noalias() = dt * s.momentum - dz * c.modalBaseInertia;
     rhs_.noalias() += (0.5 * dt * dt) * (pMid * c.modalLoad - c.omega2.cwiseProduct(s.q));
-    dq_.noalias() = op_->inverseH.cwiseProduct(rhs_);
+    dq_.noalias() = op.inverseH.cwiseProduct(rhs_);
     qNext_.noalias() = s.q + dq_;
     iterations_ = solves_ = 0;
     kkt_ = 0.0;
-    const Look look = lookAtRows(zNext, pNext);
+    const Look look = lookAtRows(space, zNext, pNext);
     const bool contact = look == Look::Contact, rowsLooked = look != Look::Skipped;
     // The contact buffers are zero in free flight: cleared only when the last use left them not.
     if (multiplierUsed_) multiplier_.setZero();
     multiplierUsed_ = contact;
     if (!forceNextZero_) forceNext_.setZero();
     if (contact) {
-        rowsAtStart();
+        rowsAtStart(space);
         drFree_ = r1_ - r0_;
-        discreteGradient(s.boundary);
+        discreteGradient(space, s.boundary);
         // Δq = Δq_free + ½Δt² H⁻¹ Gᵀ Λ.
-        modalForce_.noalias() = space_.modes->leftCols(space_.count) * live(multiplier_);
-        dq_.noalias() += (0.5 * dt * dt) * op_->inverseH.cwiseProduct(modalForce_);
+        modalForce_.noalias() = space.modes->leftCols(space.count) * space.live(multiplier_);
+        dq_.noalias() += (0.5 * dt * dt) * op.inverseH.cwiseProduct(modalForce_);
         qNext_.noalias() = s.q + dq_;
     } else {
         modalForce_.setZero();
@@ -203,8 +207,8 @@ void CondensedScheme::midpointStep(double zNext, double pNext) {
     const double damped = dq_.dot(damping_.cwiseProduct(dq_)) / dt;
     rhs_.noalias() =
         pMid * c.modalLoad - 0.5 * c.omega2.cwiseProduct(s.q + qNext_) + modalForce_ - damping_.cwiseProduct(dq_) / dt;
-    const double contactSum = contact ? live(multiplier_).sum() : 0.0,
-                 onLoad = contact ? live(multiplier_).dot(live(*space_.load)) : 0.0;
+    const double contactSum = contact ? space.live(multiplier_).sum() : 0.0,
+                 onLoad = contact ? space.live(multiplier_).dot(space.live(*space.load)) : 0.0;
     const double onRigid = c.modalBaseInertia.dot(rhs_) - contactSum;  // clamp + load on the plate
     const double work = pMid * c.modalLoad.dot(dq_) - dp * onLoad + dz * onRigid;
     CondensedState& st = state_;
@@ -220,12 +224,12 @@ void CondensedScheme::midpointStep(double zNext, double pNext) {
             const double middle =
                 std::isfinite(lo) && std::isfinite(hi) ? 0.5 * (lo + hi) : (std::isfinite(lo) ? HUGE_VAL : -HUGE_VAL);
             sums[0.5 * (r0_[i] + r1_[i]) >= middle] += multiplier_[i];
-            st.stepContactMoment += multiplier_[i] * (*space_.x)[static_cast<std::size_t>(i)];
+            st.stepContactMoment += multiplier_[i] * (*space.x)[static_cast<std::size_t>(i)];
         }
         st.clampMoment -= st.stepContactMoment;
     }
     bookContact(st, sums, dt);
-    commit(zNext, pNext, work, damped, iterations_);
+    commit(space, zNext, pNext, work, damped, iterations_);
     rowsAtEnd(rowsLooked);  // r1 is G q⁺ + … when the rows were looked at, r0 + Δr after a contact solve
 }
 
@@ -233,7 +237,7 @@ void CondensedScheme::midpointStep(double zNext, double pNext) {
 // With e = c_g Δr held from the last iterate, λ*(r_mid) solves the contact problem with the
 // constant matrix ½W₂ + D at r0 + ½Δr_free + ½W₂e; then Δr = Δr_free + W₂(λ + e), ψ1 = ψ(r0 + Δr)
 // from one solve with D, and e is updated, until the energy residual vanishes.
-void CondensedScheme::discreteGradient(double psi0) {
+void CondensedScheme::discreteGradient(const StepSpace& space, double psi0) {
     CondensedState& s = state_;
     e_.setZero();
     rowTrial_ = s.rowState;
@@ -246,22 +250,22 @@ void CondensedScheme::discreteGradient(double psi0) {
     for (int it = 1;; ++it) {
         base_.noalias() = r0_ + 0.5 * drFree_;
         if (it > 1) {
-            applyW2(e_, w2v_);
+            applyW2(space, e_, w2v_);
             base_.noalias() += 0.5 * w2v_;
         }
-        solveContact(*op_->midQP, base_, midTrial_, midForce_, y_, solves_);
+        solveContact(*space.op->midQP, base_, midTrial_, midForce_, y_, solves_);
         lambda = midForce_ + e_;  // Λ
-        applyW2(lambda, w2v_);
+        applyW2(space, lambda, w2v_);
         dr_.noalias() = drFree_ + w2v_;
         r1_.noalias() = r0_ + dr_;
-        solveContact(*space_.endQP, r1_, rowTrial_, endForce_, y_, solves_);
+        solveContact(*space.endQP, r1_, rowTrial_, endForce_, y_, solves_);
         forceNext_ = endForce_;
-        const double psi1 = 0.5 * live(forceNext_).dot(live(y_) - live(r1_));  // ½ λ1ᵀ D λ1
+        const double psi1 = 0.5 * space.live(forceNext_).dot(space.live(y_) - space.live(r1_));  // ½ λ1ᵀ D λ1
         boundaryNext_ = psi1;
-        const double residual = psi0 - psi1 - live(lambda).dot(live(dr_));
-        const double scale = psi0 + psi1 + std::abs(live(lambda).dot(live(dr_))) + energyScale;
+        const double residual = psi0 - psi1 - space.live(lambda).dot(space.live(dr_));
+        const double scale = psi0 + psi1 + std::abs(space.live(lambda).dot(space.live(dr_))) + energyScale;
         iterations_ = it;
-        const double norm2 = live(dr_).squaredNorm();
+        const double norm2 = space.live(dr_).squaredNorm();
         if (std::abs(residual) <= kGradientTolerance * scale || norm2 == 0.0) return;
         if (it == kGradientIterations) {
             std::ostringstream msg;
@@ -270,21 +274,23 @@ void CondensedScheme::discreteGradient(double psi0) {
             throw StepError(msg.str());
         }
         // e ← c_g Δr with c_g from λ*(r_mid) = Λ − e.
-        e_ = ((psi0 - psi1 - (live(lambda) - live(e_)).dot(live(dr_))) / norm2) * dr_;
+        e_ = ((psi0 - psi1 - (space.live(lambda) - space.live(e_)).dot(space.live(dr_))) / norm2) * dr_;
     }
 }
 
-void CondensedScheme::commit(double zNext, double pNext, double work, double damped, int iterations) {
+void CondensedScheme::commit(const StepSpace& space, double zNext, double pNext, double work, double damped,
+                             int iterations) {
     const CondensedPlate& c = *plate_;
     CondensedState& s = state_;
-    const double dt = op_->h;
+    const double dt = space.op->h;
     // The mass moving with the clamp (discarded modes) and the massless part's load terms enter
     // the energy (T.17a); their changes are booked as the inputs' work (T.17d).
     const double zDot = (s.z - s.zPrev) / dt, zDotNext = (zNext - s.z) / dt;
     const bool nextZero = solves_ == 0;  // a free step leaves λ_{n+1} = 0
-    const double loadTerms =
-        (nextZero ? 0.0 : pNext * live(forceNext_).dot(live(*space_.load))) + 0.5 * pNext * pNext * c.loadFlexibility -
-        ((forceZero_[0] ? 0.0 : s.p * live(s.force).dot(live(*space_.load))) + 0.5 * s.p * s.p * c.loadFlexibility);
+    const double loadTerms = (nextZero ? 0.0 : pNext * space.live(forceNext_).dot(space.live(*space.load))) +
+                             0.5 * pNext * pNext * c.loadFlexibility -
+                             ((forceZero_[0] ? 0.0 : s.p * space.live(s.force).dot(space.live(*space.load))) +
+                              0.5 * s.p * s.p * c.loadFlexibility);
     const double input = work + 0.5 * c.clampMass * (zDotNext * zDotNext - zDot * zDot) + loadTerms;
     // The clamp-carried mass's inertia at t_n (its work pairs with (z⁺ − z⁻)/2, §17).
     const double zAcc = (zNext - 2.0 * s.z + s.zPrev) / (dt * dt);

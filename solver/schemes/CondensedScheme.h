@@ -116,59 +116,59 @@ protected:
         std::unique_ptr<BoxQP> midQP;
     };
     void buildOperator(MidpointOperator& op, double h) const;
+    // What one midpoint step runs on (docs/theory.md §24): the operator of its length and the
+    // constraint rows it resolves contact in — every row and Δt (the conserving law: everyRow_), or
+    // FlowScheme's sub-steps in the rows that can touch. The row-sized vectors keep every row's
+    // length: a space of fewer rows uses their leading `count` entries and keeps the rest zero (its
+    // bounds ∓∞), so that a contact step allocates nothing.
+    struct StepSpace {
+        const MidpointOperator* op;
+        const Eigen::MatrixXd* modes;  // Gᵀ: its leading `count` columns (massive modes × the space's rows)
+        const Eigen::VectorXd* load;  // c_p at those rows (zero past them)
+        const std::vector<double>* x;  // their lever arms about the clamp line
+        BoxQP* endQP;  // the contact problem with their D
+        Eigen::Index count;  // how many rows
+        // A row vector's entries in the space: reductions over them alone add what a vector of the
+        // space's own length would, in the same order.
+        auto live(const Eigen::VectorXd& v) const { return v.head(count); }
+    };
     static std::unique_ptr<ContactColumns> denseColumns(const Eigen::MatrixXd& matrix);  // its columns, as they are
-    void midpointStep(double zNext, double pNext);  // one step of op_->h (T.17b–c)
+    void midpointStep(const StepSpace& space, double zNext, double pNext);  // one step of space.op->h (T.17b–c)
     // Where a contact step's rows at t_n come from (r0_): G q + p c_p + z here; FlowScheme keeps the
     // rows the last (sub-)step ended with. And what a step's end leaves for the next (rowsLooked: r1_
     // holds the rows at the end).
-    virtual void rowsAtStart() { gatherRows(state_.q, state_.p, state_.z, r0_); }
+    virtual void rowsAtStart(const StepSpace& space) { gatherRows(space, state_.q, state_.p, state_.z, r0_); }
     virtual void rowsAtEnd(bool /*rowsLooked*/) {}
     // The contact check after a trial step to (qNext_, zNext, pNext): Skipped while the free-flight
     // bound holds (inline: the common case of both schemes), else lookAtRowsNow.
     // Near (FlowScheme with a tolerance): free, but a row is within `reserve` of an obstacle.
     enum class Look { Skipped, Free, Near, Contact };
     // `reserve` (FlowScheme with a tolerance): a row within it of an obstacle counts as contact.
-    Look lookAtRows(double zNext, double pNext, double reserve = 0.0) {
+    Look lookAtRows(const StepSpace& space, double zNext, double pNext, double reserve = 0.0) {
         if (!obstacles_.any() || plate_->rows() == 0 ||
             (state_.contactPoints == 0 && freeFlight_.holds(qNext_, zNext, pNext, reserve)))
             return Look::Skipped;
-        return lookAtRowsNow(zNext, pNext, reserve);
+        return lookAtRowsNow(space, zNext, pNext, reserve);
     }
-    Look lookAtRowsNow(double zNext, double pNext, double reserve = 0.0);
-    void gatherRows(const Eigen::VectorXd& q, double p, double z, Eigen::VectorXd& r) const;
-    void applyW2(const Eigen::VectorXd& v, Eigen::VectorXd& out);
-    void discreteGradient(double psi0);  // Λ into multiplier_, from r0_, drFree_
+    Look lookAtRowsNow(const StepSpace& space, double zNext, double pNext, double reserve = 0.0);
+    // The space's rows at (q, p, z) into its leading entries of r (the rest zero).
+    void gatherRows(const StepSpace& space, const Eigen::VectorXd& q, double p, double z, Eigen::VectorXd& r) const;
+    void applyW2(const StepSpace& space, const Eigen::VectorXd& v, Eigen::VectorXd& out);
+    void discreteGradient(const StepSpace& space, double psi0);  // Λ into multiplier_, from r0_, drFree_
     void solveContact(BoxQP& qp, const Eigen::VectorXd& free, std::vector<signed char>& state, Eigen::VectorXd& force,
                       Eigen::VectorXd& y, int& solves);
-    void commit(double zNext, double pNext, double work, double damped, int iterations);
+    void commit(const StepSpace& space, double zNext, double pNext, double work, double damped, int iterations);
     void refreshDerived();  // what is derived from the state (which force levels are zero)
 
     std::shared_ptr<const CondensedPlate> plate_;
     Eigen::VectorXd damping_;  // c_k = a + b ω_k² (Rayleigh on the massive modes, §17)
     OutputRows rows_;
     MidpointOperator full_;  // steps of Δt
-    const MidpointOperator* op_ = &full_;  // the one the midpoint step takes (FlowScheme: its sub-steps')
 
     Eigen::MatrixXd endMatrix_;  // D
     std::unique_ptr<ContactColumns> endColumns_;
     std::unique_ptr<BoxQP> endQP_;
-    // The constraint rows the midpoint step resolves contact in (docs/theory.md §24): every row
-    // (the conserving law, and the state between steps), or the rows FlowScheme found can touch
-    // during a contact step. The row-sized buffers below and the state's row vectors are then of
-    // that space's size.
-    // The row-sized vectors keep every row's length: a space of fewer rows uses their leading
-    // `count` entries and keeps the rest zero (its bounds ∓∞), so that a contact step allocates nothing.
-    struct RowSpace {
-        const Eigen::MatrixXd* modes;  // Gᵀ: its leading `count` columns (massive modes × the space's rows)
-        const Eigen::VectorXd* load;  // c_p at those rows (zero past them)
-        const std::vector<double>* x;  // their lever arms about the clamp line
-        BoxQP* endQP;  // the contact problem with their D
-        Eigen::Index count;  // how many rows
-    };
-    RowSpace space_{};
-    // A row vector's entries in the space: reductions over them alone add what a vector of the
-    // space's own length would, in the same order.
-    auto live(const Eigen::VectorXd& v) const { return v.head(space_.count); }
+    StepSpace everyRow_;  // Δt in every row: the conserving law's steps, and every look at the rows
     CondensedState state_;
     // Step buffers, allocated once.
     Eigen::VectorXd rhs_, dq_, qNext_, momentumNext_, forceNext_, multiplier_, modalForce_;

@@ -152,7 +152,7 @@ void FlowScheme::companion(double zNext, double pNext, int level) {
     restore(start_);
     s.q += flow_.errorQ;
     s.momentum += flow_.errorMomentum;
-    gatherRows(s.q, s.p, s.z, r0_);
+    gatherRows(everyRow_, s.q, s.p, s.z, r0_);
     int solves = 0;
     solveContact(*endQP_, r0_, s.rowState, s.force, y_, solves);
     s.boundary = 0.5 * s.force.dot(y_ - r0_);

@@ -86,12 +86,10 @@ FlowScheme::FlowScheme(std::shared_ptr<const CondensedPlate> plate, Obstacles ob
     }
     inverseOmega2_ = c.omega2.cwiseInverse();
     dampedModes_ = (damping_.array() != 0.0).any();
-    for (Eigen::VectorXd* v : {&slope_, &offset_, &u0_, &ud0_, &u1_, &ud1_, &qIntegral_, &qAtStart_, &qBeforeStart_})
-        v->resize(m);
+    for (Eigen::VectorXd* v : {&slope_, &offset_, &u0_, &ud0_, &u1_, &ud1_, &qIntegral_}) v->resize(m);
     for (Eigen::VectorXd* v : {&flow11_, &flow12_, &flow21_, &flow22_}) v->resize(m);
     for (Eigen::Index k = 0; k < m; ++k)
         modalFlow(c.omega2[k], damping_[k], dt, flow11_[k], flow12_[k], flow21_[k], flow22_[k]);
-    for (Eigen::VectorXd* v : {&forceAtStart_, &forceBeforeStart_}) v->resize(rows);
     if (refinement_.rowSpace && rows > 0) sizeRowSpace();
 }
 
@@ -164,7 +162,7 @@ void FlowScheme::advance(double zNext, double pNext) {
     // The contact check of the midpoint step (its free-flight bound included). With a tolerance, a
     // row the carried error could take past an obstacle is looked at too (Near): the exact motion
     // may touch where the computed one does not (§22).
-    const Look look = lookAtRows(zNext, pNext, errorReach_);
+    const Look look = lookAtRows(everyRow_, zNext, pNext, errorReach_);
     if (look == Look::Contact) {
         // One snapshot restores the step: whatever throws in it (a contact solve, a sub-step's non-finite
         // result) leaves the scheme as it was (Scheme.h); the tolerance's runs start from it too.
@@ -178,7 +176,6 @@ void FlowScheme::advance(double zNext, double pNext) {
                 substeps(zNext, pNext, refinement_.substeps, sub_);
         } catch (...) {
             if (inRows_) leaveRows();
-            op_ = &full_;
             restore(start_);
             flow_ = flowAtStart_;
             touch_.gathered.clear();  // C's data gathered again by the next contact step
@@ -219,7 +216,7 @@ void FlowScheme::advance(double zNext, double pNext) {
     st.clampMoment = c.modalRotationInertia.dot(rhs_) - pMid * c.loadMoment;
     st.stepContactMoment = 0.0;
     st.stepContactForce[0] = st.stepContactForce[1] = 0.0;  // (no onset: bookContact needs no call)
-    commit(zNext, pNext, loadWork + dz * onRigid, dampedWork, 0);
+    commit(everyRow_, zNext, pNext, loadWork + dz * onRigid, dampedWork, 0);
     if (near) return nearMiss(zNext, pNext);
     if (flow_.contactSteps > 0 && st.step - flow_.errorStep >= kSample && !(flow_.lostAt >= 0.0 && boundedByGap())) {
         rotateError(st.step);
@@ -227,11 +224,11 @@ void FlowScheme::advance(double zNext, double pNext) {
     }
 }
 
-void FlowScheme::rowsAtStart() {
+void FlowScheme::rowsAtStart(const StepSpace& space) {
     if (rowsCachedValid_)
         r0_ = rowsCached_;
     else
-        gatherRows(state_.q, state_.p, state_.z, r0_);
+        gatherRows(space, state_.q, state_.p, state_.z, r0_);
 }
 
 void FlowScheme::rowsAtEnd(bool rowsLooked) {
@@ -260,35 +257,37 @@ void FlowScheme::restore(const Snapshot& from) {
 // The step from t_n as m midpoint sub-steps of Δt/m, the base and the load linear in between (as
 // the exact step assumes), in the rows that can touch (docs/theory.md §24): a sub-step costs what
 // those rows cost, not what every row does. Each sub-step keeps its energy identity; the levels
-// t_n, t_{n−1} and the port's values over the step are those of one step of Δt afterwards. Should a
-// row outside them end the step past an obstacle, the step is taken again in every row.
+// t_n, t_{n−1} and the port's values over the step are those of one step of Δt afterwards (from the
+// run's snapshot of its start). Should a row outside them end the step past an obstacle, the step is
+// taken again in every row from that snapshot.
 void FlowScheme::substeps(double zNext, double pNext, int m, const MidpointOperator& op) {
     const bool inRows = !allRows_ && !touch_.index.empty();
-    if (inRows) save(retry_);
-    qAtStart_ = state_.q;
-    qBeforeStart_ = state_.qPrev;
-    forceAtStart_ = state_.force;
-    forceBeforeStart_ = state_.forcePrev;
+    save(runStart_);
     try {
         if (inRows) {
             buildRowOperator(op);
             enterRows();
         } else {
-            op_ = &op;
+            substep_ = everyRow_;
+            substep_.op = &op;
         }
         midpointSubsteps(zNext, pNext, m);
     } catch (...) {  // the caller restores its start (advance, refine's companion)
         if (inRows_) leaveRows();
-        op_ = &full_;
         throw;
     }
     if (inRows_) leaveRows();
-    op_ = &full_;
     CondensedState& s = state_;
-    s.qPrev2 = qBeforeStart_;
-    s.qPrev = qAtStart_;
-    s.forcePrev2 = forceBeforeStart_;
-    s.forcePrev = forceAtStart_;
+    const CondensedState& s0 = runStart_.state;
+    s.qPrev2 = s0.qPrev;
+    s.qPrev = s0.q;
+    s.forcePrev2 = s0.forcePrev;
+    s.forcePrev = s0.force;
+    s.zPrev2 = s0.zPrev;
+    s.zPrev = s0.z;
+    s.pPrev2 = s0.pPrev;
+    s.pPrev = s0.p;
+    s.step = s0.step + 1;
     forceZero_ = {s.force.isZero(0.0), s.forcePrev.isZero(0.0), s.forcePrev2.isZero(0.0)};
     forceNextZero_ = false;
     multiplierUsed_ = true;
@@ -297,15 +296,16 @@ void FlowScheme::substeps(double zNext, double pNext, int m, const MidpointOpera
     ++rowSpaceSteps_;
     if (rowsOutsideStayFree()) return;
     ++rowSpaceRetries_;  // a row outside C touched: the step again, in every row
-    restore(retry_);
+    restore(runStart_);
     allRows_ = true;
     substeps(zNext, pNext, m, op);
 }
 
-// The m sub-steps of op_ from the state's t_n to zNext, pNext at t_{n+1}.
+// The m sub-steps of substep_ from the state's t_n to zNext, pNext at t_{n+1}; the time levels after
+// them are substeps'.
 void FlowScheme::midpointSubsteps(double zNext, double pNext, int m) {
     CondensedState& s = state_;
-    const double z0 = s.z, zBefore = s.zPrev, p0 = s.p, pBefore = s.pPrev;
+    const double z0 = s.z, zBefore = s.zPrev, p0 = s.p;
     const long long step0 = s.step;
     // ż at t_n as one step of Δt had it (the clamp-carried mass's terms in commit).
     s.zPrev = z0 - (z0 - zBefore) / m;
@@ -314,7 +314,7 @@ void FlowScheme::midpointSubsteps(double zNext, double pNext, int m) {
     for (int j = 1; j <= m; ++j) {
         const double z = j == m ? zNext : z0 + (zNext - z0) * (double(j) / m);
         const double p = j == m ? pNext : p0 + (pNext - p0) * (double(j) / m);
-        midpointStep(z, p);
+        midpointStep(substep_, z, p);
         s.step = step0;  // one internal step, not m: the messages' t_{n+1} (nextTime) stays right
         force += s.clampForce;
         moment += s.clampMoment;
@@ -323,11 +323,6 @@ void FlowScheme::midpointSubsteps(double zNext, double pNext, int m) {
         contactMoment += s.stepContactMoment;
         iterationsMax = std::max(iterationsMax, iterations_);
     }
-    s.zPrev2 = zBefore;
-    s.zPrev = z0;
-    s.pPrev2 = pBefore;
-    s.pPrev = p0;
-    s.step = step0 + 1;
     s.clampForce = force / m;
     s.clampMoment = moment / m;
     s.stepContactForce[0] = contact[0] / m;
@@ -350,7 +345,7 @@ bool FlowScheme::selectRows(double zNext, double pNext) {
     if (rowsCachedValid_)
         rowsStart_ = rowsCached_;
     else
-        gatherRows(s.q, s.p, s.z, rowsStart_);
+        gatherRows(everyRow_, s.q, s.p, s.z, rowsStart_);
     const double reach =
         2.0 * (c.rowModeNormMax * (qNext_ - s.q).norm() + std::abs(zNext - s.z) + std::abs(pNext - s.p) * rowLoadMax_);
     const auto gap = [this](int i, double r) { return std::min(r - lower_[i], upper_[i] - r); };  // §25
@@ -467,8 +462,7 @@ void FlowScheme::enterRows() {
     forceNextZero_ = true;
     multiplierUsed_ = false;
     swapRowBuffers();
-    space_ = {&t.modes, &t.load, &t.x, t.endQP.get(), n};
-    op_ = &t.op;
+    substep_ = {&t.op, &t.modes, &t.load, &t.x, t.endQP.get(), n};
     inRows_ = true;
 }
 
@@ -477,7 +471,6 @@ void FlowScheme::leaveRows() {
     CondensedState& s = state_;
     TouchRows& t = touch_;
     swapRowBuffers();
-    space_ = {&plate_->rowModesT, &plate_->rowLoad, &plate_->rowAbscissae, endQP_.get(), plate_->rows()};
     inRows_ = false;
     s.force.setZero();
     std::fill(s.rowState.begin(), s.rowState.end(), 0);
@@ -497,7 +490,7 @@ void FlowScheme::leaveRows() {
 bool FlowScheme::rowsOutsideStayFree() {
     const CondensedPlate& c = *plate_;
     const CondensedState& s = state_;
-    gatherRows(s.q, s.p, s.z, rowsCached_);
+    gatherRows(everyRow_, s.q, s.p, s.z, rowsCached_);
     rowsCachedValid_ = true;
     std::size_t k = 0;
     for (int i = 0; i < c.rows(); ++i) {

@@ -58,12 +58,13 @@ private:
     void advance(double zNext, double pNext) override;  // exact free flight, or the sub-steps on contact
     // The rows at the end of the last (sub-)step start the next one (the midpoint rule of the
     // conserving law recomputes them: its results stay what they always were).
-    void rowsAtStart() override;
+    void rowsAtStart(const StepSpace& space) override;
     void rowsAtEnd(bool rowsLooked) override;
     void stateReplaced() override { rowsCachedValid_ = false; }
     // The state with what the next step's solves start from (their warm starts): a step can be
     // taken again from a snapshot, bit for bit as the first time (step doubling, a retry in every
-    // row, a throw). The first save sizes a snapshot; later ones copy into its storage.
+    // row, a throw), and a run of sub-steps ends with its start's time levels. The first save sizes
+    // a snapshot; later ones copy into its storage.
     struct Snapshot {
         CondensedState state;
         Eigen::VectorXd midForce, endForce, rowsCached;
@@ -76,7 +77,7 @@ private:
     void restoreOwn(const std::vector<double>& own) override;
 
     void substeps(double zNext, double pNext, int m, const MidpointOperator& op);
-    void midpointSubsteps(double zNext, double pNext, int m);  // m steps of op_->h, base and load linear
+    void midpointSubsteps(double zNext, double pNext, int m);  // m steps of substep_, base and load linear
     // The contact step's row space (docs/theory.md §24): the rows that can touch, their data, the
     // midpoint operator of a sub-step length in them; entering swaps the row-sized buffers and the
     // state's row vectors for theirs, leaving scatters the results back.
@@ -124,7 +125,8 @@ private:
     bool rowsCachedValid_ = false;
     bool inRows_ = false, allRows_ = false;
     long long rowSpaceSteps_ = 0, rowSpaceRetries_ = 0;
-    Snapshot retry_;
+    Snapshot runStart_;  // a run of sub-steps' start (substeps): its time levels after it, and its retry
+    StepSpace substep_{};  // what the sub-steps run on: their length's operator, in C or in every row
     Eigen::VectorXd rowsStart_;
     MidpointOperator sub_;  // sub-steps of Δt/m (tolerance = 0)
     // tolerance > 0: level j takes 2^j sub-steps of Δt/2^j (level 0 is full_).
@@ -148,8 +150,6 @@ private:
     bool dampedModes_ = false;  // some c_k ≠ 0
     Eigen::VectorXd slope_, offset_, u0_, ud0_, u1_, ud1_;  // the exact step's buffers
     Eigen::VectorXd qIntegral_;  // ∫ q over the exact step
-    // The levels t_n, t_{n−1} kept across the sub-steps of one step.
-    Eigen::VectorXd qAtStart_, qBeforeStart_, forceAtStart_, forceBeforeStart_;
     // In free flight the global error only rotates (docs/theory.md §22): its value at the reported
     // points is sampled every kSample steps (8e-5 s at the default Δt, finer than the default
     // communication step), and at every contact step.

@@ -15,7 +15,7 @@ public:
         : CondensedScheme(std::move(plate), obstacles, dt, dampingMass, dampingStiffness, std::move(rows)) {}
 
 private:
-    void advance(double zNext, double pNext) override { midpointStep(zNext, pNext); }
+    void advance(double zNext, double pNext) override { midpointStep(everyRow_, zNext, pNext); }
 };
 
 }  // namespace plate
