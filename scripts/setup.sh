@@ -68,6 +68,9 @@ if [ ! -f "$build/CMakeCache.txt" ]; then
   cmake -S "$repo" -B "$build" -DCMAKE_BUILD_TYPE=Release ${PLATEIMPACT_CMAKE_ARGS:-} >/dev/null
 fi
 stage 4 "building the solver, the FMUs and the tests (only what changed)"
+# Debian's awk, mawk, reads a pipe a buffer at a time: without -W interactive the count below came
+# all at once at the end of the build (run.sh measured end to end); gawk and others read lines.
+awk() { if command awk -W version 2>/dev/null | grep -q mawk; then command awk -W interactive "$@"; else command awk "$@"; fi; }
 compile() {  # compile [targets...]: cmake --build (all targets without one); make's "[ 42%]" lines
   # become a count, one line each time it passes a tenth (compiler messages still go to stderr)
   cmake --build "$build" -j"$(nproc)" ${1:+--target "$@"} -- --no-print-directory |
