@@ -1,9 +1,11 @@
 #!/usr/bin/env bash
 # All tests, in stages (docs/contributing.md lists them; each prints "test.sh: [time] <stage>: N s,
 # CPU M s" — wall and user + system time):
-#  1. setup: venv and the incremental build of build/ (scripts/setup.sh); style (clang-format, ruff);
-#  2. ctest, beside the apt-get calls for the packages of every other stage (scripts/packages.sh:
-#     clang first, then the cross compilers and emulators);
+#  1. setup: venv and the incremental build of build/ (scripts/setup.sh: every target, the unit
+#     tests too; run.sh builds only the FMUs and plate_bench); style (clang-format, ruff) — beside
+#     the apt-get calls for the packages of every other stage (scripts/packages.sh: clang first,
+#     then the cross compilers and emulators) and, once clang is in, the instrumented build;
+#  2. ctest, beside the same;
 #  3. builds in three lanes: the one clang build with AddressSanitizer + UBSan of the FMUs and
 #     the libFuzzer harnesses in build-asan/ (scripts/build-asan.sh; it starts once clang is
 #     installed) beside the cross builds (scripts/build-win64.sh, mingw-w64, for Wine;
@@ -40,6 +42,7 @@ on() { [ "${!1:-1}" != 0 ]; }  # on <PLATEIMPACT_*_STAGE>: is the stage wanted
 
 if [ "${1:-}" = --quick ]; then
   shift
+  bash scripts/packages.sh base  # valgrind and clang-format too (run.sh installs only build's)
   bash scripts/setup.sh
   took setup
   # the unit tests but the long ones (the per-step energy identity, the convergence orders)
@@ -51,13 +54,11 @@ if [ "${1:-}" = --quick ]; then
 fi
 
 # The packages of build/ first (a no-op after run.sh); those of the other stages in the
-# background while the unit tests run (downloads and dpkg beside the CPU): clang first, so that
-# the instrumented build can start beside the unit tests, then the cross compilers and the
+# background while build/ is completed and the unit tests run (downloads and dpkg beside the
+# CPU): clang with valgrind and clang-format first (base: clang-format shares clang's libllvm14),
+# so that the instrumented build and the style check can start, then the cross compilers and the
 # emulators, each in one apt-get call (scripts/packages.sh).
-bash scripts/packages.sh base
-bash scripts/setup.sh
-bash scripts/check-format.sh
-took "setup and style"
+bash scripts/packages.sh build
 groups=(qemu)  # qemu-user: test_golden_emulated.py runs the golden under emulated x86-64 CPUs
 on PLATEIMPACT_WIN64_STAGE && groups+=(win64)
 on PLATEIMPACT_AARCH64_STAGE && groups+=(aarch64)
@@ -69,7 +70,7 @@ clang_ready=build/logs/packages-clang.done
 rm -f "$clang_ready"
 (
   set -e
-  if [ ${#asan_targets[@]} -gt 0 ]; then bash scripts/packages.sh fuzz; fi
+  if [ ${#asan_targets[@]} -gt 0 ]; then bash scripts/packages.sh base fuzz; else bash scripts/packages.sh base; fi
   touch "$clang_ready"
   bash scripts/packages.sh "${groups[@]}"
 ) >build/logs/packages.log 2>&1 &
@@ -100,8 +101,21 @@ after_clang() {  # after_clang <command...>: runs it once clang is installed (fa
   "$@"
 }
 lanes=()
-# The instrumented build starts as soon as clang is there: beside the unit tests and the packages.
+# The instrumented build starts as soon as clang is there: beside the rest of build/, the unit
+# tests and the packages.
 [ ${#asan_targets[@]} -eq 0 ] || lane asan after_clang bash scripts/build-asan.sh "${asan_targets[@]}"
+# build/'s every target (scripts/setup.sh): after run.sh, what it left out — the unit tests (a
+# unity build in four groups), the demonstration FMUs, the reference experiments, the source FMU;
+# on a fresh machine all of it, pip beside the compile.
+setup_status=0
+{ bash scripts/setup.sh && after_clang bash scripts/check-format.sh; } || setup_status=$?
+took "setup and style (beside the packages and the instrumented build)"
+if [ "$setup_status" != 0 ]; then
+  wait "$packages_pid" || true
+  wait_lanes || true
+  echo "test.sh: setup or style FAILED" >&2
+  exit 1
+fi
 ctest_status=0
 (cd build && ctest --output-on-failure -j"$(nproc)") || ctest_status=$?
 took "ctest (beside the packages and the instrumented build)"

@@ -2,10 +2,13 @@
 # The Debian packages of every stage, in one place, installed in ONE apt-get call (one
 # `apt-get update`, one dpkg run): the groups named on the command line, only what is missing.
 #
-#   bash scripts/packages.sh base                            # scripts/setup.sh: build, unit tests, pytest
-#   bash scripts/packages.sh base win64 aarch64 qemu fuzz    # test.sh: every stage, up front
+#   bash scripts/packages.sh build                           # scripts/setup.sh (run.sh): build/ and the venv
+#   bash scripts/packages.sh base win64 aarch64 qemu fuzz    # test.sh: every stage
 #
-#   base     cmake g++ make binutils Eigen GoogleTest xxhash valgrind clang-format python3-venv
+#   build    cmake g++ make binutils Eigen GoogleTest xxhash python3-venv: what run.sh needs
+#   base     build, and what only the tests need: valgrind, clang-format (libllvm14 and
+#            libclang-cpp14, which clang shares: 47 of the ~60 MB more than build; test.sh installs
+#            them in the background with clang)
 #   win64    mingw-w64 (posix threads) and wine64: scripts/build-win64.sh, test_win64.py
 #   aarch64  the aarch64 cross compiler: scripts/build-aarch64.sh (qemu-user runs it)
 #   qemu     qemu-user: test_aarch64.py (qemu-aarch64), test_golden.py (qemu-x86_64 CPUs)
@@ -15,7 +18,7 @@ need=()
 have_cmd() { command -v "$1" >/dev/null; }
 for group in "$@"; do
   case "$group" in
-    base)
+    build | base)
       have_cmd cmake || need+=(cmake)
       have_cmd g++ || need+=(g++)
       have_cmd make || need+=(make)
@@ -23,10 +26,12 @@ for group in "$@"; do
       [ -f /usr/include/eigen3/Eigen/Core ] || need+=(libeigen3-dev)
       [ -f /usr/include/gtest/gtest.h ] || need+=(libgtest-dev)
       [ -f /usr/include/xxhash.h ] || need+=(libxxhash-dev)  # the FMU-state checksum (header-only)
-      have_cmd valgrind || need+=(valgrind)                  # python_tests/test_valgrind.py
-      have_cmd clang-format || need+=(clang-format)          # scripts/check-format.sh
       have_cmd python3 || need+=(python3)
-      python3 -c 'import venv, ensurepip' 2>/dev/null || need+=(python3-venv) ;;
+      python3 -c 'import venv, ensurepip' 2>/dev/null || need+=(python3-venv)
+      if [ "$group" = base ]; then
+        have_cmd valgrind || need+=(valgrind)                # python_tests/test_valgrind.py
+        have_cmd clang-format || need+=(clang-format)        # scripts/check-format.sh
+      fi ;;
     win64)
       have_cmd x86_64-w64-mingw32-g++-posix || need+=(g++-mingw-w64-x86-64-posix)
       [ -x /usr/lib/wine/wine64 ] || need+=(wine64) ;;
