@@ -57,6 +57,11 @@ SHARED_FIXTURE = {
     "test_elements_agree.py": "elements",  # the Argyris run both tests compare with
     "test_intermediate_inputs.py": "intermediate-inputs",  # three 0.2 s runs with a callback per step
     "test_impact_episodes.py": "impact-episodes",  # the default scene's 0.6 s (9 s)
+    # the validator's run of every experiment, read by both (test_references.py's validator_run)
+    "test_references.py::test_validator_passes_every_experiment": "references-validator",
+    "test_references.py::test_serialized_state_restored_in_a_new_process_continues_bit_for_bit_here": (
+        "references-validator"
+    ),
 }
 
 # `slow`: left out of the developer loop (`bash test.sh --quick`, `pytest -m "not slow"`); test.sh
@@ -169,6 +174,37 @@ LEFT_OUT_OF_THE_SANITIZER_STAGE = {
         "test_fmi_conformance.py::test_two_threads_match_sequential_runs[flow]",
     ),
 }
+
+
+def xdist_group_of(nodeid):
+    """The group of SERIAL or SHARED_FIXTURE a node id belongs to, or None."""
+    path, _, rest = nodeid.partition("::")
+    file = path.rsplit("/", 1)[-1]
+    name = rest.split("::")[-1].split("[")[0]
+    for key in (f"{file}::{name}", file):
+        if key in SHARED_FIXTURE:
+            return SHARED_FIXTURE[key]
+    return SERIAL.get(file)
+
+
+def pytest_xdist_make_scheduler(config, log):
+    """`--dist loadgroup` with the groups above read from the node ids by the controller.
+
+    pytest-xdist 3.8's loadgroup finds a test's group in a suffix its workers append to the node id
+    (`item._nodeid`), which pytest 9 no longer reads (the node id lives in `item._id`): the
+    `xdist_group` markers below had no effect, so each worker made a SHARED_FIXTURE again (the
+    catalogue's 69 child processes ran twice, test_intermediate_inputs.py's three runs twice, ...)
+    and SERIAL's tests ran in both workers (issue 54, found by `--durations`). The scheduler here
+    takes the group from the tables, whatever the versions."""
+    if config.getvalue("dist") != "loadgroup":
+        return None
+    from xdist.scheduler import LoadGroupScheduling
+
+    class TableGroupScheduling(LoadGroupScheduling):
+        def _split_scope(self, nodeid):
+            return xdist_group_of(nodeid) or super()._split_scope(nodeid)
+
+    return TableGroupScheduling(config, log)
 
 
 def pytest_collection_modifyitems(config, items):
