@@ -101,8 +101,16 @@ LEFT_OUT_OF_THE_SANITIZER_STAGE = {
         "test_physics.py::test_static_beam_limit_is_exact[fvs]",  # the static solve, the other element
         "test_fmi_conformance.py::test_fmu_state_get_set_and_serialize_are_bit_identical[argyris]",
     ),
+    # No obstacles on the paper's mesh: the same engine and free flight as FVS's (its plate has no
+    # contact rows either), the Argyris element's stepping in the state test (issue 54: its plate,
+    # built for it alone, was 15 s of the stage's CPU under ASan)
+    "test_physics.py::test_energy_is_conserved_without_contact_and_input[argyris-0.5]": (
+        "test_physics.py::test_energy_is_conserved_without_contact_and_input[fvs-0.5]",
+        "test_fmi_conformance.py::test_fmu_state_get_set_and_serialize_are_bit_identical[argyris]",
+    ),
     "test_physics.py::test_energy_is_conserved_without_contact_and_input[argyris-0.25]": (
-        "test_physics.py::test_energy_is_conserved_without_contact_and_input[argyris-0.5]",  # β changes numbers only
+        "test_physics.py::test_energy_is_conserved_without_contact_and_input[fvs-0.5]",  # β changes numbers only
+        "test_fmi_conformance.py::test_fmu_state_get_set_and_serialize_are_bit_identical[argyris]",
     ),
     "test_physics.py::test_energy_is_conserved_without_contact_and_input[fvs-0.25]": (
         "test_physics.py::test_energy_is_conserved_without_contact_and_input[fvs-0.5]",
@@ -168,6 +176,15 @@ LEFT_OUT_OF_THE_SANITIZER_STAGE = {
         "test_input_reconstruction.py::test_unknown_mode_is_rejected[base_input_mode-4]",  # an Integer switch set
         "fuzz/parameters.cpp",  # every Integer parameter, its edges and past them
     ),
+    # A plate with the upper obstacle off, then the default plate: both instances' setup and the
+    # cache's lookups run in the stage wherever one obstacle is off (scene1: released onto the
+    # lower one) and wherever a second instance shares a plate (the threads); which parameters
+    # make a key is the C++ unit test DiscretizationCache.EveryKeyParameterChangesTheResult's (issue 54:
+    # 35 s of the stage's CPU, its two default-mesh plates built for it alone under ASan)
+    "test_discretization_cache.py::test_a_plate_built_with_one_obstacle_is_not_shared_with_one_that_has_both": (
+        "test_conserving.py::test_no_reported_displacement_passes_an_obstacle[scene1]",
+        "test_fmi_conformance.py::test_two_threads_match_sequential_runs[flow]",
+    ),
     # the cache's sharing runs in every test here that makes a second instance of a plate
     "test_discretization_cache.py::test_a_shared_plate_gives_the_golden_output_bit_for_bit": (
         "test_fmi_conformance.py::test_fmu_state_get_set_and_serialize_are_bit_identical[argyris]",
@@ -207,6 +224,9 @@ def pytest_xdist_make_scheduler(config, log):
     return TableGroupScheduling(config, log)
 
 
+# tryfirst: before pytest's own -m deselection, so that the markers it selects by are there and
+# PLATEIMPACT_LIST_REPEATS_PATHS lists every test left out (test_sanitizer_selection.py)
+@pytest.hookimpl(tryfirst=True)
 def pytest_collection_modifyitems(config, items):
     list_repeats_paths = os.environ.get("PLATEIMPACT_LIST_REPEATS_PATHS") == "1"
     for item in items:
