@@ -10,18 +10,23 @@ from plateimpact.driver import PlateImpactFMU
 
 
 def test_singular_mass_energy_through_impacts_converges_in_dt(fmu_path):
-    # §5.2 to 0.5 s (three impacts). The energy lost is the scheme's error (the continuous plate
-    # keeps its energy): with the singular mass it falls by 0.27 per halving of dt here
-    # (docs/impact-laws.md); asserted: at least order 0.74 (ratio <= 0.6), ledger to roundoff.
-    # The paper's scheme on the same two steps: ratio 0.71 (3.78 % -> 2.70 %), stalling near
-    # 1.4 % (docs/performance.md).
-    coarse = study.run(fmu_path, "singular_p0", 2e-5)
-    fine = study.run(fmu_path, "singular_p0", 1e-5)
+    """§5.2 to 0.3 s (two impacts, at 0.068 s and 0.224 s). The energy lost is the scheme's error
+    (the continuous plate keeps its energy): with the singular mass it falls by 0.29 per halving
+    of dt here (1.41 % -> 0.41 %; over 0.5 s and three impacts 0.27, docs/impact-laws.md);
+    asserted: at least order 0.74 (ratio <= 0.6), ledger to roundoff. The paper's scheme at the
+    fine step loses 2.32 % (asserted: more than 3x the singular mass's 0.41 %).
+
+    Shortened (issue 54): 0.3 s instead of 0.5 s (the third impact), 40 % of the 15 s of CPU. The
+    three-impact horizon and the whole dt series of every law are tools/impact_convergence.py's
+    (impact_study.STOP = 0.5 s, docs/impact_convergence.json, docs/impact-laws.md)."""
+    stop = 0.3
+    coarse = study.run(fmu_path, "singular_p0", 2e-5, stop=stop)
+    fine = study.run(fmu_path, "singular_p0", 1e-5, stop=stop)
     for r in (coarse, fine):
         assert r.ledger <= 1e-9
-        assert len(r.impacts) == 3
+        assert len(r.impacts) == 2
     assert 0 < fine.lost <= 0.6 * coarse.lost
-    paper = study.run(fmu_path, "paper (consistent, e = 0)", 1e-5)
+    paper = study.run(fmu_path, "paper (consistent, e = 0)", 1e-5, stop=stop)
     assert fine.lost < paper.lost / 3
 
 

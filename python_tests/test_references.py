@@ -113,11 +113,45 @@ def _member(fmu, name, tmp=[]):
     return target
 
 
+_VALIDATOR_RUNS = {}
+
+
+def validator_run(fmu, *args):
+    """`python -m plateimpact.validate FMU ARGS` (no ARGS: every experiment and state, every master
+    found), run once per FMU and arguments in this process. The run of every experiment also
+    replays the carried state: test_serialized_state_restored_in_a_new_process_continues_bit_for_bit_here
+    reads that run when this worker made it (issue 54: it was a second validator process;
+    SHARED_FIXTURE in conftest.py keeps both tests in one worker, the slow one first), and runs the
+    state's replay alone otherwise (`-m "not slow"`)."""
+    key = (fmu, args)
+    if key not in _VALIDATOR_RUNS:
+        _VALIDATOR_RUNS[key] = subprocess.run(
+            [sys.executable, "-m", "plateimpact.validate", str(fmu), *args], capture_output=True, text=True, timeout=900
+        )
+    return _VALIDATOR_RUNS[key]
+
+
+def validator_block(stdout, experiment, master):
+    """The lines format_result printed for one experiment and master: the head, then its signals."""
+    lines = stdout.splitlines()
+    heads = [i for i, line in enumerate(lines) if line.startswith(("PASS ", "FAIL ")) and f" {experiment} (" in line]
+    heads = [i for i in heads if line_master(lines[i]) == master]
+    assert len(heads) == 1, (experiment, master, stdout)
+    block = [lines[heads[0]]]
+    for line in lines[heads[0] + 1 :]:
+        if not line.startswith("  "):
+            break
+        block.append(line)
+    return block
+
+
+def line_master(head):
+    return head.rsplit(", ", 1)[-1].split(")")[0]
+
+
 @pytest.mark.parametrize("fmu", [FMU2, FMU3], ids=["fmi2", "fmi3"])
 def test_validator_passes_every_experiment(fmu):
-    out = subprocess.run(
-        [sys.executable, "-m", "plateimpact.validate", str(fmu)], capture_output=True, text=True, timeout=900
-    )
+    out = validator_run(fmu)
     assert out.returncode == 0, out.stdout + out.stderr
     lines = out.stdout.splitlines()
     for e in list(references.EXPERIMENTS) + list(references.STATES):
@@ -240,16 +274,11 @@ def test_serialized_state_restored_in_a_new_process_continues_bit_for_bit_here(f
     assert references.serialized_state(fmu, base, st.at) == carried
     roles = {r.role for r in validate.read_manifest(fmu) if r.path.endswith(".fmustate")}
     assert roles == {f"serialized-state/{p}" for p in st.platforms}
-    out = subprocess.run(
-        [sys.executable, "-m", "plateimpact.validate", str(fmu), "--master", "fmpy", "--experiment", st.name],
-        capture_output=True,
-        text=True,
-        timeout=300,
-    )
+    out = _VALIDATOR_RUNS.get((fmu, ())) or validator_run(fmu, "--master", "fmpy", "--experiment", st.name)
     assert out.returncode == 0, out.stdout + out.stderr
-    deviations = [
-        float(line.split("deviation")[1].split()[0]) for line in out.stdout.splitlines() if "deviation" in line
-    ]
+    block = validator_block(out.stdout, st.name, "fmpy")
+    assert block[0].startswith(f"PASS {st.name} ("), block
+    deviations = [float(line.split("deviation")[1].split()[0]) for line in block if "deviation" in line]
     assert len(deviations) == len(base.outputs) and all(d == 0.0 for d in deviations), out.stdout
     # within the tolerance of the uninterrupted run, and not trivially: the continuation moved
     cont = references.read_csv(_member(FMU2, f"{references.LS_DIR}/{st.name}_ref.csv"))

@@ -82,11 +82,19 @@ def test_the_readme_sine_at_one_second_steps_is_warned(fmu_path):
 def test_a_slow_sine_at_long_steps_is_wrong_and_warned_and_within_the_criterion_is_not(fmu_path):
     """0.4 Hz, 0.05 m: quasi-static for the 6.1 Hz plate. At h = 1 s the energy at the end is
     orders of magnitude above the h = 1e-3 s run's (the reconstruction kicks the plate at every
-    communication point); at h = T1/10 it is within 30 % of it and nothing is said."""
-    stop = 10.0
-    fine, said_fine = simulate(fmu_path, stop, 1e-3, 0.4, 0.05)
-    at_limit, said_limit = simulate(fmu_path, stop, 0.016, 0.4, 0.05)
-    coarse, said_coarse = simulate(fmu_path, stop, 1.0, 0.4, 0.05)
+    communication point); at h = T1/10 it is within 30 % of it and nothing is said.
+
+    Shortened (issue 54): the internal step dt = 1e-4 s instead of the default 1e-5 s (the three
+    10 s runs took 35 s of CPU at 3·10⁶ internal steps). What is checked depends on the
+    communication step against T1 (the warning, the kicks of the reconstruction at each
+    communication point), not on dt: Newmark with the default β = 1/2 is unconditionally stable,
+    and its relative phase error at the plate's 6.1 Hz is of order (ω dt)² ≈ 1.5e-5 at dt = 1e-4 s,
+    far below the 30 % and ×100 margins. The same runs at the default dt, and every step from 1e-3 s to 1 s, are
+    tools/long_steps.py's study (docs/long_steps.json)."""
+    stop, dt = 10.0, 1e-4
+    fine, said_fine = simulate(fmu_path, stop, 1e-3, 0.4, 0.05, dt=dt)
+    at_limit, said_limit = simulate(fmu_path, stop, 0.016, 0.4, 0.05, dt=dt)
+    coarse, said_coarse = simulate(fmu_path, stop, 1.0, 0.4, 0.05, dt=dt)
     e_fine, e_limit, e_coarse = (r["energy"][-1] for r in (fine, at_limit, coarse))
     assert said_fine == [] and said_limit == [], (said_fine, said_limit)
     assert len(said_coarse) == 1 and "at t = 1 " in said_coarse[0], said_coarse

@@ -18,17 +18,21 @@ from stability import CASES, FMICallException, failures, run_case
 pytestmark = pytest.mark.sanitizer
 
 
-# The cases the sanitizer stage runs: a large dt (contact at most steps), beta = 0 refused at its
-# bound (the spectrum's largest eigenvalue; coarse and default cells), the singular mass at a large
-# dt. Every other case repeats code paths the stage runs elsewhere (conftest.py): the default
-# engine through impacts (NEWMARK) and what COVERED_BY adds for a case; the stability checks
-# themselves run on every case in the pytest stage.
-SANITIZER_CASES = {"dt_1e-2", "beta_0_1.1x_bound", "beta_0_1.1x_bound_14x5", "singular_p0_dt_1e-3"}
+# The cases the sanitizer stage runs: beta = 0 refused at its bound (the spectrum's largest
+# eigenvalue; coarse and default cells), the singular mass at a large dt (contact at most steps).
+# Every other case repeats code paths the stage runs elsewhere (conftest.py): the default engine
+# through impacts (NEWMARK: the state test's scene starts pressed onto an obstacle and hits both)
+# and what COVERED_BY adds for a case; the stability checks themselves run on every case in the
+# pytest stage. dt_1e-2 left the stage in issue 54 (21 s of its CPU: a modal basis of the default
+# mesh built for that dt alone under ASan): the default engine's contact steps run in the state
+# test, a large dt with contact at most steps in singular_p0_dt_1e-3.
+SANITIZER_CASES = {"beta_0_1.1x_bound", "beta_0_1.1x_bound_14x5", "singular_p0_dt_1e-3"}
 STATE_TEST = "test_fmi_conformance.py::test_fmu_state_get_set_and_serialize_are_bit_identical"
-NEWMARK = ("test_stability.py::test_stability_case[dt_1e-2]", f"{STATE_TEST}[argyris]")
+NEWMARK = (f"{STATE_TEST}[argyris]",)
 LAWS = (f"{STATE_TEST}[singular_laws]", f"{STATE_TEST}[modal_restitution_damping]")
 SINGULAR = ("test_stability.py::test_stability_case[singular_p0_dt_1e-3]",)
 COVERED_BY = {
+    "dt_1e-2": ("test_stability.py::test_stability_case[singular_p0_dt_1e-3]",),  # a large dt, contact at most steps
     "grid_56x20": (f"{STATE_TEST}[argyris_fine]",),  # the sparse factor (28 x 10 cells)
     "beta_0_0.9x_bound": ("test_stability.py::test_stability_case[beta_0_1.1x_bound]",),  # beta: numbers only
     "pressed_held": ("test_conserving.py::test_no_reported_displacement_passes_an_obstacle[scene2]",),

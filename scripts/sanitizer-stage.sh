@@ -33,6 +33,10 @@ rm -rf "$reports" && mkdir -p "$reports"
 # them; python_tests/test_sanitizer_selection.py checks the names). Markers, not name
 # substrings: a renamed test keeps its place. Not here: valgrind (test_valgrind.py) and the
 # packaging checks (a sanitizer build's packaging is not the product's).
+# --dist loadfile: a file's tests in one worker. Under ASan + UBSan a plate's modal basis costs
+# ~12 s of CPU (0.6 s in the release build) and is built once per worker and plate (the FMU's cache):
+# spread test by test over the workers, every plate a file shares between its tests was built in
+# both (issue 54, measured: 367 s of CPU with the tests spread, see docs/contributing.md).
 marks="sanitizer and not repeats_paths"
 selection=(python_tests -m "$marks")
 for arg in "$@"; do
@@ -44,7 +48,7 @@ LD_PRELOAD="$runtime${LD_PRELOAD:+ $LD_PRELOAD}" \
 ASAN_OPTIONS="detect_leaks=0:halt_on_error=1:log_path=$reports/asan${ASAN_OPTIONS:+:$ASAN_OPTIONS}" \
 UBSAN_OPTIONS="halt_on_error=1:print_stacktrace=1:log_path=$reports/ubsan${UBSAN_OPTIONS:+:$UBSAN_OPTIONS}" \
 PLATEIMPACT_FMU="$fmu" \
-  "$repo/.venv/bin/python" -m pytest -q -n "${PLATEIMPACT_PYTEST_WORKERS:-auto}" "${selection[@]}" "$@" || status=$?
+  "$repo/.venv/bin/python" -m pytest -q -n "${PLATEIMPACT_PYTEST_WORKERS:-auto}" --dist loadfile "${selection[@]}" "$@" || status=$?
 if [ -n "$(ls -A "$reports")" ]; then
   for report in "$reports"/*; do
     echo "sanitizer-stage.sh: sanitizer report $report:" >&2
