@@ -47,7 +47,7 @@ SUPPRESSIONS = """
 @pytest.fixture(scope="module")
 def valgrind():
     tool = shutil.which("valgrind")
-    assert tool, "valgrind is not installed (scripts/setup.sh installs the Debian package valgrind)"
+    assert tool, "valgrind is not installed (test.sh installs it: `bash scripts/packages.sh base`)"
     return tool
 
 
