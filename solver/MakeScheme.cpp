@@ -100,9 +100,9 @@ void initializeState(const SchemeSetup& s, const std::shared_ptr<const DiscreteP
 }
 
 // What the discretization cache charges (DiscretizationCache.h).
-std::size_t modalBytes(const ModalPlate& m) {
-    const auto n = static_cast<std::size_t>(m.clamped().mass.rows()), k = static_cast<std::size_t>(m.size());
-    return sizeof(double) * k * (n + static_cast<std::size_t>(m.contactCount()) + 5);
+std::size_t modalBytes(const ModalBasis& m) {
+    return heapBytes(m.phi) + heapBytes(m.omega2) + heapBytes(m.contactModesT) + heapBytes(m.pressureLoad) +
+           heapBytes(m.baseInertia) + heapBytes(m.rotationInertia);
 }
 
 std::size_t condensedBytes(const CondensedPlate& c) {
@@ -159,13 +159,12 @@ std::unique_ptr<Scheme> makeNewmark(const SchemeSetup& s, InitProgress& progress
                    modal ? s.resources.spectrumSeconds : 0.5 * s.resources.factorSeconds);
     std::shared_ptr<const DiscretePlate> discrete;
     if (modal)  // shared between instances: plain data. The sparse factor is not (its solve's workspace).
-        discrete = cached<ModalPlate>(
-            modalPlateKey(p, s.resources.engine == EngineKind::CompleteModal),
-            [&] {
-                return std::make_shared<const ModalPlate>(s.space, s.clamped, p.dt, p.beta, p.modes, p.dampingMass,
-                                                          p.dampingStiffness);
-            },
-            modalBytes, s.cache);
+        discrete = std::make_shared<const ModalPlate>(
+            s.space, s.clamped,
+            cached<ModalBasis>(
+                modalBasisKey(p, s.resources.engine == EngineKind::CompleteModal),
+                [&] { return std::make_shared<const ModalBasis>(*s.clamped, p.modes); }, modalBytes, s.cache),
+            p.dt, p.beta, p.dampingMass, p.dampingStiffness);
     else
         discrete =
             std::make_shared<const FullOrderPlate>(s.space, s.clamped, p.dt, p.beta, p.dampingMass, p.dampingStiffness);

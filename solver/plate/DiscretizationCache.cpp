@@ -78,11 +78,12 @@ CacheKey clampedPlateKey(const PlateParameters& p) {
     return addPlate(key, p);
 }
 
-// ModalPlate(space, clamped, dt, beta, modes, damping): Ω², Φ and the step's diagonal.
-CacheKey modalPlateKey(const PlateParameters& p, bool completeEngine) {
-    CacheKey key("modal plate");
-    addPlate(key, p).add(completeEngine ? 1 : 0).add(p.dt).add(p.beta).add(p.modes);
-    return key.add(p.dampingMass).add(p.dampingStiffness);
+// ModalBasis(clamped, modes): Ω², Φ and what they make of the contact vertices and the loads — not
+// Δt, β or the damping (ModalPlate's step diagonal, made per instance), so that a sweep over those
+// shares one eigen solution.
+CacheKey modalBasisKey(const PlateParameters& p, bool completeEngine) {
+    CacheKey key("modal basis");
+    return addPlate(key, p).add(completeEngine ? 1 : 0).add(p.modes);
 }
 
 // condense(clamped, R, the output rows, modes, the recovery functionals): the functionals are the

@@ -7,29 +7,41 @@
 
 namespace plate {
 
-ModalPlate::ModalPlate(std::shared_ptr<const FiniteElementSpace> space, std::shared_ptr<const ClampedPlate> plate,
-                       double dt, double beta, int modes, double dampingMass, double dampingStiffness)
-    : DiscretePlate(dt, beta), space_(std::move(space)), plate_(std::move(plate)) {
-    lowestModes(*plate_, modes, phi_, omega2_);
-    complete_ = phi_.cols() == plate_->mass.rows();
-    // Rayleigh damping is diagonal in modal coordinates (§13): ζ_k = a/(2ω_k) + bω_k/2.
-    if (dampingMass == 0.0 && dampingStiffness == 0.0)
-        inverseStep_ = (1.0 + beta * dt * dt * omega2_.array()).inverse().matrix();
-    else
-        inverseStep_ =
-            ((1.0 + 0.5 * dampingMass * dt) + (beta * dt * dt + 0.5 * dampingStiffness * dt) * omega2_.array())
-                .inverse()
-                .matrix();
-    const auto& dofs = plate_->contactDofs;
-    contactModesT_.resize(phi_.cols(), static_cast<Eigen::Index>(dofs.size()));
-    for (std::size_t i = 0; i < dofs.size(); ++i) contactModesT_.col(i) = phi_.row(dofs[i]).transpose();
-    if (contactModesT_.cols() > 0) contactRowNormMax_ = contactModesT_.colwise().norm().maxCoeff();
-    pressureLoad_ = phi_.transpose() * plate_->pressureLoad;
-    baseInertia_ = phi_.transpose() * plate_->baseInertia;
-    rotationInertia_ = phi_.transpose() * plate_->rotationInertia;
+ModalBasis::ModalBasis(const ClampedPlate& plate, int modes) {
+    lowestModes(plate, modes, phi, omega2);
+    complete = phi.cols() == plate.mass.rows();
+    const auto& dofs = plate.contactDofs;
+    contactModesT.resize(phi.cols(), static_cast<Eigen::Index>(dofs.size()));
+    for (std::size_t i = 0; i < dofs.size(); ++i) contactModesT.col(i) = phi.row(dofs[i]).transpose();
+    if (contactModesT.cols() > 0) contactRowNormMax = contactModesT.colwise().norm().maxCoeff();
+    pressureLoad = phi.transpose() * plate.pressureLoad;
+    baseInertia = phi.transpose() * plate.baseInertia;
+    rotationInertia = phi.transpose() * plate.rotationInertia;
 }
 
-void ModalPlate::applyStiffness(const Eigen::VectorXd& w, Eigen::VectorXd& out) const { out = omega2_.cwiseProduct(w); }
+ModalPlate::ModalPlate(std::shared_ptr<const FiniteElementSpace> space, std::shared_ptr<const ClampedPlate> plate,
+                       double dt, double beta, int modes, double dampingMass, double dampingStiffness)
+    : ModalPlate(space, plate, std::make_shared<const ModalBasis>(*plate, modes), dt, beta, dampingMass,
+                 dampingStiffness) {}
+
+ModalPlate::ModalPlate(std::shared_ptr<const FiniteElementSpace> space, std::shared_ptr<const ClampedPlate> plate,
+                       std::shared_ptr<const ModalBasis> basis, double dt, double beta, double dampingMass,
+                       double dampingStiffness)
+    : DiscretePlate(dt, beta), space_(std::move(space)), plate_(std::move(plate)), basis_(std::move(basis)) {
+    const Eigen::VectorXd& omega2 = basis_->omega2;
+    // Rayleigh damping is diagonal in modal coordinates (§13): ζ_k = a/(2ω_k) + bω_k/2.
+    if (dampingMass == 0.0 && dampingStiffness == 0.0)
+        inverseStep_ = (1.0 + beta * dt * dt * omega2.array()).inverse().matrix();
+    else
+        inverseStep_ =
+            ((1.0 + 0.5 * dampingMass * dt) + (beta * dt * dt + 0.5 * dampingStiffness * dt) * omega2.array())
+                .inverse()
+                .matrix();
+}
+
+void ModalPlate::applyStiffness(const Eigen::VectorXd& w, Eigen::VectorXd& out) const {
+    out = basis_->omega2.cwiseProduct(w);
+}
 
 void ModalPlate::applyMass(const Eigen::VectorXd& w, Eigen::VectorXd& out) const { out = w; }
 
@@ -38,21 +50,22 @@ void ModalPlate::solveStepMatrix(const Eigen::VectorXd& b, Eigen::VectorXd& x) c
 }
 
 DiscretePlate::Solver ModalPlate::stiffnessSolver() const {
-    return [omega2 = omega2_](const Eigen::VectorXd& b, Eigen::VectorXd& x) { x = b.cwiseQuotient(omega2); };
+    return [omega2 = basis_->omega2](const Eigen::VectorXd& b, Eigen::VectorXd& x) { x = b.cwiseQuotient(omega2); };
 }
 
 void ModalPlate::gatherContact(const Eigen::VectorXd& w, Eigen::VectorXd& y) const {
-    multiplyTransposed(contactModesT_, w, y);
+    multiplyTransposed(basis_->contactModesT, w, y);
 }
 
 void ModalPlate::stepMatrixContactColumn(int j, Eigen::VectorXd& z) const {
-    z = inverseStep_.cwiseProduct(contactModesT_.col(j));
+    z = inverseStep_.cwiseProduct(basis_->contactModesT.col(j));
 }
 
 PointProbe ModalPlate::probe(double x, double y) const {
     const PointProbe full = plate_->probe(*space_, x, y);
-    Eigen::VectorXd row = Eigen::VectorXd::Zero(phi_.cols());
-    for (std::size_t k = 0; k < full.dofs.size(); ++k) row += full.coefficients[k] * phi_.row(full.dofs[k]).transpose();
+    Eigen::VectorXd row = Eigen::VectorXd::Zero(basis_->phi.cols());
+    for (std::size_t k = 0; k < full.dofs.size(); ++k)
+        row += full.coefficients[k] * basis_->phi.row(full.dofs[k]).transpose();
     PointProbe modal;
     for (Eigen::Index k = 0; k < row.size(); ++k) {
         modal.dofs.push_back(k);
@@ -62,7 +75,7 @@ PointProbe ModalPlate::probe(double x, double y) const {
 }
 
 Eigen::VectorXd ModalPlate::fromFullSpace(const Eigen::VectorXd& w) const {
-    return phi_.transpose() * (plate_->mass * w);
+    return basis_->phi.transpose() * (plate_->mass * w);
 }
 
 }  // namespace plate
