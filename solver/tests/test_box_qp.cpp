@@ -162,6 +162,8 @@ TEST(BoxQP, BothPathsAgreeWithBruteForceOverAllActiveSets) {
     }
 }
 
+namespace {
+
 // A two-sided problem of 30 unknowns and 12 constraints with its solver, built in place (the
 // solver keeps references to the problem and its factor), its free contact values and a cold start.
 struct TwelveContacts {
@@ -181,6 +183,8 @@ struct TwelveContacts {
     Eigen::VectorXd yFree = Eigen::VectorXd(m), mu = Eigen::VectorXd::Zero(m), y;
     std::vector<signed char> state = std::vector<signed char>(m, 0);
 };
+
+}  // namespace
 
 TEST(BoxQP, WarmStartFromTheSolutionTakesOneIteration) {
     TwelveContacts c(3);
