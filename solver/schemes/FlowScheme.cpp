@@ -373,7 +373,7 @@ bool FlowScheme::selectRows(double zNext, double pNext) {
         }
         t.load.tail(c.rows() - n).setZero();
         std::fill(t.x.begin() + n, t.x.end(), 0.0);
-        // C's bounds; past C they are ∓∞: those entries never bind (RowSpace).
+        // C's bounds; past C they are ∓∞: those entries never bind (StepSpace).
         constexpr double infinity = std::numeric_limits<double>::infinity();
         t.lower.setConstant(-infinity);
         t.upper.setConstant(infinity);
@@ -443,7 +443,7 @@ void FlowScheme::enterRows() {
     CondensedState& s = state_;
     TouchRows& t = touch_;
     const Eigen::Index n = Eigen::Index(t.index.size()), rest = plate_->rows() - n;
-    // Past C every row buffer is zero (RowSpace), whatever an earlier C left there.
+    // Past C every row buffer is zero (StepSpace), whatever an earlier C left there.
     for (Eigen::VectorXd* v : {&t.forceNext, &t.multiplier, &t.r0, &t.r1, &t.drFree, &t.dr, &t.base, &t.e, &t.y, &t.w2v,
                                &t.midForce, &t.endForce, &t.rowsCached, &t.force, &t.forcePrev, &t.forcePrev2})
         v->tail(rest).setZero();

@@ -106,7 +106,7 @@ private:
     ContactRefinement refinement_;
     FlowState flow_;
     // Sized to every row once (the constructor); a contact step fills the leading |C| entries, columns
-    // and blocks (RowSpace) and allocates nothing. The matrices are kept while C stays the same.
+    // and blocks (StepSpace) and allocates nothing. The matrices are kept while C stays the same.
     struct TouchRows {
         std::vector<int> index, gathered;  // C: the rows that can touch, ascending; the C the matrices hold
         Eigen::MatrixXd modes, delassus;  // G_Cᵀ, D_CC
