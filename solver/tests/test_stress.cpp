@@ -63,9 +63,10 @@ StaticClamp staticClamp(ElementType element, int nx, int ny, double p) {
     return s;
 }
 
-class StaticStress : public ::testing::TestWithParam<ElementType> {};
-
 }  // namespace
+
+// Outside the anonymous namespace: TEST_P's class derives from it (a unity build warns -Wsubobject-linkage).
+class StaticStress : public ::testing::TestWithParam<ElementType> {};
 
 TEST_P(StaticStress, RootMomentConvergesToTheClampMomentAndTheClampIsUniaxial) {
     const double p = 1000.0;
