@@ -83,7 +83,7 @@ SLOW = {
     "test_stability.py::test_stability_case",  # the stress matrix, short horizons (25 s)
     "test_conserving.py::test_conserving_and_singular_p0_tend_to_the_same_impact_times",
     "test_fmi3.py::test_animate_example_quick",
-    "test_golden_emulated.py",  # the C golden driver under qemu-x86_64 (Nehalem, Haswell: 79 s)
+    "test_golden_emulated.py",  # the C golden driver under qemu-x86_64 (the CPU class the host is not: 43 s)
     "test_experiments_platforms.py",  # the experiments under Wine and qemu-aarch64 (53 s)
     "test_master_cofmupy.py",  # CoFmuPy's own interpreter, where it is installed (11 s)
 }
