@@ -51,7 +51,9 @@ SERIAL = {"test_win64.py": "wine"}
 # groups still spread over the workers.
 SHARED_FIXTURE = {
     "test_fmi_conformance.py::test_catalogue": "fmi-catalogue",  # 69 child processes (catalogue_outcomes)
-    "test_aarch64.py": "aarch64",  # the C master under qemu-aarch64 (runs: 28 s)
+    # one qemu-aarch64 process for the C master and the QEMU_SUITE experiments (aarch64_chain: 49 s)
+    "test_aarch64.py": "aarch64",
+    "test_experiments_platforms.py::test_every_experiment_within_tolerance": "aarch64",
     "test_tolerance.py": "tolerance",  # the reference at dt = 1.25e-6 s, 64 sub-steps
     "test_speed_report.py": "speed-report",  # tools/speed_vs_error.py --quick (summary: 10 s)
     "test_elements_agree.py": "elements",  # the Argyris run both tests compare with
