@@ -51,7 +51,9 @@ SERIAL = {"test_win64.py": "wine"}
 # groups still spread over the workers.
 SHARED_FIXTURE = {
     "test_fmi_conformance.py::test_catalogue": "fmi-catalogue",  # 69 child processes (catalogue_outcomes)
-    "test_aarch64.py": "aarch64",  # the C master under qemu-aarch64 (runs: 28 s)
+    # one qemu-aarch64 process for the C master and the QEMU_SUITE experiments (aarch64_chain: 49 s)
+    "test_aarch64.py": "aarch64",
+    "test_experiments_platforms.py::test_every_experiment_within_tolerance": "aarch64",
     "test_tolerance.py": "tolerance",  # the reference at dt = 1.25e-6 s, 64 sub-steps
     "test_speed_report.py": "speed-report",  # tools/speed_vs_error.py --quick (summary: 10 s)
     "test_elements_agree.py": "elements",  # the Argyris run both tests compare with
@@ -83,7 +85,7 @@ SLOW = {
     "test_stability.py::test_stability_case",  # the stress matrix, short horizons (25 s)
     "test_conserving.py::test_conserving_and_singular_p0_tend_to_the_same_impact_times",
     "test_fmi3.py::test_animate_example_quick",
-    "test_golden_emulated.py",  # the C golden driver under qemu-x86_64 (Nehalem, Haswell: 79 s)
+    "test_golden_emulated.py",  # the C golden driver under qemu-x86_64 (the CPU class the host is not: 43 s)
     "test_experiments_platforms.py",  # the experiments under Wine and qemu-aarch64 (53 s)
     "test_master_cofmupy.py",  # CoFmuPy's own interpreter, where it is installed (11 s)
 }

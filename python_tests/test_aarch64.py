@@ -5,42 +5,38 @@ trip and a bad call, and prints every output as hex floats; the x86-64 build of 
 over binaries/x86_64-linux gives the same events and values within the bound below. aarch64 is
 compiled without contraction to fused multiply-add (-ffp-contract=off,
 cmake/aarch64-linux-gnu.cmake); the base comes from + - * / and fmod only. Skipped when the
-stage did not run (PLATEIMPACT_AARCH64_STAGE=0)."""
+stage did not run (PLATEIMPACT_AARCH64_STAGE=0).
 
-import shutil
+The aarch64 master runs in one qemu-aarch64 process after test_experiments_platforms.py's
+QEMU_SUITE experiments (its aarch64_chain, python_tests/driver_chain.c: the default plate's modal
+basis made once for both; the master itself runs as alone, its printout the same bytes)."""
+
 import subprocess
-import zipfile
 from pathlib import Path
+from types import SimpleNamespace
 
 import fmpy
 import pytest
+from test_experiments_platforms import aarch64_chain, available, chain_exit
 
 ROOT = Path(__file__).resolve().parent.parent
 DIST = ROOT / "build" / "dist" / "fmi3" / "PlateImpact.fmu"
 HOST_DRIVER = ROOT / "build" / "fmu3_driver"
-ARM_DRIVER = ROOT / "build-aarch64" / "fmu3_driver"
-QEMU = ["qemu-aarch64", "-L", "/usr/aarch64-linux-gnu"]
 
 
 @pytest.fixture(scope="module")
 def runs(tmp_path_factory):
-    if not (DIST.is_file() and ARM_DRIVER.is_file() and shutil.which("qemu-aarch64")):
-        pytest.skip("no aarch64 build (bash scripts/build-aarch64.sh)")
-    target = tmp_path_factory.mktemp("fmu3")
-    with zipfile.ZipFile(DIST) as archive:
-        archive.extractall(target)
+    why = available("aarch64-linux")
+    if why:
+        pytest.skip(f"no aarch64 build (bash scripts/build-aarch64.sh): {why}")
+    chain, _, target = aarch64_chain(tmp_path_factory)  # qemu-aarch64, after the QEMU_SUITE experiments
+    arm = SimpleNamespace(returncode=chain_exit(chain, "fmu3_driver"), stdout=chain.stdout, stderr=chain.stderr)
     token = fmpy.read_model_description(str(DIST)).guid
     host = subprocess.run(
         [str(HOST_DRIVER), str(target / "binaries" / "x86_64-linux" / "PlateImpact.so"), token],
         capture_output=True,
         text=True,
         timeout=600,
-    )
-    arm = subprocess.run(
-        [*QEMU, str(ARM_DRIVER), str(target / "binaries" / "aarch64-linux" / "PlateImpact.so"), token],
-        capture_output=True,
-        text=True,
-        timeout=1800,
     )
     return host, arm, target
 

@@ -11,7 +11,8 @@ fixed dense blocking).
 
 Other CPUs: python_tests/test_golden_emulated.py runs the same check with a C master (no Python
 under emulation) under qemu-x86_64 with `-cpu Nehalem` (SSE4.2, no AVX, no FMA)
-and `-cpu Haswell` (AVX2 and FMA), over the first 0.06 s (the first impacts of both obstacles:
+and `-cpu Haswell` (AVX2 and FMA) — the one whose choices the host makes by its native run —
+over the first 0.06 s (the first impacts of both obstacles:
 corner_1 reaches the lower one at 0.0495 s) — the window where a CPU-dependent last bit showed
 before (issue 31: FMA and libm choices made the runs differ from t = 1e-4 s and t = 0.0496 s on).
 

@@ -3,8 +3,9 @@
 # (cross-compiled with Debian's g++-aarch64-linux-gnu, CHOLMOD from the same pinned SuiteSparse
 # source), packaged by scripts/package-dist.sh into build/dist/fmi3/PlateImpact.fmu with every
 # other platform's binary that exists (x86_64-windows once scripts/build-win64.sh ran, either order).
-# Also the C master python_tests/fmu3_driver.c for aarch64 (build-aarch64/fmu3_driver), which
-# python_tests/test_aarch64.py runs under qemu-aarch64 against the x86-64 one.
+# python_tests/test_aarch64.py runs the C master python_tests/fmu3_driver.c for aarch64 under
+# qemu-aarch64 against the x86-64 one (build/fmu3_driver); the aarch64 one is compiled by the test,
+# in one process with the experiment driver (test_experiments_platforms.py's aarch64_chain).
 #
 #   bash scripts/build-aarch64.sh
 #
@@ -27,7 +28,7 @@ if [ ! -f build-aarch64/CMakeCache.txt ]; then
   cmake -S . -B build-aarch64 -DCMAKE_TOOLCHAIN_FILE=cmake/aarch64-linux-gnu.cmake -DPLATEIMPACT_TESTS=OFF \
     -DCMAKE_BUILD_TYPE=Release -DCMAKE_UNITY_BUILD=ON >/dev/null
 fi
-cmake --build build-aarch64 -j"$(nproc)" --target PlateImpact3 fmu3_driver -- --no-print-directory >/dev/null
+cmake --build build-aarch64 -j"$(nproc)" --target PlateImpact3 -- --no-print-directory >/dev/null
 
 # The distributed FMUs, with every platform's binary that exists (win64 too when built).
 bash "$repo/scripts/package-dist.sh"
