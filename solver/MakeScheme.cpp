@@ -158,16 +158,25 @@ std::unique_ptr<Scheme> makeNewmark(const SchemeSetup& s, InitProgress& progress
     progress.phase(modal ? "modal basis (generalized eigenproblem)" : "factorization of A = M + beta dt^2 K",
                    modal ? s.resources.spectrumSeconds : 0.5 * s.resources.factorSeconds);
     std::shared_ptr<const DiscretePlate> discrete;
-    if (modal)  // shared between instances: plain data. The sparse factor is not (its solve's workspace).
+    if (modal) {  // shared between instances: plain data. The sparse factor is not (its solve's workspace).
+        const bool complete = s.resources.engine == EngineKind::CompleteModal;
+        // A reduced basis the dense solution serves slices the plate's dense spectrum, itself shared
+        // (the cache builds without its lock held): a sweep over `modes` solves the eigenproblem once.
+        const auto basis = [&] {
+            std::shared_ptr<const DenseSpectrum> dense;
+            if (!complete && denseSpectrumServes(s.clamped->mass.rows(), p.modes))
+                dense = cached<DenseSpectrum>(
+                    denseSpectrumKey(p), [&] { return std::make_shared<const DenseSpectrum>(*s.clamped); },
+                    [](const DenseSpectrum& d) { return heapBytes(d.phi) + heapBytes(d.omega2); }, s.cache);
+            return std::make_shared<const ModalBasis>(*s.clamped, p.modes, dense.get());
+        };
         discrete = std::make_shared<const ModalPlate>(
-            s.space, s.clamped,
-            cached<ModalBasis>(
-                modalBasisKey(p, s.resources.engine == EngineKind::CompleteModal),
-                [&] { return std::make_shared<const ModalBasis>(*s.clamped, p.modes); }, modalBytes, s.cache),
-            p.dt, p.beta, p.dampingMass, p.dampingStiffness);
-    else
+            s.space, s.clamped, cached<ModalBasis>(modalBasisKey(p, complete), basis, modalBytes, s.cache), p.dt,
+            p.beta, p.dampingMass, p.dampingStiffness);
+    } else {
         discrete =
             std::make_shared<const FullOrderPlate>(s.space, s.clamped, p.dt, p.beta, p.dampingMass, p.dampingStiffness);
+    }
     SchemeOptions options;
     options.restitution = p.restitution;
     options.dampingMass = p.dampingMass;

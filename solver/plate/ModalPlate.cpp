@@ -7,8 +7,11 @@
 
 namespace plate {
 
-ModalBasis::ModalBasis(const ClampedPlate& plate, int modes) {
-    lowestModes(plate, modes, phi, omega2);
+ModalBasis::ModalBasis(const ClampedPlate& plate, int modes, const DenseSpectrum* dense) {
+    if (dense)
+        lowestModes(*dense, modes, phi, omega2);
+    else
+        lowestModes(plate, modes, phi, omega2);
     complete = phi.cols() == plate.mass.rows();
     const auto& dofs = plate.contactDofs;
     contactModesT.resize(phi.cols(), static_cast<Eigen::Index>(dofs.size()));

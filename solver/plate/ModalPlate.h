@@ -10,6 +10,7 @@
 
 #include "fe/Assembly.h"
 #include "plate/DiscretePlate.h"
+#include "plate/Spectrum.h"
 
 namespace plate {
 
@@ -18,8 +19,8 @@ namespace plate {
 // or damping share it (DiscretizationCache).
 struct ModalBasis {
     // modes ≤ 0 or ≥ the dof count: complete basis. Throws std::runtime_error if the eigen
-    // solution fails.
-    ModalBasis(const ClampedPlate& plate, int modes);
+    // solution fails. `dense`: the plate's dense spectrum, sliced (Spectrum.h), instead of a solve.
+    ModalBasis(const ClampedPlate& plate, int modes, const DenseSpectrum* dense = nullptr);
     bool complete = false;
     Eigen::MatrixXd phi;  // free dofs x modes
     Eigen::VectorXd omega2;  // Ω²

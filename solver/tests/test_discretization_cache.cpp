@@ -103,8 +103,34 @@ TEST(DiscretizationCache, ThirtyTwoInstancesInEightThreadsGiveSerialResults) {
     const CacheStatistics after = discretizationCacheStatistics();
     for (int i = 0; i < kInstances; ++i) EXPECT_TRUE(bitIdentical(serial[i], threaded[i])) << "instance " << i;
     // Each distinct key built once, however many threads asked for it (the gaps change no key): 3
-    // spaces (14 x 5, 8 x 3, 6 x 2), 5 clamped plates, 2 modal bases, κ_h, 2 condensed plates.
-    EXPECT_EQ(after.builds - before.builds, 13);
+    // spaces (14 x 5, 8 x 3, 6 x 2), 5 clamped plates, 2 modal bases and the dense spectrum the
+    // reduced one slices, κ_h, 2 condensed plates.
+    EXPECT_EQ(after.builds - before.builds, 14);
+}
+
+// A sweep over `modes` (Newmark's reduced bases of one plate): one dense eigen solution, each basis
+// its leading columns — the results those of an instance that solved for its own, bit for bit.
+TEST(DiscretizationCache, ReducedBasesOfOnePlateShareOneEigenSolution) {
+    PlateParameters p = scene(1, 0.02);
+    std::vector<std::vector<double>> alone;
+    for (int modes : {12, 30}) {
+        CacheBudget off("0");
+        p.modes = modes;
+        alone.push_back(run(p, 25.0));
+    }
+    clearDiscretizationCache();
+    p.modes = 12;
+    const CacheStatistics start = discretizationCacheStatistics();
+    const std::vector<double> first = run(p, 25.0);
+    const CacheStatistics middle = discretizationCacheStatistics();
+    p.modes = 30;
+    const std::vector<double> second = run(p, 25.0);
+    const CacheStatistics end = discretizationCacheStatistics();
+    // The first: the space, the clamped plate, the dense spectrum, its basis, κ_h; the second: its basis only.
+    EXPECT_EQ(middle.builds - start.builds, 5);
+    EXPECT_EQ(end.builds - middle.builds, 1);
+    EXPECT_TRUE(bitIdentical(alone[0], first));
+    EXPECT_TRUE(bitIdentical(alone[1], second));
 }
 
 TEST(DiscretizationCache, ADifferentPlateIsNotShared) {
@@ -116,7 +142,7 @@ TEST(DiscretizationCache, ADifferentPlateIsNotShared) {
     const std::vector<double> thicker = run(p, 20.0, 100);
     const CacheStatistics after = discretizationCacheStatistics();
     EXPECT_EQ(after.hits - before.hits, 1);
-    EXPECT_EQ(after.builds - before.builds, 3);
+    EXPECT_EQ(after.builds - before.builds, 4);  // the clamped plate, the dense spectrum, the basis, κ_h
     CacheBudget off("0");
     EXPECT_TRUE(bitIdentical(thicker, run(p, 20.0, 100)));
 }
