@@ -71,7 +71,6 @@ SHARED_FIXTURE = {
 # by `pytest --durations=60` (times of one core, no workers).
 SLOW = {
     "test_source_fmu.py",  # compiles the whole solver from the source FMU (145 s)
-    "test_golden.py::test_golden_bit_for_bit_on_other_cpus",  # Python under qemu-x86_64 (40 s each)
     "test_aarch64.py",  # the C master under qemu-aarch64 (28 s)
     "test_win64.py",  # Wine (25 s)
     "test_valgrind.py",  # memcheck (6 s)
