@@ -160,15 +160,18 @@ std::unique_ptr<Scheme> makeNewmark(const SchemeSetup& s, InitProgress& progress
     std::shared_ptr<const DiscretePlate> discrete;
     if (modal) {  // shared between instances: plain data. The sparse factor is not (its solve's workspace).
         const bool complete = s.resources.engine == EngineKind::CompleteModal;
-        // A reduced basis the dense solution serves slices the plate's dense spectrum, itself shared
-        // (the cache builds without its lock held): a sweep over `modes` solves the eigenproblem once.
+        // A reduced basis the dense solution serves is the leading modes of the plate's complete basis,
+        // itself shared (the key of a complete-engine instance's; the cache builds without its lock
+        // held): a sweep over `modes`, complete basis included, solves the eigenproblem once.
         const auto basis = [&] {
-            std::shared_ptr<const DenseSpectrum> dense;
-            if (!complete && denseSpectrumServes(s.clamped->mass.rows(), p.modes))
-                dense = cached<DenseSpectrum>(
-                    denseSpectrumKey(p), [&] { return std::make_shared<const DenseSpectrum>(*s.clamped); },
-                    [](const DenseSpectrum& d) { return heapBytes(d.phi) + heapBytes(d.omega2); }, s.cache);
-            return std::make_shared<const ModalBasis>(*s.clamped, p.modes, dense.get());
+            if (complete || !denseSolutionServes(s.clamped->mass.rows(), p.modes))
+                return std::make_shared<const ModalBasis>(*s.clamped, p.modes);
+            PlateParameters whole = p;
+            whole.modes = 0;
+            const auto all = cached<ModalBasis>(
+                modalBasisKey(whole, true), [&] { return std::make_shared<const ModalBasis>(*s.clamped, 0); },
+                modalBytes, s.cache);
+            return std::make_shared<const ModalBasis>(*s.clamped, p.modes, all.get());
         };
         discrete = std::make_shared<const ModalPlate>(
             s.space, s.clamped, cached<ModalBasis>(modalBasisKey(p, complete), basis, modalBytes, s.cache), p.dt,

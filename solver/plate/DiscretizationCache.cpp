@@ -86,13 +86,6 @@ CacheKey modalBasisKey(const PlateParameters& p, bool completeEngine) {
     return addPlate(key, p).add(completeEngine ? 1 : 0).add(p.modes);
 }
 
-// DenseSpectrum(clamped): every mode of the dense solution, whose leading columns the reduced bases
-// of any mode count take (a sweep over `modes` shares one eigen solution).
-CacheKey denseSpectrumKey(const PlateParameters& p) {
-    CacheKey key("dense spectrum");
-    return addPlate(key, p);
-}
-
 // condense(clamped, R, the output rows, modes, the recovery functionals): the functionals are the
 // probes' points (their count, then each) and samples the space fixes.
 CacheKey condensedPlateKey(const PlateParameters& p) {

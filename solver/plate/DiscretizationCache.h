@@ -48,11 +48,10 @@ private:
 };
 
 // The keys (the one place they are written): the FE space, the clamped plate (space, M, K, the singular mass's
-// B and R), Newmark's modal basis and the dense spectrum its reduced bases slice, the condensed plate, κ_h.
+// B and R), Newmark's modal basis (a reduced one sliced from the complete one where the dense solution serves), the condensed plate, κ_h.
 CacheKey spaceKey(const PlateParameters& p);
 CacheKey clampedPlateKey(const PlateParameters& p);
 CacheKey modalBasisKey(const PlateParameters& p, bool completeEngine);
-CacheKey denseSpectrumKey(const PlateParameters& p);
 CacheKey condensedPlateKey(const PlateParameters& p);
 CacheKey kappaKey(const PlateParameters& p);
 

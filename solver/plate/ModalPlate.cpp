@@ -7,9 +7,9 @@
 
 namespace plate {
 
-ModalBasis::ModalBasis(const ClampedPlate& plate, int modes, const DenseSpectrum* dense) {
-    if (dense)
-        lowestModes(*dense, modes, phi, omega2);
+ModalBasis::ModalBasis(const ClampedPlate& plate, int modes, const ModalBasis* whole) {
+    if (whole)
+        leadingModes(whole->phi, whole->omega2, modes, phi, omega2);
     else
         lowestModes(plate, modes, phi, omega2);
     complete = phi.cols() == plate.mass.rows();

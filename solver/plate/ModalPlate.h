@@ -10,7 +10,6 @@
 
 #include "fe/Assembly.h"
 #include "plate/DiscretePlate.h"
-#include "plate/Spectrum.h"
 
 namespace plate {
 
@@ -19,8 +18,9 @@ namespace plate {
 // or damping share it (DiscretizationCache).
 struct ModalBasis {
     // modes ≤ 0 or ≥ the dof count: complete basis. Throws std::runtime_error if the eigen
-    // solution fails. `dense`: the plate's dense spectrum, sliced (Spectrum.h), instead of a solve.
-    ModalBasis(const ClampedPlate& plate, int modes, const DenseSpectrum* dense = nullptr);
+    // solution fails. `whole`: the plate's complete basis, whose leading modes these are where the
+    // dense solution serves (Spectrum.h: bit for bit), instead of a solve.
+    ModalBasis(const ClampedPlate& plate, int modes, const ModalBasis* whole = nullptr);
     bool complete = false;
     Eigen::MatrixXd phi;  // free dofs x modes
     Eigen::VectorXd omega2;  // Ω²

@@ -80,20 +80,19 @@ void subspaceModes(const ClampedPlate& plate, Eigen::Index modes, Eigen::MatrixX
 
 }  // namespace
 
-bool denseSpectrumServes(Eigen::Index n, int modes) {
+bool denseSolutionServes(Eigen::Index n, int modes) {
     const Eigen::Index m = (modes <= 0 || modes >= n) ? n : modes;
     return !(m < n && 4 * m <= n && n > 1200) && n <= kDenseLimit;
 }
 
-DenseSpectrum::DenseSpectrum(const ClampedPlate& plate) { denseModes(plate, plate.mass.rows(), phi, omega2); }
-
 // The dense solution's columns are each computed whole, in ascending order (largest 1/ω² first with a
 // singular mass), whatever the count asked: its leading m are denseModes(plate, m)'s, bit for bit.
-void lowestModes(const DenseSpectrum& dense, int modes, Eigen::MatrixXd& phi, Eigen::VectorXd& omega2) {
-    const Eigen::Index n = dense.phi.cols();
+void leadingModes(const Eigen::MatrixXd& allPhi, const Eigen::VectorXd& allOmega2, int modes, Eigen::MatrixXd& phi,
+                  Eigen::VectorXd& omega2) {
+    const Eigen::Index n = allPhi.cols();
     const Eigen::Index m = (modes <= 0 || modes >= n) ? n : modes;
-    phi = dense.phi.leftCols(m);
-    omega2 = dense.omega2.head(m);
+    phi = allPhi.leftCols(m);
+    omega2 = allOmega2.head(m);
 }
 
 void lowestModes(const ClampedPlate& plate, int modes, Eigen::MatrixXd& phi, Eigen::VectorXd& omega2) {

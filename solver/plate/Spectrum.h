@@ -12,17 +12,13 @@ namespace plate {
 // of K for large ones. Throws std::runtime_error if it fails.
 void lowestModes(const ClampedPlate& plate, int modes, Eigen::MatrixXd& phi, Eigen::VectorXd& omega2);
 
-// Every mode of the dense solution (what lowestModes solves for where it takes the dense path), so
-// that the bases of several mode counts of one plate share one eigen solution: lowestModes given it
-// slices its leading columns, bit for bit what it would have computed (DiscretizationCache).
-struct DenseSpectrum {
-    explicit DenseSpectrum(const ClampedPlate& plate);
-    Eigen::MatrixXd phi;
-    Eigen::VectorXd omega2;
-};
-// Does lowestModes(plate, modes) take the dense path (of a space of `dofs`)?
-bool denseSpectrumServes(Eigen::Index dofs, int modes);
-void lowestModes(const DenseSpectrum& dense, int modes, Eigen::MatrixXd& phi, Eigen::VectorXd& omega2);
+// Does lowestModes(plate, modes) take the dense path (of a space of `dofs`)? There it solves for every
+// mode and keeps the leading ones: a basis of any count is the leading columns of the complete one,
+// bit for bit, so that the bases of one plate share one eigen solution (DiscretizationCache).
+bool denseSolutionServes(Eigen::Index dofs, int modes);
+// The leading `modes` of a complete dense solution (allPhi, allOmega2), as lowestModes would give them.
+void leadingModes(const Eigen::MatrixXd& allPhi, const Eigen::VectorXd& allOmega2, int modes, Eigen::MatrixXd& phi,
+                  Eigen::VectorXd& omega2);
 
 // κ_h = λ_max(M⁻¹K), s⁻² (docs/theory.md).
 double largestEigenvalue(const ClampedPlate& plate);
