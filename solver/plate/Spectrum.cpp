@@ -80,6 +80,10 @@ void subspaceModes(const ClampedPlate& plate, Eigen::Index modes, Eigen::MatrixX
 
 }  // namespace
 
+// A few modes of a large space: subspace iteration (~2m solves per iteration); the dense O(n³)
+// solution where it is cheap or where most modes are wanted. Measured, m = 40: Argyris 28x10 (2727
+// dofs) 11 s against 64 s dense; FVS 40x14 (1800) 1.8 s against 5–13 s; Argyris 14x5 (734) dense 0.5 s
+// against 1.2 s.
 bool denseSolutionServes(Eigen::Index n, int modes) {
     const Eigen::Index m = (modes <= 0 || modes >= n) ? n : modes;
     return !(m < n && 4 * m <= n && n > 1200) && n <= kDenseLimit;
@@ -98,13 +102,7 @@ void leadingModes(const Eigen::MatrixXd& allPhi, const Eigen::VectorXd& allOmega
 void lowestModes(const ClampedPlate& plate, int modes, Eigen::MatrixXd& phi, Eigen::VectorXd& omega2) {
     const Eigen::Index n = plate.mass.rows();
     const Eigen::Index m = (modes <= 0 || modes >= n) ? n : modes;
-    // A few modes of a large space: subspace iteration (~2m solves per iteration); the dense
-    // O(n³) solution where it is cheap or where most modes are wanted. Measured, m = 40:
-    // Argyris 28x10 (2727 dofs) 11 s against 64 s dense; FVS 40x14 (1800) 1.8 s against 5–13 s;
-    // Argyris 14x5 (734) dense 0.5 s against 1.2 s.
-    if (m < n && 4 * m <= n && n > 1200)
-        subspaceModes(plate, m, phi, omega2);
-    else if (n <= kDenseLimit)
+    if (denseSolutionServes(n, modes))
         denseModes(plate, m, phi, omega2);
     else if (m < n)
         subspaceModes(plate, m, phi, omega2);
