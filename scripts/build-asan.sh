@@ -11,9 +11,9 @@
 #                                              # coverage as well (scripts/fuzz.sh --coverage)
 #
 # -O1 (what ASan recommends: half the compile time of -O3, the same arithmetic with
-# -ffp-contract=off), line tables for the reports (-g1), and a unity build (a target's sources
-# compiled a few at a time: Eigen parsed and instantiated once per batch). Installs clang and
-# llvm when missing (scripts/packages.sh fuzz).
+# -ffp-contract=off), line tables for the reports (-g1), and a unity build, each target one batch
+# (the solver one source: Eigen parsed and instantiated once, not once per group; this build
+# shares two cores with two others). Installs clang and llvm when missing (scripts/packages.sh fuzz).
 set -euo pipefail
 repo="$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)"
 cd "$repo"
@@ -33,10 +33,10 @@ if [ -f "$dir/CMakeCache.txt" ] && ! grep -q '^PLATEIMPACT_FUZZ:BOOL=ON' "$dir/C
   echo "build-asan.sh: $dir is not the clang build: configuring it again"
   rm -rf "$dir"
 fi
-if [ ! -f "$dir/CMakeCache.txt" ]; then
+if ! grep -q '^CMAKE_UNITY_BUILD_BATCH_SIZE:STRING=0$' "$dir/CMakeCache.txt" 2>/dev/null; then
   CC=clang CXX=clang++ cmake -S "$repo" -B "$dir" -DCMAKE_BUILD_TYPE=Release -DPLATEIMPACT_FUZZ=ON \
     "-DCMAKE_CXX_FLAGS_RELEASE=-O1 -DNDEBUG" "-DCMAKE_C_FLAGS_RELEASE=-O1 -DNDEBUG" -DCMAKE_CXX_FLAGS=-g1 \
-    -DCMAKE_UNITY_BUILD=ON -DPLATEIMPACT_TESTS=OFF "${extra[@]}" >/dev/null
+    -DCMAKE_UNITY_BUILD=ON -DCMAKE_UNITY_BUILD_BATCH_SIZE=0 -DPLATEIMPACT_TESTS=OFF "${extra[@]}" >/dev/null
 fi
 cmake --build "$dir" -j"$(nproc)" --target "${targets[@]}" -- --no-print-directory >/dev/null
 echo "build-asan.sh: built ${targets[*]} in ${dir#"$repo"/}/"

@@ -1,9 +1,10 @@
 #include "plate/Spectrum.h"
 
-#include <Eigen/Eigenvalues>
+#include <Eigen/Cholesky>
 #include <cmath>
 #include <stdexcept>
 
+#include "plate/DenseEigenproblem.h"
 #include "plate/SparseCholesky.h"
 
 namespace plate {
@@ -27,9 +28,9 @@ void denseModes(const ClampedPlate& plate, Eigen::Index modes, Eigen::MatrixXd& 
     if (Eigen::LLT<Eigen::MatrixXd>(m).info() != Eigen::Success) {
         // A singular mass (docs/theory.md §11): M φ = (1/ω²) K φ with K SPD; the massless
         // directions are the zero eigenvalues (ω = ∞) and are left out.
-        Eigen::GeneralizedSelfAdjointEigenSolver<Eigen::MatrixXd> eig(m, k);  // Φᵀ K Φ = I, ascending
-        if (eig.info() != Eigen::Success) throw std::runtime_error("modal analysis failed");
-        const Eigen::VectorXd& mu = eig.eigenvalues();
+        Eigen::VectorXd mu;
+        Eigen::MatrixXd vectors;  // Φᵀ K Φ = I, ascending
+        if (!solveDenseEigenproblem(m, k, mu, vectors)) throw std::runtime_error("modal analysis failed");
         const double cut = 1e-12 * mu.maxCoeff();
         Eigen::Index massive = 0;
         while (massive < mu.size() && mu[mu.size() - 1 - massive] > cut) ++massive;
@@ -39,15 +40,15 @@ void denseModes(const ClampedPlate& plate, Eigen::Index modes, Eigen::MatrixXd& 
         for (Eigen::Index j = 0; j < count; ++j) {
             const Eigen::Index c = mu.size() - 1 - j;  // largest 1/ω² first
             omega2[j] = 1.0 / mu[c];
-            phi.col(j) = eig.eigenvectors().col(c) * std::sqrt(omega2[j]);  // Φᵀ M Φ = I
+            phi.col(j) = vectors.col(c) * std::sqrt(omega2[j]);  // Φᵀ M Φ = I
         }
         return;
     }
     // Eigen normalizes the eigenvectors to Φᵀ M Φ = I and sorts the eigenvalues ascending.
-    Eigen::GeneralizedSelfAdjointEigenSolver<Eigen::MatrixXd> eig(k, m);
-    if (eig.info() != Eigen::Success) throw std::runtime_error("modal analysis failed");
-    phi = eig.eigenvectors().leftCols(modes);
-    omega2 = eig.eigenvalues().head(modes);
+    Eigen::VectorXd values;
+    if (!solveDenseEigenproblem(k, m, values, phi)) throw std::runtime_error("modal analysis failed");
+    phi.conservativeResize(Eigen::NoChange, modes);
+    omega2 = values.head(modes);
 }
 
 // Subspace iteration X ← K⁻¹ M X with Rayleigh–Ritz, p = m + guard vectors: converges like
@@ -59,7 +60,8 @@ void subspaceModes(const ClampedPlate& plate, Eigen::Index modes, Eigen::MatrixX
     Eigen::MatrixXd x(n, p);
     for (Eigen::Index j = 0; j < p; ++j)
         for (Eigen::Index i = 0; i < n; ++i) x(i, j) = startEntry(i, j);
-    Eigen::VectorXd previous = Eigen::VectorXd::Zero(modes), col;
+    Eigen::VectorXd previous = Eigen::VectorXd::Zero(modes), col, ritzValues;
+    Eigen::MatrixXd ritzVectors;
     for (int it = 0; it < 300; ++it) {
         const Eigen::MatrixXd mx = plate.mass * x;
         for (Eigen::Index j = 0; j < p; ++j) {
@@ -68,10 +70,10 @@ void subspaceModes(const ClampedPlate& plate, Eigen::Index modes, Eigen::MatrixX
         }
         const Eigen::MatrixXd kr = x.transpose() * (plate.stiffness * x);
         const Eigen::MatrixXd mr = x.transpose() * (plate.mass * x);
-        Eigen::GeneralizedSelfAdjointEigenSolver<Eigen::MatrixXd> ritz(0.5 * (kr + kr.transpose()),
-                                                                       0.5 * (mr + mr.transpose()));
-        x = x * ritz.eigenvectors();  // M-orthonormal Ritz vectors, ascending
-        omega2 = ritz.eigenvalues().head(modes);
+        if (!solveDenseEigenproblem(0.5 * (kr + kr.transpose()), 0.5 * (mr + mr.transpose()), ritzValues, ritzVectors))
+            throw std::runtime_error("modal analysis failed (Rayleigh-Ritz)");
+        x = x * ritzVectors;  // M-orthonormal Ritz vectors, ascending
+        omega2 = ritzValues.head(modes);
         if (it > 2 && ((omega2 - previous).cwiseAbs().array() <= 1e-12 * omega2.array()).all()) break;
         previous = omega2;
     }

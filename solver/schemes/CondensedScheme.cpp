@@ -430,10 +430,10 @@ double CondensedScheme::firstFrequency() const { return std::sqrt(plate_->omega2
 namespace {
 
 constexpr double kFormat = 20.0;  // the condensed schemes' state, version 4 (the base's share first, Scheme.h)
-constexpr std::size_t kModes = 0, kRows = 1;
+constexpr std::size_t kModalVectors = 0, kRows = 1;  // the sizes' order in the archive
 
 const auto condensedMembers = [](auto& s, auto& v) {
-    for (auto* x : {&s.q, &s.qPrev, &s.qPrev2, &s.momentum}) v.vector(*x, kModes, "modal coordinate");
+    for (auto* x : {&s.q, &s.qPrev, &s.qPrev2, &s.momentum}) v.vector(*x, kModalVectors, "modal coordinate");
     for (auto* x : {&s.force, &s.forcePrev, &s.forcePrev2}) v.vector(*x, kRows, "contact force");
     sharedMembers(s, v, static_cast<double>(v.size(kRows)));
     v.real(s.boundary, "boundary energy");

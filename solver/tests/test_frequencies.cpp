@@ -38,6 +38,7 @@
 #include <vector>
 
 #include "fe/Assembly.h"
+#include "plate/DenseEigenproblem.h"
 #include "plate/SparseCholesky.h"
 
 namespace plate {
@@ -127,6 +128,25 @@ double observedOrder(double coarse, double mid, double fine) { return std::log2(
 // Identities of the assembled (unclamped) matrices.
 
 class MatrixIdentities : public ::testing::TestWithParam<ElementType> {};
+
+// The dense generalized eigenproblem behind the modal analysis (plate/DenseEigenproblem.h): two
+// masses m₁ = 1, m₂ = 2 on springs k₁ = 3 (to ground) and k₂ = 2 (between them) have
+// det(K − λM) = 2λ² − 12λ + 6 = 0, λ = 3 ∓ √6; the vectors M-orthonormal, ascending.
+// Arrays of different sizes are refused with a message, not read past.
+TEST(DenseEigenproblem, TwoMassesOnSpringsAndMismatchedSizes) {
+    Eigen::MatrixXd k(2, 2), m(2, 2);
+    k << 5, -2, -2, 2;
+    m << 1, 0, 0, 2;
+    Eigen::VectorXd values;
+    Eigen::MatrixXd vectors;
+    ASSERT_TRUE(solveDenseEigenproblem(k, m, values, vectors));
+    EXPECT_NEAR(values[0], 3 - std::sqrt(6.0), 1e-14);
+    EXPECT_NEAR(values[1], 3 + std::sqrt(6.0), 1e-14);
+    EXPECT_LT((vectors.transpose() * m * vectors - Eigen::Matrix2d::Identity()).norm(), 1e-14);
+    EXPECT_LT((k * vectors - m * vectors * values.asDiagonal()).norm(), 1e-13);
+    EXPECT_THROW(solveDenseEigenproblem(k, Eigen::MatrixXd::Identity(3, 3), values, vectors), std::invalid_argument);
+    EXPECT_THROW(solveDenseEigenproblem(Eigen::MatrixXd(2, 3), m, values, vectors), std::invalid_argument);
+}
 
 TEST_P(MatrixIdentities, MassSpdStiffnessPsdWithExactlyThreeRigidModes) {
     // 6x6 Argyris: 49·6 + 108 = 402 dofs; 8x8 FVS: 243 dofs.
