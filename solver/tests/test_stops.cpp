@@ -21,7 +21,7 @@ constexpr double kStop = -0.05, kTipFrom = 1.0;
 // whole-plate obstacles); 1e-12 m leaves three orders for the longer run and the condensed rows.
 constexpr double kPenetration = 1e-12;
 
-plate::InputSignal sineBase(double t) {
+plate::InputSignal stopSceneBase(double t) {
     const double a = 0.09, w = 2.0 * M_PI * 10.0;
     return {a * std::sin(w * t), a * w * std::cos(w * t), -a * w * w * std::sin(w * t)};
 }
@@ -57,7 +57,7 @@ class TipStop : public ::testing::TestWithParam<LawCase> {};
 TEST_P(TipStop, HoldsTheVerticesUnderItAndNoOthers) {
     const LawCase c = GetParam();
     const PlateParameters p = tipStop(c.law, c.element);
-    plate::PlateSimulation sim(p, sineBase(0.0).value);
+    plate::PlateSimulation sim(p, stopSceneBase(0.0).value);
     const plate::Mesh mesh(p.length, p.width, p.nx, p.ny);
     std::vector<int> under;
     for (int v = 0; v < mesh.vertexCount(); ++v)
@@ -65,7 +65,7 @@ TEST_P(TipStop, HoldsTheVerticesUnderItAndNoOthers) {
     ASSERT_GT(under.size(), 0u);
     double lowestUnder = INFINITY, lowestProbe = INFINITY;
     for (int k = 0; k < 10000; ++k) {  // 1 s in communication steps of 1e-4 s
-        sim.advance(10, sineBase(sim.time()), plate::InputSignal{});
+        sim.advance(10, stopSceneBase(sim.time()), plate::InputSignal{});
         const std::vector<double> u = sim.vertexDisplacements();
         for (int v : under) lowestUnder = std::min(lowestUnder, u[std::size_t(v)]);
         lowestProbe = std::min(lowestProbe, sim.probes().displacement[0]);
@@ -102,7 +102,7 @@ TEST(TipStopEnergy, ClosesEveryStepForTheConservingLaws) {
         const double e0 = sim.outputs().energy;
         long long contactSteps = 0;
         for (int n = 0; n < 20000; ++n) {  // 0.2 s, one internal step at a time
-            sim.advance(1, sineBase(sim.time()), plate::InputSignal{});
+            sim.advance(1, stopSceneBase(sim.time()), plate::InputSignal{});
             const plate::PlateOutputs o = sim.outputs();
             scale = std::max({scale, std::abs(o.energy), std::abs(o.energyInput)});
             const double residual = o.energy - e0 - o.energyInput + o.energyDamped + o.energyDissipated;
@@ -128,8 +128,8 @@ TEST(WholePlateStop, IsTheDefaultBitForBit) {
         b.upperStop = {0.0, b.length, 0.0, b.width};
         plate::PlateSimulation simA(a, 0.0), simB(b, 0.0);
         for (int k = 0; k < 700; ++k) {  // 0.07 s: the first impacts from ≈ 0.05 s on
-            simA.advance(10, sineBase(simA.time()), plate::InputSignal{});
-            simB.advance(10, sineBase(simB.time()), plate::InputSignal{});
+            simA.advance(10, stopSceneBase(simA.time()), plate::InputSignal{});
+            simB.advance(10, stopSceneBase(simB.time()), plate::InputSignal{});
         }
         EXPECT_EQ(simA.saveState(), simB.saveState());
         EXPECT_EQ(simA.vertexDisplacements(), simB.vertexDisplacements());
@@ -142,11 +142,11 @@ TEST(TipStopState, RestoresBitForBit) {
     for (Law law : {Law::Newmark, Law::Flow}) {
         const PlateParameters p = tipStop(law, plate::ElementType::Argyris);
         plate::PlateSimulation a(p, 0.0), b(p, 0.0);
-        for (int k = 0; k < 600; ++k) a.advance(10, sineBase(a.time()), plate::InputSignal{});
+        for (int k = 0; k < 600; ++k) a.advance(10, stopSceneBase(a.time()), plate::InputSignal{});
         b.restoreState(a.saveState());
         for (int k = 0; k < 600; ++k) {
-            a.advance(10, sineBase(a.time()), plate::InputSignal{});
-            b.advance(10, sineBase(b.time()), plate::InputSignal{});
+            a.advance(10, stopSceneBase(a.time()), plate::InputSignal{});
+            b.advance(10, stopSceneBase(b.time()), plate::InputSignal{});
         }
         EXPECT_EQ(a.saveState(), b.saveState());
     }
