@@ -33,8 +33,9 @@ rm -rf "$reports" && mkdir -p "$reports"
 # them; python_tests/test_sanitizer_selection.py checks the names). Markers, not name
 # substrings: a renamed test keeps its place. Not here: valgrind (test_valgrind.py) and the
 # packaging checks (a sanitizer build's packaging is not the product's).
-# --dist loadfile: a file's tests in one worker. Under ASan + UBSan a plate's modal basis costs
-# ~12 s of CPU (0.6 s in the release build) and is built once per worker and plate (the FMU's cache):
+# --dist loadfile: a file's tests in one worker. Under ASan + UBSan a plate's setup costs 2–4 s of
+# CPU (0.6 s in the release build; 12–22 s before Eigen's dense eigensolver was left uninstrumented,
+# solver/CMakeLists.txt) and is made once per worker and plate (the FMU's cache):
 # spread test by test over the workers, every plate a file shares between its tests was built in
 # both (issue 54, measured: 367 s of CPU with the tests spread, see docs/contributing.md).
 marks="sanitizer and not repeats_paths"

@@ -5,20 +5,27 @@
 // build), is then checked no more than libstdc++ is, while the solver's own code and every Eigen
 // function it calls stay instrumented — the renamed namespace keeps this file's uninstrumented
 // copies of Eigen's templates from standing in for theirs at link time (solver/CMakeLists.txt).
-// The release builds compile it as any other file.
+// Nothing here but the solve: the caller checks the sizes and copies the results out
+// (DenseEigenproblem.h), instrumented. The release builds compile it as any other file.
+#include "plate/DenseEigenproblem.h"
+
 #include <Eigen/Eigenvalues>
-#include <cstddef>
 
 namespace plate::detail {
 
-bool denseEigenproblem(std::ptrdiff_t n, const double* a, const double* b, double* values, double* vectors) {
-    using Matrix = Eigen::MatrixXd;
-    const Eigen::GeneralizedSelfAdjointEigenSolver<Matrix> eig(Matrix(Eigen::Map<const Matrix>(a, n, n)),
-                                                               Matrix(Eigen::Map<const Matrix>(b, n, n)));
-    if (eig.info() != Eigen::Success) return false;
-    Eigen::Map<Eigen::VectorXd>(values, n) = eig.eigenvalues();
-    Eigen::Map<Matrix>(vectors, n, n) = eig.eigenvectors();
-    return true;
-}
+struct DenseEigenSolve::Solver {
+    Solver(const Eigen::MatrixXd& a, const Eigen::MatrixXd& b) : eig(a, b) {}
+    Eigen::GeneralizedSelfAdjointEigenSolver<Eigen::MatrixXd> eig;
+};
+
+DenseEigenSolve::DenseEigenSolve(std::ptrdiff_t n, const double* a, const double* b)
+    : solver_(std::make_unique<Solver>(Eigen::Map<const Eigen::MatrixXd>(a, n, n),
+                                       Eigen::Map<const Eigen::MatrixXd>(b, n, n))) {}
+
+DenseEigenSolve::~DenseEigenSolve() = default;
+
+bool DenseEigenSolve::succeeded() const { return solver_->eig.info() == Eigen::Success; }
+const double* DenseEigenSolve::values() const { return solver_->eig.eigenvalues().data(); }
+const double* DenseEigenSolve::vectors() const { return solver_->eig.eigenvectors().data(); }
 
 }  // namespace plate::detail
