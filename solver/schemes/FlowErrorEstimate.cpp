@@ -37,7 +37,7 @@ void FlowScheme::refine(double zNext, double pNext) {
     // it back) the contact steps take contact_substeps sub-steps, as without a tolerance; the estimate
     // goes on where no gap bounds it (sampleError).
     const bool lost = flow_.lostAt >= 0.0;
-    int j = std::clamp(lost ? fixedLevel_ : std::max(flow_.refinementLevel, kLowestLevel), 1, top);
+    int j = std::clamp(lost ? fixedLevel_ : std::max(flow_.refinementLevel, onsetLevel()), 1, top);
     ++flow_.contactSteps;
     if (lost && boundedByGap()) {
         // The estimate already reads the gap, the bound no later step changes: no pair, no companion.
@@ -78,6 +78,37 @@ void FlowScheme::refine(double zNext, double pNext) {
     // One level lower next time when the pair one level down would still be well inside the target
     // (a level down multiplies the local error by about 4 where the sub-steps are second order).
     if (!lost) flow_.refinementLevel = j > 1 && 8.0 * local < target ? j - 1 : j;
+}
+
+// The kept run's lowest level: kLowestLevel, and in an onset step one whose coarse run's last sub-step
+// starts after the onset (docs/theory.md §22, the onset's level). Runs that meet the obstacle in their
+// last sub-step, whatever its length, end within roundoff of one another — the onset's error is the same
+// for 1, 2 and 4 sub-steps when it lies in the last quarter of the step (measured: §5.2 with modes = 20)
+// — so their difference would say nothing of it.
+int FlowScheme::onsetLevel() const {
+    if (!(onsetFraction_ > 0.5)) return kLowestLevel;
+    // The coarse run's 2^(j−1) sub-steps: its last starts at 1 − 2^(1−j), after the onset when
+    // 2^(j−1) > 1/(1 − onset).
+    return std::max(kLowestLevel, 2 + static_cast<int>(std::floor(std::log2(1.0 / (1.0 - onsetFraction_)))));
+}
+
+// The first row's crossing of an obstacle in an onset step (none held at t_n), as a fraction of the
+// step, on the straight line between its heights at t_n and at the free trial's end: where the step's
+// contact begins, to the precision the choice of a level needs. 0 when a row is held at t_n.
+double FlowScheme::onsetFraction() {
+    const CondensedState& s = state_;
+    if (s.contactPoints > 0) return 0.0;
+    if (rowsCachedValid_)
+        rowsStart_ = rowsCached_;
+    else
+        gatherRows(everyRow_, s.q, s.p, s.z, rowsStart_);
+    double first = 1.0;
+    for (Eigen::Index i = 0; i < r1_.size(); ++i) {
+        const double r0 = rowsStart_[i], r1 = r1_[i];
+        if (r1 < lower_[i] && r0 >= lower_[i]) first = std::min(first, (r0 - lower_[i]) / (r0 - r1));
+        if (r1 > upper_[i] && r0 <= upper_[i]) first = std::min(first, (upper_[i] - r0) / (r1 - r0));
+    }
+    return first < 1.0 ? first : 0.0;
 }
 
 // A step the computed motion takes in free flight (kept: exact) while a row is within the carried

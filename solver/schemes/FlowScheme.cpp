@@ -166,6 +166,7 @@ void FlowScheme::advance(double zNext, double pNext) {
     if (look == Look::Contact) {
         // One snapshot restores the step: whatever throws in it (a contact solve, a sub-step's non-finite
         // result) leaves the scheme as it was (Scheme.h); the tolerance's runs start from it too.
+        onsetFraction_ = refinement_.tolerance > 0.0 ? onsetFraction() : 0.0;
         save(start_);
         flowAtStart_ = flow_;
         try {

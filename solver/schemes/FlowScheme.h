@@ -101,6 +101,8 @@ private:
     bool boundedByGap()
         const;  // every reported point under both obstacles: two motions differ there by gapBound_ at most
     double localTarget() const;  // what this contact step may add at the reported points, m
+    double onsetFraction();  // from the rows at t_n and at the free trial's end (r1_)
+    int onsetLevel() const;  // the kept run's lowest level in this step
     double localError();  // the kept run's own error, into local*: at the reported points, m
 
     ContactRefinement refinement_;
@@ -134,6 +136,9 @@ private:
     Snapshot start_, coarse_, fine_;  // start_: the contact step's start (advance), restored on a throw
     FlowState flowAtStart_;
     double errorReach_ = 0.0;
+    // Where in an onset step (no row held at its start) the first row reaches an obstacle, as a fraction
+    // of the step; 0 otherwise (docs/theory.md §22: the kept run's lowest level).
+    double onsetFraction_ = 0.0;
     double gapBound_ = 0.0;  // the largest gap between the obstacles at a reported point (∞: one lacks one)
     bool smooth_ = false;  // the last localError's pair: no row changed sides
     double difference_ = 0.0;  // and its difference at the reported points, m
