@@ -93,15 +93,10 @@ int FlowScheme::onsetLevel() const {
 }
 
 // The first row's crossing of an obstacle in an onset step (none held at t_n), as a fraction of the
-// step, on the straight line between its heights at t_n and at the free trial's end: where the step's
-// contact begins, to the precision the choice of a level needs. 0 when a row is held at t_n.
-double FlowScheme::onsetFraction() {
-    const CondensedState& s = state_;
-    if (s.contactPoints > 0) return 0.0;
-    if (rowsCachedValid_)
-        rowsStart_ = rowsCached_;
-    else
-        gatherRows(everyRow_, s.q, s.p, s.z, rowsStart_);
+// step, on the straight line between its heights at t_n (rowsStart_) and at the free trial's end (r1_):
+// where the step's contact begins, to the precision the choice of a level needs. 0 when a row is held.
+double FlowScheme::onsetFraction() const {
+    if (state_.contactPoints > 0) return 0.0;
     double first = 1.0;
     for (Eigen::Index i = 0; i < r1_.size(); ++i) {
         const double r0 = rowsStart_[i], r1 = r1_[i];

@@ -166,6 +166,13 @@ void FlowScheme::advance(double zNext, double pNext) {
     if (look == Look::Contact) {
         // One snapshot restores the step: whatever throws in it (a contact solve, a sub-step's non-finite
         // result) leaves the scheme as it was (Scheme.h); the tolerance's runs start from it too.
+        // The rows at t_n, once for what reads them: the row space (selectRows) and the onset (§22).
+        if (refinement_.rowSpace || refinement_.tolerance > 0.0) {
+            if (rowsCachedValid_)
+                rowsStart_ = rowsCached_;
+            else
+                gatherRows(everyRow_, s.q, s.p, s.z, rowsStart_);
+        }
         onsetFraction_ = refinement_.tolerance > 0.0 ? onsetFraction() : 0.0;
         save(start_);
         flowAtStart_ = flow_;
@@ -342,11 +349,7 @@ bool FlowScheme::selectRows(double zNext, double pNext) {
     const CondensedState& s = state_;
     allRows_ = false;
     touch_.index.clear();
-    if (!refinement_.rowSpace) return false;
-    if (rowsCachedValid_)
-        rowsStart_ = rowsCached_;
-    else
-        gatherRows(everyRow_, s.q, s.p, s.z, rowsStart_);
+    if (!refinement_.rowSpace) return false;  // (rowsStart_: the rows at t_n, from advance)
     const double reach =
         2.0 * (c.rowModeNormMax * (qNext_ - s.q).norm() + std::abs(zNext - s.z) + std::abs(pNext - s.p) * rowLoadMax_);
     const auto gap = [this](int i, double r) { return std::min(r - lower_[i], upper_[i] - r); };  // §25

@@ -101,7 +101,7 @@ private:
     bool boundedByGap()
         const;  // every reported point under both obstacles: two motions differ there by gapBound_ at most
     double localTarget() const;  // what this contact step may add at the reported points, m
-    double onsetFraction();  // from the rows at t_n and at the free trial's end (r1_)
+    double onsetFraction() const;  // from the rows at t_n (rowsStart_) and at the free trial's end (r1_)
     int onsetLevel() const;  // the kept run's lowest level in this step
     double localError();  // the kept run's own error, into local*: at the reported points, m
 
