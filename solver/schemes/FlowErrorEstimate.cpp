@@ -73,6 +73,7 @@ void FlowScheme::refine(double zNext, double pNext) {
     discardedSolves += carryThroughStep(zNext, pNext, j - 1);
     restore(fine_);
     s.contactSolves += discardedSolves;
+    if (!smooth_) addEventError();
     carryError();
     flow_.cappedSteps += !lost && local > target && j == top;
     // One level lower next time when the pair one level down would still be well inside the target
@@ -161,6 +162,7 @@ void FlowScheme::carryByFreeFlow() {
 // motion's own differences: every step would be near, and the steps are no longer chosen for the
 // tolerance.
 void FlowScheme::carryError() {
+    if (dampedModes_) flow_.eventError2.array() *= stepDecay_.array();
     flow_.errorQ = errorNextQ_ + localQ_;
     flow_.errorMomentum = errorNextMomentum_ + localMomentum_;
     flow_.errorStep = state_.step;
@@ -199,7 +201,7 @@ double FlowScheme::localError() {
     localQ_ = coarse_.state.q - s.q;
     localMomentum_ = coarse_.state.momentum - s.momentum;
     amplitude_.array() = localQ_.array().square() + (localMomentum_.array() * inverseOmega_.array()).square();
-    rowBound_.noalias() = measuredRows_.cwiseAbs2() * amplitude_;
+    rowBound_.noalias() = measuredRows2_ * amplitude_;
     difference_ = rowBound_.size() > 0 ? std::sqrt(rowBound_.maxCoeff()) : 0.0;
     // Order p: the kept run's error is the difference / (2^p − 1).
     const double weight = smooth_ ? 1.0 / (std::exp2(flow_.smoothOrder) - 1.0) : 1.0;
@@ -208,20 +210,33 @@ double FlowScheme::localError() {
     return weight * difference_;
 }
 
+// A step where rows changed sides (an onset, a release, a row joining or leaving held contact): its
+// pair sizes the kept run's error in every mode but cannot sign it — each run's error comes from where
+// the event falls inside its own sub-step — so E may carry it with the wrong sign, and where E's modes
+// then cancel at a point the error's add (docs/theory.md §22, events sized, not signed). Each mode's
+// squared amplitude is summed over such steps (their signs independent) and bounds the estimate from
+// below (sampleError).
+void FlowScheme::addEventError() {
+    flow_.eventError2.array() += localQ_.array().square() + (localMomentum_.array() * inverseOmega_.array()).square();
+}
+
 // E from errorStep to toStep by the exact free flow of each mode (the error obeys the homogeneous
 // equation: the base and the load are the same for the computed and the exact motion).
 void FlowScheme::rotateError(long long toStep) {
     Eigen::VectorXd& u = flow_.errorQ;
     Eigen::VectorXd& v = flow_.errorMomentum;
+    Eigen::VectorXd& events = flow_.eventError2;  // amplitudes only: constant undamped, decaying damped
     for (; flow_.errorStep + kSample <= toStep; flow_.errorStep += kSample) {
         scratchQ_ = sample11_.cwiseProduct(u) + sample12_.cwiseProduct(v);
         v = sample21_.cwiseProduct(u) + sample22_.cwiseProduct(v);
         u.swap(scratchQ_);
+        if (dampedModes_) events.array() *= sampleDecay_.array();
     }
     for (; flow_.errorStep < toStep; ++flow_.errorStep) {
         scratchQ_ = flow11_.cwiseProduct(u) + flow12_.cwiseProduct(v);
         v = flow21_.cwiseProduct(u) + flow22_.cwiseProduct(v);
         u.swap(scratchQ_);
+        if (dampedModes_) events.array() *= stepDecay_.array();
     }
 }
 
@@ -230,7 +245,11 @@ void FlowScheme::rotateError(long long toStep) {
 // motion's sensitivity, the estimate stops there (and E with it).
 void FlowScheme::sampleError() {
     rowBound_.noalias() = measuredRows_ * flow_.errorQ;
-    const double now = rowBound_.size() > 0 ? rowBound_.cwiseAbs().maxCoeff() : 0.0;
+    double now = rowBound_.size() > 0 ? rowBound_.cwiseAbs().maxCoeff() : 0.0;
+    // The events' error, unsigned: the amplitude of its modes' oscillations at the point, √Σ G_ik² A_k²
+    // — a floor under |G_i δq| where E's events have the wrong sign (docs/theory.md §22).
+    rowBound_.noalias() = measuredRows2_ * flow_.eventError2;
+    if (rowBound_.size() > 0) now = std::max(now, std::sqrt(rowBound_.maxCoeff()));
     const double gap = gapBound_;
     if (!(now < gap)) {  // also a non-finite E
         const double scale = std::isfinite(now) && now > 0.0 ? gap / now : 0.0;
@@ -246,6 +265,7 @@ void FlowScheme::sampleError() {
         flow_.errorEstimate = gap;
         flow_.errorQ.setZero();
         flow_.errorMomentum.setZero();
+        flow_.eventError2.setZero();
     }
 }
 

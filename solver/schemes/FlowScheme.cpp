@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cmath>
 #include <limits>
+#include <stdexcept>
 
 #include "base/Errors.h"
 #include "base/PortableMath.h"
@@ -53,7 +54,7 @@ FlowScheme::FlowScheme(std::shared_ptr<const CondensedPlate> plate, Obstacles ob
       refinement_(refinement) {
     const CondensedPlate& c = *plate_;
     const Eigen::Index m = c.modes(), rows = c.rows();
-    flow_.errorQ = flow_.errorMomentum = Eigen::VectorXd::Zero(m);
+    flow_.errorQ = flow_.errorMomentum = flow_.eventError2 = Eigen::VectorXd::Zero(m);
     if (refinement_.tolerance > 0.0) {
         // Levels 1 … log2(maxSubsteps): 2^j sub-steps of Δt/2^j (level 0 is the step itself, full_).
         for (int j = 1; (1 << j) <= refinement_.maxSubsteps; ++j) {
@@ -68,6 +69,7 @@ FlowScheme::FlowScheme(std::shared_ptr<const CondensedPlate> plate, Obstacles ob
         if (measured.empty())
             for (int i = 0; i < rows; ++i) measured.push_back(i);
         measuredRows_ = c.rowModesT(Eigen::all, measured).transpose();
+        measuredRows2_ = measuredRows_.cwiseAbs2();
         // Two motions differ at a row by its gap at most, where both obstacles' stops cover it (§22, §25).
         for (int i : measured) gapBound_ = std::max(gapBound_, upper_[i] - lower_[i]);
 
@@ -81,6 +83,7 @@ FlowScheme::FlowScheme(std::shared_ptr<const CondensedPlate> plate, Obstacles ob
         for (Eigen::Index k = 0; k < m; ++k)
             modalFlow(c.omega2[k], damping_[k], double(kSample) * dt, sample11_[k], sample12_[k], sample21_[k],
                       sample22_[k]);
+        sampleDecay_ = sample11_.cwiseProduct(sample22_) - sample12_.cwiseProduct(sample21_);
     } else {
         buildOperator(sub_, dt / refinement_.substeps);
     }
@@ -90,6 +93,7 @@ FlowScheme::FlowScheme(std::shared_ptr<const CondensedPlate> plate, Obstacles ob
     for (Eigen::VectorXd* v : {&flow11_, &flow12_, &flow21_, &flow22_}) v->resize(m);
     for (Eigen::Index k = 0; k < m; ++k)
         modalFlow(c.omega2[k], damping_[k], dt, flow11_[k], flow12_[k], flow21_[k], flow22_[k]);
+    if (refinement_.tolerance > 0.0) stepDecay_ = flow11_.cwiseProduct(flow22_) - flow12_.cwiseProduct(flow21_);
     if (refinement_.rowSpace && rows > 0) sizeRowSpace();
 }
 
@@ -522,7 +526,8 @@ void FlowScheme::addOutputs(PlateOutputs& o) const {
 
 namespace {
 
-constexpr double kFlowFormat = 2.0;  // the flow law's own part of the flat form, version 2 (the error vector)
+// The flow law's own part of the flat form, version 3 (2: the error vector; 3: the events' error).
+constexpr double kFlowFormat = 3.0;
 const auto flowMembers = [](auto& s, auto& v) {
     v.real(s.errorEstimate, "error estimate");
     v.count(s.cappedSteps, "capped steps");
@@ -532,6 +537,7 @@ const auto flowMembers = [](auto& s, auto& v) {
     v.real(s.lostAt, "time the tolerance was lost");
     v.real(s.smoothOrder, "order of held contact steps");
     for (auto* x : {&s.errorQ, &s.errorMomentum}) v.vector(*x, 0, "error vector");
+    v.vector(s.eventError2, 0, "events' error");
 };
 
 }  // namespace
@@ -541,8 +547,11 @@ std::vector<double> FlowScheme::saveOwn() const {
 }
 
 void FlowScheme::restoreOwn(const std::vector<double>& own) {
-    flow_ = archive::load<FlowState>(own, kFlowFormat, std::array<std::size_t, 1>{std::size_t(plate_->modes())},
-                                     flowMembers);
+    FlowState loaded = archive::load<FlowState>(own, kFlowFormat,
+                                                std::array<std::size_t, 1>{std::size_t(plate_->modes())}, flowMembers);
+    if ((loaded.eventError2.array() < 0.0).any())
+        throw std::invalid_argument("corrupt state: a negative squared amplitude in the events' error");
+    flow_ = std::move(loaded);
 }
 
 }  // namespace plate

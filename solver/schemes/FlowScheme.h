@@ -39,6 +39,10 @@ struct FlowState {
     // The sub-steps' order in held contact, observed (docs/theory.md §22); log2 3 until a rise says.
     double smoothOrder = 1.584962500721156;
     Eigen::VectorXd errorQ, errorMomentum;  // E at errorStep (sized to the massive modes)
+    // The steps where rows changed sides leave an error whose size their pair gives but not its sign
+    // (docs/theory.md §22, events sized, not signed): each mode's squared amplitude, summed over them,
+    // at errorStep; it bounds the estimate from below as their oscillations' root-sum-square.
+    Eigen::VectorXd eventError2;
 };
 
 class FlowScheme final : public CondensedScheme {
@@ -97,7 +101,8 @@ private:
     void carryError();  // E_{n+1} = carried + local; sampled; its reach
     void companion(double zNext, double pNext, int level);  // from start_ + E: E carried, into errorNext*
     void rotateError(long long toStep);  // E by the exact free flow from errorStep to toStep
-    void sampleError();  // the reported points' error implied by E, into the running maximum
+    void sampleError();  // the reported points' error implied by E and the events', into the running maximum
+    void addEventError();  // a step where rows changed sides: its local error's amplitudes, unsigned
     bool boundedByGap()
         const;  // every reported point under both obstacles: two motions differ there by gapBound_ at most
     double localTarget() const;  // what this contact step may add at the reported points, m
@@ -145,10 +150,13 @@ private:
     int fixedLevel_ =
         0;  // past the tolerance's horizon: 2^fixedLevel_ sub-steps (≤ contact_substeps)  // how far the carried error can move a row (0 without a tolerance)
     Eigen::MatrixXd measuredRows_;  // G at the reported points
+    Eigen::MatrixXd measuredRows2_;  // and its entries squared (amplitudes of independent phases, no temporary)
     Eigen::VectorXd inverseOmega_, amplitude_, rowBound_, errorNextQ_, errorNextMomentum_, localQ_, localMomentum_,
         scratchQ_;
     // The exact free flow over kSample·Δt, the sampling period of the output error in free flight.
     Eigen::VectorXd sample11_, sample12_, sample21_, sample22_;
+    // How each mode's squared amplitude decays over kSample·Δt and over Δt (det Φ: 1 undamped).
+    Eigen::VectorXd sampleDecay_, stepDecay_;
     // The exact flow over Δt of each mode's u = q − q_particular (§21): (u, u̇)⁺ = Φ (u, u̇).
     Eigen::VectorXd flow11_, flow12_, flow21_, flow22_;
     Eigen::VectorXd inverseOmega2_;  // 1/ω²

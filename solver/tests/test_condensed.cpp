@@ -460,6 +460,18 @@ TEST(FlowTolerance, SavedStateContinuesBitForBit) {
         a.step(0.0, 0.0);
         ASSERT_LT(++n, 20000);
     }
+    // The events' error (an onset among the steps so far) is part of it too, the state's last values;
+    // a negative squared amplitude there is a damaged state, refused.
+    EXPECT_GT(a.flowState().eventError2.maxCoeff(), 0.0);
+    std::vector<double> damaged = a.saveState();
+    damaged.back() = -1e-12;
+    FlowScheme c(plate, obstacles, 2e-5, refinement);
+    try {
+        c.restoreState(damaged);
+        ADD_FAILURE() << "a negative squared amplitude was accepted";
+    } catch (const std::invalid_argument& e) {
+        EXPECT_STREQ(e.what(), "corrupt state: a negative squared amplitude in the events' error");
+    }
     b.restoreState(a.saveState());
     for (int k = 0; k < 2000; ++k) {
         a.step(0.0, 0.0);
