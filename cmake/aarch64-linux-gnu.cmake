@@ -1,5 +1,6 @@
 # Cross-compiling the FMI 3.0 FMU's aarch64-linux binary on Debian (g++-aarch64-linux-gnu):
 #   cmake -S . -B build-aarch64 -DCMAKE_TOOLCHAIN_FILE=cmake/aarch64-linux-gnu.cmake
+# (scripts/build-aarch64.sh gives it to the source FMU's sources/CMakeLists.txt instead: -S <fmu>/sources).
 # Run under qemu-user: qemu-aarch64 -L /usr/aarch64-linux-gnu <program>.
 set(CMAKE_SYSTEM_NAME Linux)
 set(CMAKE_SYSTEM_PROCESSOR aarch64)

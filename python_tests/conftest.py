@@ -70,7 +70,8 @@ SHARED_FIXTURE = {
 # runs them all. A file name (every test in it) or a test's name without its parameters. Chosen
 # by `pytest --durations=60` (times of one core, no workers).
 SLOW = {
-    "test_source_fmu.py",  # compiles the whole solver from the source FMU (145 s)
+    # compiles the whole solver from the source FMU (~50 s of CPU) where no aarch64 build of it is at hand
+    "test_source_fmu.py",
     "test_aarch64.py",  # the C master under qemu-aarch64 (28 s)
     "test_win64.py",  # Wine (25 s)
     "test_valgrind.py",  # memcheck (6 s)

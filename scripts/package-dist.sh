@@ -4,7 +4,7 @@
 # (modelDescription.xml, documentation/, the host binary) plus every other platform's binary that
 # exists and was built from the same sources (its compiled-in GUID equals the description's):
 #   FMI 2.0  binaries/linux64 (build/)  + binaries/win64 (build-win64/)
-#   FMI 3.0  binaries/x86_64-linux (build/) + x86_64-windows (build-win64/) + aarch64-linux (build-aarch64/)
+#   FMI 3.0  binaries/x86_64-linux (build/) + x86_64-windows (build-win64/) + aarch64-linux (build-aarch64/source-fmu/)
 # A binary from older sources is left out with a message, never shipped stale. scripts/build-win64.sh
 # and scripts/build-aarch64.sh both end here, so either order of the two ships every platform.
 #
@@ -60,4 +60,4 @@ package build/fmu/PlateImpact.fmu.d "$repo/build/dist/PlateImpact.fmu" \
   win64 build-win64/fmu/PlateImpact.dll PlateImpact.dll
 package build/fmu/fmi3/PlateImpact.fmu.d "$repo/build/dist/fmi3/PlateImpact.fmu" \
   x86_64-windows build-win64/fmu/fmi3/PlateImpact.dll PlateImpact.dll \
-  aarch64-linux build-aarch64/fmu/fmi3/PlateImpact.so PlateImpact.so
+  aarch64-linux build-aarch64/source-fmu/binaries/aarch64-linux/PlateImpact.so PlateImpact.so

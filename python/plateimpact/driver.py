@@ -25,7 +25,7 @@ import re
 import shutil
 from pathlib import Path
 
-from fmpy import calloc, extract, free, platform, read_model_description, sharedLibraryExtension
+from fmpy import calloc, extract, free, platform, platform_tuple, read_model_description, sharedLibraryExtension
 from fmpy.fmi1 import FMICallException
 from fmpy.fmi2 import (
     FMU2Slave,
@@ -99,7 +99,8 @@ def unzipped(fmu_path):
         md = read_model_description(str(path))
         _extracted[key] = (unzip_dir, md)
         if md.coSimulation is not None:
-            library = Path(unzip_dir, "binaries", platform, md.coSimulation.modelIdentifier + sharedLibraryExtension)
+            folder = platform_tuple if md.fmiVersion.startswith("3") else platform
+            library = Path(unzip_dir, "binaries", folder, md.coSimulation.modelIdentifier + sharedLibraryExtension)
             if library.is_file():
                 _pinned.append(ctypes.CDLL(str(library)))
     return _extracted[key]

@@ -235,9 +235,11 @@ STATES = (StateExperiment("forced_state", "forced", 0.05),)
 
 def serialized_state(fmu, exp: Experiment, at: float) -> bytes:
     """The FMU's serialized state after `at` seconds of the experiment through fmpy."""
-    from fmpy import extract, instantiate_fmu, read_model_description
+    from fmpy import instantiate_fmu
 
-    md = read_model_description(str(fmu))
+    from .driver import unzipped
+
+    unzipdir, md = unzipped(fmu)  # extracted once per process, its library kept loaded (simulate)
     if md.fmiVersion.startswith("3") and uses_probes(exp.parameters, exp.outputs):
         import contextlib
         import io
@@ -248,7 +250,6 @@ def serialized_state(fmu, exp: Experiment, at: float) -> bytes:
                 fmu, 0.0, at, exp.step, exp.parameters, stimuli, exp.outputs, serialize=True
             )
         return data
-    unzipdir = str(fmu) if Path(fmu).is_dir() else extract(str(fmu))
     inst = instantiate_fmu(unzipdir, md, "CoSimulation")
     try:
         import contextlib
@@ -271,7 +272,7 @@ def serialized_state(fmu, exp: Experiment, at: float) -> bytes:
             )
         data = serialized(inst)
     finally:
-        release(inst, fmu, unzipdir)
+        inst.freeInstance()
     return data
 
 
@@ -282,15 +283,6 @@ def serialized(inst) -> bytes:
     inst.freeFMUState(state)
     inst.terminate()
     return data
-
-
-def release(inst, fmu, unzipdir):
-    """Frees the instance and the extracted copy of the FMU (none when the FMU is a folder)."""
-    inst.freeInstance()
-    if not Path(fmu).is_dir():
-        import shutil
-
-        shutil.rmtree(unzipdir, ignore_errors=True)
 
 
 # --- files -----------------------------------------------------------------------------------
@@ -406,12 +398,13 @@ def simulate_probe_arrays(fmu, start, stop, step, parameters: dict, stimuli, out
     in Configuration Mode, the places as probe_x and probe_y, the outputs probe_<k>... read from the
     arrays after each communication step; the rest through simulate_fmu as simulate() does. A state
     carries the count and the places. serialize: (the result, the serialized state at `stop`)."""
-    from fmpy import extract, instantiate_fmu, read_model_description, simulate_fmu
+    from fmpy import instantiate_fmu, simulate_fmu
     from fmpy.simulation import Input, apply_start_values, settable_in_initialization_mode, settable_in_instantiated
 
-    md = read_model_description(str(fmu))
+    from .driver import unzipped
+
+    unzipdir, md = unzipped(fmu)  # extracted once per process, its library kept loaded (simulate)
     vr = {v.name: v.valueReference for v in md.modelVariables}
-    unzipdir = str(fmu) if Path(fmu).is_dir() else extract(str(fmu))
     inst = instantiate_fmu(unzipdir, md, "CoSimulation")
     rest = {k: v for k, v in parameters.items() if k != "probe_count" and not SCALAR_PROBE.match(k)}
     probe_outputs = [n for n in outputs if SCALAR_PROBE.match(n)]
@@ -460,7 +453,7 @@ def simulate_probe_arrays(fmu, start, stop, step, parameters: dict, stimuli, out
         )
         data = serialized(inst) if serialize else None
     finally:
-        release(inst, fmu, unzipdir)
+        inst.freeInstance()
     names = list(result.dtype.names) + probe_outputs
     arrays = [result[n] for n in result.dtype.names] + [np.asarray(columns[n], dtype=float) for n in probe_outputs]
     table = np.rec.fromarrays(arrays, names=names)
@@ -472,13 +465,21 @@ def simulate(fmu, start, stop, step, parameters: dict, stimuli, outputs, fmu_sta
     at every communication point; the outputs at every communication point. fmu_state: a
     serialized FMU state set right after instantiation instead of initializing (the parameters
     are the state's). An experiment with the FMI 2.0 FMU's scalar probes runs on an FMI 3.0 FMU
-    through its probe arrays (simulate_probe_arrays)."""
+    through its probe arrays (simulate_probe_arrays).
+
+    The FMU is extracted once per process and its library stays loaded (driver.unzipped), so that
+    the experiments of one plate share its discretization (the FMU's cache, README "Performance"):
+    the validator's and the generator's runs of the default plate build it once, not once per run
+    (issue 54; the results are the same bits, docs/theory.md)."""
     import contextlib
     import io
 
-    from fmpy import read_model_description, simulate_fmu
+    from fmpy import simulate_fmu
 
-    if uses_probes(parameters, outputs) and read_model_description(str(fmu)).fmiVersion.startswith("3"):
+    from .driver import unzipped
+
+    unzipdir, md = unzipped(fmu)
+    if uses_probes(parameters, outputs) and md.fmiVersion.startswith("3"):
         printed = io.StringIO()
         with contextlib.redirect_stdout(printed):
             return simulate_probe_arrays(fmu, start, stop, step, parameters, stimuli, outputs, fmu_state)
@@ -486,7 +487,8 @@ def simulate(fmu, start, stop, step, parameters: dict, stimuli, outputs, fmu_sta
     printed = io.StringIO()
     with contextlib.redirect_stdout(printed):  # fmpy prints a warning per input the CSV leaves out
         result = simulate_fmu(
-            str(fmu),
+            unzipdir,
+            model_description=md,
             start_time=start,
             stop_time=stop,
             output_interval=step,
