@@ -19,7 +19,7 @@ distance to dt = 1.25e-6 s is their own error bound):
   fvs undamped: the FVS scene without damping, 0.05 s;
   fvs modes=20 damped: the FVS scene on 20 modes with ten times the mass-proportional damping
             (a = 20 1/s), 0.1 s: a release whose pairs of runs are blind to it (docs/theory.md §22,
-            where the estimate still falls short).
+            events resolved).
 The horizon: the default scene over 0.3 s, the time the FMU says the tolerance is lost, beside
 docs/predictability.json's t* of the dt ladder.
 Cost: process CPU per simulated second over 0.3 s, pure stepping, best of three interleaved runs,
@@ -65,7 +65,7 @@ SCENES = {
     "default modes=20": {"args": ["modes=20"], "window": 0.07},
     # The FVS scene without damping, over its first impacts.
     "fvs undamped": {"args": ["element=fvs", "gap=0.01", "amplitude=0.008", "frequency=25"], "window": 0.05},
-    # On 20 modes, damped ten times more: a release the pairs of runs cannot see (§22).
+    # On 20 modes, damped ten times more: a release the pairs of runs cannot see (§22, events resolved).
     "fvs modes=20 damped": {
         "args": [
             "element=fvs",

@@ -74,8 +74,8 @@ FlowScheme::FlowScheme(std::shared_ptr<const CondensedPlate> plate, Obstacles ob
         for (int i : measured) gapBound_ = std::max(gapBound_, upper_[i] - lower_[i]);
 
         inverseOmega_ = c.omega2.cwiseSqrt().cwiseInverse();
-        for (Eigen::VectorXd* v :
-             {&amplitude_, &errorNextQ_, &errorNextMomentum_, &localQ_, &localMomentum_, &scratchQ_})
+        for (Eigen::VectorXd* v : {&amplitude_, &errorNextQ_, &errorNextMomentum_, &localQ_, &localMomentum_,
+                                   &scratchQ_, &eventQ_, &eventMomentum_})
             v->resize(m);
         rowBound_.resize(Eigen::Index(measured.size()));
         for (Eigen::VectorXd* v : {&sample11_, &sample12_, &sample21_, &sample22_}) v->resize(m);
@@ -283,7 +283,10 @@ void FlowScheme::substeps(double zNext, double pNext, int m, const MidpointOpera
             substep_ = everyRow_;
             substep_.op = &op;
         }
-        midpointSubsteps(zNext, pNext, m);
+        if (resolveFrom_ >= 0)
+            resolvedSubsteps(zNext, pNext, resolveFrom_);
+        else
+            midpointSubsteps(zNext, pNext, m);
     } catch (...) {  // the caller restores its start (advance, refine's companion)
         if (inRows_) leaveRows();
         throw;

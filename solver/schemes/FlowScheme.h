@@ -82,6 +82,10 @@ private:
 
     void substeps(double zNext, double pNext, int m, const MidpointOperator& op);
     void midpointSubsteps(double zNext, double pNext, int m);  // m steps of substep_, base and load linear
+    // With resolveFrom_ ≥ 0 substeps runs these instead: that level's sub-steps, those in which rows change
+    // sides halved down to the cap (resolveEvents).
+    void resolvedSubsteps(double zNext, double pNext, int level);
+    void useLevel(int level);  // substep_ on that level's operator (in C or in every row)
     // The contact step's row space (docs/theory.md §24): the rows that can touch, their data, the
     // midpoint operator of a sub-step length in them; entering swaps the row-sized buffers and the
     // state's row vectors for theirs, leaving scatters the results back.
@@ -103,6 +107,9 @@ private:
     void rotateError(long long toStep);  // E by the exact free flow from errorStep to toStep
     void sampleError();  // the reported points' error implied by E and the events', into the running maximum
     void addEventError();  // a step where rows changed sides: its local error's amplitudes, unsigned
+    // A step where rows changed sides: the kept run at `level` again with its events resolved (R), from
+    // start_; kept − R into event*, returned at the reported points, m; the kept run's end restored.
+    double resolveEvents(double zNext, double pNext, int level);
     bool boundedByGap()
         const;  // every reported point under both obstacles: two motions differ there by gapBound_ at most
     double localTarget() const;  // what this contact step may add at the reported points, m
@@ -139,6 +146,9 @@ private:
     // tolerance > 0: level j takes 2^j sub-steps of Δt/2^j (level 0 is full_).
     std::vector<std::unique_ptr<MidpointOperator>> levels_;
     Snapshot start_, coarse_, fine_;  // start_: the contact step's start (advance), restored on a throw
+    Snapshot substepStart_;  // resolvedSubsteps: a sub-step's start, to take it again as two halves
+    int resolveFrom_ = -1;
+    bool blindPair_ = false;  // this step's pair missed an event R saw (docs/theory.md §22, events resolved)
     FlowState flowAtStart_;
     double errorReach_ = 0.0;
     // Where in an onset step (no row held at its start) the first row reaches an obstacle, as a fraction
@@ -152,7 +162,7 @@ private:
     Eigen::MatrixXd measuredRows_;  // G at the reported points
     Eigen::MatrixXd measuredRows2_;  // and its entries squared (amplitudes of independent phases, no temporary)
     Eigen::VectorXd inverseOmega_, amplitude_, rowBound_, errorNextQ_, errorNextMomentum_, localQ_, localMomentum_,
-        scratchQ_;
+        scratchQ_, eventQ_, eventMomentum_;
     // The exact free flow over kSample·Δt, the sampling period of the output error in free flight.
     Eigen::VectorXd sample11_, sample12_, sample21_, sample22_;
     // How each mode's squared amplitude decays over kSample·Δt and over Δt (det Φ: 1 undamped).
