@@ -262,6 +262,12 @@ double FlowScheme::resolveEvents(double zNext, double pNext, int level) {
     resolveFrom_ = level;
     try {
         substeps(zNext, pNext, 1 << level, *levels_[std::size_t(level - 1)]);
+    } catch (const StepError&) {  // R cannot be taken: it says nothing, the kept step stands
+        resolveFrom_ = -1;
+        restore(fine_);
+        eventQ_.setZero();
+        eventMomentum_.setZero();
+        return 0.0;
     } catch (...) {
         resolveFrom_ = -1;
         throw;
