@@ -14,6 +14,7 @@ import pytest
 from fmpy.fmi1 import FMICallException
 
 from plateimpact import PlateImpactFMU, default_base
+from plateimpact.driver import unzipped
 
 pytestmark = pytest.mark.sanitizer  # the conserving engine's code paths (test.sh's sanitizer stage)
 # What a test left out of the sanitizer stage names (repeats_paths, conftest.py): every engine's
@@ -236,8 +237,10 @@ def test_fmu_states_continue_bit_identically(fmu_path):
 def test_fmi3_early_return_stops_at_contact_events(fmu_path):
     fmu3 = Path(fmu_path).parent / "fmi3" / "PlateImpact.fmu"
     start = {"mass": 2, "time_scheme": 2, **RELEASE}
+    unzipdir, md = unzipped(fmu3)  # extracted once per process, its library kept loaded
     early = fmpy.simulate_fmu(
-        str(fmu3),
+        unzipdir,
+        model_description=md,
         stop_time=0.1,
         output_interval=1e-3,
         start_values=start,

@@ -163,7 +163,10 @@ def replay(platform, work: Path, everything=True, only=None, expect_failure=Fals
     md, planned, args = plans(platform, work, everything, only)
     exe = work / ("experiment_driver.exe" if platform.endswith("windows") else "experiment_driver")
     compile_c(platform, exe, HERE / "experiment_driver.c")
+    # mscoree, mshtml off: making the prefix (first use) starts no Wine Mono installer (one wine
+    # process less; the drivers are plain C, no .NET or HTML)
     env = dict(os.environ, WINEDEBUG="-all", WINEPREFIX=str(ROOT / "build-win64" / "wineprefix"))
+    env["WINEDLLOVERRIDES"] = "mscoree,mshtml="
     lib = host_path(platform, work / "fmu" / "binaries" / binary)
     run = subprocess.run(
         [*runner, str(exe), lib, md.instantiationToken, *args], capture_output=True, text=True, env=env, timeout=1200

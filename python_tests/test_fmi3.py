@@ -17,6 +17,8 @@ from fmpy.fmi1 import FMICallException
 from fmpy.fmi3 import FMU3Slave
 from fmpy.validation import validate_fmu
 
+from plateimpact.driver import unzipped
+
 DT = 1e-5  # the default internal step (fixedInternalStepSize)
 # Free vibration between close obstacles: pressed onto the lower one at t = 0 (initial_load),
 # released, it flies up to the upper one. No input moves, so the trajectory does not depend on
@@ -69,6 +71,15 @@ def on_grid(t):
     """t is exactly n * DT in double precision (the FMU's clock: step count times dt). The
     regular communication points are fmpy's (n + 1) * interval, which need not be."""
     return t == round(t / DT) * DT
+
+
+def simulate(fmu, **kwargs):
+    """fmpy.simulate_fmu on the FMU extracted once per process, its library kept loaded
+    (plateimpact.driver.unzipped): the runs of one plate share its discretization, as a user's
+    runs in one process do (the same bits: test_discretization_cache.py). On the .fmu file fmpy
+    extracts and loads a fresh copy every call."""
+    unzipdir, md = unzipped(fmu)
+    return fmpy.simulate_fmu(unzipdir, model_description=md, **kwargs)
 
 
 def test_both_fmus_validate(fmu2, fmu3):
@@ -138,8 +149,8 @@ def test_default_scene_bit_identical_to_fmi2(fmu2, fmu3):
         if v.causality == "output" and v.name in names3  # FMI 2.0's scalar probes are FMI 3.0's arrays
     ]
     kwargs = dict(stop_time=0.1, output_interval=1e-4, input=sine_input(0.1, 1e-4), output=outputs)
-    r2 = fmpy.simulate_fmu(str(fmu2), **kwargs)
-    r3 = fmpy.simulate_fmu(str(fmu3), **kwargs)
+    r2 = simulate(fmu2, **kwargs)
+    r3 = simulate(fmu3, **kwargs)
     assert len(r2) == len(r3) == 1001 and len(outputs) >= len(OUTPUTS)
     assert r3["contact_vertices"].max() > 0  # the scene has impacts
     assert np.array_equal(r2["time"], r3["time"])
@@ -150,8 +161,8 @@ def test_default_scene_bit_identical_to_fmi2(fmu2, fmu3):
 
 def test_event_mode_without_early_return_steps_through(fmu3):
     kwargs = dict(stop_time=0.1, output_interval=1e-4, input=sine_input(0.1, 1e-4), output=OUTPUTS)
-    plain = fmpy.simulate_fmu(str(fmu3), **kwargs)
-    events = fmpy.simulate_fmu(str(fmu3), use_event_mode=True, **kwargs)
+    plain = simulate(fmu3, **kwargs)
+    events = simulate(fmu3, use_event_mode=True, **kwargs)
     for name in OUTPUTS:
         assert np.array_equal(plain[name], events[name]), name
 
@@ -159,11 +170,11 @@ def test_event_mode_without_early_return_steps_through(fmu3):
 def test_early_return_at_the_contact_events_on_the_internal_grid(fmu3):
     """The events of an early-return run at 1e-3 s are exactly those of a run that
     communicates at every internal step (the outputs there too)."""
-    fine = fmpy.simulate_fmu(str(fmu3), stop_time=0.2, output_interval=DT, start_values=FREE_FLIGHT, output=OUTPUTS)
+    fine = simulate(fmu3, stop_time=0.2, output_interval=DT, start_values=FREE_FLIGHT, output=OUTPUTS)
     expected = contact_changes(fine)
     assert len(expected) >= 2  # the release from the lower obstacle, the hit on the upper one
-    early = fmpy.simulate_fmu(
-        str(fmu3),
+    early = simulate(
+        fmu3,
         stop_time=0.2,
         output_interval=1e-3,
         start_values=FREE_FLIGHT,
@@ -185,8 +196,8 @@ def test_early_return_at_the_contact_events_on_the_internal_grid(fmu3):
 
 def test_default_scene_early_return_reports_the_impacts(fmu3):
     """The done-when of issue 22: results at the impact times of the default scene."""
-    early = fmpy.simulate_fmu(
-        str(fmu3),
+    early = simulate(
+        fmu3,
         stop_time=0.1,
         output_interval=1e-3,
         input=sine_input(0.1, 1e-3),
@@ -200,17 +211,17 @@ def test_default_scene_early_return_reports_the_impacts(fmu3):
     assert all(on_grid(t) for t in off_regular)
 
 
-def slave(fmu3, tmp_path, **instantiate):
-    md = fmpy.read_model_description(str(fmu3))
-    unzipped = fmpy.extract(str(fmu3), str(tmp_path / "fmu"))
-    s = FMU3Slave(guid=md.guid, unzipDirectory=unzipped, modelIdentifier="PlateImpact", instanceName="t")
+def slave(fmu3, **instantiate):
+    """An instance of the FMU extracted once per process (its library kept loaded: simulate)."""
+    unzipdir, md = unzipped(fmu3)
+    s = FMU3Slave(guid=md.guid, unzipDirectory=unzipdir, modelIdentifier="PlateImpact", instanceName="t")
     messages = []
     s.instantiate(logMessage=lambda env, status, category, message: messages.append(message.decode()), **instantiate)
     return md, s, messages
 
 
-def test_step_returns_early_with_event_mode(fmu3, tmp_path):
-    md, s, messages = slave(fmu3, tmp_path, earlyReturnAllowed=True, eventModeUsed=True)
+def test_step_returns_early_with_event_mode(fmu3):
+    md, s, messages = slave(fmu3, earlyReturnAllowed=True, eventModeUsed=True)
     vr = {v.name: v.valueReference for v in md.modelVariables}
     s.setFloat64([vr[k] for k in FREE_FLIGHT], list(FREE_FLIGHT.values()))
     s.enterInitializationMode(startTime=0.0)
@@ -234,8 +245,8 @@ def test_step_returns_early_with_event_mode(fmu3, tmp_path):
     s.freeInstance()
 
 
-def test_vertex_displacement_array(fmu3, tmp_path):
-    md, s, messages = slave(fmu3, tmp_path)
+def test_vertex_displacement_array(fmu3):
+    md, s, messages = slave(fmu3)
     vr = {v.name: v.valueReference for v in md.modelVariables}
     s.setInt32([vr["nx"], vr["ny"]], [6, 2])
     assert s.getUInt64([vr["vertices_x"], vr["vertices_y"]]) == [7, 3]
@@ -258,9 +269,9 @@ def test_vertex_displacement_array(fmu3, tmp_path):
     s.freeInstance()
 
 
-def test_vertex_stress_read_while_off_is_said(fmu3, tmp_path):
+def test_vertex_stress_read_while_off_is_said(fmu3):
     """Issue 56: vertex_stress reads 0 unless stress_outputs = true; the first read says so."""
-    md, s, messages = slave(fmu3, tmp_path)
+    md, s, messages = slave(fmu3)
     vr = {v.name: v.valueReference for v in md.modelVariables}
     s.enterInitializationMode(startTime=0.0)
     s.exitInitializationMode()
@@ -272,14 +283,14 @@ def test_vertex_stress_read_while_off_is_said(fmu3, tmp_path):
     assert len(said) == 1 and "vertex_stress was read while stress_outputs = false" in said[0], messages
 
 
-def test_vertex_output_switches_the_array_off(fmu3, tmp_path):
+def test_vertex_output_switches_the_array_off(fmu3):
     """vertex_output = 0 (the array's first extent) empties vertex_displacement: it needs zero
     values and reads as none, beside the scalars; the run itself is the same bits as with the
     array on. Out of its range 0..1 it is refused with the range; after initialization (fixed)
     it cannot be set."""
 
     def run(switch):
-        md, s, messages = slave(fmu3, tmp_path / str(switch))
+        md, s, messages = slave(fmu3)
         vr = {v.name: v.valueReference for v in md.modelVariables}
         if switch is not None:
             s.setUInt64([vr["vertex_output"]], [switch])
@@ -301,7 +312,7 @@ def test_vertex_output_switches_the_array_off(fmu3, tmp_path):
     on = s.getFloat64([vr["corner_1"], vr["vertex_displacement"], vr["energy"]], nValues=92)
     assert [on[0], on[-1]] == off and max(abs(x) for x in on[1:-1]) > 0.0
     s.freeInstance()
-    md, s, messages = slave(fmu3, tmp_path / "bad")
+    md, s, messages = slave(fmu3)
     with pytest.raises(FMICallException):
         s.setUInt64([vr["vertex_output"]], [2])
     assert any("vertex_output = 2 rejected: allowed 0 to 1" in m for m in messages), messages
@@ -318,8 +329,8 @@ def test_vertex_output_switches_the_array_off(fmu3, tmp_path):
         (lambda s, vr: s.enterEventMode(), "illegal call sequence"),
     ],
 )
-def test_bad_calls_are_logged_errors(fmu3, tmp_path, call, expected):
-    md, s, messages = slave(fmu3, tmp_path)
+def test_bad_calls_are_logged_errors(fmu3, call, expected):
+    md, s, messages = slave(fmu3)
     vr = {v.name: v.valueReference for v in md.modelVariables}
     if "element" in expected:
         s.enterInitializationMode(startTime=0.0)
@@ -361,12 +372,11 @@ def fmi3_texts(fmu3):
         return z.read("modelDescription.xml").decode(), z.read("documentation/index.html").decode(), z.namelist()
 
 
-def test_fmi3_logs_its_own_function_names_under_declared_categories(fmu3, tmp_path):
+def test_fmi3_logs_its_own_function_names_under_declared_categories(fmu3):
     """The FMI 3.0 FMU speaks FMI 3.0: the trace names fmi3 functions (none of FMI 2.0's), and
     every category it logs under is declared in its model description."""
-    md = fmpy.read_model_description(str(fmu3))
-    unzipped = fmpy.extract(str(fmu3), str(tmp_path / "fmu"))
-    s = FMU3Slave(guid=md.guid, unzipDirectory=unzipped, modelIdentifier="PlateImpact", instanceName="t")
+    unzipdir, md = unzipped(fmu3)
+    s = FMU3Slave(guid=md.guid, unzipDirectory=unzipdir, modelIdentifier="PlateImpact", instanceName="t")
     logged = []
     s.instantiate(loggingOn=True, logMessage=lambda env, st, cat, msg: logged.append((cat.decode(), msg.decode())))
     vr = {v.name: v.valueReference for v in md.modelVariables}

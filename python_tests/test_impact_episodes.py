@@ -10,6 +10,8 @@ import fmpy
 import numpy as np
 import pytest
 
+from plateimpact.driver import unzipped
+
 STOP, STEP = 0.6, 1e-4
 NEAR = 0.098  # m: within 2 mm of an obstacle at 0.1 m
 
@@ -21,7 +23,10 @@ def default_scene(fmu_path):
         list(zip(t, 0.09 * np.sin(2 * math.pi * 10 * t))), dtype=[("time", float), ("base_displacement", float)]
     )
     outputs = ["corner_1", "impacts_lower", "impacts_upper", "contact_onsets_lower", "contact_onsets_upper"]
-    return fmpy.simulate_fmu(str(fmu_path), stop_time=STOP, output_interval=STEP, input=base, output=outputs)
+    unzipdir, md = unzipped(fmu_path)  # extracted once per process, its library kept loaded
+    return fmpy.simulate_fmu(
+        unzipdir, model_description=md, stop_time=STOP, output_interval=STEP, input=base, output=outputs
+    )
 
 
 def plot_touches(t, corner, sign):

@@ -18,6 +18,8 @@ import fmpy
 import numpy as np
 import pytest
 
+from plateimpact.driver import unzipped
+
 assembly = pytest.importorskip(
     "fmu_manipulation_toolbox.assembly", reason="fmu-manipulation-toolbox is not installed (requirements.txt)"
 )
@@ -45,14 +47,17 @@ def container(plate, description, fmi_version, tmp_path):
     return made
 
 
-def scenes(fmu, prefix=""):
+def scenes(fmu, prefix="", shared=False):
+    """The default scene and the release through fmpy; shared: on the FMU extracted once per process,
+    its library kept loaded (plateimpact.driver.unzipped: both runs build the plate once)."""
     t = np.arange(round(DEFAULT_STOP / H) + 1) * H
     signal = np.array(
         list(zip(t, 0.09 * np.sin(2 * np.pi * 10 * t))), dtype=[("time", float), ("base_displacement", float)]
     )
-    default = fmpy.simulate_fmu(str(fmu), stop_time=DEFAULT_STOP, output_interval=H, input=signal, output=OUTPUTS)
+    where = dict(zip(("filename", "model_description"), unzipped(fmu))) if shared else dict(filename=str(fmu))
+    default = fmpy.simulate_fmu(**where, stop_time=DEFAULT_STOP, output_interval=H, input=signal, output=OUTPUTS)
     release = fmpy.simulate_fmu(
-        str(fmu),
+        **where,
         stop_time=RELEASE_STOP,
         output_interval=RELEASE_STEP,
         start_values={prefix + name: value for name, value in RELEASE.items()},
@@ -64,7 +69,7 @@ def scenes(fmu, prefix=""):
 @pytest.fixture(scope="module")
 def plate_alone(fmu_path):
     assert fmu_path.is_file(), f"FMU not built: {fmu_path} (build it or set PLATEIMPACT_FMU)"
-    return scenes(fmu_path)
+    return scenes(fmu_path, shared=True)
 
 
 @pytest.mark.parametrize("fmi_version", [2, 3])

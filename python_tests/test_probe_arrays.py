@@ -13,6 +13,8 @@ import pytest
 from fmpy.fmi1 import FMICallException
 from fmpy.fmi3 import FMU3Slave
 
+from plateimpact.driver import unzipped
+
 EPS = sys.float_info.epsilon
 DT = 1e-5  # the default internal step
 H = 1e-3  # communication step
@@ -24,9 +26,10 @@ PLACES_X, PLACES_Y = [1.2, 0.6, 1.2], [0.0, 0.2, 0.4]
 
 
 def slave(fmu3, tmp_path):
-    md = fmpy.read_model_description(str(fmu3))
-    unzipped = fmpy.extract(str(fmu3), str(tmp_path / "fmu"))
-    s = FMU3Slave(guid=md.guid, unzipDirectory=unzipped, modelIdentifier="PlateImpact", instanceName="probes")
+    """An instance of the FMU extracted once per process, its library kept loaded
+    (plateimpact.driver.unzipped): the instances of one plate share its discretization."""
+    unzipdir, md = unzipped(fmu3)
+    s = FMU3Slave(guid=md.guid, unzipDirectory=unzipdir, modelIdentifier="PlateImpact", instanceName="probes")
     messages = []
     s.instantiate(logMessage=lambda env, status, category, message: messages.append(message.decode()))
     return {v.name: v.valueReference for v in md.modelVariables}, s, messages
@@ -164,9 +167,11 @@ def test_simulate_fmu_places_the_one_default_probe(fmu3):
         list(zip(t, 0.002 * np.sin(2 * np.pi * 5 * t))), dtype=[("time", float), ("base_displacement", float)]
     )
     kwargs = dict(stop_time=0.06, output_interval=1e-4, input=base, output=["corner_1", "probe"])
-    r = fmpy.simulate_fmu(str(fmu3), start_values={**CLOSE, "probe_x": [1.2], "probe_y": [0.0]}, **kwargs)
+    unzipdir, md = unzipped(fmu3)  # extracted once per process, its library kept loaded
+    kwargs["model_description"] = md
+    r = fmpy.simulate_fmu(unzipdir, start_values={**CLOSE, "probe_x": [1.2], "probe_y": [0.0]}, **kwargs)
     assert r["probe"].shape == (601, 1)
     tol = 1e3 * EPS * np.abs(r["corner_1"]).max()
     assert np.abs(r["probe"][:, 0] - r["corner_1"]).max() <= tol
     with pytest.raises(Exception):
-        fmpy.simulate_fmu(str(fmu3), start_values={"probe_count": 3}, **kwargs)
+        fmpy.simulate_fmu(unzipdir, start_values={"probe_count": 3}, **kwargs)

@@ -6,7 +6,6 @@ the FMI 3.0 vertex_stress array agrees with the scalar stresses."""
 
 import math
 
-import fmpy
 import numpy as np
 import pytest
 from fmpy.fmi1 import FMICallException
@@ -14,6 +13,7 @@ from fmpy.fmi3 import FMU3Slave
 from plate_fmu import PlateRun
 
 from plateimpact import PlateImpactFMU
+from plateimpact.driver import unzipped
 
 EPS = np.finfo(float).eps
 DT = 1e-5
@@ -120,11 +120,11 @@ def test_between_grid_points_a_probe_at_a_corner_is_still_the_corner(fmu_path):
 
 def test_fmi3_vertex_stress_agrees_with_the_scalar_stresses(fmu_path, tmp_path):
     fmu3 = fmu_path.parent / "fmi3" / "PlateImpact.fmu"
-    md = fmpy.read_model_description(str(fmu3))
+    unzipdir, md = unzipped(fmu3)  # extracted once per process, its library kept loaded
     vr = {v.name: v.valueReference for v in md.modelVariables}
     s = FMU3Slave(
         guid=md.guid,
-        unzipDirectory=fmpy.extract(str(fmu3), str(tmp_path / "fmu")),
+        unzipDirectory=unzipdir,
         modelIdentifier="PlateImpact",
         instanceName="t",
     )

@@ -49,7 +49,10 @@ def windows_path(path):
 
 
 def wine(*args, timeout=300, driver=WIN_DRIVER):
+    # mscoree, mshtml off: making the prefix (first use) starts no Wine Mono installer (one wine
+    # process less; the drivers are plain C, no .NET or HTML)
     env = dict(os.environ, WINEDEBUG="-all", WINEPREFIX=str(ROOT / "build-win64" / "wineprefix"))
+    env["WINEDLLOVERRIDES"] = "mscoree,mshtml="
     return subprocess.run([str(WINE), str(driver), *args], capture_output=True, text=True, env=env, timeout=timeout)
 
 

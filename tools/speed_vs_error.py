@@ -122,7 +122,10 @@ def main(argv=None):
         bench.export(bl["cfg"], exp_dir)
         try:
             py = min(
-                (python_baseline(exp_dir, bl["cfg"].dt, bl["steps"], bl["comm"], bl["split"]) for _ in range(2)),
+                (
+                    python_baseline(exp_dir, bl["cfg"].dt, bl["steps"], bl["comm"], bl["split"])
+                    for _ in range(plan["baseline_tries"])
+                ),
                 key=lambda r: r["step_s"],
             )
         except ImportError as e:
@@ -133,7 +136,7 @@ def main(argv=None):
             for e in ("auto", "sparse")
             for n in (bl["steps"], bl["split"])
         ]
-        timed = bench.run_group(items, rounds=3)
+        timed = bench.run_group(items, rounds=plan["baseline_rounds"])
         for k, engine in enumerate(("auto", "sparse")):
             whole, free_part = timed[2 * k], timed[2 * k + 1]
             c = replace(bl["cfg"], engine=engine)
