@@ -251,8 +251,8 @@ void FlowScheme::addEventError() {
 }
 
 // R (docs/theory.md §22, events resolved): the kept run at `level` again from start_, each of its
-// sub-steps in which a row changes sides taken again as two of half its length, down to the cap — a
-// sub-step boundary within Δt/2^top of every onset and release. The error an event leaves depends on
+// sub-steps in which a row changes sides taken again as two of half its length, kResolveDepth times (at
+// most to the cap) — a sub-step boundary within 1/16 of a kept sub-step from every onset and release. The error an event leaves depends on
 // how far from it the boundary its sub-step resolves it at lies, not smoothly on the sub-step's length:
 // runs of 2 and 4 sub-steps may resolve it at one boundary and make one error, which their difference
 // cannot see. kept − R is the kept run's error at its events, signed.
@@ -282,7 +282,7 @@ double FlowScheme::resolveEvents(double zNext, double pNext, int level) {
 }
 
 // R's sub-steps: from t_n at `level`; one in which a row changes sides is taken again as two halves
-// (to the cap), and the run returns to the coarser length where the halves realign. The base and the
+// (kResolveDepth levels down at most), and the run returns to the coarser length where the halves realign. The base and the
 // load linear in between, as in midpointSubsteps; only R's end is read.
 void FlowScheme::resolvedSubsteps(double zNext, double pNext, int level) {
     CondensedState& s = state_;

@@ -83,7 +83,7 @@ private:
     void substeps(double zNext, double pNext, int m, const MidpointOperator& op);
     void midpointSubsteps(double zNext, double pNext, int m);  // m steps of substep_, base and load linear
     // With resolveFrom_ ≥ 0 substeps runs these instead: that level's sub-steps, those in which rows change
-    // sides halved down to the cap (resolveEvents).
+    // sides halved, three levels down at most (resolveEvents).
     void resolvedSubsteps(double zNext, double pNext, int level);
     void useLevel(int level);  // substep_ on that level's operator (in C or in every row)
     // The contact step's row space (docs/theory.md §24): the rows that can touch, their data, the
