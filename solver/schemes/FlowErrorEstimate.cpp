@@ -191,7 +191,7 @@ void FlowScheme::carryError() {
     flow_.errorMomentum = errorNextMomentum_ + localMomentum_;
     flow_.errorStep = state_.step;
     sampleError();
-    amplitude_.array() = flow_.errorQ.array().square() + (flow_.errorMomentum.array() * inverseOmega_.array()).square();
+    squaredAmplitudes(flow_.errorQ, flow_.errorMomentum, amplitude_);
     errorReach_ = flow_.lostAt >= 0.0 ? 0.0 : plate_->rowModeNormMax * std::sqrt(amplitude_.sum());
 }
 
@@ -224,9 +224,8 @@ double FlowScheme::localError() {
     smooth_ = s.rowState == start_.state.rowState && coarse_.state.rowState == start_.state.rowState;
     localQ_ = coarse_.state.q - s.q;
     localMomentum_ = coarse_.state.momentum - s.momentum;
-    amplitude_.array() = localQ_.array().square() + (localMomentum_.array() * inverseOmega_.array()).square();
-    rowBound_.noalias() = measuredRows2_ * amplitude_;
-    difference_ = rowBound_.size() > 0 ? std::sqrt(rowBound_.maxCoeff()) : 0.0;
+    squaredAmplitudes(localQ_, localMomentum_, amplitude_);
+    difference_ = atReportedPoints(amplitude_);
     // Order p: the kept run's error is the difference / (2^p − 1).
     const double weight = smooth_ ? 1.0 / (std::exp2(flow_.smoothOrder) - 1.0) : 1.0;
     localQ_ *= weight;
@@ -242,8 +241,8 @@ double FlowScheme::localError() {
 // independent) and bounds the estimate from below (sampleError). Where the pair was blind, E carries
 // R's difference too, signed: its growth at later impacts goes with it.
 void FlowScheme::addEventError() {
-    amplitude_.array() = localQ_.array().square() + (localMomentum_.array() * inverseOmega_.array()).square();
-    scratchQ_.array() = eventQ_.array().square() + (eventMomentum_.array() * inverseOmega_.array()).square();
+    squaredAmplitudes(localQ_, localMomentum_, amplitude_);
+    squaredAmplitudes(eventQ_, eventMomentum_, scratchQ_);
     flow_.eventError2.array() += amplitude_.array().max(scratchQ_.array());
     if (!blindPair_) return;
     localQ_ += eventQ_;
@@ -259,26 +258,19 @@ void FlowScheme::addEventError() {
 double FlowScheme::resolveEvents(double zNext, double pNext, int level) {
     save(fine_);
     restore(start_);
-    resolveFrom_ = level;
     try {
-        substeps(zNext, pNext, 1 << level, *levels_[std::size_t(level - 1)]);
+        substeps(zNext, pNext, 1 << level, *levels_[std::size_t(level - 1)], level);
     } catch (const StepError&) {  // R cannot be taken: it says nothing, the kept step stands
-        resolveFrom_ = -1;
         restore(fine_);
         eventQ_.setZero();
         eventMomentum_.setZero();
         return 0.0;
-    } catch (...) {
-        resolveFrom_ = -1;
-        throw;
     }
-    resolveFrom_ = -1;
     eventQ_ = fine_.state.q - state_.q;
     eventMomentum_ = fine_.state.momentum - state_.momentum;
     restore(fine_);
-    amplitude_.array() = eventQ_.array().square() + (eventMomentum_.array() * inverseOmega_.array()).square();
-    rowBound_.noalias() = measuredRows2_ * amplitude_;
-    return rowBound_.size() > 0 ? std::sqrt(rowBound_.maxCoeff()) : 0.0;
+    squaredAmplitudes(eventQ_, eventMomentum_, amplitude_);
+    return atReportedPoints(amplitude_);
 }
 
 // R's sub-steps: from t_n at `level`; one in which a row changes sides is taken again as two halves
@@ -349,8 +341,7 @@ void FlowScheme::sampleError() {
     double now = rowBound_.size() > 0 ? rowBound_.cwiseAbs().maxCoeff() : 0.0;
     // The events' error, unsigned: the amplitude of its modes' oscillations at the point, √Σ G_ik² A_k²
     // — a floor under |G_i δq| where E's events have the wrong sign (docs/theory.md §22).
-    rowBound_.noalias() = measuredRows2_ * flow_.eventError2;
-    if (rowBound_.size() > 0) now = std::max(now, std::sqrt(rowBound_.maxCoeff()));
+    now = std::max(now, atReportedPoints(flow_.eventError2));
     const double gap = gapBound_;
     if (!(now < gap)) {  // also a non-finite E
         const double scale = std::isfinite(now) && now > 0.0 ? gap / now : 0.0;
@@ -379,6 +370,18 @@ bool FlowScheme::boundedByGap() const { return std::isfinite(gapBound_); }
 double FlowScheme::localTarget() const {
     const double left = std::max(refinement_.tolerance - flow_.errorEstimate, 0.5 * refinement_.tolerance);
     return left / std::sqrt(double(flow_.contactSteps) * double(state_.step + 1));
+}
+
+// Each mode's squared error amplitude a_k² = δq_k² + (δP_k/ω_k)² (constant in undamped free flight).
+void FlowScheme::squaredAmplitudes(const Eigen::VectorXd& q, const Eigen::VectorXd& momentum,
+                                   Eigen::VectorXd& into) const {
+    into.array() = q.array().square() + (momentum.array() * inverseOmega_.array()).square();
+}
+
+// Modes of independent phases at the reported points: the largest amplitude of their sum, √max_i Σ_k G_ik² a_k².
+double FlowScheme::atReportedPoints(const Eigen::VectorXd& squared) {
+    rowBound_.noalias() = measuredRows2_ * squared;
+    return rowBound_.size() > 0 ? std::sqrt(rowBound_.maxCoeff()) : 0.0;
 }
 
 }  // namespace plate

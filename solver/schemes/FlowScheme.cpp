@@ -272,7 +272,7 @@ void FlowScheme::restore(const Snapshot& from) {
 // t_n, t_{n−1} and the port's values over the step are those of one step of Δt afterwards (from the
 // run's snapshot of its start). Should a row outside them end the step past an obstacle, the step is
 // taken again in every row from that snapshot.
-void FlowScheme::substeps(double zNext, double pNext, int m, const MidpointOperator& op) {
+void FlowScheme::substeps(double zNext, double pNext, int m, const MidpointOperator& op, int resolveFrom) {
     const bool inRows = !allRows_ && !touch_.index.empty();
     save(runStart_);
     try {
@@ -283,8 +283,8 @@ void FlowScheme::substeps(double zNext, double pNext, int m, const MidpointOpera
             substep_ = everyRow_;
             substep_.op = &op;
         }
-        if (resolveFrom_ >= 0)
-            resolvedSubsteps(zNext, pNext, resolveFrom_);
+        if (resolveFrom >= 0)
+            resolvedSubsteps(zNext, pNext, resolveFrom);
         else
             midpointSubsteps(zNext, pNext, m);
     } catch (...) {  // the caller restores its start (advance, refine's companion)
@@ -313,7 +313,7 @@ void FlowScheme::substeps(double zNext, double pNext, int m, const MidpointOpera
     ++rowSpaceRetries_;  // a row outside C touched: the step again, in every row
     restore(runStart_);
     allRows_ = true;
-    substeps(zNext, pNext, m, op);
+    substeps(zNext, pNext, m, op, resolveFrom);
 }
 
 // The m sub-steps of substep_ from the state's t_n to zNext, pNext at t_{n+1}; the time levels after

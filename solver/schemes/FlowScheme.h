@@ -80,10 +80,10 @@ private:
     std::vector<double> saveOwn() const override;
     void restoreOwn(const std::vector<double>& own) override;
 
-    void substeps(double zNext, double pNext, int m, const MidpointOperator& op);
+    // resolveFrom ≥ 0: resolvedSubsteps from that level instead of midpointSubsteps (resolveEvents).
+    void substeps(double zNext, double pNext, int m, const MidpointOperator& op, int resolveFrom = -1);
     void midpointSubsteps(double zNext, double pNext, int m);  // m steps of substep_, base and load linear
-    // With resolveFrom_ ≥ 0 substeps runs these instead: that level's sub-steps, those in which rows change
-    // sides halved, three levels down at most (resolveEvents).
+    // That level's sub-steps, those in which rows change sides halved, three levels down at most (resolveEvents).
     void resolvedSubsteps(double zNext, double pNext, int level);
     void useLevel(int level);  // substep_ on that level's operator (in C or in every row)
     // The contact step's row space (docs/theory.md §24): the rows that can touch, their data, the
@@ -116,6 +116,8 @@ private:
     double onsetFraction() const;  // from the rows at t_n (rowsStart_) and at the free trial's end (r1_)
     int onsetLevel() const;  // the kept run's lowest level in this step
     double localError();  // the kept run's own error, into local*: at the reported points, m
+    void squaredAmplitudes(const Eigen::VectorXd& q, const Eigen::VectorXd& momentum, Eigen::VectorXd& into) const;
+    double atReportedPoints(const Eigen::VectorXd& squared);  // squared modal amplitudes → m, at the worst point
 
     ContactRefinement refinement_;
     FlowState flow_;
@@ -147,18 +149,16 @@ private:
     std::vector<std::unique_ptr<MidpointOperator>> levels_;
     Snapshot start_, coarse_, fine_;  // start_: the contact step's start (advance), restored on a throw
     Snapshot substepStart_;  // resolvedSubsteps: a sub-step's start, to take it again as two halves
-    int resolveFrom_ = -1;
     bool blindPair_ = false;  // this step's pair missed an event R saw (docs/theory.md §22, events resolved)
     FlowState flowAtStart_;
-    double errorReach_ = 0.0;
+    double errorReach_ = 0.0;  // how far the carried error can move a row (0 without a tolerance)
     // Where in an onset step (no row held at its start) the first row reaches an obstacle, as a fraction
     // of the step; 0 otherwise (docs/theory.md §22: the kept run's lowest level).
     double onsetFraction_ = 0.0;
     double gapBound_ = 0.0;  // the largest gap between the obstacles at a reported point (∞: one lacks one)
     bool smooth_ = false;  // the last localError's pair: no row changed sides
     double difference_ = 0.0;  // and its difference at the reported points, m
-    int fixedLevel_ =
-        0;  // past the tolerance's horizon: 2^fixedLevel_ sub-steps (≤ contact_substeps)  // how far the carried error can move a row (0 without a tolerance)
+    int fixedLevel_ = 0;  // past the tolerance's horizon: 2^fixedLevel_ sub-steps (≤ contact_substeps)
     Eigen::MatrixXd measuredRows_;  // G at the reported points
     Eigen::MatrixXd measuredRows2_;  // and its entries squared (amplitudes of independent phases, no temporary)
     Eigen::VectorXd inverseOmega_, amplitude_, rowBound_, errorNextQ_, errorNextMomentum_, localQ_, localMomentum_,
