@@ -1,4 +1,5 @@
-"""What the flow law's sub-steps buy (docs/theory.md §24): corner_1's largest error against a converged
+"""What the flow law's sub-steps buy (docs/theory.md §24): the reported points' largest error (corner_1,
+corner_2, free_edge_mid: tolerance_study's measure) against a converged
 reference for contact_substeps m = 2, 4, 8, 16 and for the conserving law, on tools/tolerance_study.py's
 four scenes (the same references: the flow law at dt = 6.25e-7 s, 64 sub-steps). The midpoint sub-steps
 are second order in Δt/m: halving m multiplies the error by about 4, which is why m = 16 is the default
@@ -89,8 +90,7 @@ def floor_table(repo: Path, tolerance: float) -> None:
                     _, _, corner, _ = ts.run(
                         repo, scene, ["scheme=flow", f"substeps={m}", *modes], ts.DT, window, tmp, "run"
                     )
-                    n = min(len(corner), len(ref))
-                    errors.append(float(np.abs(corner[:n] - ref[:n]).max()))
+                    errors.append(float(ts.deviation(corner, ref).max()))
                 counts = [1, *FLOOR_SUBSTEPS]
                 laws = {"conserving": ["scheme=conserving", *modes]} | {
                     m: ["scheme=flow", f"substeps={m}", *modes] for m in counts
@@ -130,8 +130,7 @@ def errors_table(repo: Path) -> None:
             errors = []
             for law in [["scheme=flow", f"substeps={m}"] for m in SUBSTEPS] + [["scheme=conserving"]]:
                 _, _, corner, _ = ts.run(repo, scene, law, ts.DT, window, tmp, "run")
-                n = min(len(corner), len(ref))
-                errors.append(float(np.abs(corner[:n] - ref[:n]).max()))
+                errors.append(float(ts.deviation(corner, ref).max()))
             print(f"| {scene} ({window:g} s) | " + " | ".join(f"{e:.2e} m" for e in errors) + " |", flush=True)
 
 

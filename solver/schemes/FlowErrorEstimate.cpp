@@ -61,6 +61,7 @@ void FlowScheme::refine(double zNext, double pNext) {
     save(coarse_);
     double local = 0.0, before = HUGE_VAL, differenceBefore = 0.0;
     bool smoothBefore = false;
+    blindPair_ = straddled_ = false;
     for (;;) {
         restore(start_);
         substeps(zNext, pNext, 1 << j, level(j));
@@ -72,15 +73,24 @@ void FlowScheme::refine(double zNext, double pNext) {
             flow_.smoothOrder += (order - flow_.smoothOrder) / kOrderMemory;
         }
         bool settled = local <= target || j == top || local > 0.5 * before;
-        blindPair_ = false;
-        if (settled && !smooth_) {
+        // Risen because the pair was blind: the coarse run is the kept run R found wrong (docs/theory.md
+        // §22, events resolved), so R runs whether or not this pair is content.
+        const bool afterBlind = blindPair_ || straddled_;
+        blindPair_ = straddled_ = false;
+        if ((settled || afterBlind) && !smooth_) {
             // Rows changed sides: the pair may be blind to an event both runs resolve at the same
             // sub-step boundary (docs/theory.md §22, events resolved). R says; if so its error is the step's.
             const long long solves = s.contactSolves;
-            const double resolved = resolveEvents(zNext, pNext, j);
+            double resolved = resolveEvents(zNext, pNext, j);
             discardedSolves += s.contactSolves - solves;
             blindPair_ = resolved > kBlindPair * local;
+            straddled_ = afterBlind && local > kBlindPair * resolved;
+            if (straddled_) resolved = straddledError();
             if (blindPair_) {
+                lastEventQ_ = eventQ_;
+                lastEventMomentum_ = eventMomentum_;
+            }
+            if (blindPair_ || straddled_) {
                 local = resolved;
                 settled = local <= target || j == top || local > 0.5 * before;
             }
@@ -244,9 +254,28 @@ void FlowScheme::addEventError() {
     squaredAmplitudes(localQ_, localMomentum_, amplitude_);
     squaredAmplitudes(eventQ_, eventMomentum_, scratchQ_);
     flow_.eventError2.array() += amplitude_.array().max(scratchQ_.array());
-    if (!blindPair_) return;
-    localQ_ += eventQ_;
-    localMomentum_ += eventMomentum_;
+    if (straddled_) {  // the pair's difference is the coarse run's event error: E carries straddledError's
+        localQ_ = eventQ_;
+        localMomentum_ = eventMomentum_;
+    } else if (blindPair_) {
+        localQ_ += eventQ_;
+        localMomentum_ += eventMomentum_;
+    }
+}
+
+// The pair after a blind one's rise straddles the stair R found (its difference over kBlindPair times
+// R's): its coarse run is the kept run R found wrong, and their difference is that run's event error, not
+// this one's. This kept run's error is then its own event error (kept − R) plus R's, R's the Richardson
+// share of the two R's difference, R_{j−1} − R_j = pair + (kept_j − R_j) − (kept_{j−1} − R_{j−1}), as in
+// held contact (docs/theory.md §22, events resolved). Into event*, returned at the reported points, m.
+double FlowScheme::straddledError() {
+    const double share = 1.0 / (std::exp2(flow_.smoothOrder) - 1.0);
+    lastEventQ_ = eventQ_ + share * (localQ_ + eventQ_ - lastEventQ_);  // (coefficient-wise: no alias)
+    lastEventMomentum_ = eventMomentum_ + share * (localMomentum_ + eventMomentum_ - lastEventMomentum_);
+    eventQ_.swap(lastEventQ_);  // lastEventQ_ keeps this level's kept − R for a further rise
+    eventMomentum_.swap(lastEventMomentum_);
+    squaredAmplitudes(eventQ_, eventMomentum_, amplitude_);
+    return atReportedPoints(amplitude_);
 }
 
 // R (docs/theory.md §22, events resolved): the kept run at `level` again from start_, each of its

@@ -75,7 +75,7 @@ FlowScheme::FlowScheme(std::shared_ptr<const CondensedPlate> plate, Obstacles ob
 
         inverseOmega_ = c.omega2.cwiseSqrt().cwiseInverse();
         for (Eigen::VectorXd* v : {&amplitude_, &errorNextQ_, &errorNextMomentum_, &localQ_, &localMomentum_,
-                                   &scratchQ_, &eventQ_, &eventMomentum_})
+                                   &scratchQ_, &eventQ_, &eventMomentum_, &lastEventQ_, &lastEventMomentum_})
             v->resize(m);
         rowBound_.resize(Eigen::Index(measured.size()));
         for (Eigen::VectorXd* v : {&sample11_, &sample12_, &sample21_, &sample22_}) v->resize(m);

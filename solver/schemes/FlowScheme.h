@@ -110,6 +110,9 @@ private:
     // A step where rows changed sides: the kept run at `level` again with its events resolved (R), from
     // start_; kept − R into event*, returned at the reported points, m; the kept run's end restored.
     double resolveEvents(double zNext, double pNext, int level);
+    // The rise after a blind pair, whose new pair straddles R's stair: the kept run's error from both
+    // levels' R, into event*, at the reported points, m.
+    double straddledError();
     bool boundedByGap()
         const;  // every reported point under both obstacles: two motions differ there by gapBound_ at most
     double localTarget() const;  // what this contact step may add at the reported points, m
@@ -150,6 +153,7 @@ private:
     Snapshot start_, coarse_, fine_;  // start_: the contact step's start (advance), restored on a throw
     Snapshot substepStart_;  // resolvedSubsteps: a sub-step's start, to take it again as two halves
     bool blindPair_ = false;  // this step's pair missed an event R saw (docs/theory.md §22, events resolved)
+    bool straddled_ = false;  // the pair after its rise measured its coarse run's event error (straddledError)
     FlowState flowAtStart_;
     double errorReach_ = 0.0;  // how far the carried error can move a row (0 without a tolerance)
     // Where in an onset step (no row held at its start) the first row reaches an obstacle, as a fraction
@@ -162,7 +166,7 @@ private:
     Eigen::MatrixXd measuredRows_;  // G at the reported points
     Eigen::MatrixXd measuredRows2_;  // and its entries squared (amplitudes of independent phases, no temporary)
     Eigen::VectorXd inverseOmega_, amplitude_, rowBound_, errorNextQ_, errorNextMomentum_, localQ_, localMomentum_,
-        scratchQ_, eventQ_, eventMomentum_;
+        scratchQ_, eventQ_, eventMomentum_, lastEventQ_, lastEventMomentum_;
     // The exact free flow over kSample·Δt, the sampling period of the output error in free flight.
     Eigen::VectorXd sample11_, sample12_, sample21_, sample22_;
     // How each mode's squared amplitude decays over kSample·Δt and over Δt (det Φ: 1 undamped).
