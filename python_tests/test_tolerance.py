@@ -34,8 +34,12 @@ ARGYRIS_CHATTER = dict(mass="singular_p0", time_scheme="flow", nx=7, ny=3, obsta
 DRIVES = {"fvs": (0.008, 25.0), "argyris": (0.015, 20.0)}
 
 
+POINTS = ("corner_1", "corner_2", "free_edge_mid")  # the reported points error_estimate covers
+
+
 def history(fmu_path, scene, stop, drive=None, **parameters):
-    """corner_1 and error_estimate every communication step, the warnings, the last outputs."""
+    """The reported points (a row each communication step) and error_estimate, the warnings, the last
+    outputs."""
     amplitude, frequency = drive or (0.0, 0.0)
     w = 2 * math.pi * frequency
     with PlateRun(fmu_path, **scene, **parameters) as run:
@@ -50,7 +54,7 @@ def history(fmu_path, scene, stop, drive=None, **parameters):
                     -amplitude * w * w * math.sin(w * t),
                 ),
             )
-            corner.append(out["corner_1"])
+            corner.append([out[p] for p in POINTS])
             estimate.append(out["error_estimate"])
         warnings = [m for s, _, m in run.log if s == 1]
     return np.array(corner), np.array(estimate), warnings, out
@@ -73,13 +77,18 @@ def passed_at(warnings):
     return None
 
 
+def deviation(points, ref):
+    """The reported points' error at each communication point: the largest of their distances."""
+    return np.abs(points - ref).max(axis=1)
+
+
 def check_promise(corner, estimate, warnings, ref, spread, tolerance):
-    error = np.maximum.accumulate(np.abs(corner - ref))
+    error = np.maximum.accumulate(deviation(corner, ref))
     t = H * np.arange(1, len(error) + 1)
     assert spread < 0.05 * tolerance, (spread, tolerance)  # the reference is good enough to judge
     compared = error > 10 * spread  # where the error is the law's, not the reference's
-    # Never below the error (a tenth of a step's sampling aside: the estimate samples every 8 steps).
-    assert (estimate[compared] >= 0.9 * error[compared]).all(), (error[compared] / estimate[compared]).max()
+    # Never below the error (E is sampled at every step).
+    assert (estimate[compared] >= error[compared]).all(), (error[compared] / estimate[compared]).max()
     said = passed_at(warnings)
     if said is None:  # held: the estimate within three times the error
         assert estimate[-1] <= 3 * error[-1], (estimate[-1], error[-1])
@@ -156,10 +165,10 @@ def test_fvs_release_both_runs_of_a_pair_resolve_alike(fmu_path):
     scene = dict(FVS_CHATTER, modes=20, damping_mass=20.0)
     ref, spread = reference(fmu_path, scene, 0.1, DRIVES["fvs"])
     corner, estimate, warnings, _ = history(fmu_path, scene, 0.1, DRIVES["fvs"], dt=1e-5, tolerance=1e-5)
-    error = np.maximum.accumulate(np.abs(corner - ref))
+    error = np.maximum.accumulate(deviation(corner, ref))
     assert spread < 0.05 * 1e-5 and error[-1] <= 1e-5 and passed_at(warnings) is None
     compared = error > 10 * spread
-    assert (estimate[compared] >= 0.9 * error[compared]).all(), (error[compared] / estimate[compared]).max()
+    assert (estimate[compared] >= error[compared]).all(), (error[compared] / estimate[compared]).max()
     assert estimate[-1] <= 3.0 * error[-1], estimate[-1] / error[-1]
 
 

@@ -348,12 +348,6 @@ void FlowScheme::rotateError(long long toStep) {
     Eigen::VectorXd& u = flow_.errorQ;
     Eigen::VectorXd& v = flow_.errorMomentum;
     Eigen::VectorXd& events = flow_.eventError2;  // amplitudes only: constant undamped, decaying damped
-    for (; flow_.errorStep + kSample <= toStep; flow_.errorStep += kSample) {
-        scratchQ_ = sample11_.cwiseProduct(u) + sample12_.cwiseProduct(v);
-        v = sample21_.cwiseProduct(u) + sample22_.cwiseProduct(v);
-        u.swap(scratchQ_);
-        if (dampedModes_) events.array() *= sampleDecay_.array();
-    }
     for (; flow_.errorStep < toStep; ++flow_.errorStep) {
         scratchQ_ = flow11_.cwiseProduct(u) + flow12_.cwiseProduct(v);
         v = flow21_.cwiseProduct(u) + flow22_.cwiseProduct(v);
@@ -365,12 +359,13 @@ void FlowScheme::rotateError(long long toStep) {
 // The reported points' error implied by E now, into the running maximum. Two motions between both
 // obstacles differ at a constraint row by the gap at most: past the horizon, where E grows with the
 // motion's sensitivity, the estimate stops there (and E with it).
-void FlowScheme::sampleError() {
+void FlowScheme::sampleError(bool events) {
     rowBound_.noalias() = measuredRows_ * flow_.errorQ;
     double now = rowBound_.size() > 0 ? rowBound_.cwiseAbs().maxCoeff() : 0.0;
     // The events' error, unsigned: the amplitude of its modes' oscillations at the point, √Σ G_ik² A_k²
-    // — a floor under |G_i δq| where E's events have the wrong sign (docs/theory.md §22).
-    now = std::max(now, atReportedPoints(flow_.eventError2));
+    // — a floor under |G_i δq| where E's events have the wrong sign (docs/theory.md §22). Free flight
+    // keeps or damps each amplitude, so only a contact step can raise it.
+    if (events) now = std::max(now, atReportedPoints(flow_.eventError2));
     const double gap = gapBound_;
     if (!(now < gap)) {  // also a non-finite E
         const double scale = std::isfinite(now) && now > 0.0 ? gap / now : 0.0;

@@ -105,7 +105,8 @@ private:
     void carryError();  // E_{n+1} = carried + local; sampled; its reach
     void companion(double zNext, double pNext, int level);  // from start_ + E: E carried, into errorNext*
     void rotateError(long long toStep);  // E by the exact free flow from errorStep to toStep
-    void sampleError();  // the reported points' error implied by E and the events', into the running maximum
+    // The reported points' error implied by E and (events) the events', into the running maximum.
+    void sampleError(bool events = true);
     void addEventError();  // a step where rows changed sides: its local error's amplitudes, unsigned
     // A step where rows changed sides: the kept run at `level` again with its events resolved (R), from
     // start_; kept − R into event*, returned at the reported points, m; the kept run's end restored.
@@ -167,20 +168,14 @@ private:
     Eigen::MatrixXd measuredRows2_;  // and its entries squared (amplitudes of independent phases, no temporary)
     Eigen::VectorXd inverseOmega_, amplitude_, rowBound_, errorNextQ_, errorNextMomentum_, localQ_, localMomentum_,
         scratchQ_, eventQ_, eventMomentum_, lastEventQ_, lastEventMomentum_;
-    // The exact free flow over kSample·Δt, the sampling period of the output error in free flight.
-    Eigen::VectorXd sample11_, sample12_, sample21_, sample22_;
-    // How each mode's squared amplitude decays over kSample·Δt and over Δt (det Φ: 1 undamped).
-    Eigen::VectorXd sampleDecay_, stepDecay_;
+    // How each mode's squared amplitude decays over Δt (det Φ: 1 undamped).
+    Eigen::VectorXd stepDecay_;
     // The exact flow over Δt of each mode's u = q − q_particular (§21): (u, u̇)⁺ = Φ (u, u̇).
     Eigen::VectorXd flow11_, flow12_, flow21_, flow22_;
     Eigen::VectorXd inverseOmega2_;  // 1/ω²
     bool dampedModes_ = false;  // some c_k ≠ 0
     Eigen::VectorXd slope_, offset_, u0_, ud0_, u1_, ud1_;  // the exact step's buffers
     Eigen::VectorXd qIntegral_;  // ∫ q over the exact step
-    // In free flight the global error only rotates (docs/theory.md §22): its value at the reported
-    // points is sampled every kSample steps (8e-5 s at the default Δt, finer than the default
-    // communication step), and at every contact step.
-    static constexpr long long kSample = 8;
 };
 
 }  // namespace plate
