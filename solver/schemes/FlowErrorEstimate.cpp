@@ -84,7 +84,7 @@ void FlowScheme::refine(double zNext, double pNext) {
             double resolved = resolveEvents(zNext, pNext, j);
             discardedSolves += s.contactSolves - solves;
             blindPair_ = resolved > kBlindPair * local;
-            straddled_ = afterBlind && local > kBlindPair * resolved;
+            straddled_ = afterBlind && resolved >= 0.0 && local > kBlindPair * resolved;
             if (straddled_) resolved = straddledError();
             if (blindPair_) {
                 lastEventQ_ = eventQ_;
@@ -289,11 +289,11 @@ double FlowScheme::resolveEvents(double zNext, double pNext, int level) {
     restore(start_);
     try {
         substeps(zNext, pNext, 1 << level, *levels_[std::size_t(level - 1)], level);
-    } catch (const StepError&) {  // R cannot be taken: it says nothing, the kept step stands
+    } catch (const StepError&) {  // R cannot be taken: it says nothing (< 0), the kept step stands
         restore(fine_);
         eventQ_.setZero();
         eventMomentum_.setZero();
-        return 0.0;
+        return -1.0;
     }
     eventQ_ = fine_.state.q - state_.q;
     eventMomentum_ = fine_.state.momentum - state_.momentum;

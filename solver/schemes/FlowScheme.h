@@ -109,7 +109,8 @@ private:
     void sampleError(bool events = true);
     void addEventError();  // a step where rows changed sides: its local error's amplitudes, unsigned
     // A step where rows changed sides: the kept run at `level` again with its events resolved (R), from
-    // start_; kept − R into event*, returned at the reported points, m; the kept run's end restored.
+    // start_; kept − R into event*, returned at the reported points, m (−1 and event* zero where R cannot
+    // be taken); the kept run's end restored.
     double resolveEvents(double zNext, double pNext, int level);
     // The rise after a blind pair, whose new pair straddles R's stair: the kept run's error from both
     // levels' R, into event*, at the reported points, m.
