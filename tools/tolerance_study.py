@@ -213,6 +213,13 @@ def main() -> None:
                 entry["tolerances"][f"{tol:g}"] = row
             report["scenes"][scene] = entry
             print(json.dumps({scene: entry}, indent=1, ensure_ascii=False), flush=True)
+        rows = [r for e in report["scenes"].values() for r in e["tolerances"].values()]
+        lowest = [r["lowest_estimate_over_error"] for r in rows if r["lowest_estimate_over_error"] is not None]
+        report["promises"] = {
+            "kept": sum(r["promise_kept"] for r in rows),
+            "runs": len(rows),
+            "lowest_estimate_over_error": min(lowest) if lowest else None,
+        }
         if not args.quick:
             # The horizon: the default scene over 0.3 s, when the FMU says each tolerance is lost.
             horizon = {}
