@@ -62,6 +62,9 @@ void FlowScheme::refine(double zNext, double pNext) {
     double local = 0.0, before = HUGE_VAL, differenceBefore = 0.0;
     bool smoothBefore = false;
     blindPair_ = straddled_ = false;
+    // Content: within the share, at the cap, or a rise that did not halve the error (what remains is not
+    // the sub-step's).
+    const auto settledAt = [&](double error) { return error <= target || j == top || error > 0.5 * before; };
     for (;;) {
         restore(start_);
         substeps(zNext, pNext, 1 << j, level(j));
@@ -72,7 +75,7 @@ void FlowScheme::refine(double zNext, double pNext) {
             const double order = std::clamp(std::log2(differenceBefore / difference_), 1.0, 2.0);
             flow_.smoothOrder += (order - flow_.smoothOrder) / kOrderMemory;
         }
-        bool settled = local <= target || j == top || local > 0.5 * before;
+        bool settled = settledAt(local);
         // Risen because the pair was blind: the coarse run is the kept run R found wrong (docs/theory.md
         // §22, events resolved), so R runs whether or not this pair is content.
         const bool afterBlind = blindPair_ || straddled_;
@@ -92,7 +95,7 @@ void FlowScheme::refine(double zNext, double pNext) {
             }
             if (blindPair_ || straddled_) {
                 local = resolved;
-                settled = local <= target || j == top || local > 0.5 * before;
+                settled = settledAt(local);
             }
         }
         if (settled) break;
