@@ -8,6 +8,7 @@
 #include <sstream>
 
 #include "schemes/ImpactEpisodes.h"
+#include "DiscretizationCheck.h"
 #include "MakeScheme.h"
 #include "base/StateArchive.h"
 #include "base/PortableMath.h"
@@ -109,6 +110,7 @@ struct PlateSimulation::Impl {
     ProbeOutputs probesBefore;
     ResourceEstimate resources;  // made before the assembly
     InputSampler sampler;  // setInputSampler
+    std::unique_ptr<DiscretizationCheck> check;  // discretization_check (docs/theory.md §26)
 };
 
 PlateSimulation::PlateSimulation(const PlateParameters& p, double baseDisplacement0, double loadAtStart,
@@ -145,6 +147,7 @@ PlateSimulation::PlateSimulation(const PlateParameters& p, double baseDisplaceme
     if (log) log(describe(cache));
     s.trackRoot();  // the initial state's (t = 0 belongs to the peak)
     s.episodes = ImpactEpisodes(p.firstFrequencyEstimate(), p.dt);
+    if (p.discretizationCheck) s.check = std::make_unique<DiscretizationCheck>(p, baseDisplacement0, loadAtStart);
     progress.done(s.resources.peakMB);
 }
 
@@ -278,14 +281,14 @@ void PlateSimulation::setInputSampler(InputSampler sampler) { impl_->sampler = s
 
 void PlateSimulation::communicate(const StepPlan& plan, const InputSignal& base, const InputSignal& load,
                                   const GridPointObserver& observer) {
-    if (!observer) {
+    if (!observer)
         stepThrough(plan, base, load, NeverStop{});
-        return;
-    }
-    stepThrough(plan, base, load, stopWhen([&observer](bool last) {
-                    if (!last) observer();
-                    return false;
-                }));
+    else
+        stepThrough(plan, base, load, stopWhen([&observer](bool last) {
+                        if (!last) observer();
+                        return false;
+                    }));
+    if (impl_->check) impl_->check->follow(*this, base, load);
 }
 
 bool PlateSimulation::communicateUntilContactChange(const StepPlan& plan, const InputSignal& base,
@@ -296,20 +299,25 @@ bool PlateSimulation::communicateUntilContactChange(const StepPlan& plan, const 
     const auto inContact = [&s] { return s.scheme->contactVertices() > 0; };
     // The last step ended between grid points and the grid point ahead changed the contact set:
     // the event is that grid point, if this step reaches it.
+    bool early = false;
     if (!s.onGrid && (s.before.contactVertices > 0) != inContact() && double(s.scheme->stepCount()) * dt <= plan.end) {
         s.commTime = double(s.scheme->stepCount()) * dt;
         s.onGrid = true;
-        return true;
+        early = true;
+    } else {
+        const bool contactBefore = inContact();
+        early = stepThrough(plan, base, load, stopWhen([&](bool last) {
+                                if (inContact() != contactBefore) return true;
+                                return !last && observer && observer();
+                            }));
     }
-    const bool contactBefore = inContact();
-    return stepThrough(plan, base, load, stopWhen([&](bool last) {
-                           if (inContact() != contactBefore) return true;
-                           return !last && observer && observer();
-                       }));
+    if (s.check) s.check->follow(*this, base, load);
+    return early;
 }
 
 PlateOutputs PlateSimulation::outputs(bool port, FieldOutputs field) const {
     PlateOutputs o = gridOutputs(port, field);
+    if (impl_->check) o.discretizationError = impl_->check->error();
     if (impl_->onGrid) return o;
     // t_c in (t_{n−1}, t_n): linear interpolation, each ledger term alike so the ledger closes.
     const double dt = impl_->parameters.dt;
@@ -320,6 +328,7 @@ PlateOutputs PlateSimulation::outputs(bool port, FieldOutputs field) const {
         double& to = f.field(o);
         to = f.between == Between::Interpolated ? from + theta * (to - from) : from;
     }
+    if (impl_->check) o.discretizationError = impl_->check->error();  // the estimate up to now, not held
     return o;
 }
 
@@ -356,6 +365,10 @@ std::vector<double> PlateSimulation::vertexDisplacements() const {
     return heights;
 }
 
+std::string PlateSimulation::takeDiscretizationWarning() {
+    return impl_->check ? impl_->check->takeWarning() : std::string();
+}
+
 const ResourceEstimate& PlateSimulation::resources() const { return impl_->resources; }
 
 CarrierOutputs PlateSimulation::carrierOutputs() const { return impl_->scheme->carrierOutputs(); }
@@ -378,7 +391,7 @@ namespace {
 // time, whether it is on the grid, the root's peak |w_xx| since t = 0 (§23) and the outputs and the
 // probes at the grid point before the communication time (§15), measured in the probes' count.
 // Format 2: the probes became any number (format 1 had four fixed among the outputs), and the
-// impact episodes (§14) were added.
+// impact episodes (§14) were added. Format 3: discretization_error joined the outputs (§26).
 struct GridState {
     double commTime = 0.0;
     int onGrid = 1;
@@ -388,7 +401,7 @@ struct GridState {
     long long freeSteps[2] = {0, 0};  // ImpactEpisodes::freeSteps + 1 (a count: 0 is never touched)
     long long episodes[2] = {0, 0};
 };
-constexpr double kGridFormat = 2.0;
+constexpr double kGridFormat = 3.0;  // 3: discretizationError among the outputs (§26)
 const auto gridMembers = [](auto& g, auto& v) {
     v.real(g.commTime, "communication time");
     v.count(g.onGrid, "on the grid", 1.0);
@@ -406,7 +419,8 @@ const auto gridMembers = [](auto& g, auto& v) {
 
 }  // namespace
 
-// The scheme's state, then the grid's (GridState), then the carrier's fields (§18).
+// The scheme's state, then the grid's (GridState), then the carrier's fields (§18), then the
+// discretization check's part (§26; a carried clamp refuses the check: never both).
 std::vector<double> PlateSimulation::saveState() const {
     const Impl& s = *impl_;
     std::vector<double> out = s.scheme->saveState();
@@ -423,12 +437,24 @@ std::vector<double> PlateSimulation::saveState() const {
     if (const Armature* carrier = s.scheme->carrier()) {  // last (§18)
         for (const auto& f : kCarrierFields) out.push_back(f.value(carrier->state()));
     }
+    if (s.check) {
+        const std::vector<double> check = s.check->saveState();
+        out.insert(out.end(), check.begin(), check.end());
+    }
     return out;
 }
 
 void PlateSimulation::restoreState(const std::vector<double>& all) {
     Impl& s = *impl_;
     std::vector<double> in = all;
+    std::vector<double> check;  // the check's part, last; its length its own last entry (§26)
+    if (s.check) {
+        const double length = in.empty() ? 0.0 : in.back();
+        if (!(length >= 2.0 && length <= double(in.size())) || length != std::floor(length))
+            throw std::invalid_argument("state does not belong to this plate (its discretization check's part)");
+        check.assign(in.end() - std::ptrdiff_t(length), in.end());
+        in.resize(in.size() - std::size_t(length));
+    }
     CarrierState carried;
     Armature* carrier = s.scheme->carrier();
     if (carrier) {  // the carrier's state last (§18)
@@ -458,6 +484,14 @@ void PlateSimulation::restoreState(const std::vector<double>& all) {
     if (!(onGrid ? grid.commTime == gridTime : (grid.commTime < gridTime && grid.commTime > gridTime - dt))) {
         scheme.restoreState(current);
         throw std::invalid_argument("corrupt state: communication time does not fit the grid");
+    }
+    if (s.check) {
+        try {
+            s.check->restoreState(check);
+        } catch (const std::invalid_argument&) {
+            scheme.restoreState(current);
+            throw;
+        }
     }
     if (carrier) carrier->setState(carried);
     s.commTime = grid.commTime;

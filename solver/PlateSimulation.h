@@ -19,6 +19,7 @@
 namespace plate {
 
 class Scheme;
+class DiscretizationCheck;
 
 // How one communication step of length h maps onto the scheme's fixed grid t_k = k Δt
 // (docs/theory.md §15): the internal steps to take, where the inputs' time s starts at the
@@ -104,6 +105,10 @@ public:
 
     // Largest eigenvalue of M^{-1} K of the clamped plate (κ_h, docs/theory.md), s^-2.
     double kappa() const;
+
+    // discretization_check (docs/theory.md §26): from when discretization_error may under-state the
+    // error against the plate, the message once (then, and without the check, empty).
+    std::string takeDiscretizationWarning();
 
     // Full mutable state: serialize for FMU states (bit-identical continuation).
     std::vector<double> saveState() const;

@@ -197,6 +197,7 @@ public:
         }
         refreshOutputs();
         advisor_.afterStep(values_.parameters, values_.outputs, simulation_->time());
+        if (const std::string said = simulation_->takeDiscretizationWarning(); !said.empty()) warn(said);
         trace(format("t = %.17g, h = %.17g, %g steps", t, h, double(plan.steps)));
     }
 

@@ -233,6 +233,9 @@ enum PlateVr : fmu::ValueReference {
     kVrMaxContactSubsteps = 68,
     kVrErrorEstimate = 41,
     kVrCappedSteps = 42,
+    // The discretization error at run time (docs/theory.md §26).
+    kVrDiscretizationCheck = 240,
+    kVrDiscretizationError = 241,
     // The carried clamp (docs/theory.md §18–19).
     kVrArmatureMass = 100,
     kVrArmatureStiffness = 101,

@@ -4,15 +4,9 @@ command line)."""
 
 from __future__ import annotations
 
-import atexit
-import hashlib
 import re
-import shutil
-import tempfile
 import time
-from pathlib import Path
-
-PACKAGE = Path(__file__).resolve().parent
+from .tasks import fmu_file, on_dask
 
 RESULT_COLUMNS = (
     "frequency",
@@ -24,21 +18,6 @@ RESULT_COLUMNS = (
     "contact_fraction",
 )
 CSV_COLUMNS = RESULT_COLUMNS + ("wall_s", "setup_s", "plate_shared")
-
-_written = {}  # sha256 of an FMU's bytes -> the file this process wrote them to (simulate_point)
-
-
-def _fmu_file(data):
-    """The FMU's bytes as a file, written once per process: every point then loads the same
-    extraction, whose discretization cache the points share (driver.unzipped)."""
-    digest = hashlib.sha256(data).hexdigest()
-    if digest not in _written:
-        folder = tempfile.mkdtemp(prefix="plateimpact-task-")
-        atexit.register(shutil.rmtree, folder, ignore_errors=True)
-        path = Path(folder) / "PlateImpact.fmu"
-        path.write_bytes(data)
-        _written[digest] = path
-    return _written[digest]
 
 
 def simulate_point(
@@ -71,8 +50,7 @@ def simulate_point(
             f"amplitude {amplitude} must be below the gap {gap}: the clamped edge may not pass the obstacles"
         )
     t_start = time.perf_counter()
-    if isinstance(fmu, (bytes, bytearray)):
-        fmu = _fmu_file(fmu)
+    fmu = fmu_file(fmu)
     unzipped(fmu)  # extracted (once per process) before the setup is timed
     n = round(stop_time / comm_step)
     k_settle = round(settle / comm_step)
@@ -129,30 +107,4 @@ def serial_map(fmu, points, **kw):
 
 def dask_map(client, fmu, points, progress=True, **kw):
     """The map on a Dask cluster: one task per point; results in the order of `points`."""
-    from distributed import as_completed
-
-    # the workers need this package (a remote cluster may have no copy of it): ship it as a
-    # zip. load=False: a LocalCluster's scheduler lives in this process and would otherwise
-    # re-import it here, replacing the module objects the caller holds
-    with tempfile.TemporaryDirectory(prefix="plateimpact-upload-") as tmp:
-        archive = shutil.make_archive(str(Path(tmp) / "plateimpact"), "zip", str(PACKAGE.parent), PACKAGE.name)
-        client.upload_file(archive, load=False)
-    if isinstance(fmu, (bytes, bytearray)):
-        fmu = client.scatter(fmu, broadcast=True)  # sent once to every worker
-    futures = [client.submit(simulate_point, fmu, f, g, pure=False, **kw) for f, g in points]
-    index = {fut.key: i for i, fut in enumerate(futures)}
-    results = [None] * len(points)
-    bar = None
-    if progress:
-        from tqdm import tqdm
-
-        bar = tqdm(total=len(points), unit="sim", desc="map")
-    try:
-        for fut in as_completed(futures):
-            results[index[fut.key]] = fut.result()
-            if bar is not None:
-                bar.update(1)
-    finally:
-        if bar is not None:
-            bar.close()
-    return results
+    return on_dask(client, simulate_point, fmu, [((f, g), kw) for f, g in points], progress, desc="map", unit="sim")

@@ -9,6 +9,7 @@
 //                                 mass=consistent|singular_p0|singular_p1dg
 //                                 scheme=newmark|conserving|flow (time_scheme, docs/theory.md §17, §21)
 //                                 substeps=N (contact_substeps of scheme=flow)
+//                                 check=1 (discretization_check: the companion on the coarsened mesh)
 //                                 tolerance=M max_substeps=N (scheme=flow: adaptive contact sub-steps)
 //                                 rowspace=0 (scheme=flow: contact sub-steps in every row, the
 //                                 baseline of docs/theory.md §24)
@@ -286,6 +287,7 @@ int main(int argc, char** argv) {
     // stress=1 (stress_outputs: the root's peak tracked every step), probes=N (N probes, all at
     // corner_1's point: their cost does not depend on where they are)
     p.stressOutputs = num("stress", 0.0) != 0.0;
+    p.discretizationCheck = num("check", 0.0) != 0.0;  // discretization_check (docs/theory.md §26)
     p.probeX.assign(static_cast<std::size_t>(num("probes", 0.0)), p.length);
     p.probeY.assign(p.probeX.size(), 0.0);
     if (args.count("export")) return exportMatrices(p, args["export"]);
@@ -375,12 +377,13 @@ int main(int argc, char** argv) {
             "\"floor_solve_s\": %.6g, \"step_over_floor\": %.4g, \"qp_iterations_total\": %.0f, "
             "\"energy_dissipated\": %.10g, \"contact_onsets_lower\": %.0f, \"contact_onsets_upper\": %.0f, "
             "\"checksum\": %.10g, "
-            "\"error_estimate\": %.6g, \"capped_steps\": %.0f, %s%s}\n",
+            "\"error_estimate\": %.6g, \"discretization_error\": %.6g, \"capped_steps\": %.0f, %s%s}\n",
             p.element == plate::ElementType::Fvs ? "fvs" : "argyris", p.nx, p.ny, p.dt, p.beta, p.modes,
             sim.engine().c_str(), static_cast<long>(sim.dofCount()), steps,
             std::chrono::duration<double>(t1 - t0).count(), cpu1 - cpu0, std::chrono::duration<double>(t3 - t2).count(),
             perStep, (cpu3 - cpu2) / steps, floorCpu, floor, perStep / floor, o.contactSolves, o.energyDissipated,
-            o.contactOnsets[0], o.contactOnsets[1], energySum, o.errorEstimate, o.cappedSteps, resources.c_str(),
+            o.contactOnsets[0], o.contactOnsets[1], energySum, o.errorEstimate, o.discretizationError, o.cappedSteps,
+            resources.c_str(),
             spectrum.c_str());
     } catch (const std::exception& e) {
         std::fprintf(stderr, "plate_bench: %s\n", e.what());

@@ -75,6 +75,22 @@ void validateCarrier(const PlateParameters& p) {
                "implemented)");
 }
 
+// discretization_check (docs/theory.md §26): a companion on the mesh coarsened by two needs a mesh
+// of at least two cells each way, and inputs it can be fed (a carried clamp moves with the plate).
+void validateCheck(const PlateParameters& p) {
+    if (!p.discretizationCheck) return;
+    for (const auto& [name, cells] : {std::pair{"nx", p.nx}, std::pair{"ny", p.ny}})
+        if (cells < 2)
+            throw ParameterError(std::string("discretization_check needs a mesh it can coarsen: ") + name + " = " +
+                                 std::to_string(cells) +
+                                 " (allowed with the check: nx >= 2 and ny >= 2; the companion runs on ceil(nx/2) x "
+                                 "ceil(ny/2) cells); refine the mesh or set discretization_check = false");
+    if (p.carrier != PlateParameters::Carrier::None)
+        reject("discretization_check", "true",
+               "false with base_drive = force or tlm (the clamp is carried by this plate's own reaction, which the "
+               "coarser companion does not share); drive the clamp by displacement, velocity or acceleration");
+}
+
 }  // namespace
 
 void validate(const PlateParameters& p) {
@@ -129,6 +145,7 @@ void validate(const PlateParameters& p) {
     requireRange("damping_stiffness", p.dampingStiffness, kDampingStiffness);
     requireRange("memory_limit", p.memoryLimit, kMemoryLimit);  // MB; 0 = no limit
     validateCarrier(p);
+    validateCheck(p);
     validateStops(p);  // each obstacle's stop (docs/theory.md §25)
     // The probes (docs/theory.md §23): inside the plate, whose size the table's range cannot know.
     // Named as the FMI 2.0 FMU's scalars (probe_1_x) and the FMI 3.0 FMU's arrays (probe_x[0]) name them.

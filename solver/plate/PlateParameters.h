@@ -89,6 +89,9 @@ struct PlateParameters {
     // The stress outputs (§23), off by default for the same reason (the root's peak is then tracked
     // every step). Off, they read 0.
     bool stressOutputs = false;
+    // The run-time estimate of the discretization error (docs/theory.md §26): a companion plate on
+    // the mesh coarsened by two, fed the same inputs. Off by default: it costs the companion's steps.
+    bool discretizationCheck = false;
     std::size_t probeCount() const { return probeX.size(); }
 
     double bendingStiffness() const {

@@ -29,6 +29,9 @@ struct PlateOutputs {
     // time_scheme = flow with a tolerance (docs/theory.md §22): the accumulated estimate of the
     // displacement error (m) and the contact steps whose sub-steps the cap bounded (count).
     double errorEstimate = 0, cappedSteps = 0;
+    // discretization_check (docs/theory.md §26): the estimated error of the reported points against
+    // the converged plate that the mesh and the modal basis make, the largest so far (m).
+    double discretizationError = 0;
     // Stress (docs/theory.md §23). The root's peak is tracked every step (PlateSimulation); the rest
     // is computed only when asked for (PlateSimulation::outputs(…, field)). The probes, as many as
     // the parameters place, are ProbeOutputs below.
@@ -135,6 +138,7 @@ inline constexpr OutputField kOutputFields[] = {
     {"contactOnsets[1]",  Between::Held,         fieldOf<&PlateOutputs::contactOnsets, 1>},
     {"errorEstimate",     Between::Held,         fieldOf<&PlateOutputs::errorEstimate>},
     {"cappedSteps",       Between::Held,         fieldOf<&PlateOutputs::cappedSteps>},
+    {"discretizationError",Between::Held,        fieldOf<&PlateOutputs::discretizationError>},
     {"maxStressX",        Between::Held,         fieldOf<&PlateOutputs::maxStressX>},  // a place, not a quantity
     {"maxStressY",        Between::Held,         fieldOf<&PlateOutputs::maxStressY>},
 };

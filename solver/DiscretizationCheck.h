@@ -1,0 +1,57 @@
+#pragma once
+// discretization_check (docs/theory.md §26): the run-time estimate of the error the mesh and the
+// modal basis make at the reported points. A companion plate on the mesh coarsened by two
+// (ceil(nx/2) × ceil(ny/2) cells, 2 Δt, every other parameter the same) is fed the same inputs and
+// follows the plate to each communication point; the largest difference of the reported points so
+// far, scaled by Richardson's factor for the refinement between the two meshes, is the estimate.
+// The plate itself never sees the companion: its results are the same bits with the check or
+// without it.
+#include <memory>
+#include <string>
+#include <vector>
+
+#include "InputSignal.h"
+#include "plate/PlateParameters.h"
+
+namespace plate {
+
+class PlateSimulation;
+
+class DiscretizationCheck {
+public:
+    // The companion's parameters: the mesh coarsened by two in each direction (validate() has
+    // refused meshes of one cell and carried clamps), twice the step, no tolerance, no probes, no
+    // stress, no check of its own.
+    static PlateParameters companionParameters(const PlateParameters& plate);
+    // Builds the companion (ParameterError when it cannot be: a stop its mesh cannot resolve).
+    DiscretizationCheck(const PlateParameters& plate, double baseDisplacement0, double loadAtStart);
+    ~DiscretizationCheck();
+
+    // After the plate's communication step (the plate now at `plate.time()`): the companion steps
+    // to the same time with the same signals, then the reported points are compared.
+    void follow(const PlateSimulation& plate, const InputSignal& base, const InputSignal& load);
+    // The estimate so far (m): Richardson's factor times the largest difference.
+    double error() const { return factor_ * largestDifference_; }
+    // Richardson's factor 1/(r^p − 1) for the refinement r between the meshes (theory §26).
+    double factor() const { return factor_; }
+    // From when the estimate may under-state (theory §26, "When it cannot"), said once: the
+    // message the first time it is asked after that time, then empty.
+    std::string takeWarning();
+
+    // The companion's state and the largest difference, for FMU states (PlateSimulation's last part).
+    std::vector<double> saveState() const;
+    void restoreState(const std::vector<double>& state);  // throws std::invalid_argument
+
+private:
+    std::unique_ptr<PlateSimulation> companion_;
+    double factor_;
+    double largestDifference_ = 0.0;
+    double scale_ = 0.0;  // the largest |w| of the reported points so far: the motion's size
+    double partingScale_ = 0.0;  // the nearer obstacle's distance; 0 without obstacles (never parted)
+    bool consistentMass_;  // the paper's impact law, whose limit after impact the check cannot see
+    double cannotSince_ = -1.0;  // the time the estimate stopped holding; −1 while it holds
+    enum class Cannot { Holds = 0, ImpactLaw = 1, Parted = 2 } cannot_ = Cannot::Holds;
+    bool warned_ = false;
+};
+
+}  // namespace plate

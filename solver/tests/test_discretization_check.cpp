@@ -1,0 +1,101 @@
+// discretization_check (solver/DiscretizationCheck.h, docs/theory.md §26): the plate's results are
+// the same bits with the check on; the estimate is Richardson's factor times the largest difference
+// from the companion, which is the coarsened plate (2 Δt) run alone; a state restored into a fresh
+// simulation continues bit for bit, the estimate included; meshes of one cell and carried clamps
+// are refused with the allowed range.
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <cmath>
+#include <vector>
+
+#include "DiscretizationCheck.h"
+#include "PlateSimulation.h"
+#include "base/Errors.h"
+
+namespace plate {
+namespace {
+
+PlateParameters contactScene(bool check) {
+    PlateParameters p;
+    p.nx = 8, p.ny = 3;  // the companion: 4 × 2
+    p.obstacleLower = -0.01, p.obstacleUpper = 0.01;
+    p.mass = MassModel::SingularP0, p.timeScheme = TimeScheme::Flow;
+    p.discretizationCheck = check;
+    return p;
+}
+
+InputSignal sine(double t) {
+    const double a = 0.008, w = 2.0 * M_PI * 25.0;
+    return {a * std::sin(w * t), a * w * std::cos(w * t), -a * w * w * std::sin(w * t)};
+}
+
+struct Record {
+    std::vector<double> points;  // corner_1, corner_2, free_edge_mid after every communication step
+    double estimate = 0.0;
+};
+
+// 30 communication steps of 1e-4 s, then `more` of 2.5e-5 s (between grid points when dt does not divide them).
+Record run(PlateSimulation& s, int steps, int first = 0) {
+    Record r;
+    for (int k = first; k < first + steps; ++k) {
+        const double h = k % 3 == 2 ? 2.5e-4 : 1e-4;
+        s.communicate(s.plan(h), sine(s.time()), InputSignal{});
+        const PlateOutputs o = s.outputs();
+        r.points.insert(r.points.end(), {o.corner1, o.corner2, o.freeEdgeMid});
+        r.estimate = o.discretizationError;
+    }
+    return r;
+}
+
+TEST(DiscretizationCheck, ThePlateIsTheSameBitsAndTheEstimateIsRichardsonsFactorTimesTheDifference) {
+    PlateSimulation plain(contactScene(false), 0.0), checked(contactScene(true), 0.0);
+    PlateSimulation companion(DiscretizationCheck::companionParameters(contactScene(true)), 0.0);
+    EXPECT_EQ(companion.parameters().nx, 4);
+    EXPECT_EQ(companion.parameters().ny, 2);
+    EXPECT_EQ(companion.parameters().dt, 2.0 * contactScene(true).dt);
+    const Record a = run(plain, 120), b = run(checked, 120), c = run(companion, 120);
+    EXPECT_EQ(a.points, b.points);  // bit for bit
+    EXPECT_EQ(a.estimate, 0.0);
+    double largest = 0.0;
+    for (std::size_t i = 0; i < b.points.size(); ++i) largest = std::max(largest, std::fabs(b.points[i] - c.points[i]));
+    ASSERT_GT(largest, 1e-5);  // the scene reaches the obstacles: the meshes differ visibly
+    // r = 2 in each direction with nx, ny = 8, 3 → 4, 2: sqrt(24/8) = sqrt(3)
+    const double factor = 1.0 / (std::pow(std::sqrt(3.0), 1.5) - 1.0);
+    // The companion inside the check steps to the plate's time (h from the two times), the one
+    // alone by the step sizes themselves: the same up to the times' last bits.
+    EXPECT_NEAR(b.estimate, factor * largest, 1e-9 * largest);
+}
+
+TEST(DiscretizationCheck, AStateRestoredIntoAFreshSimulationContinuesBitForBit) {
+    PlateSimulation first(contactScene(true), 0.0);
+    run(first, 40);
+    const std::vector<double> state = first.saveState();
+    const Record goOn = run(first, 40, 40);
+    PlateSimulation fresh(contactScene(true), 0.0);
+    fresh.restoreState(state);
+    const Record restored = run(fresh, 40, 40);
+    EXPECT_EQ(goOn.points, restored.points);
+    EXPECT_EQ(goOn.estimate, restored.estimate);
+    // A state of a run without the check is not this plate's.
+    PlateSimulation unchecked(contactScene(false), 0.0);
+    EXPECT_THROW(fresh.restoreState(unchecked.saveState()), std::invalid_argument);
+}
+
+TEST(DiscretizationCheck, RefusesMeshesOfOneCellAndCarriedClamps) {
+    PlateParameters p = contactScene(true);
+    p.ny = 1;
+    try {
+        PlateSimulation s(p, 0.0);
+        FAIL() << "a mesh of one cell across was accepted";
+    } catch (const ParameterError& e) {
+        EXPECT_NE(std::string(e.what()).find("nx >= 2 and ny >= 2"), std::string::npos) << e.what();
+    }
+    p = PlateParameters{};
+    p.discretizationCheck = true;
+    p.carrier = PlateParameters::Carrier::Armature;
+    EXPECT_THROW(PlateSimulation(p, 0.0), ParameterError);
+}
+
+}  // namespace
+}  // namespace plate
