@@ -21,8 +21,10 @@ FLOW = {"time_scheme": "flow", "mass": "singular_p0"}
 SCENES = {
     "release": ({"parameters": {"initial_load": 8600, "obstacle_upper_enabled": False}, "drive": {}}, 0.1),
     "chatter": (
-        {"parameters": {"obstacle_lower": -0.02, "obstacle_upper": 0.02},
-         "drive": {"amplitude": 0.015, "frequency": 20}},
+        {
+            "parameters": {"obstacle_lower": -0.02, "obstacle_upper": 0.02},
+            "drive": {"amplitude": 0.015, "frequency": 20},
+        },
         0.03,
     ),
 }
@@ -77,7 +79,10 @@ def test_the_papers_law_says_from_its_first_impact_that_it_cannot(fmu_path):
 def test_fmi3_has_the_parameter_and_the_output(fmu3):
     release = {"initial_load": 8600.0, "obstacle_upper_enabled": False}  # the plate moves with no input
     result = simulate_fmu(
-        str(fmu3), stop_time=0.02, output_interval=1e-3, start_values=dict(release, discretization_check=True),
+        str(fmu3),
+        stop_time=0.02,
+        output_interval=1e-3,
+        start_values=dict(release, discretization_check=True),
         output=["corner_1", "discretization_error"],
     )
     assert result["discretization_error"][-1] > 0.0

@@ -81,8 +81,8 @@ void DiscretizationCheck::follow(const PlateSimulation& plate, const InputSignal
     const double h = plate.time() - c.time();
     if (h > 1e-9 * c.parameters().dt) c.communicate(c.plan(h), base, load);
     const PlateOutputs a = plate.outputs(), b = c.outputs();
-    const double difference = std::max({std::fabs(a.corner1 - b.corner1), std::fabs(a.corner2 - b.corner2),
-                                        std::fabs(a.freeEdgeMid - b.freeEdgeMid)});
+    const double difference = std::max(
+        {std::fabs(a.corner1 - b.corner1), std::fabs(a.corner2 - b.corner2), std::fabs(a.freeEdgeMid - b.freeEdgeMid)});
     largestDifference_ = std::max(largestDifference_, difference);
     scale_ = std::max({scale_, std::fabs(a.corner1), std::fabs(a.corner2), std::fabs(a.freeEdgeMid)});
     if (cannotSince_ >= 0.0) return;
@@ -119,7 +119,8 @@ std::string DiscretizationCheck::takeWarning() {
 
 std::vector<double> DiscretizationCheck::saveState() const {
     std::vector<double> out = companion_->saveState();
-    out.insert(out.end(), {largestDifference_, scale_, cannotSince_, double(static_cast<int>(cannot_)), warned_ ? 1.0 : 0.0});
+    out.insert(out.end(),
+               {largestDifference_, scale_, cannotSince_, double(static_cast<int>(cannot_)), warned_ ? 1.0 : 0.0});
     out.push_back(double(out.size() + 1));  // the part's length, last
     return out;
 }

@@ -208,8 +208,9 @@ const Row kRows[] = {
         "time_scheme = flow: midpoint sub-steps of each internal step in which a constraint row is or becomes "
         "active when tolerance = 0 (1..64; the free steps take the exact modal flow whatever this is)"),
     parameter(kVrTolerance,         "tolerance",          "m",     kTolerance,         PARAMETER(tolerance),
-        "time_scheme = flow: > 0 bounds the error of the reported points (corner_1, corner_2, free_edge_mid) "
-        "against the exact motion: each contact step takes the sub-steps the global error estimate asks for, and "
+        "time_scheme = flow: > 0 bounds the time error of the reported points (corner_1, corner_2, free_edge_mid): "
+        "their distance from the exact motion of this mesh (its distance from the converged plate: "
+        "discretization_error); each contact step takes the sub-steps the global error estimate asks for, and "
         "a warning says when the estimate passes the tolerance (the scene's horizon for it; contact steps then "
         "take contact_substeps sub-steps); 0 = contact_substeps sub-steps"),
     integerParameter(kVrMaxContactSubsteps, "max_contact_substeps", kMaxContactSubsteps,
@@ -266,9 +267,10 @@ const Row kRows[] = {
         "Largest number of iterations of one step's contact solve so far: active-set iterations (newmark), "
         "discrete-gradient iterations (conserving, flow)"),
     output(kVrErrorEstimate,           "error_estimate",             "m",    OUTPUT(errorEstimate),
-        "time_scheme = flow with tolerance > 0: the largest error of the reported points since t = 0, estimated "
-        "from the global error carried through free flight and impacts (the theory, section 22); at most the "
-        "gap between the obstacles; 0 otherwise"),
+        "time_scheme = flow with tolerance > 0: the largest time error of the reported points since t = 0 (their "
+        "distance from the exact motion of this mesh, not from the converged plate: discretization_error), "
+        "estimated from the global error carried through free flight and impacts (the theory, section 22); at "
+        "most the gap between the obstacles; 0 otherwise"),
     integerOutput(kVrCappedSteps,       "capped_steps",        OUTPUT(cappedSteps),
         "time_scheme = flow with tolerance > 0: contact steps whose own error stayed above their share of the "
         "tolerance at max_contact_substeps sub-steps (the cap bounded their work; error_estimate includes them)"),

@@ -75,8 +75,12 @@ class Scene:
             raise SceneError(
                 f"parameters {sorted(owned)} set the discretization, which the sizing chooses: leave them out"
             )
-        return Scene(params, float(drive.get("amplitude", 0.0)), float(drive.get("frequency", 10.0)),
-                     float(drive.get("load", 0.0)))
+        return Scene(
+            params,
+            float(drive.get("amplitude", 0.0)),
+            float(drive.get("frequency", 10.0)),
+            float(drive.get("load", 0.0)),
+        )
 
     @staticmethod
     def load_file(path, names=None) -> Scene:
@@ -114,8 +118,7 @@ def run(fmu, scene: Scene, config: dict, until: float, check=False) -> Run:
     n = round(until / SAMPLE)
     points = np.empty((n, len(REPORTED)))
     estimate = np.empty(n) if check else None
-    with PlateImpactFMU(fmu, base0=scene.base(0.0)[0], load0=scene.load, logger=lambda *a: None,
-                        **params) as plate:
+    with PlateImpactFMU(fmu, base0=scene.base(0.0)[0], load0=scene.load, logger=lambda *a: None, **params) as plate:
         setup = time.perf_counter() - t0
         refs = [plate.vars[name].valueReference for name in REPORTED]
         if check:
@@ -166,12 +169,18 @@ def converged_plate(h: np.ndarray, h2: np.ndarray, h4: np.ndarray) -> Plate:
         return Plate(h4, math.inf, d1, d2, True, 0.0, "the rungs agree to the last bit")
     p = math.log2(d1 / d2)
     if not ORDER_RANGE[0] <= p <= ORDER_RANGE[1]:
-        return Plate(h4, p, d1, d2, False, max(d1, d2),
-                     f"does not converge: measured order {p:.2f} outside {ORDER_RANGE}; the finest rung is "
-                     f"the reference, uncertain by max(d1, d2)")
+        return Plate(
+            h4,
+            p,
+            d1,
+            d2,
+            False,
+            max(d1, d2),
+            f"does not converge: measured order {p:.2f} outside {ORDER_RANGE}; the finest rung is "
+            f"the reference, uncertain by max(d1, d2)",
+        )
     factor = 1.0 / (2.0**p - 1.0)
-    return Plate(h4 + factor * (h4 - h2), p, d1, d2, True, factor * d2,
-                 f"converges, measured order {p:.2f} in h")
+    return Plate(h4 + factor * (h4 - h2), p, d1, d2, True, factor * d2, f"converges, measured order {p:.2f} in h")
 
 
 def error_curve(points: np.ndarray, plate: np.ndarray) -> np.ndarray:
@@ -207,5 +216,7 @@ def label(config: dict) -> str:
     law = config.get("time_scheme", "newmark")
     mass = config.get("mass", "consistent")
     sub = f" s{config['contact_substeps']}" if "contact_substeps" in config else ""
-    return (f"{config.get('element', 'argyris')} {config['nx']}x{config['ny']} "
-            f"{'complete' if not modes else f'm{modes}'} {law}/{mass} dt{config.get('dt', 1e-5):g}{sub}")
+    return (
+        f"{config.get('element', 'argyris')} {config['nx']}x{config['ny']} "
+        f"{'complete' if not modes else f'm{modes}'} {law}/{mass} dt{config.get('dt', 1e-5):g}{sub}"
+    )

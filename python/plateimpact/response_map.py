@@ -6,6 +6,7 @@ from __future__ import annotations
 
 import re
 import time
+
 from .tasks import fmu_file, on_dask
 
 RESULT_COLUMNS = (

@@ -27,6 +27,7 @@ import numpy as np
 
 from . import convergence as cv
 
+
 def base_mesh(parameters):
     """The ladder's coarsest mesh: five cells across the width, about square cells (the default
     plate's 14 x 5)."""
@@ -89,17 +90,30 @@ def analyse(results, until, accuracy, windows=()):
         n = round(w / cv.SAMPLE)
         plate = cv.converged_plate(h[:n], h2[:n], h4[:n])
         plates[w] = plate.points
-        references[f"{w:g}"] = {"order": plate.order, "d1": plate.d1, "d2": plate.d2, "converges": plate.converges,
-                                "verdict": plate.verdict, "uncertainty": plate.uncertainty}
+        references[f"{w:g}"] = {
+            "order": plate.order,
+            "d1": plate.d1,
+            "d2": plate.d2,
+            "converges": plate.converges,
+            "verdict": plate.verdict,
+            "uncertainty": plate.uncertainty,
+        }
     rows = []
     for name, r in results:
         if name.startswith("h"):
             continue
-        errors = {f"{w:g}": float(np.abs(r["points"][:len(p)] - p).max()) for w, p in plates.items()}
-        rows.append({"name": name, "config": r["config"], "error": errors[f"{until:g}"], "errors": errors,
-                     "cpu_per_second": r["cpu_per_second"], "setup_s": r["setup_s"]})
-    reference = dict(references[f"{until:g}"],
-                     ladder=[cv.label(by[n]["config"]) for n in ("h", "h/2", "h/4")])
+        errors = {f"{w:g}": float(np.abs(r["points"][: len(p)] - p).max()) for w, p in plates.items()}
+        rows.append(
+            {
+                "name": name,
+                "config": r["config"],
+                "error": errors[f"{until:g}"],
+                "errors": errors,
+                "cpu_per_second": r["cpu_per_second"],
+                "setup_s": r["setup_s"],
+            }
+        )
+    reference = dict(references[f"{until:g}"], ladder=[cv.label(by[n]["config"]) for n in ("h", "h/2", "h/4")])
     front = [rows[i]["name"] for i in cv.pareto([(r["cpu_per_second"], r["error"]) for r in rows])]
     within = [r for r in rows if r["error"] + reference["uncertainty"] <= accuracy]
     choice = min(within, key=lambda r: r["cpu_per_second"]) if within else None
@@ -129,8 +143,9 @@ def figure(report, path, title=""):
         on = r["name"] in front
         ax.loglog(r["cpu_per_second"], r["error"], "o" if on else "x", color="C0" if on else "0.6")
         if on:
-            ax.annotate(r["name"], (r["cpu_per_second"], r["error"]), fontsize=6, xytext=(3, 3),
-                        textcoords="offset points")
+            ax.annotate(
+                r["name"], (r["cpu_per_second"], r["error"]), fontsize=6, xytext=(3, 3), textcoords="offset points"
+            )
     pts = sorted((r["cpu_per_second"], r["error"]) for r in rows if r["name"] in front)
     ax.loglog([p[0] for p in pts], [p[1] for p in pts], "-", color="C0", lw=0.8)
     ax.axhline(report["accuracy"], color="C3", lw=0.8, ls="--", label=f"accuracy {report['accuracy']:g} m")
@@ -147,8 +162,10 @@ def figure(report, path, title=""):
 def size(fmu, scene: cv.Scene, until, accuracy, client=None, quick=False, progress=True, windows=()):
     """The sizing of a scene: the runs (on `client` when given, else in this process) and their analysis."""
     runs = plan(scene.parameters, quick)
-    scene_dict = {"parameters": scene.parameters,
-                  "drive": {"amplitude": scene.amplitude, "frequency": scene.frequency, "load": scene.load}}
+    scene_dict = {
+        "parameters": scene.parameters,
+        "drive": {"amplitude": scene.amplitude, "frequency": scene.frequency, "load": scene.load},
+    }
     calls = [((scene_dict, config, until), {}) for _, config in runs]
     if client is None:
         results = [_run(fmu, *args) for args, _ in calls]
@@ -200,8 +217,7 @@ def main(argv=None):
     if args.scheduler:
         client = Client(args.scheduler)
     else:
-        cluster = LocalCluster(n_workers=args.workers, threads_per_worker=1, processes=True,
-                               dashboard_address=None)
+        cluster = LocalCluster(n_workers=args.workers, threads_per_worker=1, processes=True, dashboard_address=None)
         client = Client(cluster)
     try:
         report = size(args.fmu, scene, args.until, args.accuracy, client, args.quick, not args.no_progress)
@@ -210,21 +226,27 @@ def main(argv=None):
     finally:
         client.close()
     ref = report["reference"]
-    print(f"the converged plate: {ref['verdict']} (ladder {', '.join(ref['ladder'])}; "
-          f"uncertainty {ref['uncertainty']:.2g} m)")
+    print(
+        f"the converged plate: {ref['verdict']} (ladder {', '.join(ref['ladder'])}; "
+        f"uncertainty {ref['uncertainty']:.2g} m)"
+    )
     print(f"{'configuration':58s} {'error (m)':>10s} {'CPU/s (s)':>10s} {'setup (s)':>9s}  front")
     front = set(report["front"])
     for r in sorted(report["candidates"], key=lambda r: r["cpu_per_second"]):
-        print(f"{r['name']:58s} {r['error']:10.3g} {r['cpu_per_second']:10.3g} {r['setup_s']:9.2f}  "
-              f"{'*' if r['name'] in front else ''}")
+        print(
+            f"{r['name']:58s} {r['error']:10.3g} {r['cpu_per_second']:10.3g} {r['setup_s']:9.2f}  "
+            f"{'*' if r['name'] in front else ''}"
+        )
     if report["choice"]:
         print(f"cheapest within {args.accuracy:g} m over {args.until:g} s: {report['choice']}")
         print("  FMU parameters: " + json.dumps(report["choice_config"]))
     else:
         best = min(report["candidates"], key=lambda r: r["error"])
-        print(f"no configuration tried is within {args.accuracy:g} m over {args.until:g} s (reference uncertainty "
-              f"{ref['uncertainty']:.2g} m); the closest: {best['name']} at {best['error']:.3g} m — a larger "
-              f"accuracy, a shorter window or a finer mesh on more modes")
+        print(
+            f"no configuration tried is within {args.accuracy:g} m over {args.until:g} s (reference uncertainty "
+            f"{ref['uncertainty']:.2g} m); the closest: {best['name']} at {best['error']:.3g} m — a larger "
+            f"accuracy, a shorter window or a finer mesh on more modes"
+        )
     if args.json:
         Path(args.json).write_text(json.dumps({k: v for k, v in report.items() if k != "plates"}, indent=1) + "\n")
     if args.figure:

@@ -383,8 +383,7 @@ int main(int argc, char** argv) {
             std::chrono::duration<double>(t1 - t0).count(), cpu1 - cpu0, std::chrono::duration<double>(t3 - t2).count(),
             perStep, (cpu3 - cpu2) / steps, floorCpu, floor, perStep / floor, o.contactSolves, o.energyDissipated,
             o.contactOnsets[0], o.contactOnsets[1], energySum, o.errorEstimate, o.discretizationError, o.cappedSteps,
-            resources.c_str(),
-            spectrum.c_str());
+            resources.c_str(), spectrum.c_str());
     } catch (const std::exception& e) {
         std::fprintf(stderr, "plate_bench: %s\n", e.what());
         return 1;
