@@ -134,3 +134,18 @@ def test_the_factor_is_richardsons_for_the_refinement(fmu_path):
     coarse = cv.run(fmu_path, scene, dict(fine, nx=14, ny=5, dt=2e-5), 0.05)
     difference = float(np.abs(run.points - coarse.points).max())
     assert math.isclose(run.estimate[-1], difference / (2**1.5 - 1), rel_tol=1e-9)
+
+
+def test_the_example_runs_the_recommended_configuration():
+    """examples/error_against_the_plate.py's ACCURATE is the front's choice within 1e-3 m over §5.2's
+    first 0.1 s (docs/plate_front.json, written by tools/plate_front.py), as the README says."""
+    import importlib.util
+    import json
+    from pathlib import Path
+
+    repo = Path(__file__).resolve().parent.parent
+    spec = importlib.util.spec_from_file_location("example", repo / "examples" / "error_against_the_plate.py")
+    example = importlib.util.module_from_spec(spec)
+    spec.loader.exec_module(example)
+    front = json.loads((repo / "docs" / "plate_front.json").read_text())
+    assert example.ACCURATE == front["scenes"]["s52"]["choices"]["0.1"]["config"]

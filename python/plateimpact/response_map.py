@@ -7,7 +7,7 @@ from __future__ import annotations
 import re
 import time
 
-from .tasks import fmu_file, on_dask
+from .tasks import local_fmu, on_dask
 
 RESULT_COLUMNS = (
     "frequency",
@@ -51,7 +51,7 @@ def simulate_point(
             f"amplitude {amplitude} must be below the gap {gap}: the clamped edge may not pass the obstacles"
         )
     t_start = time.perf_counter()
-    fmu = fmu_file(fmu)
+    fmu = local_fmu(fmu)
     unzipped(fmu)  # extracted (once per process) before the setup is timed
     n = round(stop_time / comm_step)
     k_settle = round(settle / comm_step)

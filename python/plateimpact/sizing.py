@@ -63,9 +63,9 @@ def candidates(nx, ny, quick=False):
 
 def _run(fmu, scene_dict, config, until):
     """One task: the run's points and cost (plain data, for Dask)."""
-    from .tasks import fmu_file
+    from .tasks import local_fmu
 
-    r = cv.run(fmu_file(fmu), cv.Scene.from_dict(scene_dict), config, until)
+    r = cv.run(local_fmu(fmu), cv.Scene.from_dict(scene_dict), config, until)
     return {"config": r.config, "points": r.points, "cpu_per_second": r.cpu_per_second, "setup_s": r.setup_s}
 
 

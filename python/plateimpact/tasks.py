@@ -12,10 +12,10 @@ from pathlib import Path
 
 PACKAGE = Path(__file__).resolve().parent
 
-_written = {}  # sha256 of an FMU's bytes -> the file this process wrote them to (fmu_file)
+_written = {}  # sha256 of an FMU's bytes -> the file this process wrote them to (local_fmu)
 
 
-def fmu_file(fmu):
+def local_fmu(fmu):
     """A path as it is; the FMU's bytes as a file, written once per process: every run then loads
     the same extraction, whose discretization cache the runs share (driver.unzipped)."""
     if not isinstance(fmu, (bytes, bytearray)):
