@@ -40,9 +40,8 @@ constexpr int kResolveDepth = 3;
 // discrete-gradient sub-steps: the energy identity holds at any level; the coarse runs and the
 // companion leave no trace but their work count.
 void FlowScheme::refine(double zNext, double pNext) {
-    CondensedState& s = state_;
+    const CondensedState& s = now_.s;
     const int top = static_cast<int>(levels_.size());
-    const auto level = [&](int j) -> const MidpointOperator& { return j == 0 ? full_ : *levels_[j - 1]; };
     // Past the time the estimate passed the tolerance (the scene's horizon for it: no sub-step brings
     // it back) the contact steps take contact_substeps sub-steps, as without a tolerance; the estimate
     // goes on where no gap bounds it (sampleError).
@@ -51,14 +50,13 @@ void FlowScheme::refine(double zNext, double pNext) {
     ++flow_.contactSteps;
     if (lost && boundedByGap()) {
         // The estimate already reads the gap, the bound no later step changes: no pair, no companion.
-        substeps(zNext, pNext, 1 << j, level(j));
+        run(now_, zNext, pNext, 1 << j, level(j), kept_);
         return;
     }
     rotateError(s.step);
-    const double target = lost ? HUGE_VAL : localTarget();  // (start_: saved by advance)
-    substeps(zNext, pNext, 1 << (j - 1), level(j - 1));
-    long long discardedSolves = s.contactSolves - start_.state.contactSolves;
-    save(coarse_);
+    const double target = lost ? HUGE_VAL : localTarget();
+    run(now_, zNext, pNext, 1 << (j - 1), level(j - 1), coarse_);
+    long long discardedSolves = coarse_.s.contactSolves - s.contactSolves;
     double local = 0.0, before = HUGE_VAL, differenceBefore = 0.0;
     bool smoothBefore = false;
     blindPair_ = straddled_ = false;
@@ -66,8 +64,7 @@ void FlowScheme::refine(double zNext, double pNext) {
     // the sub-step's).
     const auto settledAt = [&](double error) { return error <= target || j == top || error > 0.5 * before; };
     for (;;) {
-        restore(start_);
-        substeps(zNext, pNext, 1 << j, level(j));
+        run(now_, zNext, pNext, 1 << j, level(j), kept_);
         local = localError();
         // Two differences of a smooth step at successive levels measure its order (their ratio
         // is 2^p): the held contact's order is learnt from the run's own rises.
@@ -83,9 +80,8 @@ void FlowScheme::refine(double zNext, double pNext) {
         if ((settled || afterBlind) && !smooth_) {
             // Rows changed sides: the pair may be blind to an event both runs resolve at the same
             // sub-step boundary (docs/theory.md §22, events resolved). R says; if so its error is the step's.
-            const long long solves = s.contactSolves;
+            // (R's solves are not counted in contact_solves.)
             double resolved = resolveEvents(zNext, pNext, j);
-            discardedSolves += s.contactSolves - solves;
             blindPair_ = resolved > kBlindPair * local;
             straddled_ = afterBlind && resolved >= 0.0 && local > kBlindPair * resolved;
             if (straddled_) resolved = straddledError();
@@ -99,19 +95,17 @@ void FlowScheme::refine(double zNext, double pNext) {
             }
         }
         if (settled) break;
-        discardedSolves += s.contactSolves - start_.state.contactSolves;
-        save(coarse_);
+        discardedSolves += kept_.s.contactSolves - s.contactSolves;
+        std::swap(coarse_, kept_);  // the kept run is the next pair's coarse one
         before = local;
         differenceBefore = difference_;
         smoothBefore = smooth_;
         ++j;
     }
-    save(fine_);
     discardedSolves += carryThroughStep(zNext, pNext, j - 1);
-    restore(fine_);
-    s.contactSolves += discardedSolves;
+    kept_.s.contactSolves += discardedSolves;
     if (!smooth_) addEventError();
-    carryError();
+    carryError(s.step + 1);
     flow_.cappedSteps += !lost && local > target && j == top;
     // One level lower next time when the pair one level down would still be well inside the target
     // (a level down multiplies the local error by about 4 where the sub-steps are second order).
@@ -131,13 +125,14 @@ int FlowScheme::onsetLevel() const {
 }
 
 // The first row's crossing of an obstacle in an onset step (none held at t_n), as a fraction of the
-// step, on the straight line between its heights at t_n (rowsStart_) and at the free trial's end (r1_):
+// step, on the straight line between its heights at t_n (rowsStart_) and at the free trial's end (the look's):
 // where the step's contact begins, to the precision the choice of a level needs. 0 when a row is held.
 double FlowScheme::onsetFraction() const {
-    if (state_.contactPoints > 0) return 0.0;
+    if (now_.s.contactPoints > 0) return 0.0;
+    const Eigen::VectorXd& trialEnd = everyRow_.buffers->r1;  // the look's rows
     double first = 1.0;
-    for (Eigen::Index i = 0; i < r1_.size(); ++i) {
-        const double r0 = rowsStart_[i], r1 = r1_[i];
+    for (Eigen::Index i = 0; i < trialEnd.size(); ++i) {
+        const double r0 = rowsStart_[i], r1 = trialEnd[i];
         if (r1 < lower_[i] && r0 >= lower_[i]) first = std::min(first, (r0 - lower_[i]) / (r0 - r1));
         if (r1 > upper_[i] && r0 <= upper_[i]) first = std::min(first, (upper_[i] - r0) / (r1 - r0));
     }
@@ -146,29 +141,23 @@ double FlowScheme::onsetFraction() const {
 
 // A step the computed motion takes in free flight (kept: exact) while a row is within the carried
 // error's reach of an obstacle: E goes through it by its companion against a coarse run from the
-// same start (at the coarse level of the last contact step, in every row); the step adds no error
-// of its own.
-void FlowScheme::nearMiss(double zNext, double pNext) {
-    CondensedState& s = state_;
+// same start t_n (at the coarse level of the last contact step, in every row); the step adds no error
+// of its own (carryError after the step). Returns the runs' solves.
+long long FlowScheme::nearMiss(double zNext, double pNext) {
     const int top = static_cast<int>(levels_.size());
-    const int level = std::clamp(std::max(flow_.refinementLevel, kLowestLevel), 1, top) - 1;
-    save(fine_);
-    restore(start_);
-    allRows_ = true;
+    const int j = std::clamp(std::max(flow_.refinementLevel, kLowestLevel), 1, top) - 1;
+    if (touch_) touch_->clear();
     long long solves = 0;
     try {
-        substeps(zNext, pNext, 1 << level, level == 0 ? full_ : *levels_[std::size_t(level - 1)]);
-        solves = s.contactSolves - start_.state.contactSolves;
-        save(coarse_);
-        solves += carryThroughStep(zNext, pNext, level);
+        run(now_, zNext, pNext, 1 << j, level(j), coarse_);
+        solves = coarse_.s.contactSolves - now_.s.contactSolves;
+        solves += carryThroughStep(zNext, pNext, j);
     } catch (const StepError&) {  // the coarse run cannot be taken: E by the free flow (the step is kept)
         carryByFreeFlow();
     }
-    restore(fine_);
-    s.contactSolves += solves;
     localQ_.setZero();
     localMomentum_.setZero();
-    carryError();
+    return solves;
 }
 
 // E from t_n through the step to t_{n+1} into errorNext*: the companion at `level` against coarse_
@@ -180,8 +169,7 @@ long long FlowScheme::carryThroughStep(double zNext, double pNext, int level) {
         return 0;
     }
     try {
-        companion(zNext, pNext, level);
-        return state_.contactSolves - start_.state.contactSolves;
+        return companion(zNext, pNext, level);
     } catch (const StepError&) {
         carryByFreeFlow();
         return 0;
@@ -198,34 +186,32 @@ void FlowScheme::carryByFreeFlow() {
 // amplitudes (constant undamped, decaying damped). Past the horizon (lost) E is as large as the
 // motion's own differences: every step would be near, and the steps are no longer chosen for the
 // tolerance.
-void FlowScheme::carryError() {
+void FlowScheme::carryError(long long toStep) {
     if (dampedModes_) flow_.eventError2.array() *= stepDecay_.array();
     flow_.errorQ = errorNextQ_ + localQ_;
     flow_.errorMomentum = errorNextMomentum_ + localMomentum_;
-    flow_.errorStep = state_.step;
+    flow_.errorStep = toStep;
     sampleError();
     squaredAmplitudes(flow_.errorQ, flow_.errorMomentum, amplitude_);
     errorReach_ = flow_.lostAt >= 0.0 ? 0.0 : plate_->rowModeNormMax * std::sqrt(amplitude_.sum());
 }
 
-// The companion of the contact step: from start_ with the global error added to the massive modes
+// The companion of the contact step: from t_n with the global error added to the massive modes
 // (the massless part's contact force and energy at t_n solved again for the perturbed rows, so the
-// discrete gradient starts from its own ψ), taken at `level`; E carried through the step is its end
-// less the coarse run's (coarse_, the same level from the unperturbed start).
-void FlowScheme::companion(double zNext, double pNext, int level) {
-    CondensedState& s = state_;
-    restore(start_);
-    s.q += flow_.errorQ;
-    s.momentum += flow_.errorMomentum;
-    gatherRows(everyRow_, s.q, s.p, s.z, r0_);
-    int solves = 0;
-    solveContact(*endQP_, r0_, s.rowState, s.force, y_, solves);
-    s.boundary = 0.5 * s.force.dot(y_ - r0_);
-    s.contactSolves += solves;
-    refreshDerived();
-    substeps(zNext, pNext, 1 << level, level == 0 ? full_ : *levels_[std::size_t(level - 1)]);
-    errorNextQ_ = s.q - coarse_.state.q;
-    errorNextMomentum_ = s.momentum - coarse_.state.momentum;
+// discrete gradient starts from its own ψ), taken at level j; E carried through the step is its end
+// less the coarse run's (coarse_, the same level from the unperturbed start). Returns its solves.
+long long FlowScheme::companion(double zNext, double pNext, int j) {
+    StepState& x = perturbed_;
+    x = now_;
+    x.s.q += flow_.errorQ;
+    x.s.momentum += flow_.errorMomentum;
+    solveAtRest(x);
+    x.s.contactSolves += 1;
+    refreshDerived(x);
+    run(x, zNext, pNext, 1 << j, level(j), companion_);
+    errorNextQ_ = companion_.s.q - coarse_.s.q;
+    errorNextMomentum_ = companion_.s.momentum - coarse_.s.momentum;
+    return companion_.s.contactSolves - now_.s.contactSolves;
 }
 
 // The kept run's own error, from the coarse run's difference to it: 1/(2^p − 1) of it where no row
@@ -233,10 +219,10 @@ void FlowScheme::companion(double zNext, double pNext, int level) {
 // order). Into localQ_, localMomentum_; returned measured at the reported points as the amplitude
 // of their sum of modal oscillations, √Σ(G_ik a_k)², a_k = √(δq_k² + (δP_k/ω_k)²).
 double FlowScheme::localError() {
-    const CondensedState& s = state_;
-    smooth_ = s.rowState == start_.state.rowState && coarse_.state.rowState == start_.state.rowState;
-    localQ_ = coarse_.state.q - s.q;
-    localMomentum_ = coarse_.state.momentum - s.momentum;
+    const CondensedState &s = kept_.s, &start = now_.s;
+    smooth_ = s.rowState == start.rowState && coarse_.s.rowState == start.rowState;
+    localQ_ = coarse_.s.q - s.q;
+    localMomentum_ = coarse_.s.momentum - s.momentum;
     squaredAmplitudes(localQ_, localMomentum_, amplitude_);
     difference_ = atReportedPoints(amplitude_);
     // Order p: the kept run's error is the difference / (2^p − 1).
@@ -281,68 +267,57 @@ double FlowScheme::straddledError() {
     return atReportedPoints(amplitude_);
 }
 
-// R (docs/theory.md §22, events resolved): the kept run at `level` again from start_, each of its
+// R (docs/theory.md §22, events resolved): the kept run at level j again from t_n, each of its
 // sub-steps in which a row changes sides taken again as two of half its length, kResolveDepth times (at
 // most to the cap) — a sub-step boundary within 1/16 of a kept sub-step from every onset and release. The error an event leaves depends on
 // how far from it the boundary its sub-step resolves it at lies, not smoothly on the sub-step's length:
 // runs of 2 and 4 sub-steps may resolve it at one boundary and make one error, which their difference
 // cannot see. kept − R is the kept run's error at its events, signed.
-double FlowScheme::resolveEvents(double zNext, double pNext, int level) {
-    save(fine_);
-    restore(start_);
+double FlowScheme::resolveEvents(double zNext, double pNext, int j) {
     try {
-        substeps(zNext, pNext, 1 << level, *levels_[std::size_t(level - 1)], level);
+        run(now_, zNext, pNext, 1 << j, level(j), resolved_, j);
     } catch (const StepError&) {  // R cannot be taken: it says nothing (< 0), the kept step stands
-        restore(fine_);
         eventQ_.setZero();
         eventMomentum_.setZero();
         return -1.0;
     }
-    eventQ_ = fine_.state.q - state_.q;
-    eventMomentum_ = fine_.state.momentum - state_.momentum;
-    restore(fine_);
+    eventQ_ = kept_.s.q - resolved_.s.q;
+    eventMomentum_ = kept_.s.momentum - resolved_.s.momentum;
     squaredAmplitudes(eventQ_, eventMomentum_, amplitude_);
     return atReportedPoints(amplitude_);
 }
 
 // R's sub-steps: from t_n at `level`; one in which a row changes sides is taken again as two halves
-// (kResolveDepth levels down at most), and the run returns to the coarser length where the halves realign. The base and the
-// load linear in between, as in midpointSubsteps; only R's end is read.
-void FlowScheme::resolvedSubsteps(double zNext, double pNext, int level) {
-    CondensedState& s = state_;
+// (kResolveDepth levels down at most), and the run returns to the coarser length where the halves
+// realign. The base and the load linear in between, as in midpointSubsteps; only R's end is read.
+// Each sub-step is taken from x into substep_, kept (swapped) or taken again as halves.
+void FlowScheme::resolvedSubsteps(bool inRows, StepState& x, double zNext, double pNext, int from) {
     const int top = static_cast<int>(levels_.size());
-    const int deepest = std::min(top, level + kResolveDepth);
+    const int deepest = std::min(top, from + kResolveDepth);
     const long long finest = 1LL << top;  // positions in units of Δt / 2^top
-    const double z0 = s.z, p0 = s.p;
-    const long long step0 = s.step;
+    const double z0 = x.s.z, p0 = x.s.p;
     long long at = 0;
-    int l = level, built = -1;
+    int l = from;
     while (at < finest) {
         const long long length = finest >> l, to = at + length;
-        if (l != built) useLevel(l), built = l;
+        const StepSpace space = spaceFor(inRows, level(l));
         const double fraction = double(to) / double(finest);
         const double z = to == finest ? zNext : z0 + (zNext - z0) * fraction;
         const double p = to == finest ? pNext : p0 + (pNext - p0) * fraction;
-        s.zPrev = s.z - (zNext - z0) * (double(length) / double(finest));  // ż = Δz/Δt over the step
-        save(substepStart_);
-        midpointStep(substep_, z, p);
-        s.step = step0;
-        if (l < deepest && s.rowState != substepStart_.state.rowState) {
-            restore(substepStart_);
+        const double zBefore = x.s.z - (zNext - z0) * (double(length) / double(finest));  // ż = Δz/Δt over the step
+        substep_ = x;
+        midpointStep(space, substep_, zBefore, z, p);
+        if (l < deepest && substep_.s.rowState != x.s.rowState) {
+            // Taken again from x as it was, the next look a full one.
+            x.forceZero = {x.s.force.isZero(0.0), x.s.forcePrev.isZero(0.0), x.s.forcePrev2.isZero(0.0)};
+            x.freeFlight.reset();
             ++l;
             continue;
         }
+        std::swap(x, substep_);
         at = to;
-        while (l > level && at % (finest >> (l - 1)) == 0) --l;
+        while (l > from && at % (finest >> (l - 1)) == 0) --l;
     }
-}
-
-void FlowScheme::useLevel(int level) {
-    const MidpointOperator& op = level == 0 ? full_ : *levels_[std::size_t(level - 1)];
-    if (inRows_)
-        buildRowOperator(op);
-    else
-        substep_.op = &op;
 }
 
 // E from errorStep to toStep by the exact free flow of each mode (the error obeys the homogeneous
@@ -396,7 +371,7 @@ bool FlowScheme::boundedByGap() const { return std::isfinite(gapBound_); }
 // geometric mean.
 double FlowScheme::localTarget() const {
     const double left = std::max(refinement_.tolerance - flow_.errorEstimate, 0.5 * refinement_.tolerance);
-    return left / std::sqrt(double(flow_.contactSteps) * double(state_.step + 1));
+    return left / std::sqrt(double(flow_.contactSteps) * double(now_.s.step + 1));
 }
 
 // Each mode's squared error amplitude a_k² = δq_k² + (δP_k/ω_k)² (constant in undamped free flight).
