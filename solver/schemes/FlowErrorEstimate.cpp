@@ -363,6 +363,12 @@ void FlowScheme::sampleError(bool events) {
     }
 }
 
+// Past the horizon the contact steps take 2^fixedLevel_ sub-steps, within the levels refine steps on.
+ToleranceHorizon FlowScheme::toleranceHorizon() const {
+    if (!(refinement_.tolerance > 0.0)) return {};
+    return {flow_.lostAt, 1 << std::clamp(fixedLevel_, 1, static_cast<int>(levels_.size()))};
+}
+
 bool FlowScheme::boundedByGap() const { return std::isfinite(gapBound_); }
 
 // The step's share of the tolerance (docs/theory.md §22): what is left of it, over the contact steps

@@ -54,6 +54,7 @@ public:
 
     std::string name() const override;
     const FlowState& flowState() const { return flow_; }
+    ToleranceHorizon toleranceHorizon() const override;
     // Contact steps' runs taken in the rows that can touch, and those taken again in every row because
     // a row outside them ended past an obstacle (docs/theory.md §24).
     long long rowSpaceSteps() const { return rowSpaceSteps_; }

@@ -120,6 +120,7 @@ public:
     virtual Armature* carrier() { return nullptr; }
     const Armature* carrier() const { return const_cast<Scheme*>(this)->carrier(); }
     virtual CarrierOutputs carrierOutputs() const { return {}; }  // zero without a carrier
+    virtual ToleranceHorizon toleranceHorizon() const { return {}; }  // none without a tolerance
 
 protected:
     Scheme(Obstacles obstacles, double dt) : obstacles_(obstacles), dt_(dt) {}

@@ -451,6 +451,27 @@ TEST(FlowTolerance, PastTheHorizonBetweenTwoObstaclesTheEstimateIsTheGap) {
     EXPECT_LT(open.flow.errorEstimate, gap);
 }
 
+// What the FMU says past the horizon (PlateAdvice): when the estimate passed the tolerance, and the
+// sub-steps a contact step takes from then on — contact_substeps = 12 down to a power of two, 8.
+TEST(FlowTolerance, TheHorizonSaysWhenAndHowManySubsteps) {
+    const Condensed s(ElementType::Argyris, 8, 3, MassProjection::P0);
+    auto plate = std::make_shared<const CondensedPlate>(s.c);
+    Obstacles obstacles;
+    obstacles.lower = -0.08;
+    FlowScheme scheme(plate, obstacles, 2e-5, ContactRefinement{12, 1e-12});
+    scheme.initialize(0.0, 8600.0);
+    scheme.setLoadAtStart(0.0);
+    EXPECT_EQ(scheme.toleranceHorizon().substeps, 8);
+    EXPECT_LT(scheme.toleranceHorizon().lostAt, 0.0);
+    while (scheme.flowState().lostAt < 0.0) {
+        scheme.step(0.0, 0.0);
+        ASSERT_LT(scheme.stepCount(), 20000);
+    }
+    EXPECT_EQ(scheme.toleranceHorizon().lostAt, scheme.flowState().lostAt);
+    EXPECT_EQ(scheme.toleranceHorizon().lostAt, double(scheme.stepCount()) * 2e-5);  // lost at this step
+    EXPECT_EQ(FlowScheme(plate, obstacles, 2e-5, ContactRefinement{12}).toleranceHorizon().substeps, 0);
+}
+
 // A state saved in free flight after an impact, with a tolerance (E carried, no row held), restored
 // into a fresh scheme, continues bit for bit through the next impacts: what the scheme keeps beside
 // its state (the rows looked at, the free-flight bound) changes no result.
