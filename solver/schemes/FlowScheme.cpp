@@ -6,45 +6,16 @@
 #include <stdexcept>
 
 #include "base/Errors.h"
-#include "base/PortableMath.h"
-#include "base/StateArchive.h"
 
 namespace plate {
 
 namespace {
 
-// The exact flow over h of ü + c u̇ + ω² u = 0 (docs/theory.md §21): (u, u̇)(h) = Φ (u, u̇)(0).
-// Undamped, a rotation by ωh (the portable sine and cosine: the same bits on every CPU). Damped,
-// exp(A h) of A = [[0, ω], [−ω, −c]] in the balanced variables (u, u̇/ω), by scaling and squaring
-// (‖A h‖/2^j ≤ ½, Taylor to degree 20: below 2^-60, then j squarings) — IEEE operations only.
-void modalFlow(double omega2, double c, double h, double& f11, double& f12, double& f21, double& f22) {
-    const double omega = std::sqrt(omega2);
-    if (c == 0.0) {
-        double sn, cs;
-        portable::sinCos(omega * h, sn, cs);
-        f11 = cs, f12 = sn / omega, f21 = -omega * sn, f22 = cs;
-        return;
-    }
-    int exponent = 0;
-    std::frexp((omega + c) * h, &exponent);
-    const int squarings = std::max(0, exponent + 1);
-    const double scale = std::ldexp(h, -squarings);
-    const double x12 = omega * scale, x21 = -omega * scale, x22 = -c * scale;  // X = A h / 2^j
-    // Taylor: E = Σ X^k / k!, the power kept as T = X^k / k!.
-    double e11 = 1.0, e12 = 0.0, e21 = 0.0, e22 = 1.0, t11 = 1.0, t12 = 0.0, t21 = 0.0, t22 = 1.0;
-    for (int k = 1; k <= 20; ++k) {
-        const double n11 = (t12 * x21) / k, n12 = (t11 * x12 + t12 * x22) / k;
-        const double n21 = (t22 * x21) / k, n22 = (t21 * x12 + t22 * x22) / k;
-        t11 = n11, t12 = n12, t21 = n21, t22 = n22;
-        e11 += t11, e12 += t12, e21 += t21, e22 += t22;
-    }
-    for (int j = 0; j < squarings; ++j) {
-        const double a = e11 * e11 + e12 * e21, b = e11 * e12 + e12 * e22;
-        const double d = e21 * e11 + e22 * e21, g = e21 * e12 + e22 * e22;
-        e11 = a, e12 = b, e21 = d, e22 = g;
-    }
-    f11 = e11, f12 = e12 / omega, f21 = e21 * omega, f22 = e22;
-}
+// R halves an event's sub-step kResolveDepth times: its boundary then lies within 1/16 of a kept
+// sub-step from the event; where the kept run's event error is large, its own boundary lies a quarter or
+// more from it, and an error growing with that distance squared is sixteen times smaller in R (measured:
+// the same 24 verdicts as halving to the cap).
+constexpr int kResolveDepth = 3;
 
 }  // namespace
 
@@ -55,6 +26,10 @@ FlowScheme::FlowScheme(std::shared_ptr<const CondensedPlate> plate, Obstacles ob
     const CondensedPlate& c = *plate_;
     const Eigen::Index m = c.modes(), rows = c.rows();
     flow_.errorQ = flow_.errorMomentum = flow_.eventError2 = Eigen::VectorXd::Zero(m);
+    exact_ = ExactFlow(c.omega2, damping_, dt);
+    inverseOmega2_ = c.omega2.cwiseInverse();
+    dampedModes_ = (damping_.array() != 0.0).any();
+    for (Eigen::VectorXd* v : {&slope_, &offset_, &u0_, &ud0_, &u1_, &ud1_, &qIntegral_}) v->resize(m);
     if (refinement_.tolerance > 0.0) {
         // Levels 1 … log2(maxSubsteps): 2^j sub-steps of Δt/2^j (level 0 is the step itself, full_).
         for (int j = 1; (1 << j) <= refinement_.maxSubsteps; ++j) {
@@ -68,29 +43,26 @@ FlowScheme::FlowScheme(std::shared_ptr<const CondensedPlate> plate, Obstacles ob
             if (i >= 0) measured.push_back(i);
         if (measured.empty())
             for (int i = 0; i < rows; ++i) measured.push_back(i);
-        measuredRows_ = c.rowModesT(Eigen::all, measured).transpose();
-        measuredRows2_ = measuredRows_.cwiseAbs2();
-        // Two motions differ at a row by its gap at most, where both obstacles' stops cover it (§22, §25).
-        for (int i : measured) gapBound_ = std::max(gapBound_, upper_[i] - lower_[i]);
-
-        inverseOmega_ = c.omega2.cwiseSqrt().cwiseInverse();
-        for (Eigen::VectorXd* v : {&amplitude_, &errorNextQ_, &errorNextMomentum_, &localQ_, &localMomentum_,
-                                   &scratchQ_, &eventQ_, &eventMomentum_, &lastEventQ_, &lastEventMomentum_})
-            v->resize(m);
-        rowBound_.resize(Eigen::Index(measured.size()));
-        while ((2 << fixedLevel_) <= refinement_.substeps) ++fixedLevel_;  // 2^level ≤ contact_substeps
+        const auto run = [this](const StepState& from, double zNext, double pNext, int j, bool resolve, StepState& to) {
+            this->run(from, zNext, pNext, 1 << j, level(j), to, resolve ? j : -1);
+        };
+        const auto perturb = [this](const StepState& from, const Eigen::VectorXd& dq, const Eigen::VectorXd& dP,
+                                    StepState& to) {
+            to = from;
+            to.s.q += dq;
+            to.s.momentum += dP;
+            solveAtRest(to);  // the massless part's contact at t_n for the perturbed rows: its own ψ
+            to.s.contactSolves += 1;
+            refreshDerived(to);
+        };
+        doubling_ =
+            std::make_unique<StepDoubling>(c, measured, lower_, upper_, exact_, dampedModes_, refinement_.tolerance,
+                                           refinement_.substeps, int(levels_.size()), dt, flow_, run, perturb);
     } else {
         buildOperator(sub_, dt / refinement_.substeps);
     }
-    inverseOmega2_ = c.omega2.cwiseInverse();
-    dampedModes_ = (damping_.array() != 0.0).any();
-    for (Eigen::VectorXd* v : {&slope_, &offset_, &u0_, &ud0_, &u1_, &ud1_, &qIntegral_}) v->resize(m);
-    for (Eigen::VectorXd* v : {&flow11_, &flow12_, &flow21_, &flow22_}) v->resize(m);
-    for (Eigen::Index k = 0; k < m; ++k)
-        modalFlow(c.omega2[k], damping_[k], dt, flow11_[k], flow12_[k], flow21_[k], flow22_[k]);
-    if (refinement_.tolerance > 0.0) stepDecay_ = flow11_.cwiseProduct(flow22_) - flow12_.cwiseProduct(flow21_);
     if (refinement_.rowSpace && rows > 0) touch_ = std::make_unique<RowSpace>(c, lower_, upper_, now_.freeFlight);
-    for (StepState* x : {&kept_, &coarse_, &resolved_, &companion_, &perturbed_, &substep_}) {
+    for (StepState* x : {&kept_, &substep_}) {
         x->rows.setZero(rows);
         x->freeFlight = now_.freeFlight;
     }
@@ -110,28 +82,25 @@ void FlowScheme::advance(double zNext, double pNext) {
     // The contact check of the midpoint step (its free-flight bound included). With a tolerance, a
     // row the carried error could take past an obstacle is looked at too (Near): the exact motion
     // may touch where the computed one does not (§22).
-    const Look look = lookAtRows(everyRow_, now_, zNext, pNext, errorReach_);
+    const Look look = lookAtRows(everyRow_, now_, zNext, pNext, doubling_ ? doubling_->reach() : 0.0);
     if (look != Look::Contact) return freeStep(zNext, pNext, look);
     // The rows at t_n, once for what reads them: the row space and the onset (§22); the free trial's
     // end is the look's (everyRow_'s r1).
     const Eigen::VectorXd& trialEnd = everyRow_.buffers->r1;
-    if (refinement_.rowSpace || refinement_.tolerance > 0.0) {
+    if (touch_ || doubling_) {
         if (now_.rowsKnown)
             rowsStart_ = now_.rows;
         else
             gatherRows(everyRow_, s.q, s.p, s.z, rowsStart_);
     }
-    onsetFraction_ = refinement_.tolerance > 0.0 ? onsetFraction() : 0.0;
     if (touch_) touch_->select(s, rowsStart_, qNext_, trialEnd, zNext, pNext, rowLoadMax_);
     stepRowSpaceRuns_ = stepRowSpaceRetries_ = 0;
-    if (refinement_.tolerance > 0.0) flowAtStart_ = flow_;
     try {
-        if (refinement_.tolerance > 0.0)
-            refine(zNext, pNext);
+        if (doubling_)
+            doubling_->contactStep(now_, rowsStart_, trialEnd, zNext, pNext, kept_);
         else
             run(now_, zNext, pNext, refinement_.substeps, sub_, kept_);
     } catch (...) {
-        if (refinement_.tolerance > 0.0) flow_ = flowAtStart_;
         if (touch_) touch_->forget();  // C's data gathered again by the next contact step
         throw;
     }
@@ -163,8 +132,8 @@ void FlowScheme::exactStep(double zNext, double pNext) {
     }
     u0 = s.q.array() - offset;
     ud0 = s.momentum.array() - v * b - slope;
-    u1 = flow11_.array() * u0 + flow12_.array() * ud0;
-    ud1 = flow21_.array() * u0 + flow22_.array() * ud0;
+    u1 = exact_.f11.array() * u0 + exact_.f12.array() * ud0;
+    ud1 = exact_.f21.array() * u0 + exact_.f22.array() * ud0;
     qNext_.array() = u1 + offset + h * slope;
     momentumNext_.array() = ud1 + slope + v * b;
     qIntegral_.array() = -((ud1 - ud0) + damping * (u1 - u0)) * invW2 + h * (offset + (0.5 * h) * slope);
@@ -182,10 +151,10 @@ void FlowScheme::freeStep(double zNext, double pNext, Look look) {
     if (!std::isfinite(momentumNext_.sum()) || !std::isfinite(qNext_.sum())) refuseNonFinite();
     const bool near = look == Look::Near;
     if (near) {
-        rotateError(s.step);
-        s.contactSolves += nearMiss(zNext, pNext);
+        if (touch_) touch_->clear();  // its runs in every row
+        s.contactSolves += doubling_->nearMiss(now_, zNext, pNext);
         exactStep(zNext, pNext);  // the step and its look again: the runs used their buffers
-        lookAtRowsNow(everyRow_, now_, zNext, pNext, errorReach_);
+        lookAtRowsNow(everyRow_, now_, zNext, pNext, doubling_->reach());
         iterations_ = solves_ = 0;
         kkt_ = 0.0;
     }
@@ -222,13 +191,10 @@ void FlowScheme::freeStep(double zNext, double pNext, Look look) {
     s.stepContactMoment = 0.0;
     s.stepContactForce[0] = s.stepContactForce[1] = 0.0;  // (no onset: bookContact needs no call)
     commit(everyRow_, now_, s.zPrev, zNext, pNext, loadWork + dz * onRigid, dampedWork, 0);
-    if (near) return carryError(s.step);
-    // E at the reported points at every step: after a release their error grows within a few steps, and a
-    // sample every 8 steps let the running maximum trail it (0.88 of it at an output, docs/theory.md §22).
-    if (flow_.contactSteps > 0 && !(flow_.lostAt >= 0.0 && boundedByGap())) {
-        rotateError(s.step);
-        sampleError(false);
-    }
+    if (near)
+        doubling_->afterNearStep(s.step);
+    else if (doubling_)
+        doubling_->afterFreeStep(s.step);
 }
 
 void FlowScheme::run(const StepState& from, double zNext, double pNext, int m, const MidpointOperator& op,
@@ -324,34 +290,43 @@ void FlowScheme::addOutputs(PlateOutputs& o) const {
     o.cappedSteps = double(flow_.cappedSteps);
 }
 
-namespace {
-
-// The flow law's own part of the flat form, version 3 (2: the error vector; 3: the events' error).
-constexpr double kFlowFormat = 3.0;
-const auto flowMembers = [](auto& s, auto& v) {
-    v.real(s.errorEstimate, "error estimate");
-    v.count(s.cappedSteps, "capped steps");
-    v.count(s.refinementLevel, "refinement level", 30.0);
-    v.count(s.contactSteps, "contact steps");
-    v.count(s.errorStep, "error step");
-    v.real(s.lostAt, "time the tolerance was lost");
-    v.real(s.smoothOrder, "order of held contact steps");
-    for (auto* x : {&s.errorQ, &s.errorMomentum}) v.vector(*x, 0, "error vector");
-    v.vector(s.eventError2, 0, "events' error");
-};
-
-}  // namespace
-
-std::vector<double> FlowScheme::saveOwn() const {
-    return archive::save(flow_, kFlowFormat, std::array<std::size_t, 1>{std::size_t(plate_->modes())}, flowMembers);
+void FlowScheme::restoreOwn(const std::vector<double>& own) {
+    flow_ = FlowState::load(own, std::size_t(plate_->modes()));
 }
 
-void FlowScheme::restoreOwn(const std::vector<double>& own) {
-    FlowState loaded = archive::load<FlowState>(own, kFlowFormat,
-                                                std::array<std::size_t, 1>{std::size_t(plate_->modes())}, flowMembers);
-    if ((loaded.eventError2.array() < 0.0).any())
-        throw std::invalid_argument("corrupt state: a negative squared amplitude in the events' error");
-    flow_ = std::move(loaded);
+ToleranceHorizon FlowScheme::toleranceHorizon() const { return doubling_ ? doubling_->horizon() : ToleranceHorizon{}; }
+
+// R's sub-steps: from t_n at `level`; one in which a row changes sides is taken again as two halves
+// (kResolveDepth levels down at most), and the run returns to the coarser length where the halves
+// realign. The base and the load linear in between, as in midpointSubsteps; only R's end is read.
+// Each sub-step is taken from x into substep_, kept (swapped) or taken again as halves.
+void FlowScheme::resolvedSubsteps(bool inRows, StepState& x, double zNext, double pNext, int from) {
+    const int top = static_cast<int>(levels_.size());
+    const int deepest = std::min(top, from + kResolveDepth);
+    const long long finest = 1LL << top;  // positions in units of Δt / 2^top
+    const double z0 = x.s.z, p0 = x.s.p;
+    long long at = 0;
+    int l = from;
+    while (at < finest) {
+        const long long length = finest >> l, to = at + length;
+        const StepSpace space = spaceFor(inRows, level(l));
+        const double fraction = double(to) / double(finest);
+        const double z = to == finest ? zNext : z0 + (zNext - z0) * fraction;
+        const double p = to == finest ? pNext : p0 + (pNext - p0) * fraction;
+        const double zBefore = x.s.z - (zNext - z0) * (double(length) / double(finest));  // ż = Δz/Δt over the step
+        substep_ = x;
+        midpointStep(space, substep_, zBefore, z, p);
+        if (l < deepest && substep_.s.rowState != x.s.rowState) {
+            // Taken again from x as it was, the next look a full one.
+            x.forceZero = {x.s.force.isZero(0.0), x.s.forcePrev.isZero(0.0), x.s.forcePrev2.isZero(0.0)};
+            x.freeFlight.reset();
+            ++l;
+            continue;
+        }
+        std::swap(x, substep_);
+        at = to;
+        while (l > from && at % (finest >> (l - 1)) == 0) --l;
+    }
 }
 
 }  // namespace plate

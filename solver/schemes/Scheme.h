@@ -80,8 +80,9 @@ public:
     // The load input at t = 0, known only when the master starts stepping (before the first step).
     virtual void setLoadAtStart(double p0) = 0;
     // One internal step to t_{n+1} with the base at zNext (a carried clamp: the carrier's drive) and
-    // the pressure pNext there: the inputs checked, then the scheme's advance. Throws StepError
-    // without changing the state if the step cannot be taken.
+    // the pressure pNext there: the inputs checked, then the scheme's advance. Transactional: a step
+    // that cannot be taken throws StepError (its time: t_{n+1}) and leaves the scheme as it was, what
+    // it keeps beside its state included (a scheme's own work is on scratch until it records the step).
     void step(double zNext, double pNext) {
         if (!carried_) checkInputs(zNext, pNext);
         advance(zNext, pNext);
