@@ -341,6 +341,25 @@ void CondensedScheme::commit(const StepSpace& space, StepState& x, double zBefor
     }
 }
 
+// A run's end becomes the state at t_{n+1}: its levels before it are the scheme's t_n and t_{n−1}.
+void CondensedScheme::recordRun(StepState& end) {
+    CondensedState &s = now_.s, &e = end.s;
+    e.qPrev2.swap(s.qPrev);
+    e.qPrev.swap(s.q);
+    e.forcePrev2.swap(s.forcePrev);
+    e.forcePrev.swap(s.force);
+    e.zPrev2 = s.zPrev;
+    e.zPrev = s.z;
+    e.pPrev2 = s.pPrev;
+    e.pPrev = s.p;
+    e.step = s.step + 1;
+    std::swap(s, e);
+    now_.rows.swap(end.rows);
+    now_.rowsKnown = end.rowsKnown;
+    now_.forceZero = {s.force.isZero(0.0), s.forcePrev.isZero(0.0), s.forcePrev2.isZero(0.0)};
+    now_.freeFlight.reset();
+}
+
 double CondensedScheme::energy() const {
     const CondensedPlate& c = *plate_;
     const CondensedState& s = now_.s;

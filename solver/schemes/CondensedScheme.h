@@ -179,6 +179,9 @@ protected:
     // What a step's end leaves in x (the levels moved on, the ledger); `work`, `damped` its record.
     void commit(const StepSpace& space, StepState& x, double zBefore, double zNext, double pNext, double work,
                 double damped, int iterations);
+    // A run's end (sub-steps from t_n on a scratch state: the flow law's contact step) recorded as the
+    // step to t_{n+1}: the state changes here, once.
+    void recordRun(StepState& end);
     void refreshDerived(StepState& x);  // what is derived from x.s (which force levels are zero; nothing looked at)
 
     std::shared_ptr<const CondensedPlate> plate_;

@@ -2,10 +2,6 @@
 
 #include <algorithm>
 #include <cmath>
-#include <limits>
-#include <stdexcept>
-
-#include "base/Errors.h"
 
 namespace plate {
 
@@ -36,13 +32,6 @@ FlowScheme::FlowScheme(std::shared_ptr<const CondensedPlate> plate, Obstacles ob
             levels_.push_back(std::make_unique<MidpointOperator>());
             buildOperator(*levels_.back(), dt / double(1 << j));
         }
-        // The error is measured where the user reads it: the reported points (every row when the
-        // scheme reports none, as in the unit tests).
-        std::vector<int> measured;
-        for (int i : rows_.probes)
-            if (i >= 0) measured.push_back(i);
-        if (measured.empty())
-            for (int i = 0; i < rows; ++i) measured.push_back(i);
         const auto run = [this](const StepState& from, double zNext, double pNext, int j, bool resolve, StepState& to) {
             this->run(from, zNext, pNext, 1 << j, level(j), to, resolve ? j : -1);
         };
@@ -56,16 +45,12 @@ FlowScheme::FlowScheme(std::shared_ptr<const CondensedPlate> plate, Obstacles ob
             refreshDerived(to);
         };
         doubling_ =
-            std::make_unique<StepDoubling>(c, measured, lower_, upper_, exact_, dampedModes_, refinement_.tolerance,
+            std::make_unique<StepDoubling>(c, rows_.probes, lower_, upper_, exact_, dampedModes_, refinement_.tolerance,
                                            refinement_.substeps, int(levels_.size()), dt, flow_, run, perturb);
     } else {
         buildOperator(sub_, dt / refinement_.substeps);
     }
     if (refinement_.rowSpace && rows > 0) touch_ = std::make_unique<RowSpace>(c, lower_, upper_, now_.freeFlight);
-    for (StepState* x : {&kept_, &substep_}) {
-        x->rows.setZero(rows);
-        x->freeFlight = now_.freeFlight;
-    }
 }
 
 // time_scheme = flow (docs/theory.md §21). Over a step the base moves linearly (ż = v = Δz/Δt, the
@@ -105,6 +90,8 @@ void FlowScheme::advance(double zNext, double pNext) {
         throw;
     }
     recordRun(kept_);
+    rowSpaceSteps_ += stepRowSpaceRuns_;
+    rowSpaceRetries_ += stepRowSpaceRetries_;
 }
 
 // (F.1) for every mode at once: q_p = offset + slope·s, u = q − q_p flows by Φ; into qNext_,
@@ -257,27 +244,6 @@ void FlowScheme::midpointSubsteps(bool inRows, const MidpointOperator& op, StepS
     s.stepContactForce[1] = contact[1] / m;
     s.stepContactMoment = contactMoment / m;
     s.contactIterationsLast = iterationsMax;
-}
-
-// The run's end becomes the state at t_{n+1}: its levels before it are the scheme's t_n and t_{n−1}.
-void FlowScheme::recordRun(StepState& end) {
-    CondensedState &s = now_.s, &e = end.s;
-    e.qPrev2.swap(s.qPrev);
-    e.qPrev.swap(s.q);
-    e.forcePrev2.swap(s.forcePrev);
-    e.forcePrev.swap(s.force);
-    e.zPrev2 = s.zPrev;
-    e.zPrev = s.z;
-    e.pPrev2 = s.pPrev;
-    e.pPrev = s.p;
-    e.step = s.step + 1;
-    std::swap(s, e);
-    now_.rows.swap(end.rows);
-    now_.rowsKnown = end.rowsKnown;
-    now_.forceZero = {s.force.isZero(0.0), s.forcePrev.isZero(0.0), s.forcePrev2.isZero(0.0)};
-    now_.freeFlight.reset();
-    rowSpaceSteps_ += stepRowSpaceRuns_;
-    rowSpaceRetries_ += stepRowSpaceRetries_;
 }
 
 std::string FlowScheme::name() const {

@@ -57,8 +57,6 @@ private:
     void resolvedSubsteps(bool inRows, StepState& x, double zNext, double pNext, int level);
     StepSpace spaceFor(bool inRows, const MidpointOperator& op);
     const MidpointOperator& level(int j) const { return j == 0 ? full_ : *levels_[std::size_t(j - 1)]; }
-    // The contact step's run as the step: the state changes here, once.
-    void recordRun(StepState& end);
     void addOutputs(PlateOutputs& o) const override;
     std::vector<double> saveOwn() const override { return flow_.save(); }
     void restoreOwn(const std::vector<double>& own) override;

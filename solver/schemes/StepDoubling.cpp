@@ -25,7 +25,7 @@ constexpr double kBlindPair = 8.0;
 
 }  // namespace
 
-StepDoubling::StepDoubling(const CondensedPlate& plate, const std::vector<int>& measured, const Eigen::VectorXd& lower,
+StepDoubling::StepDoubling(const CondensedPlate& plate, const std::array<int, 3>& probes, const Eigen::VectorXd& lower,
                            const Eigen::VectorXd& upper, const ExactFlow& exact, bool damped, double tolerance,
                            int substeps, int levels, double dt, FlowState& state, Run run, Perturb perturb)
     : plate_(plate),
@@ -40,6 +40,11 @@ StepDoubling::StepDoubling(const CondensedPlate& plate, const std::vector<int>& 
       run_(std::move(run)),
       perturb_(std::move(perturb)) {
     const Eigen::Index m = plate.modes();
+    std::vector<int> measured;
+    for (int i : probes)
+        if (i >= 0) measured.push_back(i);
+    if (measured.empty())
+        for (int i = 0; i < plate.rows(); ++i) measured.push_back(i);
     measuredRows_ = plate.rowModesT(Eigen::all, measured).transpose();
     measuredRows2_ = measuredRows_.cwiseAbs2();
     // Two motions differ at a row by its gap at most, where both obstacles' stops cover it (§22, §25).

@@ -4,6 +4,7 @@
 // through runs: the contact step from t_n at a level (2^j sub-steps of Δt/2^j), R's run of it with its
 // events resolved, and the companion from t_n + E; the scheme records the kept run as the step.
 #include <Eigen/Core>
+#include <array>
 #include <functional>
 #include <vector>
 
@@ -48,9 +49,10 @@ public:
     // The companion's start: `from` with (dq, dP) added to its modes, its contact at rest solved again.
     using Perturb =
         std::function<void(const StepState& from, const Eigen::VectorXd& dq, const Eigen::VectorXd& dP, StepState& to)>;
-    // `measured`: the rows the error is measured at (the reported points); `levels`: the highest level
-    // (log2 max_contact_substeps); `exact`: the free flow over Δt; `state`: the scheme's FlowState.
-    StepDoubling(const CondensedPlate& plate, const std::vector<int>& measured, const Eigen::VectorXd& lower,
+    // `probes`: the reported points' rows, where the error is measured (every row without them, as in
+    // the unit tests); `levels`: the highest level (log2 max_contact_substeps); `exact`: the free flow
+    // over Δt; `state`: the scheme's FlowState.
+    StepDoubling(const CondensedPlate& plate, const std::array<int, 3>& probes, const Eigen::VectorXd& lower,
                  const Eigen::VectorXd& upper, const ExactFlow& exact, bool damped, double tolerance, int substeps,
                  int levels, double dt, FlowState& state, Run run, Perturb perturb);
 
