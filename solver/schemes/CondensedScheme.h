@@ -193,9 +193,9 @@ protected:
     StepSpace everyRow_;  // Δt in every row: the conserving law's steps, and every look at the rows
     StepState now_;  // the scheme's state at t_n
     // The step's modal buffers, allocated once, and its contact solves' counts.
-    Eigen::VectorXd rhs_, dq_, qNext_, momentumNext_, modalForce_, modalScratch_;
+    Eigen::VectorXd rhs_, dq_, qNext_, momentumNext_;
     int iterations_ = 0, solves_ = 0;
-    double kkt_ = 0.0, boundaryNext_ = 0.0, lookMargin_ = 0.0;
+    double kkt_ = 0.0;
 
 private:
     void applyW2(const StepSpace& space, const Eigen::VectorXd& v, Eigen::VectorXd& out);
@@ -207,6 +207,8 @@ private:
     std::unique_ptr<ContactColumns> endColumns_;
     std::unique_ptr<BoxQP> endQP_;
     RowBuffers all_;  // every row's buffers
+    Eigen::VectorXd modalForce_, modalScratch_;
+    double boundaryNext_ = 0.0, lookMargin_ = 0.0;
 };
 
 }  // namespace plate
