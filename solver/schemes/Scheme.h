@@ -7,7 +7,7 @@
 // impact counts, the input checks and the refusals, the outputs written once — and a scheme writes
 // its advance (`advance`) and the heights of its output points (`pointHeight`). PlateSimulation owns
 // the communication grid, the inputs and the interpolation between grid points. Schemes are made
-// in one place: makeScheme (schemes/MakeScheme.cpp).
+// in one place: makeScheme (solver/MakeScheme.cpp).
 #include <Eigen/Core>
 #include <algorithm>
 #include <cmath>
