@@ -472,19 +472,35 @@ TEST(FlowTolerance, TheHorizonSaysWhenAndHowManySubsteps) {
     EXPECT_EQ(FlowScheme(plate, obstacles, 2e-5, ContactRefinement{12}).toleranceHorizon().substeps, 0);
 }
 
+namespace {
+
+// The release from 8600 Pa onto the lower obstacle with a tolerance of 1e-5 m: `a` runs it, a fresh
+// scheme `b` of the same plate takes a's saved states.
+struct ToleranceRelease {
+    Condensed s{ElementType::Argyris, 8, 3, MassProjection::P0};
+    std::shared_ptr<const CondensedPlate> plate = std::make_shared<const CondensedPlate>(s.c);
+    Obstacles obstacles = [] {
+        Obstacles o;
+        o.lower = -0.08;
+        return o;
+    }();
+    ContactRefinement refinement{16, 1e-5};
+    FlowScheme a{plate, obstacles, 2e-5, refinement}, b{plate, obstacles, 2e-5, refinement};
+    ToleranceRelease() {
+        a.initialize(0.0, 8600.0);
+        a.setLoadAtStart(0.0);
+        b.initialize(0.0, 8600.0);
+    }
+};
+
+}  // namespace
+
 // A state saved in free flight after an impact, with a tolerance (E carried, no row held), restored
 // into a fresh scheme, continues bit for bit through the next impacts: what the scheme keeps beside
 // its state (the rows looked at, the free-flight bound) changes no result.
 TEST(FlowTolerance, RestoredInFreeFlightAfterAnImpactContinuesBitForBit) {
-    const Condensed s(ElementType::Argyris, 8, 3, MassProjection::P0);
-    auto plate = std::make_shared<const CondensedPlate>(s.c);
-    Obstacles obstacles;
-    obstacles.lower = -0.08;
-    const ContactRefinement refinement{16, 1e-5};
-    FlowScheme a(plate, obstacles, 2e-5, refinement), b(plate, obstacles, 2e-5, refinement);
-    a.initialize(0.0, 8600.0);
-    a.setLoadAtStart(0.0);
-    b.initialize(0.0, 0.0);
+    ToleranceRelease run;
+    FlowScheme &a = run.a, &b = run.b;
     int free = 0;
     while (a.flowState().contactSteps == 0 || free < 5) {  // five free steps after the first contact
         a.step(0.0, 0.0);
@@ -505,15 +521,8 @@ TEST(FlowTolerance, RestoredInFreeFlightAfterAnImpactContinuesBitForBit) {
 // The controller's state is part of the scheme's state: a run saved and restored into a fresh
 // scheme mid-contact continues bit for bit.
 TEST(FlowTolerance, SavedStateContinuesBitForBit) {
-    const Condensed s(ElementType::Argyris, 8, 3, MassProjection::P0);
-    auto plate = std::make_shared<const CondensedPlate>(s.c);
-    Obstacles obstacles;
-    obstacles.lower = -0.08;
-    const ContactRefinement refinement{16, 1e-5};
-    FlowScheme a(plate, obstacles, 2e-5, refinement), b(plate, obstacles, 2e-5, refinement);
-    a.initialize(0.0, 8600.0);
-    a.setLoadAtStart(0.0);
-    b.initialize(0.0, 8600.0);
+    ToleranceRelease run;
+    FlowScheme &a = run.a, &b = run.b;
     int n = 0;
     while (a.state().contactPoints == 0 || a.flowState().contactSteps < 5) {  // E carried, mid-contact
         a.step(0.0, 0.0);
@@ -524,7 +533,7 @@ TEST(FlowTolerance, SavedStateContinuesBitForBit) {
     EXPECT_GT(a.flowState().eventError2.maxCoeff(), 0.0);
     std::vector<double> damaged = a.saveState();
     damaged.back() = -1e-12;
-    FlowScheme c(plate, obstacles, 2e-5, refinement);
+    FlowScheme c(run.plate, run.obstacles, 2e-5, run.refinement);
     try {
         c.restoreState(damaged);
         ADD_FAILURE() << "a negative squared amplitude was accepted";
