@@ -3,6 +3,8 @@ the whole plate as their default, the tip-stop scene as a master drives it, and 
 
 from __future__ import annotations
 
+import re
+
 import fmpy
 import numpy as np
 import predictability as pr
@@ -73,3 +75,18 @@ def test_tip_stop_converges_at_second_order_in_dt_through_its_landings(fmu_path)
     diffs = [np.max(np.abs(a.corner - b.corner)) for a, b in zip(runs, runs[1:])]
     for coarse, fine in zip(diffs, diffs[1:]):
         assert 1 / 6 <= fine / coarse <= 1 / 3, diffs
+
+
+def test_a_refused_step_names_the_internal_step_it_could_not_take(fmu_path):
+    """A base input past the lower obstacle (the clamp cannot leave the gap, docs/theory.md §25) is
+    refused at the first internal step of the communication step, and the FMU's error names both
+    times: the communication point and that internal step's end, one dt later (not the point twice)."""
+    with PlateImpactFMU(fmu_path, nx=4, ny=2, dt=1e-5, obstacle_lower=-0.05) as plate:
+        plate.step(1e-4)
+        with pytest.raises(Exception):
+            plate.step(1e-4, base=-0.06)
+        said = " ".join(m for s, _, m in plate.log if s >= 3)
+    found = re.search(r"step from t = (\S+) failed at t = (\S+?):", said)
+    assert found, said
+    start, failed = float(found.group(1)), float(found.group(2))
+    assert start == pytest.approx(1e-4, rel=1e-12) and failed - start == pytest.approx(1e-5, rel=1e-9), said

@@ -67,8 +67,6 @@ public:
     // point ahead of a short step lies past its end; the miss is spread over max(h, reach).
     InputSignal continueStep(InputMode mode, double now, double h, double lower = -HUGE_VAL, double upper = HUGE_VAL,
                              double reach = 0.0);
-    // Where the input ended the last step taken through continueStep (no step yet: none).
-    bool hasReached() const { return hasReached_; }
     // Records where the input ended a step that the master's derivatives drove.
     void reached(double value) {
         reached_ = value;
@@ -85,7 +83,7 @@ public:
 private:
     int count_ = 0;
     std::array<double, kCapacity> t_{}, value_{};
-    bool hasReached_ = false;
+    bool hasReached_ = false;  // where the input ended the last step through continueStep is known
     double reached_ = 0.0;
 };
 

@@ -372,6 +372,7 @@ std::string PlateSimulation::takeDiscretizationWarning() {
 const ResourceEstimate& PlateSimulation::resources() const { return impl_->resources; }
 
 CarrierOutputs PlateSimulation::carrierOutputs() const { return impl_->scheme->carrierOutputs(); }
+ToleranceHorizon PlateSimulation::toleranceHorizon() const { return impl_->scheme->toleranceHorizon(); }
 
 std::string PlateSimulation::engine() const { return impl_->scheme->name(); }
 

@@ -95,6 +95,7 @@ public:
     // What this instance was estimated to cost before it was built (ResourceEstimate.h).
     const ResourceEstimate& resources() const;
     CarrierOutputs carrierOutputs() const;
+    ToleranceHorizon toleranceHorizon() const;  // the flow law's with a tolerance (Scheme.h)
 
     // "sparse" (factor of A), "modal-complete" (exact, all modes) or "modal-<m>" (reduced).
     std::string engine() const;

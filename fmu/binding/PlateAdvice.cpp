@@ -106,16 +106,20 @@ void PlateAdvisor::onStep(const plate::PlateParameters& p, const plate::StepPlan
     say(longStepAdvice(p, h, t, input));
 }
 
-void PlateAdvisor::afterStep(const plate::PlateParameters& p, const plate::PlateOutputs& o, double t) {
+void PlateAdvisor::afterStep(const plate::PlateParameters& p, const plate::PlateOutputs& o, double t,
+                             const plate::ToleranceHorizon& horizon) {
     if (p.tolerance <= 0.0 || p.timeScheme != plate::TimeScheme::Flow) return;
     if (!errorWarned_ && o.errorEstimate > p.tolerance) {
         errorWarned_ = true;
-        warn_(
-            format("error_estimate = %.3g m passed tolerance = %.3g m at t = %.17g", o.errorEstimate, p.tolerance, t) +
-            ": the flow law cannot hold the tolerance from this time on (errors made at earlier impacts grew at "
-            "later ones, or the sub-step cap bounded a step): this is the scene's horizon for this tolerance. "
-            "Later contact steps take contact_substeps sub-steps; between two obstacles error_estimate reads "
-            "their gap from now on, the one bound left (docs/theory.md section 22)");
+        warn_(format("error_estimate = %.3g m passed tolerance = %.3g m at t = %.17g", o.errorEstimate, p.tolerance,
+                     horizon.lostAt) +
+              ": the flow law cannot hold the tolerance from this time on (errors made at earlier impacts grew at "
+              "later ones, or the sub-step cap bounded a step): this is the scene's horizon for this tolerance. " +
+              format("Later contact steps take %g sub-steps (contact_substeps = %g down to a power of two, at most "
+                     "max_contact_substeps = %g)",
+                     double(horizon.substeps), double(p.contactSubsteps), double(p.maxContactSubsteps)) +
+              "; between two obstacles error_estimate reads their gap from now on, the one bound left (docs/theory.md "
+              "section 22)");
     }
     if (!cappedWarned_ && o.cappedSteps > 0) {
         cappedWarned_ = true;

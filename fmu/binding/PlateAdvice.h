@@ -54,8 +54,10 @@ public:
     void onStep(const plate::PlateParameters& p, const plate::StepPlan& plan, double h, double t,
                 const InputPort& drive, const char* driveName, const InputPort& load);
     // After a step, the simulation at time t with outputs o: under tolerance > 0 (docs/theory.md §22)
-    // the error estimate past the tolerance (the scene's horizon for it), a contact step the cap bounded.
-    void afterStep(const plate::PlateParameters& p, const plate::PlateOutputs& o, double t);
+    // the error estimate past the tolerance at horizon.lostAt (the scene's horizon for it, in the
+    // simulation's time as t), a contact step the cap bounded.
+    void afterStep(const plate::PlateParameters& p, const plate::PlateOutputs& o, double t,
+                   const plate::ToleranceHorizon& horizon);
 
 private:
     void say(const std::string& advice);

@@ -192,11 +192,12 @@ public:
             advanceClamp(base, communicate(plan, base, load));
         } catch (const plate::StepError& e) {
             refreshOutputs();  // the simulation stays at its last good step (for debugging)
-            throw fmu::ModelError(
-                format("step from t = %.17g failed at t = %.17g: ", t, t + simulation_->time() - now) + e.what());
+            // The failed internal step's time, from the scheme's clock onto the master's (NaN: refused before a step).
+            const std::string at = std::isnan(e.time()) ? "" : format(" at t = %.17g", t + e.time() - now);
+            throw fmu::ModelError(format("step from t = %.17g failed", t) + at + ": " + e.what());
         }
         refreshOutputs();
-        advisor_.afterStep(values_.parameters, values_.outputs, simulation_->time());
+        advisor_.afterStep(values_.parameters, values_.outputs, simulation_->time(), simulation_->toleranceHorizon());
         if (const std::string said = simulation_->takeDiscretizationWarning(); !said.empty()) warn(said);
         trace(format("t = %.17g, h = %.17g, %g steps", t, h, double(plan.steps)));
     }

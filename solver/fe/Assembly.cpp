@@ -2,7 +2,7 @@
 
 #include <algorithm>
 
-#include "plate/Obstacles.h"
+#include "fe/StopBits.h"
 
 namespace plate {
 

@@ -51,7 +51,7 @@ struct ClampedPlate {
     std::vector<Eigen::Index> freeDofs;  // full index of each free dof
     // The free mesh vertices under a stop (docs/theory.md §25): only they carry a contact bound.
     std::vector<int> contactVertices;
-    std::vector<unsigned char> contactStops;  // which obstacles hold each (plate/Obstacles.h's StopBits)
+    std::vector<unsigned char> contactStops;  // which obstacles hold each (StopBits)
     std::vector<Eigen::Index> contactDofs;  // their vertex-value dof (free index)
     std::vector<int> clampedVertices;  // vertices on x = 0 (they move with z)
 

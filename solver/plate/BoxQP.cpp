@@ -13,7 +13,6 @@ void ContactColumns::ensure(int j) {
     if (z_[j].size() != 0) return;
     columnFn_(j, z_[j]);
     gatherFn_(z_[j], w_[j]);
-    ++computed_;
 }
 
 BoxQP::BoxQP(ContactColumns& columns, int maxPdasIterations)

@@ -38,12 +38,10 @@ public:
         ensure(j);
         return {w_[j].data(), w_[j].size()};
     }
-    int computedColumns() const { return computed_; }
 
 private:
     void ensure(int j);
     int count_;
-    int computed_ = 0;
     ColumnFn columnFn_;
     GatherFn gatherFn_;
     std::vector<Eigen::VectorXd> z_, w_;

@@ -31,8 +31,6 @@ public:
     PointProbe probe(double x, double y) const override { return plate_->probe(*space_, x, y); }
     LinearRows rows(const SparseRows& functionals) const override { return {functionals, {}}; }
 
-    const SparseCholesky& stepFactor() const { return stepFactor_; }
-
 private:
     std::shared_ptr<const FiniteElementSpace> space_;
     std::shared_ptr<const ClampedPlate> plate_;

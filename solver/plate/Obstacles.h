@@ -7,10 +7,9 @@
 #include <limits>
 #include <vector>
 
-namespace plate {
+#include "fe/StopBits.h"
 
-// Which obstacles' stops cover a contact row.
-enum StopBits : unsigned char { kUnderLower = 1, kUnderUpper = 2, kUnderBoth = 3 };
+namespace plate {
 
 struct Obstacles {
     double lower = -std::numeric_limits<double>::infinity();  // absolute height, m

@@ -41,7 +41,6 @@ struct ProblemSize {
     long long factorNonZeros = 0;  // nnz(L) of A, diagonal included (symbolic analysis)
     double factorFlops = 0.0;  // flops of one numeric factorization of A
     bool predicted = false;  // stage 0: counts from fits, not from the space
-    bool analyzed() const { return factorNonZeros > 0 && !predicted; }
 };
 
 // Stage 0: a prediction from nx, ny and the element alone (closed-form counts of the structured

@@ -136,7 +136,7 @@ void NewmarkScheme::stepCarried(double fNext, double pNext) {
         msg << "input out of range at t = " << (s.step + 1) * dt() << ": "
             << (armature_->options().line ? "tlm_wave_in = " : "drive_force = ") << fNext << ", load = " << pNext
             << " (allowed: finite, |force| <= " << kMaxCarrierForce << " N, |load| <= " << kMaxLoad << " Pa)";
-        throw StepError(msg.str());
+        throw StepError(msg.str(), double(s.step + 1) * dt());
     }
     const double fBeta = armature_->forceBeta(fNext);
     const double pBeta = beta() * pNext + (1.0 - 2.0 * beta()) * s.p + beta() * s.pPrev;  // f^{nβ}
@@ -157,7 +157,7 @@ void NewmarkScheme::stepCarried(double fNext, double pNext) {
         msg << "the carried clamp reached z = " << zNext << " at t = " << (s.step + 1) * dt()
             << ", past an obstacle (allowed: obstacle_lower <= z <= obstacle_upper): the drive is too strong for "
                "this gap";
-        throw StepError(msg.str());
+        throw StepError(msg.str(), double(s.step + 1) * dt());
     }
     const auto [damped, sNext, tNext] = finishSolve();
     const double baseJump = zNext - 2.0 * s.z + s.zPrev;

@@ -39,6 +39,15 @@ void CondensedScheme::buildOperator(MidpointOperator& op, double h) const {
     op.midQP = std::make_unique<BoxQP>(*op.midColumns);
 }
 
+void RowBuffers::resize(Eigen::Index rows) {
+    for (Eigen::VectorXd* v :
+         {&forceNext, &multiplier, &r0, &r1, &drFree, &dr, &base, &e, &y, &w2v, &midForce, &endForce})
+        v->setZero(rows);
+    for (auto* v : {&rowTrial, &midTrial}) v->assign(std::size_t(rows), 0);
+    forceNextZero = true;
+    multiplierUsed = false;
+}
+
 CondensedScheme::CondensedScheme(std::shared_ptr<const CondensedPlate> plate, Obstacles obstacles, double dt,
                                  double dampingMass, double dampingStiffness, OutputRows outputRows)
     : Scheme(obstacles, dt), plate_(std::move(plate)), rows_(std::move(outputRows)) {
@@ -49,15 +58,12 @@ CondensedScheme::CondensedScheme(std::shared_ptr<const CondensedPlate> plate, Ob
     endMatrix_ = c.delassus;
     endColumns_ = denseColumns(endMatrix_);
     endQP_ = std::make_unique<BoxQP>(*endColumns_);
-    everyRow_ = {&full_, &c.rowModesT, &c.rowLoad, &c.rowAbscissae, endQP_.get(), rows};
-    for (Eigen::VectorXd* v : {&rhs_, &dq_, &qNext_, &momentumNext_, &modalForce_, &modalScratch_}) v->resize(m);
-    w2v_.resize(rows);
-    for (Eigen::VectorXd* v : {&forceNext_, &multiplier_, &r0_, &r1_, &drFree_, &dr_, &base_, &e_, &y_})
-        v->resize(rows);
-    midForce_ = endForce_ = Eigen::VectorXd::Zero(rows);
     obstacles_.rowBounds(c.rowStops, lower_, upper_);  // each row's obstacles (docs/theory.md §25)
+    all_.resize(rows);
+    everyRow_ = {&full_, &c.rowModesT, &c.rowLoad, &c.rowAbscissae, endQP_.get(), rows, &lower_, &upper_, &all_};
+    for (Eigen::VectorXd* v : {&rhs_, &dq_, &qNext_, &momentumNext_, &modalForce_, &modalScratch_}) v->resize(m);
     if (rows > 0) rowLoadMax_ = c.rowLoad.cwiseAbs().maxCoeff();
-    freeFlight_.setup(m, c.rowModeNormMax, rowLoadMax_);
+    now_.freeFlight.setup(m, c.rowModeNormMax, rowLoadMax_);
 }
 
 // W₂ v = ½Δt² G H⁻¹ Gᵀ v: through the modes when they are fewer than half the rows (a reduced
@@ -88,10 +94,10 @@ void CondensedScheme::gatherRows(const StepSpace& space, const Eigen::VectorXd& 
     r.tail(r.size() - n).setZero();
 }
 
-void CondensedScheme::solveContact(BoxQP& qp, const Eigen::VectorXd& free, std::vector<signed char>& state,
-                                   Eigen::VectorXd& force, Eigen::VectorXd& y, int& solves) {
-    const QPResult r = qp.solve(free, lower_, upper_, state, force, y);
-    ++solves;
+void CondensedScheme::solveContact(const StepSpace& space, BoxQP& qp, const Eigen::VectorXd& free,
+                                   std::vector<signed char>& state, Eigen::VectorXd& force, Eigen::VectorXd& y) {
+    const QPResult r = qp.solve(free, *space.lower, *space.upper, state, force, y);
+    ++solves_;
     kkt_ = std::max(kkt_, r.kktResidual);
     if (!r.converged || !(r.kktResidual <= kKktTolerance)) refuseUnsolved("contact solve", r.iterations, r.kktResidual);
 }
@@ -100,7 +106,7 @@ void CondensedScheme::solveContact(BoxQP& qp, const Eigen::VectorXd& free, std::
 // r = G q + p0 c_p + z0 + D λ between the obstacles: one contact solve with G Ω⁻² Gᵀ + D.
 void CondensedScheme::initialize(double z0, double p0) {
     const CondensedPlate& c = *plate_;
-    CondensedState& s = state_;
+    CondensedState& s = now_.s;
     s = CondensedState{};
     const Eigen::Index m = c.modes(), rows = c.rows();
     const Eigen::VectorXd qFree = p0 * c.modalLoad.cwiseQuotient(c.omega2);
@@ -121,60 +127,66 @@ void CondensedScheme::initialize(double z0, double p0) {
         if (!result.converged || !(result.kktResidual <= kKktTolerance))
             throw ParameterError("the initial static state's contact problem did not converge");
         s.q.noalias() += c.omega2.cwiseInverse().cwiseProduct(c.rowModesT * s.force);
-        // The massless part's own contact forces at the rows: λ*(r) with r from the new q.
-        gatherRows(everyRow_, s.q, p0, z0, r);
-        int solves = 0;
-        solveContact(*endQP_, r, s.rowState, endForce_, y, solves);
-        s.force = endForce_;
-        s.boundary = 0.5 * s.force.dot(y - r);
     }
+    s.z = s.zPrev = s.zPrev2 = z0;
+    s.p = s.pPrev = s.pPrev2 = p0;
+    // The massless part's own contact forces at the rows: λ*(r) with r from the new q.
+    if (obstacles_.any() && rows > 0) solveAtRest(now_);
     s.qPrev = s.qPrev2 = s.q;
     s.momentum = Eigen::VectorXd::Zero(m);
     s.forcePrev = s.forcePrev2 = s.force;
-    s.z = s.zPrev = s.zPrev2 = z0;
-    s.p = s.pPrev = s.pPrev2 = p0;
     s.contactPoints =
         static_cast<int>(std::count_if(s.rowState.begin(), s.rowState.end(), [](signed char x) { return x != 0; }));
-    refreshDerived();
-    freeFlight_.reset();
+    refreshDerived(now_);
 }
 
 void CondensedScheme::setLoadAtStart(double p0) {
-    CondensedState& s = state_;
+    CondensedState& s = now_.s;
     if (s.step != 0 || p0 == s.p) return;
     s.p = s.pPrev = s.pPrev2 = p0;
     if (obstacles_.any() && plate_->rows() > 0) {
-        gatherRows(everyRow_, s.q, p0, s.z, r0_);
-        int solves = 0;
-        solveContact(*endQP_, r0_, s.rowState, endForce_, y_, solves);
-        s.force = endForce_;
-        s.boundary = 0.5 * s.force.dot(y_ - r0_);
+        solveAtRest(now_);
         s.forcePrev = s.forcePrev2 = s.force;
         s.contactPoints =
             static_cast<int>(std::count_if(s.rowState.begin(), s.rowState.end(), [](signed char x) { return x != 0; }));
     }
-    refreshDerived();
-    freeFlight_.reset();
+    refreshDerived(now_);
 }
 
-// The rows r1_ at the trial's end looked at: Contact when a row is held at the start or past an
-// obstacle at the end, Free otherwise (the free-flight bound restarts from this look).
-CondensedScheme::Look CondensedScheme::lookAtRowsNow(const StepSpace& space, double zNext, double pNext,
+void CondensedScheme::solveAtRest(StepState& x) {
+    Eigen::VectorXd& r = all_.r0;
+    gatherRows(everyRow_, x.s.q, x.s.p, x.s.z, r);
+    solveContact(everyRow_, *endQP_, r, x.s.rowState, all_.endForce, all_.y);
+    x.s.force = all_.endForce;
+    x.s.boundary = 0.5 * x.s.force.dot(all_.y - r);
+}
+
+// The rows r1 at the trial's end looked at: Contact when a row is held at the start or past an
+// obstacle at the end, Free otherwise; the margin kept for keepLook.
+CondensedScheme::Look CondensedScheme::lookAtRowsNow(const StepSpace& space, StepState& x, double zNext, double pNext,
                                                      double reserve) {
-    const CondensedState& s = state_;
-    gatherRows(space, qNext_, pNext, zNext, r1_);
+    Eigen::VectorXd& r1 = space.buffers->r1;
+    const Eigen::VectorXd &lower = *space.lower, &upper = *space.upper;
+    gatherRows(space, qNext_, pNext, zNext, r1);
     double margin = std::numeric_limits<double>::infinity();
-    for (Eigen::Index i = 0; i < r1_.size(); ++i)
-        margin = std::min(margin, std::min(r1_[i] - lower_[i], upper_[i] - r1_[i]));
-    freeFlight_.reset();
-    if (s.contactPoints > 0 || margin < 0.0) return Look::Contact;
-    freeFlight_.restart(qNext_, zNext, pNext, margin);
+    for (Eigen::Index i = 0; i < r1.size(); ++i)
+        margin = std::min(margin, std::min(r1[i] - lower[i], upper[i] - r1[i]));
+    lookMargin_ = margin;
+    if (x.s.contactPoints > 0 || margin < 0.0) return Look::Contact;
     return margin < reserve ? Look::Near : Look::Free;
 }
 
-void CondensedScheme::midpointStep(const StepSpace& space, double zNext, double pNext) {
+void CondensedScheme::keepLook(StepState& x, Look look, double zNext, double pNext) {
+    if (look == Look::Contact)
+        x.freeFlight.reset();
+    else if (look != Look::Skipped)
+        x.freeFlight.restart(qNext_, zNext, pNext, lookMargin_);
+}
+
+void CondensedScheme::midpointStep(const StepSpace& space, StepState& x, double zBefore, double zNext, double pNext) {
     const CondensedPlate& c = *plate_;
-    const CondensedState& s = state_;
+    const CondensedState& s = x.s;
+    RowBuffers& b = *space.buffers;
     const MidpointOperator& op = *space.op;
     const double dt = op.h, dz = zNext - s.z, dp = pNext - s.p, pMid = 0.5 * (s.p + pNext);
     // The free midpoint step (T.17b with Λ = 0): H Δq = Δt P − b_m Δz + ½Δt²(p̄ F_m − Ω² q).
@@ -184,18 +196,22 @@ void CondensedScheme::midpointStep(const StepSpace& space, double zNext, double 
     qNext_.noalias() = s.q + dq_;
     iterations_ = solves_ = 0;
     kkt_ = 0.0;
-    const Look look = lookAtRows(space, zNext, pNext);
+    const Look look = lookAtRows(space, x, zNext, pNext);
     const bool contact = look == Look::Contact, rowsLooked = look != Look::Skipped;
     // The contact buffers are zero in free flight: cleared only when the last use left them not.
-    if (multiplierUsed_) multiplier_.setZero();
-    multiplierUsed_ = contact;
-    if (!forceNextZero_) forceNext_.setZero();
+    if (b.multiplierUsed) b.multiplier.setZero();
+    b.multiplierUsed = contact;
+    if (!b.forceNextZero) b.forceNext.setZero();
+    b.forceNextZero = !contact;  // (the contact solve writes it)
     if (contact) {
-        rowsAtStart(space);
-        drFree_ = r1_ - r0_;
-        discreteGradient(space, s.boundary);
+        if (x.rowsKnown)
+            b.r0 = x.rows;
+        else
+            gatherRows(space, s.q, s.p, s.z, b.r0);
+        b.drFree = b.r1 - b.r0;
+        discreteGradient(space, x);
         // Δq = Δq_free + ½Δt² H⁻¹ Gᵀ Λ.
-        modalForce_.noalias() = space.modes->leftCols(space.count) * space.live(multiplier_);
+        modalForce_.noalias() = space.modes->leftCols(space.count) * space.live(b.multiplier);
         dq_.noalias() += (0.5 * dt * dt) * op.inverseH.cwiseProduct(modalForce_);
         qNext_.noalias() = s.q + dq_;
     } else {
@@ -207,93 +223,100 @@ void CondensedScheme::midpointStep(const StepSpace& space, double zNext, double 
     const double damped = dq_.dot(damping_.cwiseProduct(dq_)) / dt;
     rhs_.noalias() =
         pMid * c.modalLoad - 0.5 * c.omega2.cwiseProduct(s.q + qNext_) + modalForce_ - damping_.cwiseProduct(dq_) / dt;
-    const double contactSum = contact ? space.live(multiplier_).sum() : 0.0,
-                 onLoad = contact ? space.live(multiplier_).dot(space.live(*space.load)) : 0.0;
+    const double contactSum = contact ? space.live(b.multiplier).sum() : 0.0,
+                 onLoad = contact ? space.live(b.multiplier).dot(space.live(*space.load)) : 0.0;
     const double onRigid = c.modalBaseInertia.dot(rhs_) - contactSum;  // clamp + load on the plate
     const double work = pMid * c.modalLoad.dot(dq_) - dp * onLoad + dz * onRigid;
-    CondensedState& st = state_;
+    CondensedState& st = x.s;
     st.clampForce = onRigid - pMid * c.loadResultant;
     st.clampMoment = c.modalRotationInertia.dot(rhs_) - pMid * c.loadMoment;
     st.stepContactMoment = 0.0;
     double sums[2] = {0.0, 0.0};
     if (contact) {
-        for (Eigen::Index i = 0; i < multiplier_.size(); ++i) {
-            if (multiplier_[i] == 0.0) continue;
+        for (Eigen::Index i = 0; i < b.multiplier.size(); ++i) {
+            if (b.multiplier[i] == 0.0) continue;
             // Each row's force goes to the obstacle nearer to it at the midpoint (of those holding it).
-            const double lo = lower_[i], hi = upper_[i];
+            const double lo = (*space.lower)[i], hi = (*space.upper)[i];
             const double middle =
                 std::isfinite(lo) && std::isfinite(hi) ? 0.5 * (lo + hi) : (std::isfinite(lo) ? HUGE_VAL : -HUGE_VAL);
-            sums[0.5 * (r0_[i] + r1_[i]) >= middle] += multiplier_[i];
-            st.stepContactMoment += multiplier_[i] * (*space.x)[static_cast<std::size_t>(i)];
+            sums[0.5 * (b.r0[i] + b.r1[i]) >= middle] += b.multiplier[i];
+            st.stepContactMoment += b.multiplier[i] * (*space.x)[static_cast<std::size_t>(i)];
         }
         st.clampMoment -= st.stepContactMoment;
     }
     bookContact(st, sums, dt);
-    commit(space, zNext, pNext, work, damped, iterations_);
-    rowsAtEnd(rowsLooked);  // r1 is G q⁺ + … when the rows were looked at, r0 + Δr after a contact solve
+    keepLook(x, look, zNext, pNext);
+    commit(space, x, zBefore, zNext, pNext, work, damped, iterations_);
+    // The rows at the end start the next contact step: r1 is G q⁺ + … when they were looked at, r0 + Δr
+    // after a contact solve.
+    x.rowsKnown = rowsLooked;
+    if (rowsLooked) x.rows = b.r1;
 }
 
 // Λ = λ*(r_mid) + c_g Δr with c_g = (ψ0 − ψ1 − λ*(r_mid)·Δr)/|Δr|² (T.17c), so that Λ·Δr = ψ0 − ψ1.
 // With e = c_g Δr held from the last iterate, λ*(r_mid) solves the contact problem with the
 // constant matrix ½W₂ + D at r0 + ½Δr_free + ½W₂e; then Δr = Δr_free + W₂(λ + e), ψ1 = ψ(r0 + Δr)
 // from one solve with D, and e is updated, until the energy residual vanishes.
-void CondensedScheme::discreteGradient(const StepSpace& space, double psi0) {
-    CondensedState& s = state_;
-    e_.setZero();
-    rowTrial_ = s.rowState;
-    midTrial_ = s.midState;
-    Eigen::VectorXd& lambda = multiplier_;
+void CondensedScheme::discreteGradient(const StepSpace& space, StepState& x) {
+    const CondensedState& s = x.s;
+    RowBuffers& b = *space.buffers;
+    const double psi0 = s.boundary;
+    b.e.setZero();
+    b.rowTrial = s.rowState;
+    b.midTrial = s.midState;
+    Eigen::VectorXd& lambda = b.multiplier;
     // The step's energies set the residual's scale: the contact terms, and the plate's kinetic and
     // modal strain energy (a contact onset has ψ0 = ψ1 ≈ 0: its residual is measured against those).
     const double energyScale = 0.5 * s.momentum.squaredNorm() + 0.5 * s.q.dot(plate_->omega2.cwiseProduct(s.q)) +
                                std::numeric_limits<double>::min();
     for (int it = 1;; ++it) {
-        base_.noalias() = r0_ + 0.5 * drFree_;
+        b.base.noalias() = b.r0 + 0.5 * b.drFree;
         if (it > 1) {
-            applyW2(space, e_, w2v_);
-            base_.noalias() += 0.5 * w2v_;
+            applyW2(space, b.e, b.w2v);
+            b.base.noalias() += 0.5 * b.w2v;
         }
-        solveContact(*space.op->midQP, base_, midTrial_, midForce_, y_, solves_);
-        lambda = midForce_ + e_;  // Λ
-        applyW2(space, lambda, w2v_);
-        dr_.noalias() = drFree_ + w2v_;
-        r1_.noalias() = r0_ + dr_;
-        solveContact(*space.endQP, r1_, rowTrial_, endForce_, y_, solves_);
-        forceNext_ = endForce_;
-        const double psi1 = 0.5 * space.live(forceNext_).dot(space.live(y_) - space.live(r1_));  // ½ λ1ᵀ D λ1
+        solveContact(space, *space.op->midQP, b.base, b.midTrial, b.midForce, b.y);
+        lambda = b.midForce + b.e;  // Λ
+        applyW2(space, lambda, b.w2v);
+        b.dr.noalias() = b.drFree + b.w2v;
+        b.r1.noalias() = b.r0 + b.dr;
+        solveContact(space, *space.endQP, b.r1, b.rowTrial, b.endForce, b.y);
+        b.forceNext = b.endForce;
+        const double psi1 = 0.5 * space.live(b.forceNext).dot(space.live(b.y) - space.live(b.r1));  // ½ λ1ᵀ D λ1
         boundaryNext_ = psi1;
-        const double residual = psi0 - psi1 - space.live(lambda).dot(space.live(dr_));
-        const double scale = psi0 + psi1 + std::abs(space.live(lambda).dot(space.live(dr_))) + energyScale;
+        const double residual = psi0 - psi1 - space.live(lambda).dot(space.live(b.dr));
+        const double scale = psi0 + psi1 + std::abs(space.live(lambda).dot(space.live(b.dr))) + energyScale;
         iterations_ = it;
-        const double norm2 = space.live(dr_).squaredNorm();
+        const double norm2 = space.live(b.dr).squaredNorm();
         if (std::abs(residual) <= kGradientTolerance * scale || norm2 == 0.0) return;
         if (it == kGradientIterations) {
             std::ostringstream msg;
             msg << "the discrete gradient of the contact step to t = " << nextTime() << " did not converge in " << it
                 << " iterations (energy residual " << residual << " J)";
-            throw StepError(msg.str());
+            throw StepError(msg.str(), nextTime());
         }
         // e ← c_g Δr with c_g from λ*(r_mid) = Λ − e.
-        e_ = ((psi0 - psi1 - (space.live(lambda) - space.live(e_)).dot(space.live(dr_))) / norm2) * dr_;
+        b.e = ((psi0 - psi1 - (space.live(lambda) - space.live(b.e)).dot(space.live(b.dr))) / norm2) * b.dr;
     }
 }
 
-void CondensedScheme::commit(const StepSpace& space, double zNext, double pNext, double work, double damped,
-                             int iterations) {
+void CondensedScheme::commit(const StepSpace& space, StepState& x, double zBefore, double zNext, double pNext,
+                             double work, double damped, int iterations) {
     const CondensedPlate& c = *plate_;
-    CondensedState& s = state_;
+    CondensedState& s = x.s;
+    RowBuffers& b = *space.buffers;
     const double dt = space.op->h;
     // The mass moving with the clamp (discarded modes) and the massless part's load terms enter
     // the energy (T.17a); their changes are booked as the inputs' work (T.17d).
-    const double zDot = (s.z - s.zPrev) / dt, zDotNext = (zNext - s.z) / dt;
+    const double zDot = (s.z - zBefore) / dt, zDotNext = (zNext - s.z) / dt;
     const bool nextZero = solves_ == 0;  // a free step leaves λ_{n+1} = 0
-    const double loadTerms = (nextZero ? 0.0 : pNext * space.live(forceNext_).dot(space.live(*space.load))) +
+    const double loadTerms = (nextZero ? 0.0 : pNext * space.live(b.forceNext).dot(space.live(*space.load))) +
                              0.5 * pNext * pNext * c.loadFlexibility -
-                             ((forceZero_[0] ? 0.0 : s.p * space.live(s.force).dot(space.live(*space.load))) +
+                             ((x.forceZero[0] ? 0.0 : s.p * space.live(s.force).dot(space.live(*space.load))) +
                               0.5 * s.p * s.p * c.loadFlexibility);
     const double input = work + 0.5 * c.clampMass * (zDotNext * zDotNext - zDot * zDot) + loadTerms;
     // The clamp-carried mass's inertia at t_n (its work pairs with (z⁺ − z⁻)/2, §17).
-    const double zAcc = (zNext - 2.0 * s.z + s.zPrev) / (dt * dt);
+    const double zAcc = (zNext - 2.0 * s.z + zBefore) / (dt * dt);
     s.clampForce += c.clampMass * zAcc;
     s.clampMoment += c.clampMassMoment * zAcc;
     s.qPrev2.swap(s.qPrev);
@@ -302,14 +325,14 @@ void CondensedScheme::commit(const StepSpace& space, double zNext, double pNext,
     s.momentum.swap(momentumNext_);
     s.forcePrev2.swap(s.forcePrev);
     s.forcePrev.swap(s.force);
-    s.force.swap(forceNext_);
-    forceNextZero_ = forceZero_[2];
-    forceZero_ = {nextZero, forceZero_[0], forceZero_[1]};
+    s.force.swap(b.forceNext);
+    b.forceNextZero = x.forceZero[2];
+    x.forceZero = {nextZero, x.forceZero[0], x.forceZero[1]};
     s.boundary = solves_ > 0 ? boundaryNext_ : 0.0;
     recordStep(s, zNext, pNext, {input, 0.0, damped, solves_, iterations, kkt_});
     if (solves_ > 0) {
-        s.rowState.swap(rowTrial_);
-        s.midState.swap(midTrial_);
+        s.rowState.swap(b.rowTrial);
+        s.midState.swap(b.midTrial);
         s.contactPoints =
             static_cast<int>(std::count_if(s.rowState.begin(), s.rowState.end(), [](signed char x) { return x != 0; }));
     } else if (s.contactPoints > 0) {
@@ -318,9 +341,28 @@ void CondensedScheme::commit(const StepSpace& space, double zNext, double pNext,
     }
 }
 
+// A run's end becomes the state at t_{n+1}: its levels before it are the scheme's t_n and t_{n−1}.
+void CondensedScheme::recordRun(StepState& end) {
+    CondensedState &s = now_.s, &e = end.s;
+    e.qPrev2.swap(s.qPrev);
+    e.qPrev.swap(s.q);
+    e.forcePrev2.swap(s.forcePrev);
+    e.forcePrev.swap(s.force);
+    e.zPrev2 = s.zPrev;
+    e.zPrev = s.z;
+    e.pPrev2 = s.pPrev;
+    e.pPrev = s.p;
+    e.step = s.step + 1;
+    std::swap(s, e);
+    now_.rows.swap(end.rows);
+    now_.rowsKnown = end.rowsKnown;
+    now_.forceZero = {s.force.isZero(0.0), s.forcePrev.isZero(0.0), s.forcePrev2.isZero(0.0)};
+    now_.freeFlight.reset();
+}
+
 double CondensedScheme::energy() const {
     const CondensedPlate& c = *plate_;
-    const CondensedState& s = state_;
+    const CondensedState& s = now_.s;
     const double zDot = (s.z - s.zPrev) / dt_;
     const double kinetic = 0.5 * s.momentum.squaredNorm() + 0.5 * c.clampMass * zDot * zDot;
     // Strain energy: ½ qᵀΩ²q + ½ bᵀ S b of the massless part b = S⁻¹Q0ᵀ(pF + Cᵀλ) (T.17a).
@@ -330,7 +372,7 @@ double CondensedScheme::energy() const {
 
 double CondensedScheme::rowHeight(int i, int level) const {
     const CondensedPlate& c = *plate_;
-    const CondensedState& s = state_;
+    const CondensedState& s = now_.s;
     const Eigen::VectorXd& q = atLevel(level, s.q, s.qPrev, s.qPrev2);
     const Eigen::VectorXd& f = atLevel(level, s.force, s.forcePrev, s.forcePrev2);
     const double z = atLevel(level, s.z, s.zPrev, s.zPrev2);
@@ -343,7 +385,7 @@ double CondensedScheme::rowHeight(int i, int level) const {
 // the massless part's response to the load and to the contact forces (skipped while they are zero).
 void CondensedScheme::recover(Eigen::Index first, int level, Eigen::Ref<Eigen::VectorXd> out) const {
     const CondensedPlate& c = *plate_;
-    const CondensedState& s = state_;
+    const CondensedState& s = now_.s;
     const Eigen::VectorXd& q = atLevel(level, s.q, s.qPrev, s.qPrev2);
     const Eigen::VectorXd& f = atLevel(level, s.force, s.forcePrev, s.forcePrev2);
     const double p = atLevel(level, s.p, s.pPrev, s.pPrev2);
@@ -355,7 +397,7 @@ void CondensedScheme::recover(Eigen::Index first, int level, Eigen::Ref<Eigen::V
 
 void CondensedScheme::initialReaction(double& force, double& moment) const {
     const CondensedPlate& c = *plate_;
-    const CondensedState& s = state_;
+    const CondensedState& s = now_.s;
     const Eigen::VectorXd rate = s.p * c.modalLoad - c.omega2.cwiseProduct(s.q) + c.rowModesT * s.force;
     double contact = 0.0, contactMoment = 0.0;
     for (Eigen::Index i = 0; i < s.force.size(); ++i) {
@@ -367,9 +409,8 @@ void CondensedScheme::initialReaction(double& force, double& moment) const {
 }
 
 void CondensedScheme::setState(const CondensedState& s) {
-    state_ = s;
-    freeFlight_.reset();  // the free-flight bound restarts from a full look
-    refreshDerived();
+    now_.s = s;
+    refreshDerived(now_);
 }
 
 std::vector<double> CondensedScheme::saveState() const {
@@ -391,27 +432,24 @@ void CondensedScheme::restoreOwn(const std::vector<double>& own) {
     if (!own.empty()) throw std::invalid_argument("state does not belong to this plate (size or format differs)");
 }
 
-void CondensedScheme::refreshDerived() {
-    const CondensedState& s = state_;
-    forceZero_ = {s.force.isZero(0.0), s.forcePrev.isZero(0.0), s.forcePrev2.isZero(0.0)};
-    forceNext_.setZero();
-    forceNextZero_ = true;
-    multiplier_.setZero();
-    multiplierUsed_ = false;
-    stateReplaced();
+void CondensedScheme::refreshDerived(StepState& x) {
+    const CondensedState& s = x.s;
+    x.forceZero = {s.force.isZero(0.0), s.forcePrev.isZero(0.0), s.forcePrev2.isZero(0.0)};
+    x.rowsKnown = false;
+    x.freeFlight.reset();  // the free-flight bound restarts from a full look
 }
 
 // The port at t_{n−½} (§17): what the plate exerts on the clamp is the opposite of the clamp's
 // force on it; before the first step, the initial state's reaction.
 void CondensedScheme::clampLoad(double& force, double& moment) const {
-    if (state_.step == 0) return initialReaction(force, moment);
-    force = -state_.clampForce;
-    moment = -state_.clampMoment;
+    if (now_.s.step == 0) return initialReaction(force, moment);
+    force = -now_.s.clampForce;
+    moment = -now_.s.clampMoment;
 }
 
 std::vector<double> CondensedScheme::vertexDisplacements() const {
     const std::vector<int>& vertexRows = rows_.vertices;
-    std::vector<double> u(vertexRows.size(), state_.z);
+    std::vector<double> u(vertexRows.size(), now_.s.z);
     for (std::size_t v = 0; v < vertexRows.size(); ++v)
         if (vertexRows[v] >= 0) u[v] = rowHeight(vertexRows[v]);
     return u;
@@ -445,7 +483,7 @@ const auto condensedMembers = [](auto& s, auto& v) {
 }  // namespace
 
 std::vector<double> CondensedScheme::serialize() const {
-    return archive::save(state_, kFormat, sizes(), condensedMembers);
+    return archive::save(now_.s, kFormat, sizes(), condensedMembers);
 }
 
 CondensedState CondensedScheme::deserialize(const std::vector<double>& data) const {

@@ -53,6 +53,55 @@ struct OutputRows {
     std::vector<int> vertices;
 };
 
+// What the midpoint step (T.17b–c) of length h needs: H⁻¹, W₂ and the midpoint contact problem's
+// matrix ½W₂ + D with its solver.
+struct MidpointOperator {
+    double h = 0.0;
+    Eigen::VectorXd inverseH;  // 1 / (1 + ½h c + ¼h²Ω²)
+    Eigen::MatrixXd w2, midpointMatrix;  // W₂ = ½h² G H⁻¹ Gᵀ and ½W₂ + D
+    std::unique_ptr<ContactColumns> midColumns;
+    std::unique_ptr<BoxQP> midQP;
+};
+
+// A midpoint step's row-sized buffers in one space, allocated once with every row's length (a space
+// of fewer rows uses their leading entries and keeps the rest zero), and which of them are known to
+// be zero: free flight touches none of them.
+struct RowBuffers {
+    Eigen::VectorXd forceNext, multiplier, r0, r1, drFree, dr, base, e, y, w2v, midForce, endForce;
+    std::vector<signed char> rowTrial, midTrial;
+    bool forceNextZero = true, multiplierUsed = false;
+    void resize(Eigen::Index rows);  // every buffer zero
+};
+
+// What one midpoint step runs on (docs/theory.md §24): the operator of its length and the constraint
+// rows it resolves contact in — every row (the conserving law, every look at the rows) or the rows a
+// flow-law contact step can touch (RowSpace) — with their data and buffers. Past `count` the bounds
+// are ∓∞ and the data zero, so that a contact step allocates nothing.
+struct StepSpace {
+    const MidpointOperator* op;
+    const Eigen::MatrixXd* modes;  // Gᵀ: its leading `count` columns (massive modes × the space's rows)
+    const Eigen::VectorXd* load;  // c_p at those rows (zero past them)
+    const std::vector<double>* x;  // their lever arms about the clamp line
+    BoxQP* endQP;  // the contact problem with their D
+    Eigen::Index count;  // how many rows
+    const Eigen::VectorXd *lower, *upper;  // their obstacles (docs/theory.md §25)
+    RowBuffers* buffers;
+    // A row vector's entries in the space: reductions over them alone add what a vector of the
+    // space's own length would, in the same order.
+    auto live(const Eigen::VectorXd& v) const { return v.head(count); }
+};
+
+// What a midpoint step starts from and leaves: the state (its row vectors in the step's space), which
+// of its force levels are zero, its rows when a look left them (the next contact step starts from
+// them), and the free-flight bound of its last look. The scheme's own, or a run's scratch.
+struct StepState {
+    CondensedState s;
+    std::array<bool, 3> forceZero{{true, true, true}};  // λ at t, and at the two levels before
+    Eigen::VectorXd rows;
+    bool rowsKnown = false;
+    FreeFlightBound freeFlight;
+};
+
 class CondensedScheme : public Scheme {
 public:
     // At rest in static equilibrium under the pressure p0 with the clamp at z0 (the plate's own
@@ -80,7 +129,7 @@ public:
     // Absolute height of constraint row i at t_n, t_{n−1}, t_{n−2} (level 0, 1, 2).
     double rowHeight(int i, int level = 0) const;
 
-    const CondensedState& state() const { return state_; }
+    const CondensedState& state() const { return now_.s; }
     void setState(const CondensedState& s);
     const CondensedPlate& plate() const { return *plate_; }
 
@@ -91,7 +140,7 @@ public:
     std::size_t serializedLength() const;  // of serialize()'s flat form
 
 protected:
-    const SchemeState& shared() const override { return state_; }
+    const SchemeState& shared() const override { return now_.s; }
     double pointHeight(int k, int level) const override { return rowHeight(rows_.probes[k], level); }
     double outputEnergy() const override { return energy(); }
     void clampLoad(double& force, double& moment) const override;
@@ -99,93 +148,67 @@ protected:
     // it sets anything (throws std::invalid_argument).
     virtual std::vector<double> saveOwn() const { return {}; }
     virtual void restoreOwn(const std::vector<double>& own);
-    // The one hook for "the state was replaced" (setState, a snapshot restored): what a subclass
-    // derives from the state.
-    virtual void stateReplaced() {}
 
     CondensedScheme(std::shared_ptr<const CondensedPlate> plate, Obstacles obstacles, double dt, double dampingMass,
                     double dampingStiffness, OutputRows rows);
 
-    // What the midpoint step (T.17b–c) of length h needs: H⁻¹, W₂ and the midpoint contact
-    // problem's matrix ½W₂ + D with its solver.
-    struct MidpointOperator {
-        double h = 0.0;
-        Eigen::VectorXd inverseH;  // 1 / (1 + ½h c + ¼h²Ω²)
-        Eigen::MatrixXd w2, midpointMatrix;  // W₂ = ½h² G H⁻¹ Gᵀ and ½W₂ + D
-        std::unique_ptr<ContactColumns> midColumns;
-        std::unique_ptr<BoxQP> midQP;
-    };
     void buildOperator(MidpointOperator& op, double h) const;
-    // What one midpoint step runs on (docs/theory.md §24): the operator of its length and the
-    // constraint rows it resolves contact in — every row and Δt (the conserving law: everyRow_), or
-    // FlowScheme's sub-steps in the rows that can touch. The row-sized vectors keep every row's
-    // length: a space of fewer rows uses their leading `count` entries and keeps the rest zero (its
-    // bounds ∓∞), so that a contact step allocates nothing.
-    struct StepSpace {
-        const MidpointOperator* op;
-        const Eigen::MatrixXd* modes;  // Gᵀ: its leading `count` columns (massive modes × the space's rows)
-        const Eigen::VectorXd* load;  // c_p at those rows (zero past them)
-        const std::vector<double>* x;  // their lever arms about the clamp line
-        BoxQP* endQP;  // the contact problem with their D
-        Eigen::Index count;  // how many rows
-        // A row vector's entries in the space: reductions over them alone add what a vector of the
-        // space's own length would, in the same order.
-        auto live(const Eigen::VectorXd& v) const { return v.head(count); }
-    };
     static std::unique_ptr<ContactColumns> denseColumns(const Eigen::MatrixXd& matrix);  // its columns, as they are
-    void midpointStep(const StepSpace& space, double zNext, double pNext);  // one step of space.op->h (T.17b–c)
-    // Where a contact step's rows at t_n come from (r0_): G q + p c_p + z here; FlowScheme keeps the
-    // rows the last (sub-)step ended with. And what a step's end leaves for the next (rowsLooked: r1_
-    // holds the rows at the end).
-    virtual void rowsAtStart(const StepSpace& space) { gatherRows(space, state_.q, state_.p, state_.z, r0_); }
-    virtual void rowsAtEnd(bool /*rowsLooked*/) {}
-    // The contact check after a trial step to (qNext_, zNext, pNext): Skipped while the free-flight
-    // bound holds (inline: the common case of both schemes), else lookAtRowsNow.
-    // Near (FlowScheme with a tolerance): free, but a row is within `reserve` of an obstacle.
+    // One step of space.op->h from x to (zNext, pNext) (T.17b–c); zBefore: the base one such step
+    // before x's time (ż and z̈ at its start). x's ledger takes the step's record and its levels move on.
+    // Throws StepError with x as it was. The rows at x's time are x.rows where known, else gathered.
+    void midpointStep(const StepSpace& space, StepState& x, double zBefore, double zNext, double pNext);
+    // The contact check after a trial step to (qNext_, zNext, pNext) from x: Skipped while x's
+    // free-flight bound holds (inline: the common case of both schemes), else lookAtRowsNow.
+    // `reserve` (FlowScheme with a tolerance): a free row within it of an obstacle is Near.
     enum class Look { Skipped, Free, Near, Contact };
-    // `reserve` (FlowScheme with a tolerance): a row within it of an obstacle counts as contact.
-    Look lookAtRows(const StepSpace& space, double zNext, double pNext, double reserve = 0.0) {
+    Look lookAtRows(const StepSpace& space, StepState& x, double zNext, double pNext, double reserve = 0.0) {
         if (!obstacles_.any() || plate_->rows() == 0 ||
-            (state_.contactPoints == 0 && freeFlight_.holds(qNext_, zNext, pNext, reserve)))
+            (x.s.contactPoints == 0 && x.freeFlight.holds(qNext_, zNext, pNext, reserve)))
             return Look::Skipped;
-        return lookAtRowsNow(space, zNext, pNext, reserve);
+        return lookAtRowsNow(space, x, zNext, pNext, reserve);
     }
-    Look lookAtRowsNow(const StepSpace& space, double zNext, double pNext, double reserve = 0.0);
+    Look lookAtRowsNow(const StepSpace& space, StepState& x, double zNext, double pNext, double reserve = 0.0);
+    // What the look leaves for x's next step, at the step's end (a throw before leaves x as it was): the
+    // free-flight bound from a free look, none after contact.
+    void keepLook(StepState& x, Look look, double zNext, double pNext);
     // The space's rows at (q, p, z) into its leading entries of r (the rest zero).
     void gatherRows(const StepSpace& space, const Eigen::VectorXd& q, double p, double z, Eigen::VectorXd& r) const;
-    void applyW2(const StepSpace& space, const Eigen::VectorXd& v, Eigen::VectorXd& out);
-    void discreteGradient(const StepSpace& space, double psi0);  // Λ into multiplier_, from r0_, drFree_
-    void solveContact(BoxQP& qp, const Eigen::VectorXd& free, std::vector<signed char>& state, Eigen::VectorXd& force,
-                      Eigen::VectorXd& y, int& solves);
-    void commit(const StepSpace& space, double zNext, double pNext, double work, double damped, int iterations);
-    void refreshDerived();  // what is derived from the state (which force levels are zero)
+    // λ*(r) of x's rows r = G q + p c_p + z with D, into x's force, contact set and boundary energy ψ.
+    void solveAtRest(StepState& x);
+    // What a step's end leaves in x (the levels moved on, the ledger); `work`, `damped` its record.
+    void commit(const StepSpace& space, StepState& x, double zBefore, double zNext, double pNext, double work,
+                double damped, int iterations);
+    // A run's end (sub-steps from t_n on a scratch state: the flow law's contact step) recorded as the
+    // step to t_{n+1}: the state changes here, once.
+    void recordRun(StepState& end);
+    void refreshDerived(StepState& x);  // what is derived from x.s (which force levels are zero; nothing looked at)
 
     std::shared_ptr<const CondensedPlate> plate_;
     Eigen::VectorXd damping_;  // c_k = a + b ω_k² (Rayleigh on the massive modes, §17)
     OutputRows rows_;
     MidpointOperator full_;  // steps of Δt
+    Eigen::VectorXd lower_, upper_;  // every row's obstacles (docs/theory.md §25)
+    double rowLoadMax_ = 0.0;  // max |c_p|
+    StepSpace everyRow_;  // Δt in every row: the conserving law's steps, and every look at the rows
+    StepState now_;  // the scheme's state at t_n
+    // The step's modal buffers, allocated once, and its contact solves' counts.
+    Eigen::VectorXd rhs_, dq_, qNext_, momentumNext_;
+    int iterations_ = 0, solves_ = 0;
+    double kkt_ = 0.0;
+
+private:
+    void applyW2(const StepSpace& space, const Eigen::VectorXd& v, Eigen::VectorXd& out);
+    void discreteGradient(const StepSpace& space, StepState& x);  // Λ into the multiplier, from r0, drFree
+    void solveContact(const StepSpace& space, BoxQP& qp, const Eigen::VectorXd& free, std::vector<signed char>& state,
+                      Eigen::VectorXd& force, Eigen::VectorXd& y);
 
     Eigen::MatrixXd endMatrix_;  // D
     std::unique_ptr<ContactColumns> endColumns_;
     std::unique_ptr<BoxQP> endQP_;
-    StepSpace everyRow_;  // Δt in every row: the conserving law's steps, and every look at the rows
-    CondensedState state_;
-    // Step buffers, allocated once.
-    Eigen::VectorXd rhs_, dq_, qNext_, momentumNext_, forceNext_, multiplier_, modalForce_;
-    Eigen::VectorXd modalScratch_, w2v_;
-    Eigen::VectorXd r0_, r1_, drFree_, dr_, base_, e_, y_, lower_, upper_;
-    // Each contact solve's own multipliers (BoxQP keeps them zero off its active set).
-    Eigen::VectorXd midForce_, endForce_;
-    std::vector<signed char> rowTrial_, midTrial_;
-    int iterations_ = 0, solves_ = 0;
-    double boundaryNext_ = 0.0;
-    // Which of λ_n, λ_{n−1}, λ_{n−2} and the next level's buffer are zero (free flight touches none
-    // of the row-sized vectors).
-    std::array<bool, 3> forceZero_{{true, true, true}};
-    bool forceNextZero_ = true, multiplierUsed_ = false;
-    double kkt_ = 0.0;
-    FreeFlightBound freeFlight_;  // in the massive modes (ρ = max ‖G_i‖), the base and the load
-    double rowLoadMax_ = 0.0;  // max |c_p|
+    RowBuffers all_;  // every row's buffers
+    Eigen::VectorXd modalForce_, modalScratch_;
+    double boundaryNext_ = 0.0, lookMargin_ = 0.0;
 };
 
 }  // namespace plate

@@ -10,6 +10,9 @@
 #include <vector>
 
 #include "schemes/CondensedScheme.h"
+#include "schemes/ExactFlow.h"
+#include "schemes/RowSpace.h"
+#include "schemes/StepDoubling.h"
 
 namespace plate {
 
@@ -23,28 +26,6 @@ struct ContactRefinement {
     bool rowSpace = true;  // contact sub-steps in the rows that can touch (§24); false: in every row
 };
 
-// The flow law's own state (after the condensed schemes' in the flat form): with a tolerance
-// (docs/theory.md §22), the global error estimate — the vector E = (δq, δP) of modal displacement
-// and momentum errors at step errorStep, carried through free flight by the exact flow and through
-// each contact step by a companion of the step from the perturbed start — the largest output error
-// it has implied so far, the contact steps taken, those the cap bounded, and the controller's level
-// (the next contact step takes 2^level sub-steps).
-struct FlowState {
-    double errorEstimate = 0;  // the largest estimated error of the reported points so far, m
-    long long cappedSteps = 0;
-    int refinementLevel = 1;
-    long long contactSteps = 0;
-    long long errorStep = 0;
-    double lostAt = -1;  // when the estimate passed the tolerance, s (< 0: not yet)
-    // The sub-steps' order in held contact, observed (docs/theory.md §22); log2 3 until a rise says.
-    double smoothOrder = 1.584962500721156;
-    Eigen::VectorXd errorQ, errorMomentum;  // E at errorStep (sized to the massive modes)
-    // The steps where rows changed sides leave an error whose size their pair gives but not its sign
-    // (docs/theory.md §22, events sized, not signed): each mode's squared amplitude, summed over them,
-    // at errorStep; it bounds the estimate from below as their oscillations' root-sum-square.
-    Eigen::VectorXd eventError2;
-};
-
 class FlowScheme final : public CondensedScheme {
 public:
     FlowScheme(std::shared_ptr<const CondensedPlate> plate, Obstacles obstacles, double dt,
@@ -53,126 +34,45 @@ public:
 
     std::string name() const override;
     const FlowState& flowState() const { return flow_; }
-    // Contact steps taken in the rows that can touch, and those taken again in every row because a
-    // row outside them ended past an obstacle (docs/theory.md §24).
+    ToleranceHorizon toleranceHorizon() const override;
+    // Contact steps' runs taken in the rows that can touch, and those taken again in every row because
+    // a row outside them ended past an obstacle (docs/theory.md §24).
     long long rowSpaceSteps() const { return rowSpaceSteps_; }
     long long rowSpaceRetries() const { return rowSpaceRetries_; }
 
 private:
-    void advance(double zNext, double pNext) override;  // exact free flight, or the sub-steps on contact
-    // The rows at the end of the last (sub-)step start the next one (the midpoint rule of the
-    // conserving law recomputes them: its results stay what they always were).
-    void rowsAtStart(const StepSpace& space) override;
-    void rowsAtEnd(bool rowsLooked) override;
-    void stateReplaced() override { rowsCachedValid_ = false; }
-    // The state with what the next step's solves start from (their warm starts): a step can be
-    // taken again from a snapshot, bit for bit as the first time (step doubling, a retry in every
-    // row, a throw), and a run of sub-steps ends with its start's time levels. The first save sizes
-    // a snapshot; later ones copy into its storage.
-    struct Snapshot {
-        CondensedState state;
-        Eigen::VectorXd midForce, endForce, rowsCached;
-        bool rowsCachedValid = false;
-    };
-    void save(Snapshot& to) const;
-    void restore(const Snapshot& from);
+    void advance(double zNext, double pNext) override;  // exact free flight, or a run on contact
+    // Every mode's exact flow over Δt into qNext_, momentumNext_ and qIntegral_.
+    void exactStep(double zNext, double pNext);
+    void freeStep(double zNext, double pNext, Look look);  // the exact step recorded
+    // A run (docs/theory.md §21, §24): the contact step from `from` (t_n) to (zNext, pNext) as m midpoint
+    // sub-steps of op's length — or, resolveFrom ≥ 0, R's sub-steps from that level (resolvedSubsteps) —
+    // in the rows that can touch while the step has them, else in every row. Its end into `to`, with the
+    // step's record (the port's values over the step); the scheme's state is not touched.
+    void run(const StepState& from, double zNext, double pNext, int m, const MidpointOperator& op, StepState& to,
+             int resolveFrom = -1);
+    // The m sub-steps of op's length in x's space (rows: C's, else every row), base and load linear.
+    void midpointSubsteps(bool inRows, const MidpointOperator& op, StepState& x, double zNext, double pNext, int m);
+    // That level's sub-steps, those in which rows change sides halved, three levels down at most (R).
+    void resolvedSubsteps(bool inRows, StepState& x, double zNext, double pNext, int level);
+    StepSpace spaceFor(bool inRows, const MidpointOperator& op);
+    const MidpointOperator& level(int j) const { return j == 0 ? full_ : *levels_[std::size_t(j - 1)]; }
     void addOutputs(PlateOutputs& o) const override;
-    std::vector<double> saveOwn() const override;
+    std::vector<double> saveOwn() const override { return flow_.save(); }
     void restoreOwn(const std::vector<double>& own) override;
 
-    // resolveFrom ≥ 0: resolvedSubsteps from that level instead of midpointSubsteps (resolveEvents).
-    void substeps(double zNext, double pNext, int m, const MidpointOperator& op, int resolveFrom = -1);
-    void midpointSubsteps(double zNext, double pNext, int m);  // m steps of substep_, base and load linear
-    // That level's sub-steps, those in which rows change sides halved, three levels down at most (resolveEvents).
-    void resolvedSubsteps(double zNext, double pNext, int level);
-    void useLevel(int level);  // substep_ on that level's operator (in C or in every row)
-    // The contact step's row space (docs/theory.md §24): the rows that can touch, their data, the
-    // midpoint operator of a sub-step length in them; entering swaps the row-sized buffers and the
-    // state's row vectors for theirs, leaving scatters the results back.
-    bool selectRows(double zNext, double pNext);  // false: every row can touch
-    void sizeRowSpace();  // the constructor: C's buffers at every row's size
-    void buildRowOperator(const MidpointOperator& op);
-    void enterRows();
-    void leaveRows();
-    void swapRowBuffers();
-    bool rowsOutsideStayFree();  // after leaving: the other rows inside the obstacles at the end
-    // tolerance > 0 (docs/theory.md §22): the kept step at level j and its companion from the
-    // perturbed start at level j − 1; the global error carried and sampled.
-    void refine(double zNext, double pNext);
-    void nearMiss(double zNext, double pNext);  // a free step within E's reach of an obstacle
-    long long carryThroughStep(double zNext, double pNext, int level);  // E through the step
-    void carryByFreeFlow();  // E through the step by the free flow, into errorNext*
-    void carryError();  // E_{n+1} = carried + local; sampled; its reach
-    void companion(double zNext, double pNext, int level);  // from start_ + E: E carried, into errorNext*
-    void rotateError(long long toStep);  // E by the exact free flow from errorStep to toStep
-    // The reported points' error implied by E and (events) the events', into the running maximum.
-    void sampleError(bool events = true);
-    void addEventError();  // a step where rows changed sides: its local error's amplitudes, unsigned
-    // A step where rows changed sides: the kept run at `level` again with its events resolved (R), from
-    // start_; kept − R into event*, returned at the reported points, m (−1 and event* zero where R cannot
-    // be taken); the kept run's end restored.
-    double resolveEvents(double zNext, double pNext, int level);
-    // The rise after a blind pair, whose new pair straddles R's stair: the kept run's error from both
-    // levels' R, into event*, at the reported points, m.
-    double straddledError();
-    bool boundedByGap()
-        const;  // every reported point under both obstacles: two motions differ there by gapBound_ at most
-    double localTarget() const;  // what this contact step may add at the reported points, m
-    double onsetFraction() const;  // from the rows at t_n (rowsStart_) and at the free trial's end (r1_)
-    int onsetLevel() const;  // the kept run's lowest level in this step
-    double localError();  // the kept run's own error, into local*: at the reported points, m
-    void squaredAmplitudes(const Eigen::VectorXd& q, const Eigen::VectorXd& momentum, Eigen::VectorXd& into) const;
-    double atReportedPoints(const Eigen::VectorXd& squared);  // squared modal amplitudes → m, at the worst point
-
     ContactRefinement refinement_;
-    FlowState flow_;
-    // Sized to every row once (the constructor); a contact step fills the leading |C| entries, columns
-    // and blocks (StepSpace) and allocates nothing. The matrices are kept while C stays the same.
-    struct TouchRows {
-        std::vector<int> index, gathered;  // C: the rows that can touch, ascending; the C the matrices hold
-        Eigen::MatrixXd modes, delassus;  // G_Cᵀ, D_CC
-        Eigen::VectorXd load;
-        std::vector<double> x;
-        std::unique_ptr<ContactColumns> endColumns;
-        std::unique_ptr<BoxQP> endQP;
-        MidpointOperator op;  // in C, for the sub-step length of `from`
-        const MidpointOperator* from = nullptr;
-        // Swapped with the scheme's own while the step runs in C.
-        Eigen::VectorXd forceNext, multiplier, r0, r1, drFree, dr, base, e, y, w2v, lower, upper, midForce, endForce,
-            rowsCached, force, forcePrev, forcePrev2;
-        std::vector<signed char> rowState, midState, rowTrial, midTrial;
-    } touch_;
-    Eigen::VectorXd rowsCached_;  // the rows at the end of the last (sub-)step
-    bool rowsCachedValid_ = false;
-    bool inRows_ = false, allRows_ = false;
+    FlowState flow_;  // the error estimate's (StepDoubling), archived with the scheme's state
+    ExactFlow exact_;  // the free flow over Δt
+    std::unique_ptr<RowSpace> touch_;  // the rows a contact step can touch (rowSpace)
+    std::unique_ptr<StepDoubling> doubling_;  // tolerance > 0
     long long rowSpaceSteps_ = 0, rowSpaceRetries_ = 0;
-    Snapshot runStart_;  // a run of sub-steps' start (substeps): its time levels after it, and its retry
-    StepSpace substep_{};  // what the sub-steps run on: their length's operator, in C or in every row
-    Eigen::VectorXd rowsStart_;
+    long long stepRowSpaceRuns_ = 0, stepRowSpaceRetries_ = 0;  // this step's, counted at its record
+    StepState kept_, substep_;  // the step's run (the kept run with a tolerance), a sub-step of R
+    Eigen::VectorXd rowsStart_;  // the rows at t_n (the row space, the onset)
     MidpointOperator sub_;  // sub-steps of Δt/m (tolerance = 0)
     // tolerance > 0: level j takes 2^j sub-steps of Δt/2^j (level 0 is full_).
     std::vector<std::unique_ptr<MidpointOperator>> levels_;
-    Snapshot start_, coarse_, fine_;  // start_: the contact step's start (advance), restored on a throw
-    Snapshot substepStart_;  // resolvedSubsteps: a sub-step's start, to take it again as two halves
-    bool blindPair_ = false;  // this step's pair missed an event R saw (docs/theory.md §22, events resolved)
-    bool straddled_ = false;  // the pair after its rise measured its coarse run's event error (straddledError)
-    FlowState flowAtStart_;
-    double errorReach_ = 0.0;  // how far the carried error can move a row (0 without a tolerance)
-    // Where in an onset step (no row held at its start) the first row reaches an obstacle, as a fraction
-    // of the step; 0 otherwise (docs/theory.md §22: the kept run's lowest level).
-    double onsetFraction_ = 0.0;
-    double gapBound_ = 0.0;  // the largest gap between the obstacles at a reported point (∞: one lacks one)
-    bool smooth_ = false;  // the last localError's pair: no row changed sides
-    double difference_ = 0.0;  // and its difference at the reported points, m
-    int fixedLevel_ = 0;  // past the tolerance's horizon: 2^fixedLevel_ sub-steps (≤ contact_substeps)
-    Eigen::MatrixXd measuredRows_;  // G at the reported points
-    Eigen::MatrixXd measuredRows2_;  // and its entries squared (amplitudes of independent phases, no temporary)
-    Eigen::VectorXd inverseOmega_, amplitude_, rowBound_, errorNextQ_, errorNextMomentum_, localQ_, localMomentum_,
-        scratchQ_, eventQ_, eventMomentum_, lastEventQ_, lastEventMomentum_;
-    // How each mode's squared amplitude decays over Δt (det Φ: 1 undamped).
-    Eigen::VectorXd stepDecay_;
-    // The exact flow over Δt of each mode's u = q − q_particular (§21): (u, u̇)⁺ = Φ (u, u̇).
-    Eigen::VectorXd flow11_, flow12_, flow21_, flow22_;
     Eigen::VectorXd inverseOmega2_;  // 1/ω²
     bool dampedModes_ = false;  // some c_k ≠ 0
     Eigen::VectorXd slope_, offset_, u0_, ud0_, u1_, ud1_;  // the exact step's buffers

@@ -15,7 +15,10 @@ public:
         : CondensedScheme(std::move(plate), obstacles, dt, dampingMass, dampingStiffness, std::move(rows)) {}
 
 private:
-    void advance(double zNext, double pNext) override { midpointStep(everyRow_, zNext, pNext); }
+    void advance(double zNext, double pNext) override {
+        now_.rowsKnown = false;  // the rows at t_n gathered afresh: the conserving law's results as they always were
+        midpointStep(everyRow_, now_, now_.s.zPrev, zNext, pNext);
+    }
 };
 
 }  // namespace plate

@@ -155,4 +155,11 @@ struct CarrierOutputs {
     double waveOut = 0, transit = 0, lineLoss = 0;  // a line end: ā (N), h ā²/(4Z) and the line's loss (J)
 };
 
+// With a tolerance (the flow law, docs/theory.md §22): when the estimate passed it, in the scheme's time
+// (< 0: not yet), and the sub-steps a contact step takes from then on (the FMU's advice says both).
+struct ToleranceHorizon {
+    double lostAt = -1.0;
+    int substeps = 0;
+};
+
 }  // namespace plate

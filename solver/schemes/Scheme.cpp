@@ -51,20 +51,20 @@ void Scheme::refuseInputs(double zNext, double pNext, bool finite, bool inRange)
             << (zNext < obstacles_.clampLower() ? obstacles_.clampLower() : obstacles_.clampUpper())
             << " (allowed: obstacle_lower <= base_displacement <= obstacle_upper)";
     }
-    throw StepError(msg.str());
+    throw StepError(msg.str(), nextTime());
 }
 
 void Scheme::refuseNonFinite() const {
     std::ostringstream msg;
     msg << "the step to t = " << nextTime() << " produced a non-finite displacement";
-    throw StepError(msg.str());
+    throw StepError(msg.str(), nextTime());
 }
 
 void Scheme::refuseUnsolved(const char* what, int iterations, double kkt) const {
     std::ostringstream msg;
     msg << what << " did not converge at t = " << nextTime() << " (" << iterations
         << " iterations, relative KKT residual " << kkt << ")";
-    throw StepError(msg.str());
+    throw StepError(msg.str(), nextTime());
 }
 
 }  // namespace plate

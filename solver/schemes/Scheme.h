@@ -7,7 +7,7 @@
 // impact counts, the input checks and the refusals, the outputs written once — and a scheme writes
 // its advance (`advance`) and the heights of its output points (`pointHeight`). PlateSimulation owns
 // the communication grid, the inputs and the interpolation between grid points. Schemes are made
-// in one place: makeScheme (schemes/MakeScheme.cpp).
+// in one place: makeScheme (solver/MakeScheme.cpp).
 #include <Eigen/Core>
 #include <algorithm>
 #include <cmath>
@@ -80,8 +80,9 @@ public:
     // The load input at t = 0, known only when the master starts stepping (before the first step).
     virtual void setLoadAtStart(double p0) = 0;
     // One internal step to t_{n+1} with the base at zNext (a carried clamp: the carrier's drive) and
-    // the pressure pNext there: the inputs checked, then the scheme's advance. Throws StepError
-    // without changing the state if the step cannot be taken.
+    // the pressure pNext there: the inputs checked, then the scheme's advance. Transactional: a step
+    // that cannot be taken throws StepError (its time: t_{n+1}) and leaves the scheme as it was, what
+    // it keeps beside its state included (a scheme's own work is on scratch until it records the step).
     void step(double zNext, double pNext) {
         if (!carried_) checkInputs(zNext, pNext);
         advance(zNext, pNext);
@@ -120,6 +121,7 @@ public:
     virtual Armature* carrier() { return nullptr; }
     const Armature* carrier() const { return const_cast<Scheme*>(this)->carrier(); }
     virtual CarrierOutputs carrierOutputs() const { return {}; }  // zero without a carrier
+    virtual ToleranceHorizon toleranceHorizon() const { return {}; }  // none without a tolerance
 
 protected:
     Scheme(Obstacles obstacles, double dt) : obstacles_(obstacles), dt_(dt) {}

@@ -251,7 +251,8 @@ TEST(FlowStepper, ForcedAndDampedStepsAreTheClosedFormModalSolution) {
 // every row, with and without a tolerance: the lowest frequency made non-finite after the start fails
 // the step's first sub-step (its result is not finite; the exact free flight reads the frequencies
 // through coefficients of its own); the state saved before equals the state after, bit for bit, and
-// with ω₁ repaired the step is the one a twin that never failed takes.
+// with ω₁ repaired the step is the one a twin that never failed takes. The refusal names the step it
+// could not take: t_{n+1}.
 TEST(FlowStepper, AContactStepThatThrowsLeavesTheStateAsItWas) {
     const Condensed s(ElementType::Argyris, 8, 3, MassProjection::P0);
     Obstacles obstacles;
@@ -273,7 +274,14 @@ TEST(FlowStepper, AContactStepThatThrowsLeavesTheStateAsItWas) {
             const std::vector<double> before = scheme.saveState();
             const double omega2 = plate->omega2[0];
             plate->omega2[0] = std::numeric_limits<double>::quiet_NaN();
-            EXPECT_THROW(scheme.step(0.0, 0.0), StepError) << "rowSpace " << rowSpace << ", tolerance " << tolerance;
+            const double next = double(scheme.stepCount() + 1) * 2e-5;
+            double refusedAt = -1.0;
+            try {
+                scheme.step(0.0, 0.0);
+            } catch (const StepError& e) {
+                refusedAt = e.time();
+            }
+            EXPECT_EQ(refusedAt, next) << "rowSpace " << rowSpace << ", tolerance " << tolerance;
             plate->omega2[0] = omega2;
             EXPECT_EQ(scheme.saveState(), before) << "rowSpace " << rowSpace << ", tolerance " << tolerance;
             scheme.step(0.0, 0.0);
@@ -443,18 +451,78 @@ TEST(FlowTolerance, PastTheHorizonBetweenTwoObstaclesTheEstimateIsTheGap) {
     EXPECT_LT(open.flow.errorEstimate, gap);
 }
 
-// The controller's state is part of the scheme's state: a run saved and restored into a fresh
-// scheme mid-contact continues bit for bit.
-TEST(FlowTolerance, SavedStateContinuesBitForBit) {
+// What the FMU says past the horizon (PlateAdvice): when the estimate passed the tolerance, and the
+// sub-steps a contact step takes from then on — contact_substeps = 12 down to a power of two, 8.
+TEST(FlowTolerance, TheHorizonSaysWhenAndHowManySubsteps) {
     const Condensed s(ElementType::Argyris, 8, 3, MassProjection::P0);
     auto plate = std::make_shared<const CondensedPlate>(s.c);
     Obstacles obstacles;
     obstacles.lower = -0.08;
-    const ContactRefinement refinement{16, 1e-5};
-    FlowScheme a(plate, obstacles, 2e-5, refinement), b(plate, obstacles, 2e-5, refinement);
-    a.initialize(0.0, 8600.0);
-    a.setLoadAtStart(0.0);
-    b.initialize(0.0, 8600.0);
+    FlowScheme scheme(plate, obstacles, 2e-5, ContactRefinement{12, 1e-12});
+    scheme.initialize(0.0, 8600.0);
+    scheme.setLoadAtStart(0.0);
+    EXPECT_EQ(scheme.toleranceHorizon().substeps, 8);
+    EXPECT_LT(scheme.toleranceHorizon().lostAt, 0.0);
+    while (scheme.flowState().lostAt < 0.0) {
+        scheme.step(0.0, 0.0);
+        ASSERT_LT(scheme.stepCount(), 20000);
+    }
+    EXPECT_EQ(scheme.toleranceHorizon().lostAt, scheme.flowState().lostAt);
+    EXPECT_EQ(scheme.toleranceHorizon().lostAt, double(scheme.stepCount()) * 2e-5);  // lost at this step
+    EXPECT_EQ(FlowScheme(plate, obstacles, 2e-5, ContactRefinement{12}).toleranceHorizon().substeps, 0);
+}
+
+namespace {
+
+// The release from 8600 Pa onto the lower obstacle with a tolerance of 1e-5 m: `a` runs it, a fresh
+// scheme `b` of the same plate takes a's saved states.
+struct ToleranceRelease {
+    Condensed s{ElementType::Argyris, 8, 3, MassProjection::P0};
+    std::shared_ptr<const CondensedPlate> plate = std::make_shared<const CondensedPlate>(s.c);
+    Obstacles obstacles = [] {
+        Obstacles o;
+        o.lower = -0.08;
+        return o;
+    }();
+    ContactRefinement refinement{16, 1e-5};
+    FlowScheme a{plate, obstacles, 2e-5, refinement}, b{plate, obstacles, 2e-5, refinement};
+    ToleranceRelease() {
+        a.initialize(0.0, 8600.0);
+        a.setLoadAtStart(0.0);
+        b.initialize(0.0, 8600.0);
+    }
+};
+
+}  // namespace
+
+// A state saved in free flight after an impact, with a tolerance (E carried, no row held), restored
+// into a fresh scheme, continues bit for bit through the next impacts: what the scheme keeps beside
+// its state (the rows looked at, the free-flight bound) changes no result.
+TEST(FlowTolerance, RestoredInFreeFlightAfterAnImpactContinuesBitForBit) {
+    ToleranceRelease run;
+    FlowScheme &a = run.a, &b = run.b;
+    int free = 0;
+    while (a.flowState().contactSteps == 0 || free < 5) {  // five free steps after the first contact
+        a.step(0.0, 0.0);
+        free = a.flowState().contactSteps > 0 && a.state().contactPoints == 0 ? free + 1 : 0;
+        ASSERT_LT(a.stepCount(), 20000);
+    }
+    EXPECT_GT(a.flowState().errorEstimate, 0.0);
+    b.restoreState(a.saveState());
+    const long long contactSteps = a.flowState().contactSteps;
+    for (int k = 0; k < 3000; ++k) {
+        a.step(0.0, 0.0);
+        b.step(0.0, 0.0);
+    }
+    EXPECT_GT(a.flowState().contactSteps, contactSteps + 10);  // through later impacts
+    EXPECT_EQ(a.saveState(), b.saveState());
+}
+
+// The controller's state is part of the scheme's state: a run saved and restored into a fresh
+// scheme mid-contact continues bit for bit.
+TEST(FlowTolerance, SavedStateContinuesBitForBit) {
+    ToleranceRelease run;
+    FlowScheme &a = run.a, &b = run.b;
     int n = 0;
     while (a.state().contactPoints == 0 || a.flowState().contactSteps < 5) {  // E carried, mid-contact
         a.step(0.0, 0.0);
@@ -465,7 +533,7 @@ TEST(FlowTolerance, SavedStateContinuesBitForBit) {
     EXPECT_GT(a.flowState().eventError2.maxCoeff(), 0.0);
     std::vector<double> damaged = a.saveState();
     damaged.back() = -1e-12;
-    FlowScheme c(plate, obstacles, 2e-5, refinement);
+    FlowScheme c(run.plate, run.obstacles, 2e-5, run.refinement);
     try {
         c.restoreState(damaged);
         ADD_FAILURE() << "a negative squared amplitude was accepted";
