@@ -32,7 +32,8 @@ set(src "${dir}/sources")
 configure_file("${REPO}/fmu/source/CMakeLists.txt" "${src}/CMakeLists.txt" COPYONLY)
 # The solver's folders as they are (includes name them from solver/), and of fmu/ the
 # version-neutral core, the FMI 3.0 front end, the binding and the vendored FMI headers.
-foreach(part base fe plate schemes PlateSimulation.h PlateSimulation.cpp MakeScheme.h MakeScheme.cpp InputSignal.h InputSignal.cpp)
+foreach(part base fe plate schemes PlateSimulation.h PlateSimulation.cpp MakeScheme.h MakeScheme.cpp InputSignal.h InputSignal.cpp
+             DiscretizationCheck.h DiscretizationCheck.cpp)
   file(COPY "${REPO}/solver/${part}" DESTINATION "${src}/plateimpact/solver")
 endforeach()
 foreach(part core fmi3 binding headers)
