@@ -69,6 +69,7 @@ public:
                              double reach = 0.0);
     // Where the input ended the last step taken through continueStep (no step yet: none).
     bool hasReached() const { return hasReached_; }
+    double reachedValue() const { return reached_; }  // where, when hasReached()
     // Records where the input ended a step that the master's derivatives drove.
     void reached(double value) {
         reached_ = value;

@@ -6,6 +6,7 @@
 #include <cmath>
 #include <memory>
 #include <new>
+#include <optional>
 #include <string>
 #include <utility>
 
@@ -182,12 +183,14 @@ public:
                 h, values_.parameters.dt));
         const double now = simulation_->time();
         advisor_.onStep(values_.parameters, plan, h, t, drivePort(), driveName(), values_.load);
+        const std::optional<DriveSample> sample = driveSample(t);
         for (InputPort* port : ports()) {
             port->beginStep(now);
             port->reach = plan.offset + double(plan.steps) * values_.parameters.dt;  // the last grid point read
         }
         try {
             const plate::InputSignal base = clampSignal(now, plan.span);
+            if (sample) advisor_.onDriveSample(*sample, base.value, h, values_.parameters.dt, driveName());
             const plate::InputSignal load = values_.load.stepSignal(now, plan.span, -plate::kMaxLoad, plate::kMaxLoad);
             advanceClamp(base, communicate(plan, base, load));
         } catch (const plate::StepError& e) {
@@ -329,6 +332,27 @@ private:
         }
     }
 
+    // The clamp's displacement as the master set it for the step from t, against where the FMU's model
+    // of it over the last step ended (PlateAdvisor::onDriveSample); none when it drives no displacement,
+    // was not set since, or no step was taken yet.
+    std::optional<DriveSample> driveSample(double t) {
+        const InputPort& port = values_.baseDisplacement;
+        if (values_.baseDrive != BaseDrive::Displacement || !port.fresh || !port.history.hasReached()) return {};
+        DriveSample s{t, port.signal.value, port.history.reachedValue()};
+        static constexpr const char* kModels[] = {"held: base_input_mode = hold",
+                                                  "the line through its last two values: base_input_mode = linear",
+                                                  "the parabola through its last three values: base_input_mode = "
+                                                  "quadratic"};
+        if (port.derivativesGiven) {
+            s.order = port.signal.d2 != 0.0 ? 2 : 1;
+            s.model = "the value and derivatives the master set";
+        } else {
+            s.order = static_cast<int>(port.mode) - 1;
+            s.model = kModels[s.order];
+        }
+        s.continuous = !port.derivativesGiven && port.mode != plate::InputMode::Hold;
+        return s;
+    }
     // The clamp's path over a step of length span from the communication time `now` (docs/theory.md
     // §16): the displacement input as it comes, or the exact integral of the velocity (once) or
     // the acceleration (twice) input from the clamp's position and velocity there. A
