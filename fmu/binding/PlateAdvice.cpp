@@ -89,11 +89,12 @@ std::string missAdvice(const DriveSample& s, double start, double amplitude, dou
     if (jumpTooLarge && !s.continuous)
         enough = std::min(enough, h * std::pow(kJumpOfAmplitude * amplitude / jump, power));
     std::string text = std::string(input) +
-                       format(" = %.6g set at t = %.6g s is %.3g from where the FMU's model of it over the last step "
-                              "ended (",
-                              s.value, s.t, s.value - s.modelEnd) +
-                       s.model + format("): %.2g of its amplitude (%.3g, half its range so far); ", miss / amplitude,
-                                        amplitude);
+                       format(
+                           " = %.6g set at t = %.6g s is %.3g from where the FMU's model of it over the last step "
+                           "ended (",
+                           s.value, s.t, s.value - s.modelEnd) +
+                       s.model +
+                       format("): %.2g of its amplitude (%.3g, half its range so far); ", miss / amplitude, amplitude);
     text += jumpTooLarge ? format("the clamp jumps by it in one internal step (%.3g m/s for dt = %g s)", jump / dt, dt)
                          : std::string("the step after bends the clamp by it");
     text += format(
@@ -101,7 +102,8 @@ std::string missAdvice(const DriveSample& s, double start, double amplitude, dou
         "impacts are missed; docs/input-accuracy.md). The input moves too much between communication points for "
         "this step: take h <= %.3g s",
         roundedDown(std::max(enough, dt)));
-    if (s.order == 0) text += ", or base_input_mode = quadratic (the default: continuous, the miss spread over the step)";
+    if (s.order == 0)
+        text += ", or base_input_mode = quadratic (the default: continuous, the miss spread over the step)";
     return text;
 }
 
