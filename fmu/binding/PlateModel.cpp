@@ -87,6 +87,10 @@ public:
     }
     bool hasEvents() const override { return true; }
     bool providesIntermediateUpdate() const override { return true; }
+    std::string accuracyParameters() const override {
+        return "the parameter dt (s, the internal step of a fixed grid) and, under time_scheme = flow, the parameter "
+               "tolerance (m, a bound on the error of the reported points)";
+    }
     double fixedInternalStepSize() const override { return plate::PlateParameters{}.dt; }
     bool doStepUntilEvent(double t, double h) override {
         stopAtContactChange_ = true;
@@ -196,7 +200,8 @@ public:
         } catch (const plate::StepError& e) {
             refreshOutputs();  // the simulation stays at its last good step (for debugging)
             throw fmu::ModelError(
-                format("step from t = %.17g failed at t = %.17g: ", t, t + simulation_->time() - now) + e.what());
+                format("step from t = %.17g failed at t = %.17g: ", t, t + simulation_->time() - now) + e.what() +
+                integratedClampNote(e.what()));
         }
         refreshOutputs();
         advisor_.afterStep(values_.parameters, values_.outputs, simulation_->time());
@@ -352,6 +357,20 @@ private:
         }
         s.continuous = !port.derivativesGiven && port.mode != plate::InputMode::Hold;
         return s;
+    }
+    // A refusal that names base_displacement while a velocity or an acceleration drives the clamp: the
+    // user never set it, it is the clamp's position integrated from the drive (issue 71).
+    std::string integratedClampNote(const std::string& refusal) const {
+        const BaseDrive d = values_.baseDrive;
+        if ((d != BaseDrive::Velocity && d != BaseDrive::Acceleration) ||
+            refusal.find("base_displacement") == std::string::npos)
+            return "";
+        return std::string(" (base_displacement here is the clamp's position integrated from ") + driveName() +
+               ", which base_drive = " + mode().item +
+               " drives, from the clamp at rest at its start position: an input whose integral does not average to "
+               "zero, such as the acceleration of a sine, -A w^2 sin(w t), whose velocity is A w (cos(w t) - 1), "
+               "drifts the clamp by that mean velocity times t; drive base_displacement or base_velocity instead, "
+               "or give the input a zero mean)";
     }
     // The clamp's path over a step of length span from the communication time `now` (docs/theory.md
     // §16): the displacement input as it comes, or the exact integral of the velocity (once) or
