@@ -40,3 +40,15 @@ def test_broken_fmu_files_are_refused_with_the_reason(tmp_path):
 
 def test_a_built_fmu_passes(fmu_path):
     assert fmu_file(fmu_path) == fmu_path.resolve()
+
+
+def test_a_missing_demonstration_fmu_names_the_target_that_builds_it(tmp_path):
+    """demos/shaker.py after `bash run.sh`: build/SineSweep.fmu is missing and run.sh does not build it;
+    the message names the setup target that does (issue 71)."""
+    for relative, target in (("SineSweep.fmu", "SineSweepFmu"), ("fmi3/SineSweep.fmu", "SineSweepFmu3")):
+        with pytest.raises(FMUFileError) as refused:
+            fmu_file(tmp_path / relative)
+        assert f"bash scripts/setup.sh {target}" in str(refused.value), refused.value
+    with pytest.raises(FMUFileError) as refused:
+        fmu_file(tmp_path / "PlateImpact.fmu")
+    assert "bash run.sh" in str(refused.value)

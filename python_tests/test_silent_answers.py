@@ -18,7 +18,7 @@ from pathlib import Path
 
 import fmpy
 import numpy as np
-from long_steps import simulate
+from long_steps import _restore_fmpy_logger, simulate
 from plate_fmu import PlateRun
 
 REPO = Path(__file__).resolve().parent.parent
@@ -130,3 +130,104 @@ def test_an_fmu_warning_after_a_run_with_its_own_logger_is_printed(fmu_path, cap
         simulate(fmu_path, 0.002, 1e-3, 10.0, 0.09)
     fmpy.simulate_fmu(str(fmu_path), stop_time=2e-4, output_interval=1e-4, output=["root_stress"])
     assert "root_stress was read while stress_outputs = false" in capfd.readouterr().out
+
+
+# -- the master's values far from the FMU's model of the input (issue 71) -------------------------
+def simulate_readme_scene(fmu_path, h, stop=1.0, **start_values):
+    """The README's 10 Hz scene through fmpy.simulate_fmu's input table (values only, sampled every
+    1e-4 s) at output_interval h: the result and the FMU's warnings."""
+    t = np.linspace(0.0, stop, round(stop / 1e-4) + 1)
+    signal = np.array(
+        list(zip(t, 0.09 * np.sin(2 * np.pi * 10.0 * t))), dtype=[("time", float), ("base_displacement", float)]
+    )
+    said = []
+
+    def logger(component, instance, status, category, message):
+        if status == 1:
+            said.append(message.decode())
+
+    try:
+        result = fmpy.simulate_fmu(
+            str(fmu_path),
+            stop_time=stop,
+            output_interval=h,
+            input=signal,
+            start_values=start_values,
+            output=["energy", "impacts_lower", "impacts_upper"],
+            logger=logger,
+        )
+    finally:
+        _restore_fmpy_logger()
+    return result, said
+
+
+def test_the_readme_scene_at_a_step_its_sine_outruns_is_wrong_and_warned_once(fmu_path):
+    """h = 0.01 s: inside the plate's T1/10 (0.0163 s), but the 10 Hz sine moves 0.24 of its amplitude
+    away from the parabola through the last three values: the energy at 1 s is 1.0e6 J against 2e3 J
+    and each obstacle sees 1 impact instead of 10 (tools/step_misses.py). The FMU says so once, with the
+    time, the miss and a step that would do; at h = 1e-3 s the answer is right and nothing is said."""
+    wrong, said = simulate_readme_scene(fmu_path, 0.01)
+    right, said_right = simulate_readme_scene(fmu_path, 1e-3)
+    assert said_right == [], said_right
+    assert right["impacts_lower"][-1] == 10 and right["impacts_upper"][-1] == 10
+    assert wrong["energy"][-1] > 100 * right["energy"][-1]  # the wrong answer the warning is about
+    assert wrong["impacts_lower"][-1] < 5, wrong["impacts_lower"][-1]
+    misses = [m for m in said if "model of it" in m]
+    assert len(misses) == 1, said
+    text = misses[0]
+    assert re.search(r"base_displacement = \S+ set at t = 0\.\d+ s is \S+ from where", text), text
+    assert "base_input_mode = quadratic" in text and "of its amplitude (0.08" in text, text
+    # The step it names (the miss of a parabola shrinks as h^3) is one the README's table finds right.
+    step = float(re.search(r"take h <= ([0-9.e-]+) s", text).group(1))
+    assert 0.002 <= step <= 0.007, text
+
+
+def test_a_held_base_is_wrong_and_warned_with_the_mode_that_would_do(fmu_path):
+    """base_input_mode = hold at h = 1e-3 s: the clamp jumps at every communication point, the energy
+    at 1 s is 4.1e6 J (2,000x) with 2 and 3 impacts; warned, naming the step (about dt) and quadratic.
+    At h = dt the jumps are the scheme's own grid steps: nothing said."""
+    wrong, said = simulate_readme_scene(fmu_path, 1e-3, base_input_mode=1)
+    assert wrong["energy"][-1] > 1e5, wrong["energy"][-1]
+    misses = [m for m in said if "model of it" in m]
+    assert len(misses) == 1 and "held: base_input_mode = hold" in misses[0], said
+    assert "the clamp jumps by it in one internal step" in misses[0], misses
+    assert "or base_input_mode = quadratic" in misses[0], misses
+    step = float(re.search(r"take h <= ([0-9.e-]+) s", misses[0]).group(1))
+    assert 1e-5 <= step <= 3e-5, misses
+    _, said_at_dt = simulate_readme_scene(fmu_path, 1e-5, stop=0.15, base_input_mode=1)
+    assert not [m for m in said_at_dt if "model of it" in m], said_at_dt
+
+
+def test_exact_derivatives_at_too_long_a_step_are_warned(fmu_path):
+    """The value and exact derivatives of the sine at h = 0.01 s: a Taylor parabola misses the next
+    value by 0.04 of the amplitude, a jump of the clamp at each communication point (2.3e5 J at 1 s).
+    At h = 1e-3 s: right, silent."""
+    w = 2 * np.pi * 10.0
+
+    def base(t):
+        return (0.09 * np.sin(w * t), 0.09 * w * np.cos(w * t), -0.09 * w * w * np.sin(w * t))
+
+    for h, warned in ((0.01, True), (1e-3, False)):
+        with PlateRun(fmu_path) as run:
+            for k in range(round(0.15 / h)):
+                run.step(h, base=base(k * h))
+            misses = [m for m in warnings(run) if "model of it" in m]
+        assert bool(misses) == warned, (h, warnings(run))
+        assert all("the value and derivatives the master set" in m for m in misses), misses
+
+
+def test_the_readme_states_the_measured_step_limits():
+    """The README's table of step limits is tools/step_misses.py's measurement (docs/step_misses.json)."""
+    import json
+
+    def sci(x):  # 1.0e6, as the README writes it
+        return f"{x:.1e}".replace("e+0", "e")
+
+    rows = json.loads((REPO / "docs" / "step_misses.json").read_text())["rows"]
+    by = {(r["way"], r["h"]): r for r in rows}
+    readme = (REPO / "README.md").read_text()
+    assert by[("quadratic", 0.005)]["impacts"] == [10, 10] and not by[("quadratic", 0.005)]["warned"]
+    assert by[("quadratic", 0.01)]["warned"] and f"0.01 s: {sci(by[('quadratic', 0.01)]['energy_end'])} J" in readme
+    assert f"1e-3 s: {sci(by[('hold', 0.001)]['energy_end'])} J" in readme
+    assert f"0.01 s: {sci(by[('derivatives', 0.01)]['energy_end'])} J" in readme
+    assert by[("hold", 1e-5)]["warned"] is False and by[("hold", 1e-4)]["warned"] is True

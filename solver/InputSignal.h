@@ -67,6 +67,9 @@ public:
     // point ahead of a short step lies past its end; the miss is spread over max(h, reach).
     InputSignal continueStep(InputMode mode, double now, double h, double lower = -HUGE_VAL, double upper = HUGE_VAL,
                              double reach = 0.0);
+    // Where the input ended the last step taken through continueStep (no step yet: none).
+    bool hasReached() const { return hasReached_; }
+    double reachedValue() const { return reached_; }  // where, when hasReached()
     // Records where the input ended a step that the master's derivatives drove.
     void reached(double value) {
         reached_ = value;

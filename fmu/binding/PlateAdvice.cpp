@@ -1,5 +1,6 @@
 #include "binding/PlateAdvice.h"
 
+#include <algorithm>
 #include <cmath>
 
 #include "binding/PlateArrays.h"
@@ -74,12 +75,71 @@ std::string longStepAdvice(const plate::PlateParameters& p, double h, double t, 
            format("%.3g s", roundedDown(longest));
 }
 
+std::string missAdvice(const DriveSample& s, double start, double amplitude, double h, double dt, const char* input) {
+    const double miss = std::fabs(s.value - s.modelEnd), jump = std::fabs(start - s.modelEnd);
+    const bool missTooLarge = miss > kMissOfAmplitude * amplitude;
+    // A jump over a step of one internal step is the scheme's own motion of the clamp on its grid.
+    const bool jumpTooLarge = jump > kJumpOfAmplitude * amplitude && h > 1.5 * dt;
+    if (!(amplitude > 0.0) || !(missTooLarge || jumpTooLarge)) return "";
+    // The miss of a model of degree p shrinks as h^(p + 1): the step that brings it to its limit.
+    const double power = 1.0 / double(s.order + 1);
+    double enough = h;
+    if (missTooLarge) enough = std::min(enough, h * std::pow(kMissOfAmplitude * amplitude / miss, power));
+    // A continuous model jumps only where its parabola would pass an obstacle: its spread miss sets the step.
+    if (jumpTooLarge && !s.continuous)
+        enough = std::min(enough, h * std::pow(kJumpOfAmplitude * amplitude / jump, power));
+    std::string text = std::string(input) +
+                       format(
+                           " = %.6g set at t = %.6g s is %.3g from where the FMU's model of it over the last step "
+                           "ended (",
+                           s.value, s.t, s.value - s.modelEnd) +
+                       s.model +
+                       format("): %.2g of its amplitude (%.3g, half its range so far); ", miss / amplitude, amplitude);
+    text += jumpTooLarge ? format("the clamp jumps by it in one internal step (%.3g m/s for dt = %g s)", jump / dt, dt)
+                         : std::string("the step after bends the clamp by it");
+    text += format(
+        ", a kick to the plate at every such communication point: the outputs can be far off (the energy grows, "
+        "impacts are missed; docs/input-accuracy.md). The input moves too much between communication points for "
+        "this step: take h <= %.3g s",
+        roundedDown(std::max(enough, dt)));
+    if (s.order == 0)
+        text += ", or base_input_mode = quadratic (the default: continuous, the miss spread over the step)";
+    return text;
+}
+
+void PlateAdvisor::onDriveSample(const DriveSample& sample, double start, double h, double dt, const char* input) {
+    if (samples_++ == 0) lowest_ = highest_ = lastValue_ = sample.value;
+    lowest_ = std::min(lowest_, sample.value);
+    highest_ = std::max(highest_, sample.value);
+    // Its amplitude is known once it turned twice (a whole swing); before, the range is still growing.
+    const double increment = sample.value - lastValue_;
+    lastValue_ = sample.value;
+    const int direction = increment > 0.0 ? 1 : increment < 0.0 ? -1 : direction_;
+    if (direction_ != 0 && direction != direction_) ++turns_;
+    direction_ = direction;
+    if (missWarned_) return;
+    // The worst sample so far, from the fourth value on (before, the model's history is still filling:
+    // its miss measures the start, not the step); a jump counts where the step is longer than dt.
+    const double jumpScore = h > 1.5 * dt ? std::fabs(start - sample.modelEnd) / kJumpOfAmplitude : 0.0;
+    const double score = std::max(std::fabs(sample.value - sample.modelEnd) / kMissOfAmplitude, jumpScore);
+    if (samples_ > plate::InputHistory::kCapacity && score > worstScore_) {
+        worstScore_ = score;
+        worst_ = {sample, start, h};
+    }
+    if (turns_ < 2 || worstScore_ == 0.0) return;
+    const std::string advice = missAdvice(worst_.sample, worst_.start, 0.5 * (highest_ - lowest_), worst_.h, dt, input);
+    missWarned_ = !advice.empty();
+    say(advice);
+}
+
 void PlateAdvisor::say(const std::string& advice) {
     if (!advice.empty()) warn_(advice);
 }
 
 void PlateAdvisor::onBuild(const plate::PlateParameters& p) {
-    interpolationWarned_ = errorWarned_ = cappedWarned_ = stressReadWarned_ = longStepWarned_ = false;
+    interpolationWarned_ = errorWarned_ = cappedWarned_ = stressReadWarned_ = longStepWarned_ = missWarned_ = false;
+    samples_ = turns_ = direction_ = 0;
+    worstScore_ = 0.0;
     say(capAdvice(p));
 }
 

@@ -36,6 +36,30 @@ bool inputChanged(const InputPort& port);
 double longestCommunicationStep(const plate::PlateParameters& p);
 std::string longStepAdvice(const plate::PlateParameters& p, double h, double t, const char* input);
 
+// The master's value of the clamp's displacement against the FMU's model of it between communication
+// points (issue 71): at each communication point the value the master sets is compared with where the
+// FMU's model of the input over the last step (held, the line or the parabola of base_input_mode, or the
+// master's derivatives) ended. That miss is spread over the next step as a slope when the reconstruction
+// is continuous (linear, quadratic), or is a jump of the clamp in one internal step (held, derivatives
+// given, or a parabola that would pass an obstacle dropped to holding) — a kick to the plate at every
+// communication point. Judged once the input turned twice (its amplitude, half its range, is known).
+// Measured on the README's 10 Hz scene (tools/step_misses.py, docs/step_misses.json): right answers stay
+// at or below 0.03 of the input's amplitude as a spread miss and 6.3e-4 as a jump, wrong ones (the energy
+// 2x to 2000x, impacts missed or added) at or above 0.12 and 2.6e-3; the limits sit between.
+constexpr double kMissOfAmplitude = 0.06;  // a miss spread over the step, against the input's amplitude
+constexpr double kJumpOfAmplitude = 1.25e-3;  // a jump of the clamp at a communication point, likewise
+struct DriveSample {
+    double t = 0.0;  // the communication point
+    double value = 0.0;  // what the master set
+    double modelEnd = 0.0;  // where the FMU's model of the input over the last step ended
+    int order = 2;  // the degree of that model: the miss shrinks as h^(order + 1)
+    const char* model = "";  // that model in words
+    bool continuous = true;  // the model starts the next step where it ended (linear, quadratic): no jump
+};
+// The warning for a sample whose miss, or whose jump (the clamp starts the step at `start`), passes its
+// limit against `amplitude`, with the step that would do; "" otherwise.
+std::string missAdvice(const DriveSample& s, double start, double amplitude, double h, double dt, const char* input);
+
 // The advice of one model (PlateModel.cpp), each warned once per build through `warn` (the model's
 // fmu::Model::warn, which the instance may replace: held by reference).
 class PlateAdvisor {
@@ -53,6 +77,10 @@ public:
     // interpolated, docs/theory.md §15), a step too long for the plate and the inputs (longStepAdvice).
     void onStep(const plate::PlateParameters& p, const plate::StepPlan& plan, double h, double t,
                 const InputPort& drive, const char* driveName, const InputPort& load);
+    // A fresh value of the clamp's displacement (the drive, base_drive = displacement) at a communication
+    // point, after the step's signal is made: the largest miss against the FMU's model of it so far
+    // (missAdvice), judged once the values turned twice.
+    void onDriveSample(const DriveSample& sample, double start, double h, double dt, const char* input);
     // After a step, the simulation at time t with outputs o: under tolerance > 0 (docs/theory.md §22)
     // the error estimate past the tolerance at horizon.lostAt (the scene's horizon for it, in the
     // simulation's time as t), a contact step the cap bounded.
@@ -68,6 +96,15 @@ private:
     bool stressReadWarned_ = false;  // a stress output read while stress_outputs = false
     bool errorWarned_ = false;  // the error estimate past the tolerance
     bool cappedWarned_ = false;  // a contact step the sub-step cap bounded
+    bool missWarned_ = false;  // the master's value far from the FMU's model of the input
+    int samples_ = 0;  // the drive's values set since the build, their range, and how often they turned
+    double lowest_ = 0.0, highest_ = 0.0, lastValue_ = 0.0;
+    int turns_ = 0, direction_ = 0;
+    struct Worst {  // the sample whose miss or jump is largest against its limit so far
+        DriveSample sample;
+        double start = 0.0, h = 0.0;
+    } worst_;
+    double worstScore_ = 0.0;
 };
 
 }  // namespace plateimpact

@@ -6,6 +6,7 @@
 #include <cmath>
 #include <memory>
 #include <new>
+#include <optional>
 #include <string>
 #include <utility>
 
@@ -86,6 +87,10 @@ public:
     }
     bool hasEvents() const override { return true; }
     bool providesIntermediateUpdate() const override { return true; }
+    std::string accuracyParameters() const override {
+        return "the parameter dt (s, the internal step of a fixed grid) and, under time_scheme = flow, the parameter "
+               "tolerance (m, a bound on the error of the reported points)";
+    }
     double fixedInternalStepSize() const override { return plate::PlateParameters{}.dt; }
     bool doStepUntilEvent(double t, double h) override {
         stopAtContactChange_ = true;
@@ -182,19 +187,22 @@ public:
                 h, values_.parameters.dt));
         const double now = simulation_->time();
         advisor_.onStep(values_.parameters, plan, h, t, drivePort(), driveName(), values_.load);
+        const std::optional<DriveSample> sample = driveSample(t);
         for (InputPort* port : ports()) {
             port->beginStep(now);
             port->reach = plan.offset + double(plan.steps) * values_.parameters.dt;  // the last grid point read
         }
         try {
             const plate::InputSignal base = clampSignal(now, plan.span);
+            if (sample) advisor_.onDriveSample(*sample, base.value, h, values_.parameters.dt, driveName());
             const plate::InputSignal load = values_.load.stepSignal(now, plan.span, -plate::kMaxLoad, plate::kMaxLoad);
             advanceClamp(base, communicate(plan, base, load));
         } catch (const plate::StepError& e) {
             refreshOutputs();  // the simulation stays at its last good step (for debugging)
             // The failed internal step's time, from the scheme's clock onto the master's (NaN: refused before a step).
             const std::string at = std::isnan(e.time()) ? "" : format(" at t = %.17g", t + e.time() - now);
-            throw fmu::ModelError(format("step from t = %.17g failed", t) + at + ": " + e.what());
+            throw fmu::ModelError(format("step from t = %.17g failed", t) + at + ": " + e.what() +
+                                  integratedClampNote(e.what()));
         }
         refreshOutputs();
         advisor_.afterStep(values_.parameters, values_.outputs, simulation_->time(), simulation_->toleranceHorizon());
@@ -331,6 +339,41 @@ private:
         }
     }
 
+    // The clamp's displacement as the master set it for the step from t, against where the FMU's model
+    // of it over the last step ended (PlateAdvisor::onDriveSample); none when it drives no displacement,
+    // was not set since, or no step was taken yet.
+    std::optional<DriveSample> driveSample(double t) {
+        const InputPort& port = values_.baseDisplacement;
+        if (values_.baseDrive != BaseDrive::Displacement || !port.fresh || !port.history.hasReached()) return {};
+        DriveSample s{t, port.signal.value, port.history.reachedValue()};
+        static constexpr const char* kModels[] = {"held: base_input_mode = hold",
+                                                  "the line through its last two values: base_input_mode = linear",
+                                                  "the parabola through its last three values: base_input_mode = "
+                                                  "quadratic"};
+        if (port.derivativesGiven) {
+            s.order = port.signal.d2 != 0.0 ? 2 : 1;
+            s.model = "the value and derivatives the master set";
+        } else {
+            s.order = static_cast<int>(port.mode) - 1;
+            s.model = kModels[s.order];
+        }
+        s.continuous = !port.derivativesGiven && port.mode != plate::InputMode::Hold;
+        return s;
+    }
+    // A refusal that names base_displacement while a velocity or an acceleration drives the clamp: the
+    // user never set it, it is the clamp's position integrated from the drive (issue 71).
+    std::string integratedClampNote(const std::string& refusal) const {
+        const BaseDrive d = values_.baseDrive;
+        if ((d != BaseDrive::Velocity && d != BaseDrive::Acceleration) ||
+            refusal.find("base_displacement") == std::string::npos)
+            return "";
+        return std::string(" (base_displacement here is the clamp's position integrated from ") + driveName() +
+               ", which base_drive = " + mode().item +
+               " drives, from the clamp at rest at its start position: an input whose integral does not average to "
+               "zero, such as the acceleration of a sine, -A w^2 sin(w t), whose velocity is A w (cos(w t) - 1), "
+               "drifts the clamp by that mean velocity times t; drive base_displacement or base_velocity instead, "
+               "or give the input a zero mean)";
+    }
     // The clamp's path over a step of length span from the communication time `now` (docs/theory.md
     // §16): the displacement input as it comes, or the exact integral of the velocity (once) or
     // the acceleration (twice) input from the clamp's position and velocity there. A

@@ -2,6 +2,7 @@
 // not what the user meant, each a message naming the cause and the fix.
 #include "binding/PlateWarnings.h"
 
+#include <algorithm>
 #include <cstdio>
 
 namespace plateimpact {
@@ -24,6 +25,35 @@ void warnOfCoarseStep(const PlateValues& values, std::vector<std::string>& out) 
     out.push_back(format("dt = %g s is %.3g of the plate's first period T1 = %.4g s", p.dt, p.dt / period, period) +
                   " (fewer than 20 steps per period): the outputs resolve the first mode only roughly; take dt <= " +
                   format("%.4g s (T1/20) for accurate results", period / 20.0, 0.0));
+}
+// Units (issue 71): a geometry in millimetres runs as a plate a thousand times larger, silently. Said:
+// a thickness above a tenth of the smaller side (outside the thin-plate range of the Kirchhoff model the
+// elements discretize), a side over 100 m, a density or a modulus no structural material has (off by
+// 1e3 or 1e6: g/cm3, kg/mm3, MPa, GPa in place of SI).
+void warnOfUnits(const PlateValues& values, std::vector<std::string>& out) {
+    const plate::PlateParameters& p = values.parameters;
+    const double side = std::min(p.length, p.width);
+    if (p.thickness > 0.1 * side)
+        out.push_back(
+            format("thickness = %g m is %.3g of the plate's smaller side (%g m): outside the thin-plate "
+                   "range of the Kirchhoff model this FMU solves (thickness <= a tenth of the smaller side), "
+                   "its results are not those of so thick a plate; the FMU takes SI units: lengths in m",
+                   p.thickness, p.thickness / side, side));
+    if (std::max(p.length, p.width) > 100.0)
+        out.push_back(
+            format("length = %g m, width = %g m: a plate over 100 m; the FMU takes SI units (lengths, "
+                   "thickness and obstacle heights in m: 1200 mm is 1.2)",
+                   p.length, p.width));
+    if (p.density < 100.0 || p.density > 3e4)
+        out.push_back(
+            format("density = %g kg/m3 is no structural material's (steel 7850, aluminium 2700 kg/m3): the "
+                   "FMU takes SI units (kg/m3; 7.85 g/cm3 is 7850)",
+                   p.density));
+    if (p.youngsModulus < 1e7 || p.youngsModulus > 2e12)
+        out.push_back(
+            format("youngs_modulus = %g Pa is no structural material's (steel 2.1e11, aluminium 7e10 Pa): "
+                   "the FMU takes SI units (Pa; 210 GPa is 2.1e11, 210000 MPa too)",
+                   p.youngsModulus));
 }
 // A tolerance or sub-step count only the flow law uses (docs/theory.md §21–22), set for another
 // scheme: said at build.
@@ -74,6 +104,7 @@ void warnOfProbes(const PlateValues& values, bool arrays, std::vector<std::strin
 
 std::vector<std::string> buildWarnings(const PlateValues& values, bool arrays) {
     std::vector<std::string> out;
+    warnOfUnits(values, out);
     warnOfCoarseStep(values, out);
     warnOfUnusedTolerance(values, out);
     warnOfProbes(values, arrays, out);

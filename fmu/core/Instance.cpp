@@ -180,6 +180,18 @@ void Instance::setIntermediateInputs(std::function<void(double)> callback) {
     attachTrace();
 }
 
+const char* Instance::howToGoOn() const {
+    const bool fmi3 = names_.fmiVersion == 3;
+    if (state_ == Error)
+        return fmi3 ? " (an earlier call failed, see its message: go on with fmi3Reset, fmi3SetFMUState to a "
+                      "state saved before, or fmi3FreeInstance)"
+                    : " (an earlier call failed, see its message: go on with fmi2Reset, fmi2SetFMUstate to a "
+                      "state saved before, or fmi2FreeInstance)";
+    if (state_ == Fatal)
+        return fmi3 ? " (the instance is lost: fmi3FreeInstance)" : " (the instance is lost: fmi2FreeInstance)";
+    return "";
+}
+
 Status Instance::setDebugLogging(bool on, std::size_t nCategories, const char* const categories[]) {
     bool next[LogCategoryCount];
     std::copy(logCategories_, logCategories_ + LogCategoryCount, next);
@@ -215,7 +227,13 @@ Status Instance::setupExperiment(double startTime, bool toleranceDefined, double
     if (!std::isfinite(startTime)) return fail("startTime = %g is not a finite number", startTime);
     startTime_ = startTime;
     // function_: the front end's function that takes these arguments.
-    if (toleranceDefined) log(Status::OK, LogAll, "%s: tolerance %g ignored (fixed time step)", function_, tolerance);
+    // An importer's experiment tolerance (fmpy's relative_tolerance) changes nothing here: a Warning (an OK
+    // message is hidden by most importers) that names the parameters that do set the accuracy.
+    if (toleranceDefined)
+        log(Status::Warning, LogStatusWarning,
+            "%s: the experiment's tolerance = %g (relative_tolerance in fmpy) is ignored: the results do not "
+            "change with it; the accuracy is set by %s",
+            function_, tolerance, model_->accuracyParameters().c_str());
     if (stopTimeDefined) log(Status::OK, LogAll, "%s: stopTime %g", function_, stopTime);
     return Status::OK;
 }

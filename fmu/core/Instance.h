@@ -119,6 +119,8 @@ private:
     void capture(Snapshot& snapshot) const;
     void restore(const Snapshot& snapshot);
     void attachTrace();
+    // After an error, what the importer may still call (the message of a refused call says it).
+    const char* howToGoOn() const;
 
     Logger logger_;
     bool logCategories_[LogCategoryCount];
@@ -137,8 +139,8 @@ Status Instance::call(const char* function, unsigned allowedStates, Body&& body)
     function_ = function;
     Status status = Status::Error;
     if (!(state_ & allowedStates)) {
-        log(Status::Error, LogStatusError, "illegal call sequence: %s is not allowed in state %s", function,
-            stateName(state_));
+        log(Status::Error, LogStatusError, "illegal call sequence: %s is not allowed in state %s%s", function,
+            stateName(state_), howToGoOn());
     } else {
         try {
             status = body();

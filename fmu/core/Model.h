@@ -186,6 +186,8 @@ public:
     virtual bool hasEvents() const { return false; }  // mightReturnEarlyFromDoStep
     // FMI 3.0 providesIntermediateUpdate: doStep calls intermediateUpdate at its grid points.
     virtual bool providesIntermediateUpdate() const { return false; }
+    // What sets the model's accuracy instead of an importer's experiment tolerance (which it ignores).
+    virtual std::string accuracyParameters() const { return "its parameters (a fixed time step)"; }
     // The internal step of the default configuration (fixedInternalStepSize); 0: none.
     virtual double fixedInternalStepSize() const { return 0.0; }
     // FMI 3.0 arrays: none by default. getArray writes the product of the extents' values

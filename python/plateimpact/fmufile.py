@@ -17,6 +17,9 @@ def fmu_file(path) -> Path:
     """The resolved path of an FMU file (or of a folder holding one extracted), checked."""
     p = Path(path).resolve()
     hint = "build it with `bash run.sh` (or scripts/setup.sh), or set PLATEIMPACT_FMU"
+    if p.suffix == ".fmu" and p.stem != "PlateImpact":  # a demonstration FMU: run.sh does not build it
+        target = p.stem + ("Fmu3" if p.parent.name == "fmi3" else "Fmu")
+        hint = f"build it with `bash scripts/setup.sh {target}` (`bash run.sh` builds PlateImpact.fmu only)"
     if not p.exists():
         raise FMUFileError(f"FMU not found: {p} ({hint})")
     if p.is_dir():
