@@ -2,6 +2,7 @@
 
 #include <Eigen/Dense>
 #include <Eigen/OrderingMethods>
+#include <Eigen/SparseCholesky>
 #include <Eigen/SparseQR>
 #include <cmath>
 #include <sstream>
@@ -88,6 +89,16 @@ Eigen::Index numericalRank(const Eigen::SparseMatrix<double>& a) {
     return qr.rank();
 }
 
+// Full column rank of A shown cheaply: A's columns of unit norm, the sparse Cholesky factor of AᵀA
+// (= RᵀR, R of A's QR in the same column order) with every pivot |R_kk| ≥ 1e-4, far above
+// numericalRank's threshold (1e-10 ‖A‖) and the Gram matrix's roundoff (1e-16 against R_kk² ≥ 1e-8).
+// Where it does not show it, the QR decides (the 56x20 plate: 0.1 s against 24 s).
+bool clearlyFullColumnRank(const Eigen::SparseMatrix<double>& a) {
+    const Eigen::SparseMatrix<double> gram = a.transpose() * a;
+    const Eigen::SimplicialLLT<Eigen::SparseMatrix<double>> llt(gram);
+    return llt.info() == Eigen::Success && Eigen::VectorXd(llt.matrixL().nestedExpression().diagonal()).minCoeff() >= 1e-4;
+}
+
 }  // namespace
 
 void requireMasslessContact(const Eigen::SparseMatrix<double>& couplingFree, const ClampedPlate& plate,
@@ -104,6 +115,7 @@ void requireMasslessContact(const Eigen::SparseMatrix<double>& couplingFree, con
     for (Eigen::Index j = 0; j < m; ++j) t.emplace_back(plate.contactDofs[j], r + j, 1.0);
     Eigen::SparseMatrix<double> bc(n, r + m), b(n, r);
     bc.setFromTriplets(t.begin(), t.end());
+    if (clearlyFullColumnRank(bc)) return;  // rank [B Cᵀ] = r + m, rank B = r
     b = bc.leftCols(r);
     const Eigen::Index rankB = numericalRank(b), rankBC = numericalRank(bc);
     if (rankBC - rankB < m) {

@@ -5,8 +5,11 @@
 #include <algorithm>
 #include <cmath>
 #include <sstream>
+#include <stdexcept>
+#include <string>
 
 #include "base/Errors.h"
+#include "plate/CondensedSparse.h"
 #include "plate/SparseCholesky.h"
 
 namespace plate {
@@ -54,10 +57,11 @@ void requireDelassusPositive(const Eigen::MatrixXd& delassus, Eigen::Index rows)
     throw ParameterError(msg.str());
 }
 
-}  // namespace
-
-CondensedPlate condense(const ClampedPlate& plate, const Eigen::SparseMatrix<double>& root,
-                        const std::vector<ConstraintRow>& extraRows, int modes, const SparseRows& recovery) {
+// The complete dense solution of T (every massive mode, then the leading `kept`): what a coarse mesh,
+// or one keeping most modes, pays least for.
+void condenseDense(const ClampedPlate& plate, const Eigen::SparseMatrix<double>& root,
+                   const std::vector<ConstraintRow>& extraRows, Eigen::Index kept, const SparseRows& recovery,
+                   CondensedPlate& c) {
     const Eigen::Index n = plate.stiffness.rows(), nq = root.cols();
     const auto m = static_cast<Eigen::Index>(plate.contactDofs.size());
     const Eigen::Index rows = m + static_cast<Eigen::Index>(extraRows.size());
@@ -90,11 +94,6 @@ CondensedPlate condense(const ClampedPlate& plate, const Eigen::SparseMatrix<dou
     const Eigen::VectorXd mu = eigen.eigenvalues().reverse();
     const Eigen::MatrixXd phi = eigen.eigenvectors().rowwise().reverse();
     const Eigen::VectorXd omega2All = mu.cwiseInverse();
-    const Eigen::Index kept = (modes <= 0 || modes >= nq) ? nq : modes;
-
-    CondensedPlate c;
-    c.massiveCount = static_cast<int>(nq);
-    c.contactRows = static_cast<int>(m);
     c.omega2 = omega2All.head(kept);
     // (C K⁻¹ R) Φ: the rows' response to each massive mode's flexibility; G = that · Ω².
     const Eigen::MatrixXd rowsPhi = rowsOfMassive * phi;
@@ -103,7 +102,6 @@ CondensedPlate condense(const ClampedPlate& plate, const Eigen::SparseMatrix<dou
     // whatever the reduction), symmetrized.
     c.delassus = rowFlexibility - rowsPhi * omega2All.asDiagonal() * rowsPhi.transpose();
     c.delassus = 0.5 * (c.delassus + c.delassus.transpose()).eval();
-    requireDelassusPositive(c.delassus, rows);
 
     // Loads through the same flexibilities: K⁻¹ v gives the rows' response C K⁻¹ v and the
     // massive part Rᵀ K⁻¹ v, whose modal coordinates are Ω² Φᵀ Rᵀ K⁻¹ v (= Vᵀ v).
@@ -131,6 +129,34 @@ CondensedPlate condense(const ClampedPlate& plate, const Eigen::SparseMatrix<dou
     c.modalBaseInertia = omega2All.head(kept).cwiseProduct(massive.head(kept));
     modal(plate.rotationInertia, massive, nullptr);
     c.modalRotationInertia = omega2All.head(kept).cwiseProduct(massive.head(kept));
+}
+
+}  // namespace
+
+bool denseCondensationServes(Eigen::Index massive, int modes) {
+    const Eigen::Index kept = (modes <= 0 || modes >= massive) ? massive : modes;
+    return kept == massive || 4 * kept > massive || massive <= kDenseCondensationLimit;
+}
+
+CondensedPlate condense(const ClampedPlate& plate, const Eigen::SparseMatrix<double>& root,
+                        const std::vector<ConstraintRow>& extraRows, int modes, const SparseRows& recovery,
+                        Condensation method) {
+    const Eigen::Index nq = root.cols();
+    const Eigen::Index kept = (modes <= 0 || modes >= nq) ? nq : modes;
+    const bool sparse =
+        method == Condensation::Sparse || (method == Condensation::Auto && !denseCondensationServes(nq, modes));
+    if (sparse && kept == nq)
+        throw std::invalid_argument("the sparse condensation keeps fewer modes than the massive space's " +
+                                    std::to_string(nq));
+    CondensedPlate c;
+    c.massiveCount = static_cast<int>(nq);
+    c.contactRows = static_cast<int>(plate.contactDofs.size());
+    if (sparse)
+        condenseSparse(plate, root, constraintRows(plate, extraRows), kept, recovery, c);
+    else
+        condenseDense(plate, root, extraRows, kept, recovery, c);
+    const Eigen::Index rows = c.rows();
+    requireDelassusPositive(c.delassus, rows);
 
     c.totalMass = plate.totalMass;
     c.totalMassMoment = plate.totalMassMoment;

@@ -56,12 +56,24 @@ struct ConstraintRow {
     unsigned char stops = kUnderBoth;  // the obstacles whose stops cover the point (StopBits)
 };
 
+// How condense() finds the massive modes and the massless part: the complete dense eigen solution
+// of the massive flexibility T (q × q, q the massive dimension: one per element with P0), or
+// Lanczos for the kept modes and the massless flexibility on the sparse factors (CondensedSparse.h).
+// Auto: dense where denseCondensationServes, so that coarse meshes and complete bases keep their
+// results bit for bit; Sparse needs modes < q.
+enum class Condensation { Auto, Dense, Sparse };
+// Does the dense solution serve `modes` of a massive space of dimension q (Auto's choice)? Where
+// most modes are kept, or q is small enough that T's dense eigen solution costs under a second.
+bool denseCondensationServes(Eigen::Index massive, int modes);
+inline constexpr Eigen::Index kDenseCondensationLimit = 1200;
+
 // Builds the condensed plate. `root` is R over the free dofs (M_s = R Rᵀ), `extraRows` the output
 // points added as constraint rows after the contact vertices, `modes` the massive modes kept
 // (≤ 0 or ≥ the massive dimension: all). Throws ParameterError when the massless space cannot
 // move every row independently (D not positive definite) or the massive flexibility is singular.
 // `recovery`: functionals over the free dofs read through the same flexibilities (none by default).
 CondensedPlate condense(const ClampedPlate& plate, const Eigen::SparseMatrix<double>& root,
-                        const std::vector<ConstraintRow>& extraRows, int modes, const SparseRows& recovery = {});
+                        const std::vector<ConstraintRow>& extraRows, int modes, const SparseRows& recovery = {},
+                        Condensation method = Condensation::Auto);
 
 }  // namespace plate

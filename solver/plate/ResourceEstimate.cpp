@@ -5,6 +5,7 @@
 #include <cstdio>
 #include <sstream>
 
+#include "plate/CondensedPlate.h"
 #include "plate/SparseCholesky.h"
 #include "plate/Stops.h"
 
@@ -41,6 +42,12 @@ constexpr double kPerFactorFlop = 1.0e-9;
 constexpr double kPerDenseEigenCube = 2.0e-9;
 constexpr double kPerSparseStepEntry = 0.55e-9;  // per nonzero of L and of K/M touched in a step
 constexpr double kPerModalStepEntry = 1.0e-9;  // per entry of CΦ and per dof of a modal step
+// Per flop of a solve with a simplicial factor (4 nnz(L) flops per right-hand side): 56x20, one
+// right-hand side at a time (Lanczos) ~1 ms, 32 at a time (the massless solves) 0.86 ms each.
+constexpr double kPerSolveFlop = 2.0e-10;
+// The contact rows' dense work once condensed (D's Cholesky, the schemes' r × r operators): per r³,
+// fitted to 112x40 (r = 4593: ~37 s of 117 s beyond the solves).
+constexpr double kPerRowCube = 3.5e-10;
 constexpr int kSubspaceIterations = 60;  // typical subspace iterations (Spectrum.cpp, up to 300)
 constexpr int kPowerIterations = 300;  // typical power iterations for κ_h (up to 2000)
 
@@ -182,6 +189,13 @@ EngineKind engineFor(const PlateParameters& p, const ProblemSize& size) {
 
 namespace {
 
+// Does the condensed engine take the sparse condensation (CondensedPlate.h)? q massive coordinates.
+bool sparseCondensation(const PlateParameters& p, double massive) {
+    return !denseCondensationServes(static_cast<Eigen::Index>(massive), p.modes);
+}
+// Lanczos' steps for m modes (CondensedSparse.cpp: about twice as many as kept, checked every ten).
+double lanczosSteps(double kept) { return 2.0 * kept + 20.0; }
+
 // The modal engines' memory beyond the clamped matrices (bytes) and their spectrum time (s).
 void modalCost(const PlateParameters& p, const ProblemSize& s, EngineKind engine, double& bytes, double& seconds) {
     const double n = double(s.dofs), c = double(s.contactVertices);
@@ -226,7 +240,14 @@ void estimateTimes(const PlateParameters& p, const ProblemSize& s, double massiv
     e.assemblySeconds = perEntry * t * (p.singularMass() ? 2.0 : 1.0) + kPerPatternEntry * (t + zFull);
     const double oneFactor = kPerAnalysisEntry * z + kPerFactorFlop * s.factorFlops;
     if (e.engine != EngineKind::ReducedModal) e.factorSeconds = 2 * oneFactor;
-    if (e.engine == EngineKind::Condensed) {
+    if (e.engine == EngineKind::Condensed && sparseCondensation(p, massive)) {
+        // Factors of K and K + ρ M_s; a solve per Lanczos step, per mode (V) and three per row and
+        // for the load (the massless iteration, CondensedSparse.cpp).
+        const double kept = p.modes;
+        e.factorSeconds = 2 * oneFactor;
+        e.spectrumSeconds = (lanczosSteps(kept) + kept + 3 * (rows + 1)) * 4.0 * l * kPerSolveFlop +
+                            kPerRowCube * rows * rows * rows;
+    } else if (e.engine == EngineKind::Condensed) {
         // One factor of K; a solve per massive coordinate and per row; the dense eigen solution of T.
         e.factorSeconds = oneFactor;
         e.spectrumSeconds =
@@ -276,7 +297,20 @@ ResourceEstimate estimateResources(const PlateParameters& p, const ProblemSize& 
     // W₂, the two contact matrices and their QP columns, the static problem's).
     const double massive = double(s.elements) * (p.mass == MassModel::SingularP1dg ? 3.0 : 1.0);
     const double rows = double(s.contactVertices) + 1.0;
-    if (e.engine == EngineKind::Condensed) {
+    if (e.engine == EngineKind::Condensed && sparseCondensation(p, massive)) {
+        // The sparse condensation (CondensedSparse.cpp): factors of K and K + ρ M_s, the Lanczos
+        // basis (q × steps), the modes V (n × m) and their right-hand sides, the massless solves'
+        // blocks (n × 32, four at once), the rows' matrices as below.
+        const double kept = p.modes;
+        e.factorsMB = 2 * factorBytes(s) / kMB;
+        // (three r × r matrices, not sixteen as below: measured 174 MB at 56x20, 1978 MB at 112x40, flow)
+        engineBytes = kDouble * (massive * lanczosSteps(kept) + 2 * n * kept + 4 * 32 * n + rows * kept +
+                                 3 * rows * rows) +
+                      factorBytes(s);
+        if (p.timeScheme == TimeScheme::Flow && p.tolerance > 0.0)
+            engineBytes += kDouble * (3 * std::log2(double(p.maxContactSubsteps)) * rows * rows + rows * kept);
+        phases = std::max(phases, e.matricesMB * kMB + factorBytes(s) + lower + engineBytes);
+    } else if (e.engine == EngineKind::Condensed) {
         e.factorsMB = factorBytes(s) / kMB;
         engineBytes = kDouble * (4 * massive * massive + 2 * rows * massive + 16 * rows * rows);
         // time_scheme = flow with a tolerance (FlowScheme.h): the midpoint matrices of every
@@ -300,7 +334,9 @@ ResourceEstimate estimateResources(const PlateParameters& p, const ProblemSize& 
             phases = std::max(phases, e.matricesMB * kMB + engineBytes + 2 * factorBytes(s) + lower);
         }
     }
-    const double recovery = recoveryBytes(p, s, e.engine, massive, rows);
+    // (the sparse condensation's recovery rows reach the kept modes only, not every massive one)
+    const bool sparse = e.engine == EngineKind::Condensed && sparseCondensation(p, massive);
+    const double recovery = recoveryBytes(p, s, e.engine, sparse ? double(p.modes) : massive, rows);
     engineBytes += recovery;
     phases += recovery;
     e.engineMB = engineBytes / kMB;
@@ -379,6 +415,34 @@ void InitProgress::done(double peakEstimateMB) {
     log_(text);
 }
 
+std::vector<std::string> costNotices(const PlateParameters& p, const ResourceEstimate& e) {
+    std::vector<std::string> notices;
+    if (!e.complete) return notices;
+    char text[700];
+    const char* modes = e.engine == EngineKind::Condensed || e.engine == EngineKind::ReducedModal ||
+                                e.engine == EngineKind::CompleteModal
+                            ? "fewer modes (modes), "
+                            : "";
+    if (e.initSeconds > kLongSetupSeconds) {
+        std::snprintf(text, sizeof text,
+                      "this initialization will take about %.2g s (estimated: %.2g s to assemble, %.2g s to factor, "
+                      "%.2g s for the modes and the condensation); %sa coarser mesh (nx = %d, ny = %d) shortens it",
+                      e.initSeconds, e.assemblySeconds, e.factorSeconds, e.spectrumSeconds, modes, p.nx, p.ny);
+        notices.emplace_back(text);
+    }
+    const double perSecond = e.stepSeconds / p.dt;  // CPU per simulated second, without contact
+    if (perSecond > kCostlyRunSeconds) {
+        std::snprintf(text, sizeof text,
+                      "each simulated second will cost about %.3g s of CPU (%.3g s per time step of dt = %g s, "
+                      "without contact; more with it); cheaper: %sa stop covering only the contact region "
+                      "(obstacle_lower_x_min ... obstacle_upper_y_max: fewer contact rows), or a coarser mesh "
+                      "(nx = %d, ny = %d)",
+                      perSecond, e.stepSeconds, p.dt, modes, p.nx, p.ny);
+        notices.emplace_back(text);
+    }
+    return notices;
+}
+
 ResourceEstimate planResources(const PlateParameters& p, const FiniteElementSpace& space, const ProgressLog& log) {
     const StopMap stops(p);
     ProblemSize size = countEntries(space, [&stops](const Eigen::Vector2d& x) { return stops.at(x); });
@@ -388,6 +452,8 @@ ResourceEstimate planResources(const PlateParameters& p, const FiniteElementSpac
     const ResourceEstimate estimate = estimateResources(p, size);
     if (log) log(estimate.describe());
     requireWithinBudget(p, estimate);
+    if (log)
+        for (const std::string& notice : costNotices(p, estimate)) log(notice);
     return estimate;
 }
 

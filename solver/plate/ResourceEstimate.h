@@ -16,6 +16,7 @@
 #include <chrono>
 #include <functional>
 #include <string>
+#include <vector>
 
 #include "fe/Assembly.h"
 #include "fe/FiniteElementSpace.h"
@@ -89,6 +90,13 @@ ResourceEstimate estimateResources(const PlateParameters& p, const ProblemSize& 
 
 // Throws ResourceError if the estimate exceeds p.memoryLimit (MB; 0 = no limit).
 void requireWithinBudget(const PlateParameters& p, const ResourceEstimate& estimate);
+
+// What the estimate says the user should know before the time is spent, one line each (the FMU
+// logs them at initialization): a setup of more than kLongSetupSeconds, and a run of more than
+// kCostlyRunSeconds of CPU per simulated second, with what would make it cheaper.
+inline constexpr double kLongSetupSeconds = 10.0;
+inline constexpr double kCostlyRunSeconds = 60.0;
+std::vector<std::string> costNotices(const PlateParameters& p, const ResourceEstimate& estimate);
 
 // Messages of an instance's initialization (the FMU's log); empty: none.
 using ProgressLog = std::function<void(const std::string&)>;

@@ -40,6 +40,9 @@ public:
     // x = S^{-1} b. Reuses the backend's workspace: no allocation after the first call.
     // Not for concurrent use of one factor (each plate instance owns its factors).
     void solve(const Eigen::VectorXd& b, Eigen::VectorXd& x) const;
+    // X = S^{-1} B for a block of right-hand sides at once (one pass over L per four columns: the
+    // condensation's many solves, CondensedSparse.cpp). Allocates: for the setup, not the step.
+    void solve(const Eigen::MatrixXd& b, Eigen::MatrixXd& x) const;
 
 private:
     struct Workspace;

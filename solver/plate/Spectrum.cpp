@@ -9,15 +9,15 @@
 
 namespace plate {
 
-namespace {
-
-// A start vector's entries: the Weyl sequence frac(a (i + 1) + b (j + 1)) − 1/2, which has no
-// structure that a mode could be orthogonal to, in exact arithmetic but for one rounding per
-// operation — the same bits on every CPU (the C library's sine, used before, is not).
+// The Weyl sequence frac(a (i + 1) + b (j + 1)) − 1/2 has no structure that a mode could be
+// orthogonal to, in exact arithmetic but for one rounding per operation — the same bits on every
+// CPU (the C library's sine, used before, is not).
 double startEntry(Eigen::Index i, Eigen::Index j) {
     const double x = 0.6180339887498949 * double(i + 1) + 0.4142135623730951 * double(j + 1);
     return (x - std::floor(x)) - 0.5;
 }
+
+namespace {
 
 // Dense generalized eigensolver: fine up to a few thousand dofs (O(n³) once at start).
 constexpr Eigen::Index kDenseLimit = 3000;

@@ -20,6 +20,10 @@ bool denseSolutionServes(Eigen::Index dofs, int modes);
 void leadingModes(const Eigen::MatrixXd& allPhi, const Eigen::VectorXd& allOmega2, int modes, Eigen::MatrixXd& phi,
                   Eigen::VectorXd& omega2);
 
+// Entry i of start vector j of the iterative eigensolvers (subspace iteration, power iteration,
+// CondensedSparse.cpp's Lanczos): deterministic, bit for bit the same on every CPU.
+double startEntry(Eigen::Index i, Eigen::Index j);
+
 // κ_h = λ_max(M⁻¹K), s⁻² (docs/theory.md).
 double largestEigenvalue(const ClampedPlate& plate);
 

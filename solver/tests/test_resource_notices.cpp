@@ -1,0 +1,64 @@
+// What the resource estimate tells the user before the time is spent (ResourceEstimate.h,
+// costNotices): a setup of more than ten seconds, a run of more than a minute of CPU per simulated
+// second, each with what would make it cheaper; nothing for the default scene. From the mesh alone
+// (stage 0, predictFromMesh): nothing is assembled.
+#include <gtest/gtest.h>
+
+#include <string>
+#include <vector>
+
+#include "plate/PlateParameters.h"
+#include "plate/ResourceEstimate.h"
+
+using namespace plate;
+
+namespace {
+
+std::vector<std::string> notices(const PlateParameters& p) {
+    return costNotices(p, estimateResources(p, predictFromMesh(p)));
+}
+
+PlateParameters flow(int nx, int ny, int modes) {
+    PlateParameters p;
+    p.nx = nx;
+    p.ny = ny;
+    p.modes = modes;
+    p.mass = MassModel::SingularP0;
+    p.timeScheme = TimeScheme::Flow;
+    return p;
+}
+
+}  // namespace
+
+TEST(ResourceNotices, TheDefaultSceneHasNone) { EXPECT_TRUE(notices(PlateParameters{}).empty()); }
+
+// 112x40 on 100 modes: ~2 minutes of setup by the estimate (measured 117 s of CPU, docs/performance.md).
+TEST(ResourceNotices, ALongSetupSaysSoWithWhatShortensIt) {
+    const PlateParameters p = flow(112, 40, 100);
+    const ResourceEstimate e = estimateResources(p, predictFromMesh(p));
+    ASSERT_GT(e.initSeconds, kLongSetupSeconds);
+    const std::vector<std::string> lines = costNotices(p, e);
+    ASSERT_FALSE(lines.empty());
+    EXPECT_NE(lines[0].find("this initialization will take about"), std::string::npos) << lines[0];
+    EXPECT_NE(lines[0].find("modes"), std::string::npos) << lines[0];
+    EXPECT_NE(lines[0].find("nx = 112, ny = 40"), std::string::npos) << lines[0];
+}
+
+// The cost per simulated second is the step's over dt: a hundred times smaller a step on 56x20
+// (1.3e-5 s per step at dt = 1e-7: ~130 s per simulated second) crosses the minute; dt = 1e-5 does not.
+TEST(ResourceNotices, ACostlyRunSaysSoOnceWithWhatMakesItCheaper) {
+    PlateParameters p = flow(56, 20, 100);
+    for (const std::string& line : notices(p)) EXPECT_EQ(line.find("each simulated second"), std::string::npos);
+    p.dt = 1e-7;
+    const ResourceEstimate e = estimateResources(p, predictFromMesh(p));
+    ASSERT_GT(e.stepSeconds / p.dt, kCostlyRunSeconds);
+    int costly = 0;
+    for (const std::string& line : costNotices(p, e)) {
+        if (line.find("each simulated second will cost") == std::string::npos) continue;
+        ++costly;
+        EXPECT_NE(line.find("fewer modes"), std::string::npos) << line;
+        EXPECT_NE(line.find("obstacle_lower_x_min"), std::string::npos) << line;
+        EXPECT_NE(line.find("coarser mesh"), std::string::npos) << line;
+    }
+    EXPECT_EQ(costly, 1);
+}
