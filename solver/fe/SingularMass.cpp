@@ -96,7 +96,8 @@ Eigen::Index numericalRank(const Eigen::SparseMatrix<double>& a) {
 bool clearlyFullColumnRank(const Eigen::SparseMatrix<double>& a) {
     const Eigen::SparseMatrix<double> gram = a.transpose() * a;
     const Eigen::SimplicialLLT<Eigen::SparseMatrix<double>> llt(gram);
-    return llt.info() == Eigen::Success && Eigen::VectorXd(llt.matrixL().nestedExpression().diagonal()).minCoeff() >= 1e-4;
+    return llt.info() == Eigen::Success &&
+           Eigen::VectorXd(llt.matrixL().nestedExpression().diagonal()).minCoeff() >= 1e-4;
 }
 
 }  // namespace

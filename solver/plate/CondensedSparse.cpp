@@ -22,8 +22,8 @@ constexpr double kLanczosTolerance = 1e-12;
 // in about twice as many steps as are kept (measured: 56x20, 100 modes of 2240, 210 steps), and
 // the basis (q × steps) stays small against the dense T (q × q). The Ritz values are checked every
 // ten steps; μ descending, Φ orthonormal.
-void largestFlexibilities(const SparseCholesky& stiffness, const Eigen::SparseMatrix<double>& root,
-                          Eigen::Index kept, Eigen::VectorXd& mu, Eigen::MatrixXd& phi) {
+void largestFlexibilities(const SparseCholesky& stiffness, const Eigen::SparseMatrix<double>& root, Eigen::Index kept,
+                          Eigen::VectorXd& mu, Eigen::MatrixXd& phi) {
     const Eigen::Index nq = root.cols();
     Eigen::MatrixXd basis(nq, std::min(nq, 2 * kept + 20));
     Eigen::VectorXd alpha(basis.cols()), beta(basis.cols()), w(nq), b, x;

@@ -245,8 +245,8 @@ void estimateTimes(const PlateParameters& p, const ProblemSize& s, double massiv
         // for the load (the massless iteration, CondensedSparse.cpp).
         const double kept = p.modes;
         e.factorSeconds = 2 * oneFactor;
-        e.spectrumSeconds = (lanczosSteps(kept) + kept + 3 * (rows + 1)) * 4.0 * l * kPerSolveFlop +
-                            kPerRowCube * rows * rows * rows;
+        e.spectrumSeconds =
+            (lanczosSteps(kept) + kept + 3 * (rows + 1)) * 4.0 * l * kPerSolveFlop + kPerRowCube * rows * rows * rows;
     } else if (e.engine == EngineKind::Condensed) {
         // One factor of K; a solve per massive coordinate and per row; the dense eigen solution of T.
         e.factorSeconds = oneFactor;
@@ -304,9 +304,9 @@ ResourceEstimate estimateResources(const PlateParameters& p, const ProblemSize& 
         const double kept = p.modes;
         e.factorsMB = 2 * factorBytes(s) / kMB;
         // (three r × r matrices, not sixteen as below: measured 174 MB at 56x20, 1978 MB at 112x40, flow)
-        engineBytes = kDouble * (massive * lanczosSteps(kept) + 2 * n * kept + 4 * 32 * n + rows * kept +
-                                 3 * rows * rows) +
-                      factorBytes(s);
+        engineBytes =
+            kDouble * (massive * lanczosSteps(kept) + 2 * n * kept + 4 * 32 * n + rows * kept + 3 * rows * rows) +
+            factorBytes(s);
         if (p.timeScheme == TimeScheme::Flow && p.tolerance > 0.0)
             engineBytes += kDouble * (3 * std::log2(double(p.maxContactSubsteps)) * rows * rows + rows * kept);
         phases = std::max(phases, e.matricesMB * kMB + factorBytes(s) + lower + engineBytes);
