@@ -348,8 +348,8 @@ private:
         DriveSample s{t, port.signal.value, port.history.reachedValue()};
         static constexpr const char* kModels[] = {"held: base_input_mode = hold",
                                                   "the line through its last two values: base_input_mode = linear",
-                                                  "the parabola through its last three values: base_input_mode = "
-                                                  "quadratic"};
+                                                  ("the parabola through its last three values: "
+                                                   "base_input_mode = quadratic")};
         if (port.derivativesGiven) {
             s.order = port.signal.d2 != 0.0 ? 2 : 1;
             s.model = "the value and derivatives the master set";
