@@ -32,8 +32,6 @@ public:
     void follow(const PlateSimulation& plate, const InputSignal& base, const InputSignal& load);
     // The estimate so far (m): Richardson's factor times the largest difference.
     double error() const { return factor_ * largestDifference_; }
-    // Richardson's factor 1/(r^p − 1) for the refinement r between the meshes (theory §26).
-    double factor() const { return factor_; }
     // From when the estimate may under-state (theory §26, "When it cannot"), said once: the
     // message the first time it is asked after that time, then empty.
     std::string takeWarning();
@@ -44,7 +42,7 @@ public:
 
 private:
     std::unique_ptr<PlateSimulation> companion_;
-    double factor_;
+    double factor_;  // Richardson's 1/(r^p − 1) for the refinement r between the meshes (theory §26)
     double largestDifference_ = 0.0;
     double scale_ = 0.0;  // the largest |w| of the reported points so far: the motion's size
     double partingScale_ = 0.0;  // the nearer obstacle's distance; 0 without obstacles (never parted)
