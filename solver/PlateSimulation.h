@@ -107,8 +107,8 @@ public:
     // Largest eigenvalue of M^{-1} K of the clamped plate (κ_h, docs/theory.md), s^-2.
     double kappa() const;
 
-    // discretization_check (docs/theory.md §26): from when discretization_error may under-state the
-    // error against the plate, the message once (then, and without the check, empty).
+    // discretization_check (docs/theory.md §26): from when discretization_error is a bound rather
+    // than an estimate, the message once (then, and without the check, empty).
     std::string takeDiscretizationWarning();
 
     // Full mutable state: serialize for FMU states (bit-identical continuation).
