@@ -3,7 +3,8 @@
 // modal basis make at the reported points. A companion plate on the mesh coarsened by two
 // (ceil(nx/2) × ceil(ny/2) cells, 2 Δt, every other parameter the same) is fed the same inputs and
 // follows the plate to each communication point; the largest difference of the reported points so
-// far, scaled by Richardson's factor for the refinement between the two meshes, is the estimate.
+// far, scaled by Richardson's factor for the refinement between the two meshes, is the estimate;
+// past the mesh's horizon (the paper's law after its first impact, the meshes parted) a bound.
 // The plate itself never sees the companion: its results are the same bits with the check or
 // without it.
 #include <array>
