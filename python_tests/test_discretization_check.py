@@ -1,7 +1,8 @@
 """discretization_check through fmpy (docs/theory.md §26): the outputs are the same bits with the
-check on; discretization_error is within [1/3, 3] of the error measured against the converged plate
-(a mesh ladder h, h/2, h/4 extrapolated with its measured order) on two short scenes, or the FMU has
-said from when it cannot; the paper's law says so at its first impact; FMI 3.0 has it; a state
+check on; discretization_error is never below the error measured against the converged plate (a mesh
+ladder h, h/2, h/4 extrapolated with its measured order) on two short scenes, and within a factor 10
+of it where it is an estimate rather than a bound; the paper's law says at its first impact that it
+becomes a bound, which then reads at least the obstacles' gap; FMI 3.0 has it; a state
 restored into a fresh instance continues bit for bit, the estimate included; meshes it cannot coarsen
 and carried clamps are refused with the allowed range."""
 
@@ -52,7 +53,7 @@ def test_every_output_is_the_same_bits_with_the_check_on(fmu_path):
 
 
 @pytest.mark.parametrize("name", sorted(SCENES))
-def test_the_estimate_is_within_a_factor_3_of_the_error_against_the_converged_plate(fmu_path, name):
+def test_the_estimate_never_under_states_the_error_against_the_converged_plate(fmu_path, name):
     scene_dict, window = SCENES[name]
     scene = cv.Scene.from_dict(scene_dict)
     ladder = [cv.run(fmu_path, scene, c, window).points for c in cv.ladder(dict(cv.LADDER_LAW, nx=8, ny=3))]
@@ -64,9 +65,13 @@ def test_the_estimate_is_within_a_factor_3_of_the_error_against_the_converged_pl
     # extrapolation's own step) is below half the error it measures.
     assert plate.converges, plate.verdict
     assert plate.uncertainty <= 0.5 * error, (plate.uncertainty, error)
-    # The promise is "within [1/3, 3], or said from when not"; on these two scenes the estimate holds
-    # even where the FMU said (the chatter's meshes part at 3.5 ms: 8 x 3 against 4 x 2 within ±0.02 m).
-    assert 1 / 3 <= estimate / error <= 3, (estimate, error, plate.verdict)
+    # The promise (theory §26): never below the error. Where the estimate is Richardson's (the release
+    # never parts), it is also an estimate, not a bound: p̂ = 0.5 against the measured 1 to 2.3 here
+    # over-states by at most 1/(r^0.5 − 1) · (r^p − 1) ≤ 2.41 · 1.83 (r = 1.73, p ≤ 2.3: < 10).
+    # The chatter's meshes part at 3.5 ms (8 x 3 against 4 x 2 within ±0.02 m): a bound from then on.
+    assert estimate >= error, (estimate, error, plate.verdict)
+    if run.warned_at is None:
+        assert estimate <= 10 * error, (estimate, error, plate.verdict)
 
 
 def test_the_papers_law_says_from_its_first_impact_that_it_cannot(fmu_path):
@@ -74,6 +79,10 @@ def test_the_papers_law_says_from_its_first_impact_that_it_cannot(fmu_path):
     run = cv.run(fmu_path, scene, {"nx": 14, "ny": 5}, 0.06, check=True)  # the first impact near 0.045 s
     assert run.warned_at is not None and 0.03 < run.warned_at < 0.06, run.warned_at
     assert np.all(np.diff(run.estimate) >= 0)  # the largest so far: never decreasing
+    # From then on a bound: between the obstacles at ±0.1 m, at least their gap.
+    after = round(run.warned_at / cv.SAMPLE)
+    assert np.all(run.estimate[after:] >= 0.2), run.estimate[after:].min()
+    assert run.estimate[after - 2] < 0.2  # before it, Richardson's estimate (millimetres)
 
 
 def test_fmi3_has_the_parameter_and_the_output(fmu3):
@@ -127,13 +136,13 @@ def test_a_check_it_cannot_run_is_refused_with_the_allowed_range(fmu_path, param
 
 def test_the_factor_is_richardsons_for_the_refinement(fmu_path):
     """On 28 x 10 against 14 x 5 (r = 2) the estimate is the difference of the two meshes' own runs
-    (the companion at 2 dt) times 1/(2^1.5 - 1), before any impact (§5.2's first 0.05 s)."""
+    (the companion at 2 dt) times 1/(2^0.5 - 1) (p̂ = 0.5), before any impact (§5.2's first 0.05 s)."""
     scene = cv.Scene.from_dict(SCENES["release"][0])
     fine = dict(FLOW, nx=28, ny=10, modes=40)
     run = cv.run(fmu_path, scene, fine, 0.05, check=True)
     coarse = cv.run(fmu_path, scene, dict(fine, nx=14, ny=5, dt=2e-5), 0.05)
     difference = float(np.abs(run.points - coarse.points).max())
-    assert math.isclose(run.estimate[-1], difference / (2**1.5 - 1), rel_tol=1e-9)
+    assert math.isclose(run.estimate[-1], difference / (2**0.5 - 1), rel_tol=1e-9)
 
 
 def test_the_example_runs_the_recommended_configuration():

@@ -914,7 +914,10 @@ def test_instances_are_independent_interleaved(unzipped):
 def test_two_threads_match_sequential_runs(unzipped, config):
     """Every engine (sparse factor, complete modal basis, reduced modes) and both elements:
     two instances stepped at once in two threads give what they give one after the other."""
-    scenes = {"a": CONFIGS[config], "b": dict(CONFIGS[config], initial_load=-6000.0, beta=0.3)}
+    # beta is the Newmark law's own (the condensed laws refuse it): the second scene differs by the load there.
+    newmark = CONFIGS[config].get("time_scheme", 1) == 1
+    other = dict(CONFIGS[config], initial_load=-6000.0, **({"beta": 0.3} if newmark else {}))
+    scenes = {"a": CONFIGS[config], "b": other}
 
     def run(name):
         s = session(unzipped, name)

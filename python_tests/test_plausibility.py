@@ -169,3 +169,66 @@ def test_a_geometry_in_millimetres_and_a_thick_plate_are_said_in_si_units(fmu_pa
             assert len(hits) == 1 and "SI units" in hits[0], (said, warnings(run))
     with PlateRun(fmu_path, **SMALL) as run:
         assert not [m for m in warnings(run) if "SI units" in m], warnings(run)
+
+
+def refusal(fmu_path, **parameters):
+    """The log of an initialization the FMU refuses (it must refuse it)."""
+    messages = []
+    with pytest.raises(FMICallException):
+        PlateImpactFMU(fmu_path, logger=lambda s, c, m: messages.append(m), **SMALL, **parameters)
+    return " ".join(messages)
+
+
+def test_refusals_of_the_material_name_si_units_and_the_range(fmu_path):
+    """A density or a modulus out of range is refused with its SI unit and the conversion a user in g/cm3
+    or GPa needs beside the allowed range (issue 71: the refusal named neither unit)."""
+    text = refusal(fmu_path, density=-7.85)
+    assert "invalid parameter density = -7.85" in text and "0.01 <= density <= 1e+06 (kg/m^3" in text, text
+    assert "SI units; steel is 7850 kg/m^3" in text, text
+    text = refusal(fmu_path, youngs_modulus=0.0)
+    assert "invalid parameter youngs_modulus = 0" in text and "1 <= youngs_modulus <= 1e+14" in text, text
+    assert "(Pa: the FMU takes SI units; steel is 2.1e11 Pa" in text, text
+    text = refusal(fmu_path, thickness=0.0)
+    assert "(m: the FMU takes SI units" in text, text
+
+
+def test_modes_beyond_the_model_are_said_to_run_the_full_model(fmu_path):
+    """modes above the plate's free dofs (newmark) or its massive modes (a singular mass under conserving)
+    kept every mode there is, the full model and its cost, without a word (issue 71): said once at
+    initialization, with the dofs where the engine states them; the run is the full model's (the same bits
+    as modes = 0). modes below stays silent."""
+    corners = {}
+    for modes in (0, 10_000):
+        with PlateRun(fmu_path, **SMALL, initial_load=1000.0, modes=modes) as run:
+            corners[modes] = [run.step(1e-3)["corner_1"] for _ in range(5)]
+            said = [m for m in warnings(run) if "modes = " in m]
+        if modes:
+            assert len(said) == 1 and "more than the plate's" in said[0] and "free dofs" in said[0], warnings(run)
+            dofs = int(said[0].split("more than the plate's ")[1].split(" ")[0])
+            assert 0 < dofs < modes and "the full model of modes = 0" in said[0], said
+        else:
+            assert said == [], said
+    assert corners[0] == corners[10_000]
+    with PlateRun(fmu_path, **SMALL, modes=10) as run:
+        assert warnings(run) == []
+    with PlateRun(fmu_path, **SMALL, mass=2, time_scheme=2, modes=10_000) as run:
+        said = [m for m in warnings(run) if "modes = 10000" in m]
+        assert len(said) == 1 and "massive modes" in said[0], warnings(run)
+    with PlateRun(fmu_path, **SMALL, mass=2, time_scheme=2, modes=4) as run:
+        assert warnings(run) == []
+
+
+def test_the_condensed_laws_refuse_restitution_and_beta_alike_naming_the_scheme(fmu_path):
+    """Under time_scheme = conserving or flow, restitution was refused naming "conserving" (also under flow)
+    while beta, which those laws have no use for, was ignored silently (issue 71): both are refused, naming
+    the scheme set, the reason and how to go on."""
+    for scheme, name in ((2, "conserving"), (3, "flow")):
+        other = "flow" if name == "conserving" else "conserving"
+        text = refusal(fmu_path, mass=2, time_scheme=scheme, restitution=0.5)
+        assert "invalid parameter restitution = 0.5" in text and f"time_scheme = {name}" in text, text
+        assert f"time_scheme = {other}" not in text and "time_scheme = newmark (1)" in text, text
+        text = refusal(fmu_path, mass=2, time_scheme=scheme, beta=0.25)
+        assert "invalid parameter beta = 0.25" in text and f"time_scheme = {name}" in text, text
+        assert "midpoint rule" in text and "leave beta at 0.5" in text, text
+    with PlateRun(fmu_path, **SMALL, mass=2, time_scheme=3, beta=0.5) as run:  # the default, said or not
+        assert warnings(run) == []

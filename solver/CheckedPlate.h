@@ -27,8 +27,8 @@ public:
                                        const GridPointObserver& observer = {}) override;
     // The plate's, with discretization_error the estimate up to now (0 without the check).
     PlateOutputs outputs(bool port = false, FieldOutputs field = FieldOutputs::None) const override;
-    // From when discretization_error may under-state the error against the plate, the message once
-    // (then, and without the check, empty).
+    // From when discretization_error is a bound rather than an estimate, the message once (then, and
+    // without the check, empty).
     std::string takeDiscretizationWarning();
 
     // The plate's state, then the check's part (its length its own last entry).

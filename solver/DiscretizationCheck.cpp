@@ -12,17 +12,12 @@ namespace plate {
 
 namespace {
 
-// The order in h the estimate assumes (docs/theory.md §26): measured on the mesh ladders of
-// tools/plate_front.py, between 0.7 and 2.2 (≈ 1 after a kink of the drive, ≈ 2 from a smooth
-// start). Richardson's factor 1/(r^p − 1) at p = 1.5 is within 1.7× of both ends' at the
-// default mesh's r = 1.83; the promise [1/3, 3] of theory §26 is measured, not derived from this.
-constexpr double kAssumedOrder = 1.5;
 // The companion and the plate have parted once their difference is this share of the motion's size
 // (the larger of the nearer obstacle's distance and the largest |w| so far): an impact then comes at
 // another time on either mesh, and the meshes no longer differ by a correction but by another
 // trajectory (past this mesh's predictability horizon, theory §26), where no Richardson factor holds.
-// Measured on the scenes of tools/plate_front.py: the estimate fell below a third of the error only
-// past a difference of 17% (FVS on the default drive at 0.1 s); at 10% the warning comes first.
+// Measured on the scenes of tools/plate_front.py (at p̂ = 1.5): the estimate fell below a third of the
+// error only past a difference of 17% (FVS on the default drive at 0.1 s); at 10% the bound comes first.
 constexpr double kParted = 0.1;
 
 }  // namespace
@@ -61,6 +56,7 @@ DiscretizationCheck::DiscretizationCheck(const PlateParameters& plate, double ba
     const Obstacles o = obstaclesOf(plate);
     if (plate.obstacleLowerEnabled) partingScale_ = -o.lower;
     if (plate.obstacleUpperEnabled) partingScale_ = partingScale_ > 0.0 ? std::min(partingScale_, o.upper) : o.upper;
+    if (plate.obstacleLowerEnabled && plate.obstacleUpperEnabled) gap_ = o.upper - o.lower;
     const PlateParameters c = companionParameters(plate);
     try {
         companion_ = std::make_unique<PlateSimulation>(c, baseDisplacement0, loadAtStart);
@@ -74,6 +70,8 @@ DiscretizationCheck::DiscretizationCheck(const PlateParameters& plate, double ba
     // odd count the geometric mean of the cell areas' ratio (14×5 against 7×3: r = 1.83).
     const double r = std::sqrt(double(plate.nx) * plate.ny / (double(c.nx) * c.ny));
     factor_ = 1.0 / (std::pow(r, kAssumedOrder) - 1.0);
+    const PlateOutputs start = companion_->outputs();
+    lowest_ = highest_ = {start.corner1, start.corner2, start.freeEdgeMid};
 }
 
 DiscretizationCheck::~DiscretizationCheck() = default;
@@ -87,6 +85,11 @@ void DiscretizationCheck::follow(const PlateSimulation& plate, const InputSignal
     const PlateOutputs a = plate.outputs(), b = c.outputs();
     const double difference = std::max(
         {std::fabs(a.corner1 - b.corner1), std::fabs(a.corner2 - b.corner2), std::fabs(a.freeEdgeMid - b.freeEdgeMid)});
+    const std::array<double, 3> pa{a.corner1, a.corner2, a.freeEdgeMid}, pb{b.corner1, b.corner2, b.freeEdgeMid};
+    for (std::size_t k = 0; k < 3; ++k) {
+        lowest_[k] = std::min({lowest_[k], pa[k], pb[k]});
+        highest_[k] = std::max({highest_[k], pa[k], pb[k]});
+    }
     largestDifference_ = std::max(largestDifference_, difference);
     scale_ = std::max({scale_, std::fabs(a.corner1), std::fabs(a.corner2), std::fabs(a.freeEdgeMid)});
     if (cannotSince_ >= 0.0) return;
@@ -99,23 +102,35 @@ void DiscretizationCheck::follow(const PlateSimulation& plate, const InputSignal
     cannotSince_ = plate.time();
 }
 
+double DiscretizationCheck::error() const {
+    const double richardson = factor_ * largestDifference_;
+    if (cannotSince_ < 0.0) return richardson;
+    // Past the horizon (theory §26, "When it cannot") the plate and the converged plate are two
+    // trajectories through the same space: their distance is bounded by the range each point swept
+    // (on either mesh), and between two obstacles by their gap, not by a correction of the mesh.
+    double swept = 0.0;
+    for (std::size_t k = 0; k < 3; ++k) swept = std::max(swept, highest_[k] - lowest_[k]);
+    return std::max({richardson, swept, gap_});
+}
+
 std::string DiscretizationCheck::takeWarning() {
     if (cannotSince_ < 0.0 || warned_) return "";
     warned_ = true;
     char text[600];
     if (cannot_ == Cannot::ImpactLaw)
         std::snprintf(text, sizeof text,
-                      "discretization_error may under-state the error against the plate from t = %.17g s on: the "
-                      "first impact with mass = consistent (the paper's law); after impacts this law's plate differs "
-                      "from the converged plate by more than its meshes differ from each other (docs/performance.md, "
-                      "\"The error against the plate\"), which the companion, on the same law, cannot see; mass = "
-                      "singular_p0 with time_scheme = flow keeps the estimate",
+                      "discretization_error is a bound from t = %.17g s on, no longer an estimate: at the first "
+                      "impact with mass = consistent (the paper's law), whose motion after impacts tends to another "
+                      "limit than the converged plate's (docs/theory.md section 26), which a companion on the same "
+                      "law cannot see; it now reads the range the reported points swept (between two obstacles at "
+                      "least their gap); mass = singular_p0 with time_scheme = flow keeps the estimate",
                       cannotSince_);
     else
         std::snprintf(text, sizeof text,
-                      "discretization_error may under-state the error against the plate from t = %.17g s on: the "
-                      "companion and the plate have parted (their difference passed %.0f%% of the motion's size): "
-                      "past this mesh's predictability horizon no Richardson factor holds; a finer mesh reaches "
+                      "discretization_error is a bound from t = %.17g s on, no longer an estimate: the companion "
+                      "and the plate have parted (their difference passed %.0f%% of the motion's size), past this "
+                      "mesh's predictability horizon, where no Richardson factor holds; it now reads the range the "
+                      "reported points swept (between two obstacles at least their gap); a finer mesh reaches "
                       "further (python -m plateimpact.sizing)",
                       cannotSince_, 100.0 * kParted);
     return text;
@@ -125,14 +140,17 @@ std::vector<double> DiscretizationCheck::saveState() const {
     std::vector<double> out = companion_->saveState();
     out.insert(out.end(),
                {largestDifference_, scale_, cannotSince_, double(static_cast<int>(cannot_)), warned_ ? 1.0 : 0.0});
+    out.insert(out.end(), lowest_.begin(), lowest_.end());
+    out.insert(out.end(), highest_.begin(), highest_.end());
     out.push_back(double(out.size() + 1));  // the part's length, last
     return out;
 }
 
 void DiscretizationCheck::restoreState(const std::vector<double>& state) {
     // The companion's state, then the largest difference, the motion's size, the time the estimate
-    // stopped holding (−1: it holds), why (0, 1, 2: Cannot), whether that was said, the part's length.
-    constexpr std::size_t kOwn = 6;
+    // stopped holding (−1: it holds), why (0, 1, 2: Cannot), whether that was said, the points'
+    // lowest and highest values, the part's length.
+    constexpr std::size_t kOwn = 12;
     if (state.size() < kOwn || state.back() != double(state.size()))
         throw std::invalid_argument("corrupt state: the discretization check's part (its length)");
     const double* own = state.data() + state.size() - kOwn;
@@ -141,12 +159,18 @@ void DiscretizationCheck::restoreState(const std::vector<double>& state) {
     if (!(own[0] >= 0.0) || !std::isfinite(own[0]) || !(own[1] >= 0.0) || !std::isfinite(own[1]) ||
         !(holds || stopped) || (own[4] != 0.0 && own[4] != 1.0))
         throw std::invalid_argument("corrupt state: the discretization check's part");
+    for (std::size_t k = 0; k < 3; ++k) {
+        if (!std::isfinite(own[5 + k]) || !std::isfinite(own[8 + k]) || own[5 + k] > own[8 + k])
+            throw std::invalid_argument("corrupt state: the discretization check's part (the points' range)");
+    }
     companion_->restoreState(std::vector<double>(state.begin(), state.end() - kOwn));  // throws: nothing set
     largestDifference_ = own[0];
     scale_ = own[1];
     cannotSince_ = own[2];
     cannot_ = static_cast<Cannot>(static_cast<int>(own[3]));
     warned_ = own[4] == 1.0;
+    std::copy(own + 5, own + 8, lowest_.begin());
+    std::copy(own + 8, own + 11, highest_.begin());
 }
 
 }  // namespace plate

@@ -303,7 +303,7 @@ namespace {
 // time, whether it is on the grid, the root's peak |w_xx| since t = 0 (§23) and the outputs and the
 // probes at the grid point before the communication time (§15), measured in the probes' count.
 // Format 2: the probes became any number (format 1 had four fixed among the outputs), and the
-// impact episodes (§14) were added. Format 3: discretization_error joined the outputs (§26).
+// impact episodes (§14) were added. Format 3: discretization_error joined the outputs; 4: the check's part carries the points' range (§26).
 struct GridState {
     double commTime = 0.0;
     int onGrid = 1;
@@ -313,7 +313,7 @@ struct GridState {
     long long freeSteps[2] = {0, 0};  // ImpactEpisodes::freeSteps + 1 (a count: 0 is never touched)
     long long episodes[2] = {0, 0};
 };
-constexpr double kGridFormat = 3.0;  // 3: discretizationError among the outputs (§26)
+constexpr double kGridFormat = 4.0;  // 3: discretizationError among the outputs; 4: the check's range (§26)
 const auto gridMembers = [](auto& g, auto& v) {
     v.real(g.commTime, "communication time");
     v.count(g.onGrid, "on the grid", 1.0);

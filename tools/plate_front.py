@@ -11,13 +11,16 @@ Scenes (the FMU's parameters and a drive, dt = 1e-5 s for the ladder):
   s52       the paper's §5.2: released from 8600 Pa onto the lower obstacle; windows 0.1 and 0.3 s
   fvs       contact-rich: obstacles ±0.01 m, 0.008 sin(2π·25 t) m, Rayleigh a = 2 1/s, b = 1e-5 s, with
             FVS candidates; windows 0.05 and 0.1 s
-  and two scenes the check was not tuned on (fixed before it was measured):
+  and scenes the check was not tuned on (fixed before it was measured):
   wide      a 0.8 × 0.5 m plate 6 mm thick, obstacles -0.03/+0.05 m, 0.02 sin(2π·15 t) m; 0.1 s
   pressed   the default plate under a load of -3000 Pa and 0.03 sin(2π·8 t) m, obstacles ±0.06 m; 0.2 s
+  free      the default drive with both obstacles off (no impact: the linear plate); 0.1 and 0.2 s
+  thick     a 20 mm plate between obstacles ±5 mm, 0.004 sin(2π·40 t) m (parts early); 0.05 and 0.1 s
 The check: discretization_check on four configurations per scene (the default, the flow law on the
 base mesh, the doubled mesh on 40 modes, FVS on 40 modes), its discretization_error against the
-error measured against the converged plate at each window: the promise is [1/3, 3]; and its CPU
-against the same run without it (the least of three interleaved runs each).
+error measured against the converged plate at each window: the promise (theory §26) is that it never
+under-states, i.e. at least the error less the plate's own uncertainty; and its CPU against the same
+run without it (the least of three interleaved runs each).
 """
 
 from __future__ import annotations
@@ -73,8 +76,22 @@ SCENES = {
         },
         (0.2,),
     ),
+    "free": (
+        {
+            "parameters": {"obstacle_lower_enabled": False, "obstacle_upper_enabled": False},
+            "drive": {"amplitude": 0.09, "frequency": 10},
+        },
+        (0.1, 0.2),
+    ),
+    "thick": (
+        {
+            "parameters": {"thickness": 0.02, "obstacle_lower": -0.005, "obstacle_upper": 0.005},
+            "drive": {"amplitude": 0.004, "frequency": 40},
+        },
+        (0.05, 0.1),
+    ),
 }
-TUNED = ("default", "s52", "fvs")  # the scenes the check's factor was read from; the others were not
+TUNED = ("default", "s52", "fvs")  # the scenes the parting threshold was read from; the others were not
 MEASURABLE = 0.5  # the reference's uncertainty against the error, at most, for the promise to be measured
 ACCURACY = 1e-3  # m: the README's accurate configuration is the cheapest within it (§5.2 over 0.1 s)
 
@@ -110,18 +127,24 @@ def _checked(fmu, scene_dict, config, until, repeats=3):
 
 
 def summary(scenes):
-    """The check over every scene and window: the range of estimate/error where the error is
-    measurable, the promise kept or not, the CPU ratio's range."""
+    """The check over every scene and window: the promise kept or not; the range of estimate/error
+    where the error is measurable, apart where it is Richardson's estimate and where the bound (past
+    the horizon, theory §26); the CPU ratio's range."""
     windows = [(k, c, w, v) for k, s in scenes.items() for c in s["checks"] for w, v in c["windows"].items()]
-    measured = [v["ratio"] for _, _, _, v in windows if v["measurable"]]
+    estimated = [v["ratio"] for *_, v in windows if v["measurable"] and not v["bound"]]
+    bounded = [v["ratio"] for *_, v in windows if v["measurable"] and v["bound"]]
     ratios = [c["cpu_ratio"] for s in scenes.values() for c in s["checks"]]
     return {
         "windows": len(windows),
-        "measurable": len(measured),
+        "measurable": len(estimated) + len(bounded),
         "kept": sum(v["kept"] for *_, v in windows),
         "broken": [f"{k} {c['name']} {w} s" for k, c, w, v in windows if not v["kept"]],
-        "ratio_min": min(measured, default=None),
-        "ratio_max": max(measured, default=None),
+        "ratio_min": min(estimated, default=None),
+        "ratio_max": max(estimated, default=None),
+        "estimated": len(estimated),
+        "bound_ratio_min": min(bounded, default=None),
+        "bound_ratio_max": max(bounded, default=None),
+        "bounded": len(bounded),
         "cpu_ratio_min": min(ratios, default=None),
         "cpu_ratio_max": max(ratios, default=None),
         "same_bits": all(c["same_bits"] for s in scenes.values() for c in s["checks"]),
@@ -174,13 +197,15 @@ def main():
                         # The promise is measured where the converged plate is known to better than half
                         # the error; elsewhere the error itself is unknown (MEASURABLE).
                         measurable = ref["converges"] and ref["uncertainty"] <= MEASURABLE * err
-                        kept = (1 / 3 <= est / err <= 3) or (r["warned_at"] is not None and r["warned_at"] <= w)
+                        # Never under-states: at least the error, which is known to ± the plate's uncertainty.
+                        kept = est >= err - ref["uncertainty"]
                         row["windows"][f"{w:g}"] = {
                             "error": err,
                             "estimate": est,
                             "ratio": est / err,
                             "measurable": measurable,
                             "kept": kept,
+                            "bound": r["warned_at"] is not None and r["warned_at"] <= w,
                         }
                     row["warned_at"] = r["warned_at"]
                     checks.append(row)

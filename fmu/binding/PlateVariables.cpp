@@ -282,8 +282,10 @@ const Row kRows[] = {
     output(kVrDiscretizationError,     "discretization_error",       "m",    OUTPUT(discretizationError),
         "discretization_check = true: the largest error of the reported points (corner_1, corner_2, free_edge_mid) "
         "since t = 0 against the converged plate that comes from the mesh and the modal basis, estimated from the "
-        "companion's difference by Richardson's factor (the theory, section 26; error_estimate is the time "
-        "error of this mesh, not this); 0 otherwise"),
+        "companion's difference by Richardson's factor; from the Warning that says so on (the paper's law after "
+        "its first impact, or the meshes parted) a bound: the range the points swept, between two obstacles at "
+        "least their gap (the theory, section 26; error_estimate is the time error of this mesh, not this); 0 "
+        "otherwise"),
     output(kVrClampForce,              "clamp_force",                "N",    PORT(clampForce),
         "Vertical force the plate exerts on the clamp (positive upward): what a shaker carrying the clamp feels; the "
         "scheme's value at the last internal step's centre t - dt (t - dt/2 with time_scheme = conserving). Fed back "

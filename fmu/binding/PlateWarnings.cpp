@@ -4,6 +4,7 @@
 
 #include <algorithm>
 #include <cstdio>
+#include <string>
 
 namespace plateimpact {
 
@@ -54,6 +55,29 @@ void warnOfUnits(const PlateValues& values, std::vector<std::string>& out) {
             format("youngs_modulus = %g Pa is no structural material's (steel 2.1e11, aluminium 7e10 Pa): "
                    "the FMU takes SI units (Pa; 210 GPa is 2.1e11, 210000 MPa too)",
                    p.youngsModulus));
+}
+// modes above what the plate has (issue 71): the engine keeps every mode there is, the full model of
+// modes = 0, at the full model's cost. Said with the count where the engine states it: the free dofs
+// under newmark; under the condensed laws the massive modes, whose count the engine keeps to itself.
+void warnOfModesBeyondModel(const PlateValues& values, std::vector<std::string>& out) {
+    const plate::PlateParameters& p = values.parameters;
+    if (p.modes <= 0 || !values.simulation) return;
+    const std::string engine = values.simulation->engine();
+    const bool complete = engine.size() >= 9 && engine.compare(engine.size() - 9, 9, "-complete") == 0;
+    if (!complete) return;
+    if (!p.condensed()) {
+        const double dofs = double(values.simulation->dofCount());
+        if (p.modes <= dofs) return;  // modes = dofs: every mode, as asked
+        out.push_back(format("modes = %g is more than the plate's %g free dofs (nx = %g, ny = %g): there are no more "
+                             "modes than dofs, so this run keeps all of them, the full model of modes = 0, at its "
+                             "cost; take modes < the dofs for a reduced model",
+                             double(p.modes), dofs, double(p.nx), double(p.ny)));
+    } else {
+        out.push_back(format("modes = %g is at least the count of the singular mass's massive modes on this mesh "
+                             "(nx = %g, ny = %g): this run keeps all of them, the full model of modes = 0, at its "
+                             "cost; take fewer modes for a reduced model",
+                             double(p.modes), double(p.nx), double(p.ny)));
+    }
 }
 // A tolerance or sub-step count only the flow law uses (docs/theory.md §21–22), set for another
 // scheme: said at build.
@@ -106,6 +130,7 @@ std::vector<std::string> buildWarnings(const PlateValues& values, bool arrays) {
     std::vector<std::string> out;
     warnOfUnits(values, out);
     warnOfCoarseStep(values, out);
+    warnOfModesBeyondModel(values, out);
     warnOfUnusedTolerance(values, out);
     warnOfProbes(values, arrays, out);
     return out;

@@ -106,7 +106,7 @@ class Run:
     cpu_per_second: float  # process CPU of the stepping loop per simulated second
     setup_s: float  # wall time of instantiate + initialize
     estimate: np.ndarray | None = None  # discretization_error at each sample, when checked
-    warned_at: float | None = None  # when the FMU said discretization_error may under-state
+    warned_at: float | None = None  # when the FMU said discretization_error became a bound
 
 
 def run(fmu, scene: Scene, config: dict, until: float, check=False) -> Run:
@@ -137,7 +137,7 @@ def run(fmu, scene: Scene, config: dict, until: float, check=False) -> Run:
             if check:
                 estimate[k] = values[3]
         cpu = time.process_time() - cpu0
-        said = [m for s, _, m in plate.log if s == 1 and "discretization_error may under-state" in m]
+        said = [m for s, _, m in plate.log if s == 1 and "discretization_error is a bound" in m]
     warned_at = float(said[0].split("from t = ")[1].split(" s")[0]) if said else None
     return Run(dict(config), points, cpu / until, setup, estimate, warned_at)
 

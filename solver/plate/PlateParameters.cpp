@@ -4,6 +4,7 @@
 
 #include <cmath>
 #include <sstream>
+#include <string>
 
 namespace plate {
 
@@ -95,12 +96,16 @@ void validateCheck(const PlateParameters& p) {
 
 void validate(const PlateParameters& p) {
     using namespace ranges;
-    requireRange("length", p.length, kLength);
-    requireRange("width", p.width, kWidth);
-    requireRange("thickness", p.thickness, kThickness);
-    requireRange("youngs_modulus", p.youngsModulus, kYoungsModulus);
+    // The units are SI (issue 71: a modulus in GPa or a density in g/cm3 is refused or runs as another
+    // material); the refusals say so, with the conversion a user most likely needs.
+    requireRange("length", p.length, kLength, "(m: the FMU takes SI units; 1200 mm is 1.2)");
+    requireRange("width", p.width, kWidth, "(m: the FMU takes SI units; 400 mm is 0.4)");
+    requireRange("thickness", p.thickness, kThickness, "(m: the FMU takes SI units; 10 mm is 0.01)");
+    requireRange("youngs_modulus", p.youngsModulus, kYoungsModulus,
+                 "(Pa: the FMU takes SI units; steel is 2.1e11 Pa, not 210 GPa)");
     requireRange("poisson_ratio", p.poissonRatio, kPoissonRatio);
-    requireRange("density", p.density, kDensity);
+    requireRange("density", p.density, kDensity,
+                 "(kg/m^3: the FMU takes SI units; steel is 7850 kg/m^3, not 7.85 g/cm^3)");
     requireRange("nx", p.nx, kCells);
     requireRange("ny", p.ny, kCells);
     if (p.obstacleLowerEnabled)
@@ -138,9 +143,25 @@ void validate(const PlateParameters& p) {
         reject("beta", p.beta,
                "0.25 <= beta <= 0.5 with a singular mass (massless dofs have no explicit stability bound)");
     requireRange("restitution", p.restitution, kRestitution);
-    if (conserving && p.restitution != 0.0)
-        reject("restitution", p.restitution,
-               "restitution = 0 with time_scheme = conserving (its impacts conserve energy by construction)");
+    // The condensed laws have neither the Newmark average beta nor an impact law to choose: both are
+    // refused alike (issue 71: beta was ignored silently while restitution was refused), naming the
+    // scheme the user set.
+    if (conserving) {
+        const char* scheme = p.timeScheme == TimeScheme::Flow ? "time_scheme = flow" : "time_scheme = conserving";
+        const PlateParameters defaults;
+        if (p.restitution != 0.0)
+            reject("restitution", p.restitution,
+                   (std::string("restitution = 0 with ") + scheme +
+                    ": its impacts conserve energy by construction, there is no impact law to choose; for an "
+                    "impact that loses energy use time_scheme = newmark (1) with restitution > 0")
+                       .c_str());
+        if (p.beta != defaults.beta)
+            reject("beta", p.beta,
+                   (std::string("beta = 0.5, the default, with ") + scheme +
+                    ": beta weighs the Newmark scheme's average and this scheme steps by the midpoint rule, which "
+                    "has no beta; leave beta at 0.5, or use time_scheme = newmark (1) for another beta")
+                       .c_str());
+    }
     requireRange("damping_mass", p.dampingMass, kDampingMass);
     requireRange("damping_stiffness", p.dampingStiffness, kDampingStiffness);
     requireRange("memory_limit", p.memoryLimit, kMemoryLimit);  // MB; 0 = no limit

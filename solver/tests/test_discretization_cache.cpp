@@ -177,6 +177,7 @@ TEST(DiscretizationCache, EveryKeyParameterChangesTheResult) {
         for (const auto& [name, change] : changes) {
             PlateParameters p = scene(kind, 0.02);
             if (kind == 4 && std::string(name) == "element") continue;  // P1dg's mass is Argyris's only
+            if (kind != 1 && std::string(name) == "beta") continue;  // the condensed laws refuse beta
             clearDiscretizationCache();
             (void)run(p, 20.0, 100);  // the unchanged plate, cached
             change(p);

@@ -1,6 +1,8 @@
 // discretization_check (solver/DiscretizationCheck.h, docs/theory.md §26): the plate's results are
 // the same bits with the check on; the estimate is Richardson's factor times the largest difference
-// from the companion, which is the coarsened plate (2 Δt) run alone; a state restored into a fresh
+// from the companion, which is the coarsened plate (2 Δt) run alone, until the check says it cannot
+// hold, and from then on the bound (the range the points swept on either mesh, the obstacles' gap);
+// a state restored into a fresh
 // simulation continues bit for bit, the estimate included; meshes of one cell and carried clamps
 // are refused with the allowed range.
 #include <gtest/gtest.h>
@@ -32,11 +34,13 @@ InputSignal sine(double t) {
 
 struct Record {
     std::vector<double> points;  // corner_1, corner_2, free_edge_mid after every communication step
+    std::vector<double> estimates;  // discretization_error after every communication step
+    std::vector<bool> said;  // whether the check had said it cannot hold, after every step
     double estimate = 0.0;
 };
 
 // 30 communication steps of 1e-4 s, then `more` of 2.5e-5 s (between grid points when dt does not divide them).
-Record run(PlateSimulation& s, int steps, int first = 0) {
+Record run(CheckedPlate& s, int steps, int first = 0) {
     Record r;
     for (int k = first; k < first + steps; ++k) {
         const double h = k % 3 == 2 ? 2.5e-4 : 1e-4;
@@ -44,27 +48,45 @@ Record run(PlateSimulation& s, int steps, int first = 0) {
         const PlateOutputs o = s.outputs();
         r.points.insert(r.points.end(), {o.corner1, o.corner2, o.freeEdgeMid});
         r.estimate = o.discretizationError;
+        r.estimates.push_back(o.discretizationError);
+        r.said.push_back((r.said.empty() ? false : bool(r.said.back())) || !s.takeDiscretizationWarning().empty());
     }
     return r;
 }
 
-TEST(DiscretizationCheck, ThePlateIsTheSameBitsAndTheEstimateIsRichardsonsFactorTimesTheDifference) {
+TEST(DiscretizationCheck, ThePlateIsTheSameBitsAndTheEstimateIsRichardsonsFactorThenTheBound) {
     CheckedPlate plain(contactScene(false), 0.0), checked(contactScene(true), 0.0);
-    PlateSimulation companion(DiscretizationCheck::companionParameters(contactScene(true)), 0.0);
+    CheckedPlate companion(DiscretizationCheck::companionParameters(contactScene(true)), 0.0);  // no check of its own
     EXPECT_EQ(companion.parameters().nx, 4);
     EXPECT_EQ(companion.parameters().ny, 2);
     EXPECT_EQ(companion.parameters().dt, 2.0 * contactScene(true).dt);
     const Record a = run(plain, 120), b = run(checked, 120), c = run(companion, 120);
     EXPECT_EQ(a.points, b.points);  // bit for bit
     EXPECT_EQ(a.estimate, 0.0);
+    // r = 2 in each direction with nx, ny = 8, 3 → 4, 2: sqrt(24/8) = sqrt(3); p̂ of theory (T.26b)
+    const double factor = 1.0 / (std::pow(std::sqrt(3.0), DiscretizationCheck::kAssumedOrder) - 1.0);
+    // The points' range starts at the companion's start (the check's constructor).
+    const PlateOutputs s0 = PlateSimulation(companion.parameters(), 0.0).outputs();
+    std::vector<double> lowest{s0.corner1, s0.corner2, s0.freeEdgeMid}, highest = lowest;
     double largest = 0.0;
-    for (std::size_t i = 0; i < b.points.size(); ++i) largest = std::max(largest, std::fabs(b.points[i] - c.points[i]));
+    std::size_t before = 0, after = 0;
+    for (std::size_t k = 0; k < b.estimates.size(); ++k) {
+        double swept = 0.0;
+        for (std::size_t i = 3 * k; i < 3 * k + 3; ++i) {
+            largest = std::max(largest, std::fabs(b.points[i] - c.points[i]));
+            lowest[i % 3] = std::min({lowest[i % 3], b.points[i], c.points[i]});
+            highest[i % 3] = std::max({highest[i % 3], b.points[i], c.points[i]});
+            swept = std::max(swept, highest[i % 3] - lowest[i % 3]);
+        }
+        // The companion inside the check steps to the plate's time (h from the two times), the one
+        // alone by the step sizes themselves: the same up to the times' last bits.
+        const double expected = b.said[k] ? std::max({factor * largest, swept, 0.02}) : factor * largest;
+        EXPECT_NEAR(b.estimates[k], expected, 1e-9 * std::max(expected, 1e-12)) << "step " << k;
+        ++(b.said[k] ? after : before);
+    }
     ASSERT_GT(largest, 1e-5);  // the scene reaches the obstacles: the meshes differ visibly
-    // r = 2 in each direction with nx, ny = 8, 3 → 4, 2: sqrt(24/8) = sqrt(3)
-    const double factor = 1.0 / (std::pow(std::sqrt(3.0), 1.5) - 1.0);
-    // The companion inside the check steps to the plate's time (h from the two times), the one
-    // alone by the step sizes themselves: the same up to the times' last bits.
-    EXPECT_NEAR(b.estimate, factor * largest, 1e-9 * largest);
+    EXPECT_GT(before, 0u);  // both regimes were met: the scene parts within 120 steps
+    EXPECT_GT(after, 0u);
 }
 
 TEST(DiscretizationCheck, AStateRestoredIntoAFreshSimulationContinuesBitForBit) {
