@@ -16,14 +16,16 @@
 
 namespace plate {
 
-// How the flow law divides a contact step (docs/theory.md §21–22).
+// How the flow law divides a contact step (docs/theory.md §21–22): the parameters' contactSubsteps,
+// tolerance, maxContactSubsteps and contactRowSpace, whose defaults (PlateParameters.h) are its own.
 struct ContactRefinement {
-    int substeps = 16;  // tolerance = 0: every contact step in this many sub-steps
-    // > 0 (m): each contact step as many sub-steps as its error estimate asks (step doubling),
-    // at most maxSubsteps (a power of two); the estimate accumulates in errorEstimate.
-    double tolerance = 0.0;
-    int maxSubsteps = 128;
-    bool rowSpace = true;  // contact sub-steps in the rows that can touch (§24); false: in every row
+    // tolerance = 0: every contact step in `substeps` sub-steps; > 0 (m): each contact step as many
+    // sub-steps as its error estimate asks (step doubling), at most maxSubsteps (a power of two); the
+    // estimate accumulates in errorEstimate.
+    int substeps = PlateParameters{}.contactSubsteps;
+    double tolerance = PlateParameters{}.tolerance;
+    int maxSubsteps = PlateParameters{}.maxContactSubsteps;
+    bool rowSpace = PlateParameters{}.contactRowSpace;  // in the rows that can touch (§24); false: every row
 };
 
 class FlowScheme final : public CondensedScheme {
