@@ -45,7 +45,7 @@ public:
     // message the first time it is asked after that time, then empty.
     std::string takeWarning();
 
-    // The companion's state and the largest difference, for FMU states (PlateSimulation's last part).
+    // The companion's state and the largest difference, for FMU states (CheckedPlate's last part).
     std::vector<double> saveState() const;
     void restoreState(const std::vector<double>& state);  // throws std::invalid_argument
 

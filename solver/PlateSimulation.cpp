@@ -2,20 +2,16 @@
 
 #include <algorithm>
 #include <array>
-#include <cfloat>
 #include <cmath>
-#include <limits>
 #include <sstream>
 
 #include "schemes/ImpactEpisodes.h"
-#include "DiscretizationCheck.h"
 #include "MakeScheme.h"
 #include "base/StateArchive.h"
 #include "base/PortableMath.h"
 #include "fe/Assembly.h"
 #include "fe/SingularMass.h"
 #include "plate/DiscretizationCache.h"
-#include "plate/Spectrum.h"
 #include "plate/Stops.h"
 #include "schemes/Armature.h"
 #include "schemes/FieldRecovery.h"
@@ -24,13 +20,6 @@
 namespace plate {
 
 namespace {
-
-// A communication step that is a whole multiple of Δt up to this relative tolerance runs on the
-// grid (importers' step sizes wobble in the last digits).
-constexpr double kStepMultipleTolerance = 1e-9;
-// A communication time within this fraction of Δt of a grid point is that grid point (§15); it
-// is also the shortest step: anything shorter cannot be told from no step at all.
-constexpr double kGridSnap = 1e-9;
 
 // What every scheme starts from (one entry of the discretization cache, DiscretizationCache.h):
 // the space, the clamped M and K, and the singular mass's B and R on the free rows (empty with the
@@ -108,9 +97,10 @@ struct PlateSimulation::Impl {
     bool onGrid = true;
     PlateOutputs before;
     ProbeOutputs probesBefore;
+    // Where t_c lies between t_{n−1} and t_n, as a fraction of Δt (the interpolation's weight).
+    double theta() const { return (commTime - double(scheme->stepCount() - 1) * parameters.dt) / parameters.dt; }
     ResourceEstimate resources;  // made before the assembly
     InputSampler sampler;  // setInputSampler
-    std::unique_ptr<DiscretizationCheck> check;  // discretization_check (docs/theory.md §26)
 };
 
 PlateSimulation::PlateSimulation(const PlateParameters& p, double baseDisplacement0, double loadAtStart,
@@ -147,7 +137,6 @@ PlateSimulation::PlateSimulation(const PlateParameters& p, double baseDisplaceme
     if (log) log(describe(cache));
     s.trackRoot();  // the initial state's (t = 0 belongs to the peak)
     s.episodes = ImpactEpisodes(p.firstFrequencyEstimate(), p.dt);
-    if (p.discretizationCheck) s.check = std::make_unique<DiscretizationCheck>(p, baseDisplacement0, loadAtStart);
     progress.done(s.resources.peakMB);
 }
 
@@ -168,7 +157,6 @@ PlateSimulation::~PlateSimulation() = default;
 const PlateParameters& PlateSimulation::parameters() const { return impl_->parameters; }
 double PlateSimulation::time() const { return impl_->commTime; }
 long long PlateSimulation::stepCount() const { return impl_->scheme->stepCount(); }
-double PlateSimulation::baseDisplacement() const { return impl_->scheme->baseDisplacement(); }
 
 void PlateSimulation::advance(long long steps, const InputSignal& base, const InputSignal& load) {
     if (!impl_->onGrid) throw StepError("advance() needs a communication time on the grid; use communicate()");
@@ -180,42 +168,11 @@ void PlateSimulation::advance(long long steps, const InputSignal& base, const In
 
 StepPlan PlateSimulation::plan(double h) const {
     const Impl& s = *impl_;
-    const double dt = s.parameters.dt;
-    const long long n = s.scheme->stepCount();
-    StepPlan p;
-    // On the grid, a whole multiple of Δt (importers' steps wobble in the last digits): the grid
-    // steps, the inputs' time s = k Δt exactly as the scheme has always taken them.
-    const double ratio = h / dt;
-    const long long whole = ratio < 9.0e15 ? std::llround(ratio) : 0;
-    if (s.onGrid && whole >= 1 && std::fabs(double(whole) * dt - h) <= kStepMultipleTolerance * h) {
-        p.steps = whole;
-        p.end = double(n + whole) * dt;
-        p.span = double(whole) * dt;
-        return p;
-    }
-    // Any other step: the grid leads the communication time by less than Δt (§15).
-    const double snap = std::max(kGridSnap * dt, 4.0 * DBL_EPSILON * (s.commTime + h));
-    if (!(h >= snap) || !std::isfinite(h)) {
-        std::ostringstream msg;
-        msg.precision(17);
-        msg << "communicationStepSize h = " << h << " is shorter than the smallest step the grid of dt = " << dt
-            << " resolves (allowed: h >= " << snap << " s = 1e-9 dt)";
-        throw StepError(msg.str());
-    }
-    const double end = s.commTime + h;
-    const double grid = end / dt;
-    long long target = std::llround(grid);
-    p.endsOnGrid = std::fabs(double(target) * dt - end) <= snap;
-    if (!p.endsOnGrid) target = static_cast<long long>(std::ceil(grid));
-    p.steps = std::max(0LL, target - n);
-    p.offset = double(n) * dt - s.commTime;
-    p.end = p.endsOnGrid ? double(target) * dt : end;
-    p.span = p.end - s.commTime;
-    return p;
+    return planStep(h, s.parameters.dt, s.scheme->stepCount(), s.commTime, s.onGrid);
 }
 
 // The one loop of a communication step (docs/theory.md §15): the plan's internal steps with
-// the inputs at s = offset + k Δt; `stopAfter(k, last)` is asked after each step that ends on a
+// the inputs at s = offset + k Δt; `stopAfter(last)` is asked after each step that ends on a
 // grid point (every one but the last of a step that ends between grid points), with the
 // simulation standing there (time() and outputs() of that grid point); true ends the
 // communication step on that grid point. Returns whether it ended early that way.
@@ -241,7 +198,6 @@ bool PlateSimulation::stepThrough(const StepPlan& plan, const InputSignal& base,
         s.trackRoot();
         s.episodes.count(*s.scheme);
         if (k == plan.steps && !plan.endsOnGrid) break;
-        if (!stopAfter.wanted) continue;
         const double commTime = s.commTime;
         const bool onGrid = s.onGrid;
         s.commTime = double(s.scheme->stepCount()) * dt;
@@ -256,39 +212,14 @@ bool PlateSimulation::stepThrough(const StepPlan& plan, const InputSignal& base,
     return false;
 }
 
-namespace {
-
-// stepThrough's stop conditions: none; the contact set changed; and/or an observer's wish.
-struct NeverStop {
-    static constexpr bool wanted = false;
-    bool operator()(bool) const { return false; }
-};
-
-template <class Condition>
-struct StopWhen {
-    static constexpr bool wanted = true;
-    Condition condition;
-    bool operator()(bool last) { return condition(last); }
-};
-template <class Condition>
-StopWhen<Condition> stopWhen(Condition c) {
-    return {std::move(c)};
-}
-
-}  // namespace
-
 void PlateSimulation::setInputSampler(InputSampler sampler) { impl_->sampler = std::move(sampler); }
 
 void PlateSimulation::communicate(const StepPlan& plan, const InputSignal& base, const InputSignal& load,
                                   const GridPointObserver& observer) {
-    if (!observer)
-        stepThrough(plan, base, load, NeverStop{});
-    else
-        stepThrough(plan, base, load, stopWhen([&observer](bool last) {
-                        if (!last) observer();
-                        return false;
-                    }));
-    if (impl_->check) impl_->check->follow(*this, base, load);
+    stepThrough(plan, base, load, [&observer](bool last) {
+        if (!last && observer) observer();
+        return false;
+    });
 }
 
 bool PlateSimulation::communicateUntilContactChange(const StepPlan& plan, const InputSignal& base,
@@ -299,36 +230,29 @@ bool PlateSimulation::communicateUntilContactChange(const StepPlan& plan, const 
     const auto inContact = [&s] { return s.scheme->contactVertices() > 0; };
     // The last step ended between grid points and the grid point ahead changed the contact set:
     // the event is that grid point, if this step reaches it.
-    bool early = false;
     if (!s.onGrid && (s.before.contactVertices > 0) != inContact() && double(s.scheme->stepCount()) * dt <= plan.end) {
         s.commTime = double(s.scheme->stepCount()) * dt;
         s.onGrid = true;
-        early = true;
-    } else {
-        const bool contactBefore = inContact();
-        early = stepThrough(plan, base, load, stopWhen([&](bool last) {
-                                if (inContact() != contactBefore) return true;
-                                return !last && observer && observer();
-                            }));
+        return true;
     }
-    if (s.check) s.check->follow(*this, base, load);
-    return early;
+    const bool contactBefore = inContact();
+    return stepThrough(plan, base, load, [&](bool last) {
+        if (inContact() != contactBefore) return true;
+        return !last && observer && observer();
+    });
 }
 
 PlateOutputs PlateSimulation::outputs(bool port, FieldOutputs field) const {
     PlateOutputs o = gridOutputs(port, field);
-    if (impl_->check) o.discretizationError = impl_->check->error();
     if (impl_->onGrid) return o;
     // t_c in (t_{n−1}, t_n): linear interpolation, each ledger term alike so the ledger closes.
-    const double dt = impl_->parameters.dt;
-    const double theta = (impl_->commTime - double(impl_->scheme->stepCount() - 1) * dt) / dt;
+    const double theta = impl_->theta();
     const PlateOutputs& before = impl_->before;
     for (const OutputField& f : kOutputFields) {
         const double from = f.value(before);
         double& to = f.field(o);
         to = f.between == Between::Interpolated ? from + theta * (to - from) : from;
     }
-    if (impl_->check) o.discretizationError = impl_->check->error();  // the estimate up to now, not held
     return o;
 }
 
@@ -338,8 +262,7 @@ ProbeOutputs PlateSimulation::probes() const {
     s.recovery->fillProbes(*s.scheme, s.parameters.dt, o);
     if (s.onGrid) return o;
     // Between grid points as outputs(): the linear interpolation of the two neighbours.
-    const double dt = s.parameters.dt;
-    const double theta = (s.commTime - double(s.scheme->stepCount() - 1) * dt) / dt;
+    const double theta = s.theta();
     const ProbeOutputs& before = s.probesBefore;
     o.displacement = before.displacement + theta * (o.displacement - before.displacement);
     o.velocity = before.velocity + theta * (o.velocity - before.velocity);
@@ -365,26 +288,14 @@ std::vector<double> PlateSimulation::vertexDisplacements() const {
     return heights;
 }
 
-std::string PlateSimulation::takeDiscretizationWarning() {
-    return impl_->check ? impl_->check->takeWarning() : std::string();
-}
-
 const ResourceEstimate& PlateSimulation::resources() const { return impl_->resources; }
-
 CarrierOutputs PlateSimulation::carrierOutputs() const { return impl_->scheme->carrierOutputs(); }
 ToleranceHorizon PlateSimulation::toleranceHorizon() const { return impl_->scheme->toleranceHorizon(); }
 
 std::string PlateSimulation::engine() const { return impl_->scheme->name(); }
-
 Eigen::Index PlateSimulation::dofCount() const { return impl_->clamped->mass.rows(); }
-
 double PlateSimulation::firstFrequency() const { return impl_->scheme->firstFrequency(); }
-
-double PlateSimulation::kappa() const {
-    // Before the engine exists (the β < ¼ check of the constructor) from the clamped plate itself.
-    if (!impl_->scheme) return largestEigenvalue(*impl_->clamped);
-    return impl_->scheme->kappa();
-}
+double PlateSimulation::kappa() const { return impl_->scheme->kappa(); }
 
 namespace {
 
@@ -420,27 +331,21 @@ const auto gridMembers = [](auto& g, auto& v) {
 
 }  // namespace
 
-// The scheme's state, then the grid's (GridState), then the carrier's fields (§18), then the
-// discretization check's part (§26; a carried clamp refuses the check: never both).
+// The scheme's state, then the grid's (GridState), then the carrier's fields (§18); CheckedPlate
+// adds the discretization check's part (§26; a carried clamp refuses the check: never both).
 std::vector<double> PlateSimulation::saveState() const {
     const Impl& s = *impl_;
     std::vector<double> out = s.scheme->saveState();
     const std::array<std::size_t, 1> sizes{std::size_t(s.recovery->probeCount())};
-    const std::vector<double> grid = archive::save(GridState{s.commTime,
-                                                             s.onGrid ? 1 : 0,
-                                                             s.rootPeak,
-                                                             s.before,
-                                                             s.probesBefore,
-                                                             {s.episodes.freeSteps[0] + 1, s.episodes.freeSteps[1] + 1},
-                                                             {s.episodes.episodes[0], s.episodes.episodes[1]}},
-                                                   kGridFormat, sizes, gridMembers);
+    GridState state{s.commTime, s.onGrid ? 1 : 0, s.rootPeak, s.before, s.probesBefore, {}, {}};
+    for (int k = 0; k < 2; ++k) {
+        state.freeSteps[k] = s.episodes.freeSteps[k] + 1;
+        state.episodes[k] = s.episodes.episodes[k];
+    }
+    const std::vector<double> grid = archive::save(state, kGridFormat, sizes, gridMembers);
     out.insert(out.end(), grid.begin(), grid.end());
     if (const Armature* carrier = s.scheme->carrier()) {  // last (§18)
         for (const auto& f : kCarrierFields) out.push_back(f.value(carrier->state()));
-    }
-    if (s.check) {
-        const std::vector<double> check = s.check->saveState();
-        out.insert(out.end(), check.begin(), check.end());
     }
     return out;
 }
@@ -448,14 +353,6 @@ std::vector<double> PlateSimulation::saveState() const {
 void PlateSimulation::restoreState(const std::vector<double>& all) {
     Impl& s = *impl_;
     std::vector<double> in = all;
-    std::vector<double> check;  // the check's part, last; its length its own last entry (§26)
-    if (s.check) {
-        const double length = in.empty() ? 0.0 : in.back();
-        if (!(length >= 2.0 && length <= double(in.size())) || length != std::floor(length))
-            throw std::invalid_argument("state does not belong to this plate (its discretization check's part)");
-        check.assign(in.end() - std::ptrdiff_t(length), in.end());
-        in.resize(in.size() - std::size_t(length));
-    }
     CarrierState carried;
     Armature* carrier = s.scheme->carrier();
     if (carrier) {  // the carrier's state last (§18)
@@ -485,14 +382,6 @@ void PlateSimulation::restoreState(const std::vector<double>& all) {
     if (!(onGrid ? grid.commTime == gridTime : (grid.commTime < gridTime && grid.commTime > gridTime - dt))) {
         scheme.restoreState(current);
         throw std::invalid_argument("corrupt state: communication time does not fit the grid");
-    }
-    if (s.check) {
-        try {
-            s.check->restoreState(check);
-        } catch (const std::invalid_argument&) {
-            scheme.restoreState(current);
-            throw;
-        }
     }
     if (carrier) carrier->setState(carried);
     s.commTime = grid.commTime;

@@ -11,6 +11,7 @@
 #include <vector>
 
 #include "InputSignal.h"
+#include "StepPlan.h"
 #include "schemes/PlateOutputs.h"
 #include "plate/Obstacles.h"
 #include "plate/PlateParameters.h"
@@ -19,19 +20,9 @@
 namespace plate {
 
 class Scheme;
-class DiscretizationCheck;
 
-// How one communication step of length h maps onto the scheme's fixed grid t_k = k Δt
-// (docs/theory.md §15): the internal steps to take, where the inputs' time s starts at the
-// first of them (s = offset + k Δt), and whether the step ends on a grid point.
-struct StepPlan {
-    long long steps = 0;
-    double offset = 0.0;  // t_n − t_c: how far the grid leads the communication time
-    double span = 0.0;  // the step as taken: t_c(after) − t_c (h, up to the grid's snap)
-    double end = 0.0;  // communication time after the step
-    bool endsOnGrid = true;
-};
-
+// discretization_check is not the plate's own: CheckedPlate (CheckedPlate.h) adds it on top, through
+// the virtual members below, and the plate never sees it.
 class PlateSimulation {
 public:
     // Builds the discretization, factors A, and computes the initial static state
@@ -44,14 +35,13 @@ public:
     // estimated at seconds or more, one line per phase.
     PlateSimulation(const PlateParameters& parameters, double baseDisplacement0, double loadAtStart = 0.0,
                     const ProgressLog& log = {});
-    ~PlateSimulation();
+    virtual ~PlateSimulation();
     PlateSimulation(const PlateSimulation&) = delete;
     PlateSimulation& operator=(const PlateSimulation&) = delete;
 
     const PlateParameters& parameters() const;
     double time() const;  // the communication time t_c (= t_n = n Δt on the grid)
     long long stepCount() const;
-    double baseDisplacement() const;  // z(t_n), the clamp position of the last step
 
     // Advances `steps` internal steps; inside, base and load follow the given signals with
     // s = t - time() at the call. Throws StepError (state left at the last good step).
@@ -66,14 +56,14 @@ public:
     // standing there: time() that grid point, outputs() its values (FMI 3.0 intermediate
     // update). communicateUntilContactChange ends the step there when it returns true.
     using GridPointObserver = std::function<bool()>;
-    void communicate(const StepPlan& plan, const InputSignal& base, const InputSignal& load,
-                     const GridPointObserver& observer = {});
+    virtual void communicate(const StepPlan& plan, const InputSignal& base, const InputSignal& load,
+                             const GridPointObserver& observer = {});
     // As communicate (the same steps, bit for bit), but the step ends early, on the grid point at
     // which the contact set becomes non-empty (an impact) or empty (a release), if the step
     // reaches it (FMI 3.0 early return), or where the observer asks; returns whether the step
     // ended early.
-    bool communicateUntilContactChange(const StepPlan& plan, const InputSignal& base, const InputSignal& load,
-                                       const GridPointObserver& observer = {});
+    virtual bool communicateUntilContactChange(const StepPlan& plan, const InputSignal& base, const InputSignal& load,
+                                               const GridPointObserver& observer = {});
     // Called before each internal step with s (the grid time it steps to, from the communication
     // time, as the signals') and the base and load the signals give there, which it may replace
     // (FMI 3.0 intermediate update: the master's inputs at that grid point). Empty: the signals.
@@ -83,7 +73,7 @@ public:
     // At the communication time: on the grid the scheme's values; between grid points the linear
     // interpolation of the two neighbours (counts: the earlier one). `port` adds the port's fields.
     // `field` adds the root's stress, or that and the plate's largest stress (§23).
-    PlateOutputs outputs(bool port = false, FieldOutputs field = FieldOutputs::None) const;
+    virtual PlateOutputs outputs(bool port = false, FieldOutputs field = FieldOutputs::None) const;
     // The probes' motion at the communication time (§23), one entry per probe, interpolated as outputs().
     ProbeOutputs probes() const;
 
@@ -107,13 +97,9 @@ public:
     // Largest eigenvalue of M^{-1} K of the clamped plate (κ_h, docs/theory.md), s^-2.
     double kappa() const;
 
-    // discretization_check (docs/theory.md §26): from when discretization_error is a bound rather
-    // than an estimate, the message once (then, and without the check, empty).
-    std::string takeDiscretizationWarning();
-
     // Full mutable state: serialize for FMU states (bit-identical continuation).
-    std::vector<double> saveState() const;
-    void restoreState(const std::vector<double>& state);  // throws std::invalid_argument
+    virtual std::vector<double> saveState() const;
+    virtual void restoreState(const std::vector<double>& state);  // throws std::invalid_argument
 
 private:
     static void requireBaseBetween(const Obstacles& obstacles, double baseDisplacement0);

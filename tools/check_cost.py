@@ -1,6 +1,6 @@
 """What discretization_check costs (docs/performance.md, "The error against the plate"; docs/theory.md
 §26): plate_bench with check=0 and check=1 on the same scene, as instructions counted by callgrind
-inside PlateSimulation::communicate (the stepping, the companion's included: repeatable on a shared
+inside CheckedPlate::communicate (the stepping, the companion's included: repeatable on a shared
 machine; 5000 or 20000 steps) and as process CPU per step over 0.3 s (the least of three
 interleaved runs), with their ratios.
 
@@ -48,7 +48,7 @@ def instructions(bench, args):
                 "valgrind",
                 "--tool=callgrind",
                 f"--callgrind-out-file={tmp}/cg",
-                "--toggle-collect=plate::PlateSimulation::communicate*",
+                "--toggle-collect=plate::CheckedPlate::communicate*",
                 bench,
                 *args,
             ],

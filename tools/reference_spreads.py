@@ -1,6 +1,6 @@
 """Measures how far other masters and platforms land from the references an FMU carries
 (FMI-LS-REF), as a table of deviation / tolerance per experiment and output: the evidence the
-tolerances of python/plateimpact/references.py are checked against (issue 33).
+tolerances of tools/write_references.py are checked against (issue 33).
 
     FMUSIM=path/to/fmusim python tools/reference_spreads.py build/PlateImpact.fmu [--master fmpy fmusim]
 

@@ -12,7 +12,7 @@
 
 namespace plateimpact {
 
-// Value references of the FMI 3.0 interface only (time is 1000, fmu/Fmi3Interface.h).
+// Value references of the FMI 3.0 interface only (time is 1000, fmu/fmi3/Fmi3Interface.h).
 enum PlateArrayVr : fmu::ValueReference {
     kVrVerticesX = 1001,
     kVrVerticesY = 1002,

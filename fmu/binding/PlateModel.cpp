@@ -18,6 +18,7 @@
 #include "plate/Stops.h"
 #include "PlateImpactGuid.h"  // generated at build time: FMU_GUID
 #include "binding/PlateVariables.h"
+#include "CheckedPlate.h"
 
 namespace plateimpact {
 
@@ -125,7 +126,7 @@ public:
         };
         requireOneDrive();
         try {
-            simulation_ = std::make_unique<plate::PlateSimulation>(
+            simulation_ = std::make_unique<plate::CheckedPlate>(
                 values_.solverParameters(), values_.baseDisplacement.signal.value, values_.load.signal.value, log);
         } catch (const std::bad_alloc&) {
             // The estimate is an estimate: what fails anyway is reported, never an abort.
@@ -276,7 +277,7 @@ public:
         // Equal configurations (every parameter of the table, and the initial base) reuse the
         // discretization; another one is built for the state's parameters.
         if (!simulation_ || builtWith_ != configuration() || simulationBase0_ != flags[1]) {
-            auto simulation = std::make_unique<plate::PlateSimulation>(values_.solverParameters(), flags[1]);
+            auto simulation = std::make_unique<plate::CheckedPlate>(values_.solverParameters(), flags[1]);
             simulation->restoreState(state);
             simulation_ = std::move(simulation);
             builtWith_ = configuration();
@@ -436,7 +437,7 @@ private:
     }
 
     PlateValues values_;
-    std::unique_ptr<plate::PlateSimulation> simulation_;
+    std::unique_ptr<plate::CheckedPlate> simulation_;
     std::vector<double> builtWith_;  // configuration() when simulation_ was built
     double simulationBase0_ = 0.0;  // base displacement the simulation was built with
     // The clamp at the communication time when a velocity or an acceleration drives it.

@@ -38,7 +38,7 @@ fmu::Variable declared(fmu::ValueReference vr, const char* name, VariableType ty
 }
 
 // The rows' makers, one per kind of variable, each with the description last so that a row of
-// the table below keeps its data on its first line. Ranges are solver/PlateParameters.h's (the one
+// the table below keeps its data on its first line. Ranges are solver/plate/PlateParameters.h's (the one
 // place they are written); an Integer or a Boolean here has no unit.
 Row parameter(fmu::ValueReference vr, const char* name, const char* unit, const plate::Range& range, Get get, Set set,
               const char* description) {

@@ -412,7 +412,7 @@ Status Instance::doStep(double t, double h, bool stopAtEvent, bool* endedAtEvent
             "the previous one ended (relative tolerance %g)",
             t, now, kTimeTolerance);
     if (!std::isfinite(h) || !(h > 0)) return fail("communicationStepSize h = %.17g rejected: it must be > 0", h);
-    if (stopAtEvent) {
+    if (stopAtEvent && model_->hasEvents()) {
         const bool atEvent = model_->doStepUntilEvent(t, h);
         if (endedAtEvent) *endedAtEvent = atEvent;
     } else {

@@ -54,13 +54,13 @@ const Variable* Model::find(ValueReference vr) const {
     return nullptr;
 }
 
-const StructuralParameter* Model::findStructural(ValueReference vr) const {
+const StructuralParameter* Fmi3Features::findStructural(ValueReference vr) const {
     for (const StructuralParameter& s : structuralParameters())
         if (s.vr == vr) return &s;
     return nullptr;
 }
 
-const ArrayVariable* Model::findArray(ValueReference vr) const {
+const ArrayVariable* Fmi3Features::findArray(ValueReference vr) const {
     for (const ArrayVariable& a : arrayVariables())
         if (a.vr == vr) return &a;
     return nullptr;
@@ -70,7 +70,11 @@ void Model::setInputDerivative(const Variable& v, int, double) {
     throw ModelError(std::string(v.name) + " takes no input derivatives");
 }
 
-void Model::setIntermediate(const Variable& v, double) {
+bool Fmi3Features::doStepUntilEvent(double, double) {
+    throw ModelError("internal error: an early return asked of a model without events");
+}
+
+void Fmi3Features::setIntermediate(const Variable& v, double) {
     throw ModelError(std::string(v.name) + " takes no intermediate values");
 }
 
@@ -78,36 +82,36 @@ double Model::getOutputDerivative(const Variable& v, int) const {
     throw ModelError(std::string(v.name) + " has no output derivatives");
 }
 
-const std::vector<StructuralParameter>& Model::structuralParameters() const {
+const std::vector<StructuralParameter>& Fmi3Features::structuralParameters() const {
     static const std::vector<StructuralParameter> none;
     return none;
 }
 
-const std::vector<ArrayVariable>& Model::arrayVariables() const {
+const std::vector<ArrayVariable>& Fmi3Features::arrayVariables() const {
     static const std::vector<ArrayVariable> none;
     return none;
 }
 
-const std::vector<Terminal>& Model::terminals() const {
+const std::vector<Terminal>& Fmi3Features::terminals() const {
     static const std::vector<Terminal> none;
     return none;
 }
 
-void Model::getArray(const ArrayVariable& a, double*, std::size_t) const {
+void Fmi3Features::getArray(const ArrayVariable& a, double*, std::size_t) const {
     throw ModelError(std::string(a.name) + " is not an array of this model");
 }
 
-void Model::setArray(const ArrayVariable& a, const double*, std::size_t) {
+void Fmi3Features::setArray(const ArrayVariable& a, const double*, std::size_t) {
     throw ModelError(std::string(a.name) + " is not a settable array of this model");
 }
 
-double Model::ownStructuralValue(const StructuralParameter& s) const {
+double Fmi3Features::ownStructuralValue(const StructuralParameter& s) const {
     for (const auto& [vr, value] : ownStructuralValues_)
         if (vr == s.vr) return value;
     return s.offset;
 }
 
-void Model::setOwnStructuralValue(const StructuralParameter& s, double value) {
+void Fmi3Features::setOwnStructuralValue(const StructuralParameter& s, double value) {
     for (auto& [vr, stored] : ownStructuralValues_)
         if (vr == s.vr) {
             stored = value;

@@ -11,6 +11,7 @@ namespace fmu {
 enum class Status { OK, Warning, Discard, Error, Fatal };
 
 using ValueReference = std::uint32_t;
+enum class Causality { Parameter, Input, Output };  // of a variable of a model's table
 
 // One byte of a serialized FMU state.
 using Byte = unsigned char;

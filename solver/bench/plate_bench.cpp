@@ -51,7 +51,7 @@
 #include "fe/Assembly.h"
 #include "fe/PointEvaluation.h"
 #include "plate/SparseCholesky.h"
-#include "PlateSimulation.h"
+#include "CheckedPlate.h"
 
 namespace {
 
@@ -302,7 +302,7 @@ int main(int argc, char** argv) {
         const plate::ProgressLog log = [&args](const std::string& line) {
             if (args.count("verbose")) std::fprintf(stderr, "[peak RSS %.1f MB] %s\n", peakRssMB(), line.c_str());
         };
-        plate::PlateSimulation sim(p, 0.0, 0.0, log);
+        plate::CheckedPlate sim(p, 0.0, 0.0, log);
         const auto t1 = std::chrono::steady_clock::now();
         const double cpu1 = processCpuSeconds();
         const std::string resources = resourceJson(sim, std::chrono::duration<double>(t1 - t0).count(), rssBefore);

@@ -145,7 +145,7 @@ constexpr Range kStopCoordinate{0.0, 1e4};
 }  // namespace ranges
 
 // Checks everything that can be checked without assembling (throws ParameterError).
-// The β < 1/4 stability bound needs κ_h and is checked by PlateSimulation.
+// The β < 1/4 stability bound needs κ_h and is checked by makeScheme (solver/MakeScheme.cpp).
 void validate(const PlateParameters& p);
 
 }  // namespace plate

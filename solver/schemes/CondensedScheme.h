@@ -153,7 +153,6 @@ protected:
                     double dampingStiffness, OutputRows rows);
 
     void buildOperator(MidpointOperator& op, double h) const;
-    static std::unique_ptr<ContactColumns> denseColumns(const Eigen::MatrixXd& matrix);  // its columns, as they are
     // One step of space.op->h from x to (zNext, pNext) (T.17b–c); zBefore: the base one such step
     // before x's time (ż and z̈ at its start). x's ledger takes the step's record and its levels move on.
     // Throws StepError with x as it was. The rows at x's time are x.rows where known, else gathered.
@@ -184,6 +183,32 @@ protected:
     void recordRun(StepState& end);
     void refreshDerived(StepState& x);  // what is derived from x.s (which force levels are zero; nothing looked at)
 
+    // What a scheme of the condensed plate reads of the base: the damping, the output rows, every
+    // row's obstacles and max |c_p|, the step of Δt, the space of every row; the state at t_n; the
+    // trial step's end (q, P at t_{n+1}: a look reads them, commit takes them); the solves' counts.
+    const Eigen::VectorXd& damping() const { return damping_; }
+    const OutputRows& outputRows() const { return rows_; }
+    const Eigen::VectorXd& rowLower() const { return lower_; }
+    const Eigen::VectorXd& rowUpper() const { return upper_; }
+    double rowLoadMax() const { return rowLoadMax_; }
+    const MidpointOperator& fullStep() const { return full_; }
+    const StepSpace& everyRow() const { return everyRow_; }
+    StepState& now() { return now_; }
+    Eigen::VectorXd& qNext() { return qNext_; }
+    Eigen::VectorXd& momentumNext() { return momentumNext_; }
+    void resetSolves() {
+        iterations_ = solves_ = 0;
+        kkt_ = 0.0;
+    }
+    int iterations() const { return iterations_; }  // of the last contact solve
+
+private:
+    void applyW2(const StepSpace& space, const Eigen::VectorXd& v, Eigen::VectorXd& out);
+    void discreteGradient(const StepSpace& space, StepState& x);  // Λ into the multiplier, from r0, drFree
+    void solveContact(const StepSpace& space, BoxQP& qp, const Eigen::VectorXd& free, std::vector<signed char>& state,
+                      Eigen::VectorXd& force, Eigen::VectorXd& y);
+    static std::unique_ptr<ContactColumns> denseColumns(const Eigen::MatrixXd& matrix);  // its columns, as they are
+
     std::shared_ptr<const CondensedPlate> plate_;
     Eigen::VectorXd damping_;  // c_k = a + b ω_k² (Rayleigh on the massive modes, §17)
     OutputRows rows_;
@@ -196,13 +221,6 @@ protected:
     Eigen::VectorXd rhs_, dq_, qNext_, momentumNext_;
     int iterations_ = 0, solves_ = 0;
     double kkt_ = 0.0;
-
-private:
-    void applyW2(const StepSpace& space, const Eigen::VectorXd& v, Eigen::VectorXd& out);
-    void discreteGradient(const StepSpace& space, StepState& x);  // Λ into the multiplier, from r0, drFree
-    void solveContact(const StepSpace& space, BoxQP& qp, const Eigen::VectorXd& free, std::vector<signed char>& state,
-                      Eigen::VectorXd& force, Eigen::VectorXd& y);
-
     Eigen::MatrixXd endMatrix_;  // D
     std::unique_ptr<ContactColumns> endColumns_;
     std::unique_ptr<BoxQP> endQP_;

@@ -19,15 +19,15 @@ FlowScheme::FlowScheme(std::shared_ptr<const CondensedPlate> plate, Obstacles ob
                        ContactRefinement refinement, double dampingMass, double dampingStiffness, OutputRows outputRows)
     : CondensedScheme(std::move(plate), obstacles, dt, dampingMass, dampingStiffness, std::move(outputRows)),
       refinement_(refinement) {
-    const CondensedPlate& c = *plate_;
+    const CondensedPlate& c = CondensedScheme::plate();
     const Eigen::Index m = c.modes(), rows = c.rows();
     flow_.errorQ = flow_.errorMomentum = flow_.eventError2 = Eigen::VectorXd::Zero(m);
-    exact_ = ExactFlow(c.omega2, damping_, dt);
+    exact_ = ExactFlow(c.omega2, damping(), dt);
     inverseOmega2_ = c.omega2.cwiseInverse();
-    dampedModes_ = (damping_.array() != 0.0).any();
-    for (Eigen::VectorXd* v : {&slope_, &offset_, &u0_, &ud0_, &u1_, &ud1_, &qIntegral_}) v->resize(m);
+    dampedModes_ = (damping().array() != 0.0).any();
+    for (Eigen::VectorXd* v : {&slope_, &offset_, &u0_, &ud0_, &u1_, &ud1_, &qIntegral_, &dq_, &rhs_}) v->resize(m);
     if (refinement_.tolerance > 0.0) {
-        // Levels 1 … log2(maxSubsteps): 2^j sub-steps of Δt/2^j (level 0 is the step itself, full_).
+        // Levels 1 … log2(maxSubsteps): 2^j sub-steps of Δt/2^j (level 0 is the step itself, fullStep()).
         for (int j = 1; (1 << j) <= refinement_.maxSubsteps; ++j) {
             levels_.push_back(std::make_unique<MidpointOperator>());
             buildOperator(*levels_.back(), dt / double(1 << j));
@@ -44,13 +44,14 @@ FlowScheme::FlowScheme(std::shared_ptr<const CondensedPlate> plate, Obstacles ob
             to.s.contactSolves += 1;
             refreshDerived(to);
         };
-        doubling_ =
-            std::make_unique<StepDoubling>(c, rows_.probes, lower_, upper_, exact_, dampedModes_, refinement_.tolerance,
-                                           refinement_.substeps, int(levels_.size()), dt, flow_, run, perturb);
+        doubling_ = std::make_unique<StepDoubling>(c, CondensedScheme::outputRows().probes, rowLower(), rowUpper(),
+                                                   exact_, dampedModes_, refinement_.tolerance, refinement_.substeps,
+                                                   int(levels_.size()), dt, flow_, run, perturb);
     } else {
         buildOperator(sub_, dt / refinement_.substeps);
     }
-    if (refinement_.rowSpace && rows > 0) touch_ = std::make_unique<RowSpace>(c, lower_, upper_, now_.freeFlight);
+    if (refinement_.rowSpace && rows > 0)
+        touch_ = std::make_unique<RowSpace>(c, rowLower(), rowUpper(), now().freeFlight);
 }
 
 // time_scheme = flow (docs/theory.md §21). Over a step the base moves linearly (ż = v = Δz/Δt, the
@@ -60,31 +61,30 @@ FlowScheme::FlowScheme(std::shared_ptr<const CondensedPlate> plate, Obstacles ob
 // obstacle at the end: the step is a run of m discrete-gradient sub-steps instead (with a tolerance,
 // the run its estimate chose), recorded once; a throw in it leaves the scheme as it was.
 void FlowScheme::advance(double zNext, double pNext) {
-    const CondensedState& s = now_.s;
+    const CondensedState& s = now().s;
     exactStep(zNext, pNext);
-    iterations_ = solves_ = 0;
-    kkt_ = 0.0;
+    resetSolves();
     // The contact check of the midpoint step (its free-flight bound included). With a tolerance, a
     // row the carried error could take past an obstacle is looked at too (Near): the exact motion
     // may touch where the computed one does not (§22).
-    const Look look = lookAtRows(everyRow_, now_, zNext, pNext, doubling_ ? doubling_->reach() : 0.0);
+    const Look look = lookAtRows(everyRow(), now(), zNext, pNext, doubling_ ? doubling_->reach() : 0.0);
     if (look != Look::Contact) return freeStep(zNext, pNext, look);
     // The rows at t_n, once for what reads them: the row space and the onset (§22); the free trial's
-    // end is the look's (everyRow_'s r1).
-    const Eigen::VectorXd& trialEnd = everyRow_.buffers->r1;
+    // end is the look's (everyRow()'s r1).
+    const Eigen::VectorXd& trialEnd = everyRow().buffers->r1;
     if (touch_ || doubling_) {
-        if (now_.rowsKnown)
-            rowsStart_ = now_.rows;
+        if (now().rowsKnown)
+            rowsStart_ = now().rows;
         else
-            gatherRows(everyRow_, s.q, s.p, s.z, rowsStart_);
+            gatherRows(everyRow(), s.q, s.p, s.z, rowsStart_);
     }
-    if (touch_) touch_->select(s, rowsStart_, qNext_, trialEnd, zNext, pNext, rowLoadMax_);
+    if (touch_) touch_->select(s, rowsStart_, qNext(), trialEnd, zNext, pNext, rowLoadMax());
     stepRowSpaceRuns_ = stepRowSpaceRetries_ = 0;
     try {
         if (doubling_)
-            doubling_->contactStep(now_, rowsStart_, trialEnd, zNext, pNext, kept_);
+            doubling_->contactStep(now(), rowsStart_, trialEnd, zNext, pNext, kept_);
         else
-            run(now_, zNext, pNext, refinement_.substeps, sub_, kept_);
+            run(now(), zNext, pNext, refinement_.substeps, sub_, kept_);
     } catch (...) {
         if (touch_) touch_->forget();  // C's data gathered again by the next contact step
         throw;
@@ -94,16 +94,16 @@ void FlowScheme::advance(double zNext, double pNext) {
     rowSpaceRetries_ += stepRowSpaceRetries_;
 }
 
-// (F.1) for every mode at once: q_p = offset + slope·s, u = q − q_p flows by Φ; into qNext_,
-// momentumNext_ and ∫q (qIntegral_).
+// (F.1) for every mode at once: q_p = offset + slope·s, u = q − q_p flows by Φ; into qNext(),
+// momentumNext() and ∫q (qIntegral_).
 void FlowScheme::exactStep(double zNext, double pNext) {
-    const CondensedPlate& c = *plate_;
-    const CondensedState& s = now_.s;
+    const CondensedPlate& c = plate();
+    const CondensedState& s = now().s;
     const double h = dt_, v = (zNext - s.z) / h, pDot = (pNext - s.p) / h;
     const auto F = c.modalLoad.array();
     const auto b = c.modalBaseInertia.array();
     const auto invW2 = inverseOmega2_.array();
-    const auto damping = damping_.array();
+    const auto c_k = damping().array();
     auto slope = slope_.array();
     auto offset = offset_.array();
     auto u0 = u0_.array();
@@ -115,15 +115,15 @@ void FlowScheme::exactStep(double zNext, double pNext) {
         offset = (s.p * F) * invW2;
     } else {
         slope = (pDot * F) * invW2;
-        offset = (s.p * F - damping * slope) * invW2;
+        offset = (s.p * F - c_k * slope) * invW2;
     }
     u0 = s.q.array() - offset;
     ud0 = s.momentum.array() - v * b - slope;
     u1 = exact_.f11.array() * u0 + exact_.f12.array() * ud0;
     ud1 = exact_.f21.array() * u0 + exact_.f22.array() * ud0;
-    qNext_.array() = u1 + offset + h * slope;
-    momentumNext_.array() = ud1 + slope + v * b;
-    qIntegral_.array() = -((ud1 - ud0) + damping * (u1 - u0)) * invW2 + h * (offset + (0.5 * h) * slope);
+    qNext().array() = u1 + offset + h * slope;
+    momentumNext().array() = ud1 + slope + v * b;
+    qIntegral_.array() = -((ud1 - ud0) + c_k * (u1 - u0)) * invW2 + h * (offset + (0.5 * h) * slope);
 }
 
 // The exact step recorded. The integral ∫u = −(Δu̇ + c Δu)/ω² (the equation integrated) gives the
@@ -133,51 +133,49 @@ void FlowScheme::exactStep(double zNext, double pNext) {
 // so that the ledger (T.17d) closes as in a midpoint step. Near an obstacle (with a tolerance) E goes
 // through the step by runs from t_n first, their solves in the step's record.
 void FlowScheme::freeStep(double zNext, double pNext, Look look) {
-    const CondensedPlate& c = *plate_;
-    CondensedState& s = now_.s;
-    if (!std::isfinite(momentumNext_.sum()) || !std::isfinite(qNext_.sum())) refuseNonFinite();
+    const CondensedPlate& c = plate();
+    CondensedState& s = now().s;
+    if (!std::isfinite(momentumNext().sum()) || !std::isfinite(qNext().sum())) refuseNonFinite();
     const bool near = look == Look::Near;
     if (near) {
         if (touch_) touch_->clear();  // its runs in every row
-        s.contactSolves += doubling_->nearMiss(now_, zNext, pNext);
+        s.contactSolves += doubling_->nearMiss(now(), zNext, pNext);
         exactStep(zNext, pNext);  // the step and its look again: the runs used their buffers
-        lookAtRowsNow(everyRow_, now_, zNext, pNext, doubling_->reach());
-        iterations_ = solves_ = 0;
-        kkt_ = 0.0;
+        lookAtRowsNow(everyRow(), now(), zNext, pNext, doubling_->reach());
+        resetSolves();
     }
-    now_.rowsKnown = look != Look::Skipped;
-    if (now_.rowsKnown) now_.rows = everyRow_.buffers->r1;
-    keepLook(now_, look, zNext, pNext);
-    RowBuffers& buffers = *everyRow_.buffers;
+    now().rowsKnown = look != Look::Skipped;
+    if (now().rowsKnown) now().rows = everyRow().buffers->r1;
+    keepLook(now(), look, zNext, pNext);
+    RowBuffers& buffers = *everyRow().buffers;
     if (buffers.multiplierUsed) buffers.multiplier.setZero();
     buffers.multiplierUsed = false;
     if (!buffers.forceNextZero) buffers.forceNext.setZero();
     buffers.forceNextZero = true;
     const double h = dt_, dz = zNext - s.z, v = dz / h, pDot = (pNext - s.p) / h, pMid = 0.5 * (s.p + pNext);
-    const auto damping = damping_.array();
-    dq_.noalias() = qNext_ - s.q;
+    const auto c_k = damping().array();
+    dq_.noalias() = qNext() - s.q;
     // The step's mean forces on the massive modes: F p̄ − Ω² ∫q/Δt − c Δq/Δt.
     const double perStep = 1.0 / h;
-    rhs_.array() =
-        pMid * c.modalLoad.array() - perStep * (c.omega2.array() * qIntegral_.array() + damping * dq_.array());
+    rhs_.array() = pMid * c.modalLoad.array() - perStep * (c.omega2.array() * qIntegral_.array() + c_k * dq_.array());
     const double loadWork =
-        pNext * c.modalLoad.dot(qNext_) - s.p * c.modalLoad.dot(s.q) - pDot * c.modalLoad.dot(qIntegral_);
+        pNext * c.modalLoad.dot(qNext()) - s.p * c.modalLoad.dot(s.q) - pDot * c.modalLoad.dot(qIntegral_);
     const double onRigid = c.modalBaseInertia.dot(rhs_);  // clamp + load on the plate (no contact)
     double dampedWork = 0.0;
     if (dampedModes_) {
         for (Eigen::Index k = 0; k < c.omega2.size(); ++k) {
-            if (damping_[k] == 0.0) continue;
+            if (damping()[k] == 0.0) continue;
             const double b = c.modalBaseInertia[k], f = c.modalLoad[k], w2 = c.omega2[k];
-            const double qd0 = s.momentum[k] - b * v, qd1 = momentumNext_[k] - b * v;
-            const double de = 0.5 * (qd1 * qd1 - qd0 * qd0) + 0.5 * w2 * (qNext_[k] * qNext_[k] - s.q[k] * s.q[k]);
-            dampedWork += -de + f * (pNext * qNext_[k] - s.p * s.q[k] - pDot * qIntegral_[k]);
+            const double qd0 = s.momentum[k] - b * v, qd1 = momentumNext()[k] - b * v;
+            const double de = 0.5 * (qd1 * qd1 - qd0 * qd0) + 0.5 * w2 * (qNext()[k] * qNext()[k] - s.q[k] * s.q[k]);
+            dampedWork += -de + f * (pNext * qNext()[k] - s.p * s.q[k] - pDot * qIntegral_[k]);
         }
     }
     s.clampForce = onRigid - pMid * c.loadResultant;
     s.clampMoment = c.modalRotationInertia.dot(rhs_) - pMid * c.loadMoment;
     s.stepContactMoment = 0.0;
     s.stepContactForce[0] = s.stepContactForce[1] = 0.0;  // (no onset: bookContact needs no call)
-    commit(everyRow_, now_, s.zPrev, zNext, pNext, loadWork + dz * onRigid, dampedWork, 0);
+    commit(everyRow(), now(), s.zPrev, zNext, pNext, loadWork + dz * onRigid, dampedWork, 0);
     if (near)
         doubling_->afterNearStep(s.step);
     else if (doubling_)
@@ -197,7 +195,7 @@ void FlowScheme::run(const StepState& from, double zNext, double pNext, int m, c
         substeps(true, in);
         touch_->leave(in, to);
         ++stepRowSpaceRuns_;
-        gatherRows(everyRow_, to.s.q, to.s.p, to.s.z, to.rows);  // the rows at the end start the next step
+        gatherRows(everyRow(), to.s.q, to.s.p, to.s.z, to.rows);  // the rows at the end start the next step
         to.rowsKnown = true;
         if (touch_->stayFree(to.rows, to.s.force)) return;
         ++stepRowSpaceRetries_;  // a row outside C touched: the run again in every row, and the step's later runs
@@ -210,7 +208,7 @@ void FlowScheme::run(const StepState& from, double zNext, double pNext, int m, c
 
 StepSpace FlowScheme::spaceFor(bool inRows, const MidpointOperator& op) {
     if (inRows) return touch_->space(op);
-    StepSpace space = everyRow_;
+    StepSpace space = everyRow();
     space.op = &op;
     return space;
 }
@@ -236,7 +234,7 @@ void FlowScheme::midpointSubsteps(bool inRows, const MidpointOperator& op, StepS
         contact[0] += s.stepContactForce[0];
         contact[1] += s.stepContactForce[1];
         contactMoment += s.stepContactMoment;
-        iterationsMax = std::max(iterationsMax, iterations_);
+        iterationsMax = std::max(iterationsMax, iterations());
     }
     s.clampForce = force / m;
     s.clampMoment = moment / m;
@@ -247,7 +245,7 @@ void FlowScheme::midpointSubsteps(bool inRows, const MidpointOperator& op, StepS
 }
 
 std::string FlowScheme::name() const {
-    const CondensedPlate& c = *plate_;
+    const CondensedPlate& c = plate();
     return c.modes() == c.massiveCount ? "flow-complete" : "flow-" + std::to_string(c.modes());
 }
 
@@ -257,7 +255,7 @@ void FlowScheme::addOutputs(PlateOutputs& o) const {
 }
 
 void FlowScheme::restoreOwn(const std::vector<double>& own) {
-    flow_ = FlowState::load(own, std::size_t(plate_->modes()));
+    flow_ = FlowState::load(own, std::size_t(plate().modes()));
 }
 
 ToleranceHorizon FlowScheme::toleranceHorizon() const { return doubling_ ? doubling_->horizon() : ToleranceHorizon{}; }

@@ -16,14 +16,16 @@
 
 namespace plate {
 
-// How the flow law divides a contact step (docs/theory.md §21–22).
+// How the flow law divides a contact step (docs/theory.md §21–22): the parameters' contactSubsteps,
+// tolerance, maxContactSubsteps and contactRowSpace, whose defaults (PlateParameters.h) are its own.
 struct ContactRefinement {
-    int substeps = 16;  // tolerance = 0: every contact step in this many sub-steps
-    // > 0 (m): each contact step as many sub-steps as its error estimate asks (step doubling),
-    // at most maxSubsteps (a power of two); the estimate accumulates in errorEstimate.
-    double tolerance = 0.0;
-    int maxSubsteps = 128;
-    bool rowSpace = true;  // contact sub-steps in the rows that can touch (§24); false: in every row
+    // tolerance = 0: every contact step in `substeps` sub-steps; > 0 (m): each contact step as many
+    // sub-steps as its error estimate asks (step doubling), at most maxSubsteps (a power of two); the
+    // estimate accumulates in errorEstimate.
+    int substeps = PlateParameters{}.contactSubsteps;
+    double tolerance = PlateParameters{}.tolerance;
+    int maxSubsteps = PlateParameters{}.maxContactSubsteps;
+    bool rowSpace = PlateParameters{}.contactRowSpace;  // in the rows that can touch (§24); false: every row
 };
 
 class FlowScheme final : public CondensedScheme {
@@ -42,7 +44,7 @@ public:
 
 private:
     void advance(double zNext, double pNext) override;  // exact free flight, or a run on contact
-    // Every mode's exact flow over Δt into qNext_, momentumNext_ and qIntegral_.
+    // Every mode's exact flow over Δt into qNext(), momentumNext() and qIntegral_.
     void exactStep(double zNext, double pNext);
     void freeStep(double zNext, double pNext, Look look);  // the exact step recorded
     // A run (docs/theory.md §21, §24): the contact step from `from` (t_n) to (zNext, pNext) as m midpoint
@@ -56,7 +58,7 @@ private:
     // That level's sub-steps, those in which rows change sides halved, three levels down at most (R).
     void resolvedSubsteps(bool inRows, StepState& x, double zNext, double pNext, int level);
     StepSpace spaceFor(bool inRows, const MidpointOperator& op);
-    const MidpointOperator& level(int j) const { return j == 0 ? full_ : *levels_[std::size_t(j - 1)]; }
+    const MidpointOperator& level(int j) const { return j == 0 ? fullStep() : *levels_[std::size_t(j - 1)]; }
     void addOutputs(PlateOutputs& o) const override;
     std::vector<double> saveOwn() const override { return flow_.save(); }
     void restoreOwn(const std::vector<double>& own) override;
@@ -71,12 +73,13 @@ private:
     StepState kept_, substep_;  // the step's run (the kept run with a tolerance), a sub-step of R
     Eigen::VectorXd rowsStart_;  // the rows at t_n (the row space, the onset)
     MidpointOperator sub_;  // sub-steps of Δt/m (tolerance = 0)
-    // tolerance > 0: level j takes 2^j sub-steps of Δt/2^j (level 0 is full_).
+    // tolerance > 0: level j takes 2^j sub-steps of Δt/2^j (level 0 is fullStep()).
     std::vector<std::unique_ptr<MidpointOperator>> levels_;
     Eigen::VectorXd inverseOmega2_;  // 1/ω²
     bool dampedModes_ = false;  // some c_k ≠ 0
     Eigen::VectorXd slope_, offset_, u0_, ud0_, u1_, ud1_;  // the exact step's buffers
     Eigen::VectorXd qIntegral_;  // ∫ q over the exact step
+    Eigen::VectorXd dq_, rhs_;  // its record's: Δq and the mean forces on the modes
 };
 
 }  // namespace plate

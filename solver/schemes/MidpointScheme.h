@@ -16,8 +16,8 @@ public:
 
 private:
     void advance(double zNext, double pNext) override {
-        now_.rowsKnown = false;  // the rows at t_n gathered afresh: the conserving law's results as they always were
-        midpointStep(everyRow_, now_, now_.s.zPrev, zNext, pNext);
+        now().rowsKnown = false;  // the rows at t_n gathered afresh: the conserving law's results as they always were
+        midpointStep(everyRow(), now(), now().s.zPrev, zNext, pNext);
     }
 };
 

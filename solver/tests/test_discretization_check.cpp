@@ -11,8 +11,8 @@
 #include <cmath>
 #include <vector>
 
+#include "CheckedPlate.h"
 #include "DiscretizationCheck.h"
-#include "PlateSimulation.h"
 #include "base/Errors.h"
 
 namespace plate {
@@ -40,7 +40,7 @@ struct Record {
 };
 
 // 30 communication steps of 1e-4 s, then `more` of 2.5e-5 s (between grid points when dt does not divide them).
-Record run(PlateSimulation& s, int steps, int first = 0) {
+Record run(CheckedPlate& s, int steps, int first = 0) {
     Record r;
     for (int k = first; k < first + steps; ++k) {
         const double h = k % 3 == 2 ? 2.5e-4 : 1e-4;
@@ -55,8 +55,8 @@ Record run(PlateSimulation& s, int steps, int first = 0) {
 }
 
 TEST(DiscretizationCheck, ThePlateIsTheSameBitsAndTheEstimateIsRichardsonsFactorThenTheBound) {
-    PlateSimulation plain(contactScene(false), 0.0), checked(contactScene(true), 0.0);
-    PlateSimulation companion(DiscretizationCheck::companionParameters(contactScene(true)), 0.0);
+    CheckedPlate plain(contactScene(false), 0.0), checked(contactScene(true), 0.0);
+    CheckedPlate companion(DiscretizationCheck::companionParameters(contactScene(true)), 0.0);  // no check of its own
     EXPECT_EQ(companion.parameters().nx, 4);
     EXPECT_EQ(companion.parameters().ny, 2);
     EXPECT_EQ(companion.parameters().dt, 2.0 * contactScene(true).dt);
@@ -90,17 +90,17 @@ TEST(DiscretizationCheck, ThePlateIsTheSameBitsAndTheEstimateIsRichardsonsFactor
 }
 
 TEST(DiscretizationCheck, AStateRestoredIntoAFreshSimulationContinuesBitForBit) {
-    PlateSimulation first(contactScene(true), 0.0);
+    CheckedPlate first(contactScene(true), 0.0);
     run(first, 40);
     const std::vector<double> state = first.saveState();
     const Record goOn = run(first, 40, 40);
-    PlateSimulation fresh(contactScene(true), 0.0);
+    CheckedPlate fresh(contactScene(true), 0.0);
     fresh.restoreState(state);
     const Record restored = run(fresh, 40, 40);
     EXPECT_EQ(goOn.points, restored.points);
     EXPECT_EQ(goOn.estimate, restored.estimate);
     // A state of a run without the check is not this plate's.
-    PlateSimulation unchecked(contactScene(false), 0.0);
+    CheckedPlate unchecked(contactScene(false), 0.0);
     EXPECT_THROW(fresh.restoreState(unchecked.saveState()), std::invalid_argument);
 }
 
@@ -108,7 +108,7 @@ TEST(DiscretizationCheck, RefusesMeshesOfOneCellAndCarriedClamps) {
     PlateParameters p = contactScene(true);
     p.ny = 1;
     try {
-        PlateSimulation s(p, 0.0);
+        CheckedPlate s(p, 0.0);
         FAIL() << "a mesh of one cell across was accepted";
     } catch (const ParameterError& e) {
         EXPECT_NE(std::string(e.what()).find("nx >= 2 and ny >= 2"), std::string::npos) << e.what();
@@ -116,7 +116,7 @@ TEST(DiscretizationCheck, RefusesMeshesOfOneCellAndCarriedClamps) {
     p = PlateParameters{};
     p.discretizationCheck = true;
     p.carrier = PlateParameters::Carrier::Armature;
-    EXPECT_THROW(PlateSimulation(p, 0.0), ParameterError);
+    EXPECT_THROW(CheckedPlate(p, 0.0), ParameterError);
 }
 
 }  // namespace
