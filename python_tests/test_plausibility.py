@@ -7,6 +7,7 @@ The yardstick is the first period of the clamped-free strip, T1 = 2π L² / (1.8
 (the default plate: 0.164 s; its first mode 5.95 Hz, T1 = 0.168 s)."""
 
 import math
+import re
 
 import fmpy
 import numpy as np
@@ -148,8 +149,51 @@ def test_a_drifting_integrated_clamp_is_refused_naming_the_input_driven(fmu_path
         refusal = plate.errors()[-1]
         assert "puts the clamped edge past obstacle_lower" in refusal, plate.errors()
         assert "integrated from base_acceleration" in refusal and "A w (cos(w t) - 1)" in refusal, refusal
+        # the refused value is named as the input driven, not as base_displacement (never set)
+        assert ": the clamp's position (integrated from base_acceleration) = -0.1" in refusal, refusal
+        assert ": base_displacement =" not in refusal and "<= base_displacement <=" not in refusal, refusal
     finally:
         plate.free()
+
+
+def run_integrated_clamp(fmu_path, acceleration, steps, h=1e-3, **parameters):
+    """base_drive = acceleration driven by `acceleration(t)` for `steps` steps of h: the warnings."""
+    said = []
+    plate = PlateImpactFMU(fmu_path, initialize=False, logger=lambda s, c, m: said.append((s, m)))
+    try:
+        plate.initialize({"base_drive": 3, **parameters})
+        for k in range(steps):
+            plate.set("base_acceleration", acceleration(k * h))
+            plate.step(h)
+    finally:
+        plate.free()
+    return [m for s, m in said if s == 1]
+
+
+def test_a_clamp_drifting_from_its_acceleration_is_said_with_its_size_and_the_missing_start_velocity(fmu_path):
+    """The README's 10 Hz, 0.09 m sine given as its acceleration with the obstacles off: the clamp starts at
+    rest, so it drifts at the mean velocity -A w = -5.65 m/s (-1.13 m at 0.2 s), silently on ef797a9 (issue
+    71). Said once, when the input has swung (its third sign change, t = 0.15 s): the drift, the time, the
+    mean velocity against the velocity's swing 2 A w, and the start velocity it lacks (A w). The cosine's
+    acceleration A w^2 cos(w t), whose velocity from rest A w sin(w t) has zero mean, stays silent."""
+    A, w = 0.09, 2 * math.pi * 10.0
+    said = run_integrated_clamp(
+        fmu_path, lambda t: -A * w * w * math.sin(w * t), 200, obstacle_lower_enabled=False, obstacle_upper_enabled=False
+    )
+    drift = [m for m in said if "base_acceleration has moved the clamp by" in m]
+    assert len(drift) == 1, said
+    moved, t = re.search(r"moved the clamp by (\S+) m from its start by t = (\S+) s", drift[0]).groups()
+    assert 0.15 <= float(t) <= 0.16, drift
+    # from rest, z(t) = A sin(w t) - A w t: the clamp's position then (the integral of the input as the FMU
+    # reconstructs it between the samples of h = 1e-3 s, w h = 0.063: within 1 %)
+    assert float(moved) == pytest.approx(A * math.sin(w * float(t)) - A * w * float(t), rel=1e-2), drift
+    mean, swing = re.search(r"mean velocity of (\S+) m/s, \S+ of the (\S+) m/s", drift[0]).groups()
+    assert float(swing) == pytest.approx(2 * A * w, rel=1e-2), drift
+    assert f"lacks a start velocity of about {-float(mean):.3g} m/s" in drift[0], drift
+    assert -float(mean) == pytest.approx(A * w, rel=0.1), drift  # A w, up to the sin(w t)/t part at 1.5 periods
+    assert "Drive base_velocity" in drift[0], drift
+    quiet = run_integrated_clamp(fmu_path, lambda t: 0.04 * w * w * math.cos(w * t), 300)
+    assert quiet == [], quiet
 
 
 def test_a_geometry_in_millimetres_and_a_thick_plate_are_said_in_si_units(fmu_path):
