@@ -276,3 +276,24 @@ def test_the_condensed_laws_refuse_restitution_and_beta_alike_naming_the_scheme(
         assert "midpoint rule" in text and "leave beta at 0.5" in text, text
     with PlateRun(fmu_path, **SMALL, mass=2, time_scheme=3, beta=0.5) as run:  # the default, said or not
         assert warnings(run) == []
+
+
+def test_a_state_taken_with_other_parameters_is_said_to_replace_the_instances(fmu_path):
+    """An FMU state carries its parameters: set into an instance built with others, it replaced them without
+    a word (issue 71; the instance then ran on as the state's plate). Said, naming what changed and from what;
+    a state of the same parameters, set back into its own instance, stays silent."""
+    with PlateRun(fmu_path, **SMALL) as donor:
+        donor.step(1e-3)
+        blob = donor.fmu.serializeFMUstate(donor.fmu.getFMUstate())
+        with PlateRun(fmu_path, **SMALL, initial_load=1000.0, poisson_ratio=0.25) as run:
+            run.step(1e-3)
+            own = run.fmu.getFMUstate()
+            run.step(1e-3)
+            run.fmu.setFMUstate(own)
+            assert warnings(run) == []  # its own parameters: nothing to say
+            run.fmu.setFMUstate(run.fmu.deSerializeFMUstate(blob))
+            said = [m for m in warnings(run) if "FMU state" in m]
+            assert len(said) == 1, warnings(run)
+            assert "initial_load = 0 (was 1000)" in said[0] and "poisson_ratio = 0.3 (was 0.25)" in said[0], said
+            assert "runs on with the state's parameters" in said[0], said
+            assert run.fmu.getReal([run.vars["initial_load"].valueReference])[0] == 0.0  # the state's, as said

@@ -268,9 +268,12 @@ public:
         const double* flags = take(2, "the simulation flag");
         if ((flags[0] != 0.0 && flags[0] != 1.0) || !std::isfinite(flags[1]))
             throw fmu::ModelError("simulation flag or initial base displacement out of range");
+        // The parameters the instance was built with (the state's are set already): said when they differ.
+        const std::vector<double> own = simulation_ ? builtWith_ : std::vector<double>{};
         if (flags[0] == 0.0) {
             if (in != end) throw fmu::ModelError("simulation state without a simulation");
             drop();
+            warnOfReplacedParameters(own);
             return;
         }
         const std::vector<double> state(in, end);
@@ -287,6 +290,7 @@ public:
         }
         simulationBase0_ = flags[1];
         refreshOutputs();
+        warnOfReplacedParameters(own);
     }
 
 private:
@@ -298,6 +302,28 @@ private:
             if (v.causality == fmu::Causality::Parameter) out.push_back(getValue(values_, v));
         values_.probes.appendTo(out);
         return out;
+    }
+    // An FMU state carries the parameters it was taken with: set into an instance built with others, it
+    // replaces them (the instance runs on as the state's), which the user may not expect (issue 71). Said,
+    // naming each parameter that changed; `own` is empty when the instance had no simulation yet.
+    void warnOfReplacedParameters(const std::vector<double>& own) {
+        const std::vector<double> now = configuration();
+        if (own.empty() || own == now) return;
+        std::string changed;
+        std::size_t k = 0, listed = 0;
+        for (const fmu::Variable& v : plateVariables()) {
+            if (v.causality != fmu::Causality::Parameter) continue;
+            if (own[k] != now[k] && listed++ < 6)
+                changed += (changed.empty() ? "" : ", ") + std::string(v.name) +
+                           format(" = %.6g (was %.6g)", now[k], own[k]);
+            ++k;
+        }
+        if (!std::equal(own.begin() + std::ptrdiff_t(k), own.end(), now.begin() + std::ptrdiff_t(k), now.end()))
+            changed += changed.empty() ? "the probes" : ", the probes";
+        warn("the FMU state set was taken with other parameters than this instance's: " + changed +
+             (listed > 6 ? format(" and %g more", double(listed - 6)) : std::string()) +
+             "; the instance runs on with the state's parameters (the discretization rebuilt for them). To keep "
+             "this instance's, set a state taken from an instance with the same parameters");
     }
     void refreshOutputs() {
         values_.outputs = simulation_ ? simulation_->outputs() : plate::PlateOutputs{};
