@@ -215,11 +215,15 @@ def test_a_geometry_in_millimetres_and_a_thick_plate_are_said_in_si_units(fmu_pa
         assert not [m for m in warnings(run) if "SI units" in m], warnings(run)
 
 
-def refusal(fmu_path, **parameters):
-    """The log of an initialization the FMU refuses (it must refuse it)."""
+def refusal(fmu_path, base0=0.0, **parameters):
+    """The log of an initialization (the clamp starting at base0) the FMU refuses (it must refuse it)."""
     messages = []
-    with pytest.raises(FMICallException):
-        PlateImpactFMU(fmu_path, logger=lambda s, c, m: messages.append(m), **SMALL, **parameters)
+    plate = PlateImpactFMU(fmu_path, initialize=False, logger=lambda s, c, m: messages.append(m))
+    try:
+        with pytest.raises(Exception, match="fmi2ExitInitializationMode failed"):
+            plate.initialize({**SMALL, **parameters}, base0=base0)
+    finally:
+        plate.free()
     return " ".join(messages)
 
 
@@ -297,3 +301,15 @@ def test_a_state_taken_with_other_parameters_is_said_to_replace_the_instances(fm
             assert "initial_load = 0 (was 1000)" in said[0] and "poisson_ratio = 0.3 (was 0.25)" in said[0], said
             assert "runs on with the state's parameters" in said[0], said
             assert run.fmu.getReal([run.vars["initial_load"].valueReference])[0] == 0.0  # the state's, as said
+
+
+def test_a_plate_started_past_a_tip_stop_is_refused_naming_the_plate_not_the_clamp(fmu_path):
+    """examples/stop_under_tip.py's stop (x >= 1 m at -0.05 m) with the clamp starting at -0.06 m: the flat
+    plate starts under the stop, the clamp is not under it; the refusal blamed "the clamped edge" (issue 71).
+    It names the plate under the stop; a whole-plate obstacle's refusal says its stop covers the clamp."""
+    tip = dict(obstacle_lower=-0.05, obstacle_lower_x_min=1.0, obstacle_upper_enabled=False)
+    text = refusal(fmu_path, base0=-0.06, **tip)
+    assert "base_displacement = -0.06 starts the plate flat at that height, below obstacle_lower = -0.05" in text
+    assert "does not reach the clamped edge: the plate there, not the clamp, is outside" in text, text
+    text = refusal(fmu_path, base0=-0.06, obstacle_lower=-0.05)
+    assert "below obstacle_lower = -0.05 (its stop covers the clamped edge)" in text, text
