@@ -178,7 +178,11 @@ def test_a_clamp_drifting_from_its_acceleration_is_said_with_its_size_and_the_mi
     acceleration A w^2 cos(w t), whose velocity from rest A w sin(w t) has zero mean, stays silent."""
     A, w = 0.09, 2 * math.pi * 10.0
     said = run_integrated_clamp(
-        fmu_path, lambda t: -A * w * w * math.sin(w * t), 200, obstacle_lower_enabled=False, obstacle_upper_enabled=False
+        fmu_path,
+        lambda t: -A * w * w * math.sin(w * t),
+        200,
+        obstacle_lower_enabled=False,
+        obstacle_upper_enabled=False,
     )
     drift = [m for m in said if "base_acceleration has moved the clamp by" in m]
     assert len(drift) == 1, said
