@@ -317,3 +317,31 @@ def test_a_plate_started_past_a_tip_stop_is_refused_naming_the_plate_not_the_cla
     assert "does not reach the clamped edge: the plate there, not the clamp, is outside" in text, text
     text = refusal(fmu_path, base0=-0.06, obstacle_lower=-0.05)
     assert "below obstacle_lower = -0.05 (its stop covers the clamped edge)" in text, text
+
+
+def test_the_correct_scenes_stay_silent(fmu_path):
+    """No warning on a correct scene (issue 71's goal, with this pass's warnings: SI units, modes beyond the
+    model, the integrated clamp's drift, a replaced state's parameters, the input's miss): every LS-REF
+    experiment as its references run it (stimuli set at each communication point), each its first 0.05 s,
+    and the README's accurate configuration of examples/error_against_the_plate.py. A state of its own
+    parameters set back stays silent too."""
+    from plateimpact import references
+
+    scenes = [(e.name, e.parameters, e.stimuli, e.step) for e in references.EXPERIMENTS]
+    accurate = {"nx": 28, "ny": 10, "modes": 40, "time_scheme": "flow", "mass": "singular_p0", "contact_substeps": 4}
+    scenes.append(("error_against_the_plate accurate", accurate, scenes[0][2], 1e-3))
+    for name, parameters, stimuli, h in scenes:
+        said = []
+        plate = PlateImpactFMU(fmu_path, initialize=False, logger=lambda s, c, m: said.append((s, m)))
+        try:
+            plate.initialize(dict(parameters))
+            state = plate.fmu.getFMUstate()
+            for k in range(round(0.05 / h)):
+                for input_name, f in stimuli.items():
+                    plate.set(input_name, float(f(np.array([k * h]))[0]))
+                plate.step(h)
+            plate.fmu.setFMUstate(state)
+            plate.fmu.freeFMUstate(state)
+        finally:
+            plate.free()
+        assert [m for s, m in said if s == 1] == [], name

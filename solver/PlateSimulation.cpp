@@ -161,13 +161,15 @@ void PlateSimulation::requireBaseBetween(const Obstacles& obstacles, double base
         const bool below = !(baseDisplacement0 >= obstacles.lower);
         const bool atClamp = below ? obstacles.lowerAtClamp : obstacles.upperAtClamp;
         msg << "invalid initial state: base_displacement = " << baseDisplacement0
-            << " starts the plate flat at that height, " << (below ? "below obstacle_lower = " : "above obstacle_upper = ")
+            << " starts the plate flat at that height, "
+            << (below ? "below obstacle_lower = " : "above obstacle_upper = ")
             << (below ? obstacles.lower : obstacles.upper)
-            << (atClamp ? " (its stop covers the clamped edge)"
-                        : " under that obstacle's stop (which does not reach the clamped edge: the plate there, not the "
-                          "clamp, is outside)")
-            << " (allowed: obstacle_lower = " << obstacles.lower << " <= base_displacement <= obstacle_upper = "
-            << obstacles.upper << " at the start)";
+            << (atClamp
+                    ? " (its stop covers the clamped edge)"
+                    : " under that obstacle's stop (which does not reach the clamped edge: the plate there, not the "
+                      "clamp, is outside)")
+            << " (allowed: obstacle_lower = " << obstacles.lower
+            << " <= base_displacement <= obstacle_upper = " << obstacles.upper << " at the start)";
         throw ParameterError(msg.str());
     }
 }

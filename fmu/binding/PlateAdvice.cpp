@@ -135,12 +135,14 @@ void PlateAdvisor::onDriveSample(const DriveSample& sample, double start, double
 std::string driftAdvice(double t, double elapsed, double drift, double swing) {
     const double mean = drift / elapsed;
     if (!(elapsed > 0.0) || !(std::fabs(mean) > kDriftOfSwing * swing)) return "";
-    return format("base_acceleration has moved the clamp by %.3g m from its start by t = %.6g s: a mean velocity "
-                  "of %.3g m/s",
-                  drift, t, mean) +
-           format(", %.2g of the %.3g m/s its velocity swings, so the clamp drifts away rather than oscillating "
-                  "about where it started",
-                  std::fabs(mean) / swing, swing) +
+    return format(
+               "base_acceleration has moved the clamp by %.3g m from its start by t = %.6g s: a mean velocity "
+               "of %.3g m/s",
+               drift, t, mean) +
+           format(
+               ", %.2g of the %.3g m/s its velocity swings, so the clamp drifts away rather than oscillating "
+               "about where it started",
+               std::fabs(mean) / swing, swing) +
            format(
                ". base_drive = acceleration starts the clamp at rest: an acceleration whose integral does not "
                "average to zero, as a sine's -A w^2 sin(w t) (its velocity from rest A w (cos(w t) - 1)), drifts "

@@ -314,8 +314,8 @@ private:
         for (const fmu::Variable& v : plateVariables()) {
             if (v.causality != fmu::Causality::Parameter) continue;
             if (own[k] != now[k] && listed++ < 6)
-                changed += (changed.empty() ? "" : ", ") + std::string(v.name) +
-                           format(" = %.6g (was %.6g)", now[k], own[k]);
+                changed +=
+                    (changed.empty() ? "" : ", ") + std::string(v.name) + format(" = %.6g (was %.6g)", now[k], own[k]);
             ++k;
         }
         if (!std::equal(own.begin() + std::ptrdiff_t(k), own.end(), now.begin() + std::ptrdiff_t(k), now.end()))
