@@ -8,7 +8,8 @@ clamp, run three ways and measured against each other (issue 27; docs/system-mod
 - force: Shaker.fmu <-> PlateImpact.fmu, armature velocity in, clamp force out, held values (the
   motion-in / force-out port), with libcosim's fixed step and with ECCO.
 
-    bash run.sh                                        # builds build/{SineSweep,Shaker,PlateImpact}.fmu
+    bash run.sh                                        # builds build/PlateImpact.fmu (and its FMI 3.0 twin)
+    bash scripts/setup.sh SineSweepFmu ShakerFmu       # builds build/SineSweep.fmu and build/Shaker.fmu
     .venv/bin/python demos/shaker.py --quick        # the suite's version: 1 s, 20 kg, impacts (~15 s)
     .venv/bin/python demos/shaker.py --mass 20 --duration 20 --step 1e-3 --coupling tlm --out out/run
     .venv/bin/python demos/shaker.py --master fmpy-ssp --mass 20 100 --step 1e-4 1e-3 --duration 20 \\

@@ -299,3 +299,19 @@ def test_every_example_takes_fmu_out_and_quick(script):
     for option in ("--fmu", "--out", "--quick"):
         assert option in r.stdout, f"{script} has no {option}"
     assert "--fmu" in (REPO / "README.md").read_text() and "--quick" in (REPO / "README.md").read_text()
+
+
+def test_stop_under_tip_counts_its_landings_as_impacts_lower(fmu, tmp_path):
+    """examples/stop_under_tip.py printed contact_onsets_lower as its "landings" (86 in 0.5 s where
+    impacts_lower reads 6: issue 71). Its landings are impacts_lower now, the onsets named beside them;
+    the landings counted from its CSV (contact episodes of the stop's force parted by a quarter of the
+    strip's first period T1 = 0.164 s, impacts_lower's rule) are the printed ones, and fewer than the onsets."""
+    cmd = [sys.executable, str(EXAMPLES / "stop_under_tip.py"), "--quick", "--fmu", fmu, "--out", str(tmp_path)]
+    r = subprocess.run(cmd, capture_output=True, text=True, timeout=240, cwd=REPO)
+    assert r.returncode == 0, r.stderr[-4000:]
+    landings = int(r.stdout.split(" landings on the stop (impacts_lower")[0].rsplit(" ", 1)[1])
+    onsets = int(r.stdout.split(" contact onsets (contact_onsets_lower")[0].rsplit(" ", 1)[1])
+    rows = read_csv(tmp_path / "quick" / "stop_under_tip.csv", None)
+    touching = [float(r["time"]) for r in rows if float(r["contact_force_lower"]) != 0.0]
+    episodes = sum(1 for k, t in enumerate(touching) if k == 0 or t - touching[k - 1] >= 0.164 / 4)
+    assert landings == episodes >= 1 and onsets > landings, r.stdout

@@ -35,3 +35,15 @@ def test_readme_links_the_table_and_names_only_the_fmus_variables(fmu_path):
     named = {name for line in rows for name in re.findall(r"`([a-z][a-z0-9_]*)`", line)}
     assert named, "the README's main variables table is empty"
     assert named <= names, named - names
+
+
+def test_the_real_time_row_says_whose_latency_it_is_with_the_c_step_beside():
+    """The README's real-time recipe quoted step latencies measured through the Python driver as if they were
+    the FMU's (issue 71): it says so, with the C step's own (fmi2DoStep from a C master, tools/step_latency.py's
+    c_cpu columns) beside them, each a marker over docs/step_latency.json, the C step the smaller."""
+    row = next(line for line in README.read_text().splitlines() if line.startswith("| a real-time master"))
+    assert "through the Python driver" in row and "the C step alone" in row, row
+    quoted = dict(re.findall(r'law="conserving m=20"\)\.(\w+), "\.0f"\) -->(\d+)<!--/-->', row))
+    assert {"cpu_max_us", "c_cpu_max_us", "cpu_median_us", "c_cpu_median_us"} <= set(quoted), quoted
+    assert int(quoted["c_cpu_max_us"]) < int(quoted["cpu_max_us"]), quoted
+    assert int(quoted["c_cpu_median_us"]) < int(quoted["cpu_median_us"]), quoted

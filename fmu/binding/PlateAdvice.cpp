@@ -132,6 +132,38 @@ void PlateAdvisor::onDriveSample(const DriveSample& sample, double start, double
     say(advice);
 }
 
+std::string driftAdvice(double t, double elapsed, double drift, double swing) {
+    const double mean = drift / elapsed;
+    if (!(elapsed > 0.0) || !(std::fabs(mean) > kDriftOfSwing * swing)) return "";
+    return format(
+               "base_acceleration has moved the clamp by %.3g m from its start by t = %.6g s: a mean velocity "
+               "of %.3g m/s",
+               drift, t, mean) +
+           format(
+               ", %.2g of the %.3g m/s its velocity swings, so the clamp drifts away rather than oscillating "
+               "about where it started",
+               std::fabs(mean) / swing, swing) +
+           format(
+               ". base_drive = acceleration starts the clamp at rest: an acceleration whose integral does not "
+               "average to zero, as a sine's -A w^2 sin(w t) (its velocity from rest A w (cos(w t) - 1)), drifts "
+               "it by that mean times t; this run's clamp lacks a start velocity of about %.3g m/s. Drive "
+               "base_velocity (base_drive = velocity: its first value is the clamp's start velocity) or "
+               "base_displacement instead, or give the acceleration a velocity of zero mean",
+               -mean);
+}
+
+void PlateAdvisor::onIntegratedClamp(double t, double elapsed, double drift, double velocity, double acceleration) {
+    slowest_ = std::min(slowest_, velocity);
+    fastest_ = std::max(fastest_, velocity);
+    const int sign = acceleration > 0.0 ? 1 : acceleration < 0.0 ? -1 : 0;
+    if (sign != 0 && accelerationSign_ != 0 && sign != accelerationSign_) ++accelerationTurns_;
+    if (sign != 0) accelerationSign_ = sign;
+    if (driftWarned_ || accelerationTurns_ < 3) return;
+    const std::string advice = driftAdvice(t, elapsed, drift, fastest_ - slowest_);
+    driftWarned_ = !advice.empty();
+    say(advice);
+}
+
 void PlateAdvisor::say(const std::string& advice) {
     if (!advice.empty()) warn_(advice);
 }
@@ -140,6 +172,9 @@ void PlateAdvisor::onBuild(const plate::PlateParameters& p) {
     interpolationWarned_ = errorWarned_ = cappedWarned_ = stressReadWarned_ = longStepWarned_ = missWarned_ = false;
     samples_ = turns_ = direction_ = 0;
     worstScore_ = 0.0;
+    driftWarned_ = false;
+    slowest_ = fastest_ = 0.0;
+    accelerationSign_ = accelerationTurns_ = 0;
     say(capAdvice(p));
 }
 
@@ -186,7 +221,11 @@ void PlateAdvisor::afterStep(const plate::PlateParameters& p, const plate::Plate
         warn_(format("a contact step before t = %.17g needed more than max_contact_substeps = %g sub-steps for "
                      "its target",
                      t, double(p.maxContactSubsteps)) +
-              "; raise max_contact_substeps (capped_steps counts such steps; error_estimate includes them)");
+              (p.maxContactSubsteps < plate::ranges::kMaxContactSubsteps.max
+                   ? "; raise max_contact_substeps (capped_steps counts such steps; error_estimate includes them)"
+                   : format("; max_contact_substeps = %g is its largest: take a larger tolerance or a smaller dt "
+                            "(capped_steps counts such steps; error_estimate includes them)",
+                            double(p.maxContactSubsteps))));
     }
 }
 

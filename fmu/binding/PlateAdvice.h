@@ -60,6 +60,18 @@ struct DriveSample {
 // limit against `amplitude`, with the step that would do; "" otherwise.
 std::string missAdvice(const DriveSample& s, double start, double amplitude, double h, double dt, const char* input);
 
+// base_drive = acceleration (issue 71): the clamp starts at rest, so an acceleration whose integral does
+// not average to zero drifts it away — the acceleration of a sine A sin(w t), -A w^2 sin(w t), from rest
+// gives the velocity A w (cos(w t) - 1), whose mean -A w moves the clamp by -A w t. Judged once the input
+// changed sign three times (a whole swing of it: its velocity's swing is known): the clamp's mean velocity
+// since the start, drift / elapsed, against the range its velocity swept. A clamp that oscillates about
+// where it started has a mean velocity of at most its excursion over the time, at most 1/(2 pi) of the
+// swing after a sine's period; the sine started at rest has half the swing (0.42 after a period).
+constexpr double kDriftOfSwing = 0.3;
+// The warning for a clamp that moved by `drift` in `elapsed` s (at the master's time t) while its
+// velocity swept `swing` m/s; "" when its mean velocity is within kDriftOfSwing of the swing.
+std::string driftAdvice(double t, double elapsed, double drift, double swing);
+
 // The advice of one model (PlateModel.cpp), each warned once per build through `warn` (the model's
 // fmu::Model::warn, which the instance may replace: held by reference).
 class PlateAdvisor {
@@ -81,6 +93,10 @@ public:
     // point, after the step's signal is made: the largest miss against the FMU's model of it so far
     // (missAdvice), judged once the values turned twice.
     void onDriveSample(const DriveSample& sample, double start, double h, double dt, const char* input);
+    // After a step ending at the master's time t, `elapsed` s after the build, a clamp integrated from its
+    // acceleration (base_drive = acceleration): moved by `drift` from its start, at `velocity`, the input
+    // at `acceleration` (driftAdvice, once the input swung).
+    void onIntegratedClamp(double t, double elapsed, double drift, double velocity, double acceleration);
     // After a step, the simulation at time t with outputs o: under tolerance > 0 (docs/theory.md §22)
     // the error estimate past the tolerance at horizon.lostAt (the scene's horizon for it, in the
     // simulation's time as t), a contact step the cap bounded.
@@ -105,6 +121,9 @@ private:
         double start = 0.0, h = 0.0;
     } worst_;
     double worstScore_ = 0.0;
+    bool driftWarned_ = false;  // the integrated clamp drifting (driftAdvice)
+    double slowest_ = 0.0, fastest_ = 0.0;  // the clamp's velocity range since the build (it starts at rest)
+    int accelerationSign_ = 0, accelerationTurns_ = 0;  // the input's sign and how often it changed
 };
 
 }  // namespace plateimpact

@@ -202,10 +202,12 @@ public:
             refreshOutputs();  // the simulation stays at its last good step (for debugging)
             // The failed internal step's time, from the scheme's clock onto the master's (NaN: refused before a step).
             const std::string at = std::isnan(e.time()) ? "" : format(" at t = %.17g", t + e.time() - now);
-            throw fmu::ModelError(format("step from t = %.17g failed", t) + at + ": " + e.what() +
-                                  integratedClampNote(e.what()));
+            throw fmu::ModelError(format("step from t = %.17g failed", t) + at + ": " + namingTheDrive(e.what()));
         }
         refreshOutputs();
+        if (values_.baseDrive == BaseDrive::Acceleration)
+            advisor_.onIntegratedClamp(t + h, simulation_->time(), clampPosition_ - simulationBase0_, clampVelocity_,
+                                       values_.baseAcceleration.signal.value);
         advisor_.afterStep(values_.parameters, values_.outputs, simulation_->time(), simulation_->toleranceHorizon());
         if (const std::string said = simulation_->takeDiscretizationWarning(); !said.empty()) warn(said);
         trace(format("t = %.17g, h = %.17g, %g steps", t, h, double(plan.steps)));
@@ -267,9 +269,12 @@ public:
         const double* flags = take(2, "the simulation flag");
         if ((flags[0] != 0.0 && flags[0] != 1.0) || !std::isfinite(flags[1]))
             throw fmu::ModelError("simulation flag or initial base displacement out of range");
+        // The parameters the instance was built with (the state's are set already): said when they differ.
+        const std::vector<double> own = simulation_ ? builtWith_ : std::vector<double>{};
         if (flags[0] == 0.0) {
             if (in != end) throw fmu::ModelError("simulation state without a simulation");
             drop();
+            warnOfReplacedParameters(own);
             return;
         }
         const std::vector<double> state(in, end);
@@ -286,6 +291,7 @@ public:
         }
         simulationBase0_ = flags[1];
         refreshOutputs();
+        warnOfReplacedParameters(own);
     }
 
 private:
@@ -297,6 +303,28 @@ private:
             if (v.causality == fmu::Causality::Parameter) out.push_back(getValue(values_, v));
         values_.probes.appendTo(out);
         return out;
+    }
+    // An FMU state carries the parameters it was taken with: set into an instance built with others, it
+    // replaces them (the instance runs on as the state's), which the user may not expect (issue 71). Said,
+    // naming each parameter that changed; `own` is empty when the instance had no simulation yet.
+    void warnOfReplacedParameters(const std::vector<double>& own) {
+        const std::vector<double> now = configuration();
+        if (own.empty() || own == now) return;
+        std::string changed;
+        std::size_t k = 0, listed = 0;
+        for (const fmu::Variable& v : plateVariables()) {
+            if (v.causality != fmu::Causality::Parameter) continue;
+            if (own[k] != now[k] && listed++ < 6)
+                changed +=
+                    (changed.empty() ? "" : ", ") + std::string(v.name) + format(" = %.6g (was %.6g)", now[k], own[k]);
+            ++k;
+        }
+        if (!std::equal(own.begin() + std::ptrdiff_t(k), own.end(), now.begin() + std::ptrdiff_t(k), now.end()))
+            changed += changed.empty() ? "the probes" : ", the probes";
+        warn("the FMU state set was taken with other parameters than this instance's: " + changed +
+             (listed > 6 ? format(" and %g more", double(listed - 6)) : std::string()) +
+             "; the instance runs on with the state's parameters (the discretization rebuilt for them). To keep "
+             "this instance's, set a state taken from an instance with the same parameters");
     }
     void refreshOutputs() {
         values_.outputs = simulation_ ? simulation_->outputs() : plate::PlateOutputs{};
@@ -361,19 +389,31 @@ private:
         s.continuous = !port.derivativesGiven && port.mode != plate::InputMode::Hold;
         return s;
     }
-    // A refusal that names base_displacement while a velocity or an acceleration drives the clamp: the
-    // user never set it, it is the clamp's position integrated from the drive (issue 71).
-    std::string integratedClampNote(const std::string& refusal) const {
+    // A refusal of the clamp's position while a velocity or an acceleration drives it: the solver names it
+    // base_displacement, which the user never set (issue 71). Said as the clamp integrated from the input
+    // driven, with where it went and why a clamp integrated from rest drifts.
+    std::string namingTheDrive(std::string refusal) const {
         const BaseDrive d = values_.baseDrive;
         if ((d != BaseDrive::Velocity && d != BaseDrive::Acceleration) ||
             refusal.find("base_displacement") == std::string::npos)
-            return "";
-        return std::string(" (base_displacement here is the clamp's position integrated from ") + driveName() +
-               ", which base_drive = " + mode().item +
-               " drives, from the clamp at rest at its start position: an input whose integral does not average to "
-               "zero, such as the acceleration of a sine, -A w^2 sin(w t), whose velocity is A w (cos(w t) - 1), "
-               "drifts the clamp by that mean velocity times t; drive base_displacement or base_velocity instead, "
-               "or give the input a zero mean)";
+            return refusal;
+        const std::string clamp = std::string("the clamp's position (integrated from ") + driveName() + ")";
+        for (std::size_t at = refusal.find("base_displacement"); at != std::string::npos;
+             at = refusal.find("base_displacement", at + clamp.size()))
+            refusal.replace(at, std::string("base_displacement").size(), clamp);
+        refusal += std::string(" (") + driveName() + ", which base_drive = " + mode().item +
+                   " drives, moves the clamp from rest at its start position" +
+                   format(" (%.6g m): it had moved by %.3g m", simulationBase0_, clampPosition_ - simulationBase0_) +
+                   " at the last communication point. " +
+                   (d == BaseDrive::Velocity
+                        ? "A velocity that does not average to zero moves the clamp by its mean times t; drive "
+                          "base_displacement instead, or give the velocity a zero mean)"
+                        : "An acceleration whose integral does not average to zero, such as the acceleration of a "
+                          "sine, -A w^2 sin(w t), whose velocity from rest is A w (cos(w t) - 1), drifts the clamp "
+                          "by that mean velocity times t; drive base_velocity (its first value is the clamp's start "
+                          "velocity) or base_displacement instead, or give the acceleration a velocity of zero "
+                          "mean)");
+        return refusal;
     }
     // The clamp's path over a step of length span from the communication time `now` (docs/theory.md
     // §16): the displacement input as it comes, or the exact integral of the velocity (once) or

@@ -68,15 +68,17 @@ void warnOfModesBeyondModel(const PlateValues& values, std::vector<std::string>&
     if (!p.condensed()) {
         const double dofs = double(values.simulation->dofCount());
         if (p.modes <= dofs) return;  // modes = dofs: every mode, as asked
-        out.push_back(format("modes = %g is more than the plate's %g free dofs (nx = %g, ny = %g): there are no more "
-                             "modes than dofs, so this run keeps all of them, the full model of modes = 0, at its "
-                             "cost; take modes < the dofs for a reduced model",
-                             double(p.modes), dofs, double(p.nx), double(p.ny)));
+        out.push_back(
+            format("modes = %g is more than the plate's %g free dofs (nx = %g, ny = %g): there are no more "
+                   "modes than dofs, so this run keeps all of them, the full model of modes = 0, at its "
+                   "cost; take modes < the dofs for a reduced model",
+                   double(p.modes), dofs, double(p.nx), double(p.ny)));
     } else {
-        out.push_back(format("modes = %g is at least the count of the singular mass's massive modes on this mesh "
-                             "(nx = %g, ny = %g): this run keeps all of them, the full model of modes = 0, at its "
-                             "cost; take fewer modes for a reduced model",
-                             double(p.modes), double(p.nx), double(p.ny)));
+        out.push_back(
+            format("modes = %g is at least the count of the singular mass's massive modes on this mesh "
+                   "(nx = %g, ny = %g): this run keeps all of them, the full model of modes = 0, at its "
+                   "cost; take fewer modes for a reduced model",
+                   double(p.modes), double(p.nx), double(p.ny)));
     }
 }
 // A tolerance or sub-step count only the flow law uses (docs/theory.md §21–22), set for another
