@@ -453,7 +453,7 @@ ResourceEstimate planResources(const PlateParameters& p, const FiniteElementSpac
     if (log) log(estimate.describe());
     requireWithinBudget(p, estimate);
     if (log)
-        for (const std::string& notice : costNotices(p, estimate)) log(notice);
+        for (const std::string& notice : costNotices(p, estimate)) log.warn(notice);
     return estimate;
 }
 
