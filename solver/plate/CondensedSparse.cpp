@@ -17,9 +17,10 @@ namespace {
 // μ; the eigenvalues come out to about its square over the gap (measured: within 1e-13 of the dense
 // solution's on 14x5 and 28x10).
 constexpr double kRitzTolerance = 1e-12;
-// Lanczos vectors beyond the kept modes: with 80 more, 56x20's 100 lowest of 2240 converge in the
-// first 180 products, no restart (measured: 100 more, 201; 120 more, 221; 50 more, 201 over 3 restarts).
-constexpr Eigen::Index kExtraLanczosVectors = 80;
+// Lanczos vectors beyond the kept modes: as many again, at least 80. 56x20's 100 lowest of 2240
+// converge in the first 200 products, no restart (measured: 80 more, 180; 120 more, 220; 50 more, 200
+// over 3 restarts); 250 with only 80 more took 56x20's setup from 8.8 to 11.3 s (restarts).
+Eigen::Index lanczosVectors(Eigen::Index kept) { return kept + std::max<Eigen::Index>(80, kept); }
 
 // T = Rᵀ K⁻¹ R as Spectra's operator: one solve with the factor of K per product.
 class MassiveFlexibility {
@@ -44,12 +45,12 @@ private:
 // The `kept` largest eigenpairs of T by Spectra's implicitly restarted Lanczos (README: why Spectra),
 // from the deterministic start vector (the same bits on every CPU): μ descending, Φ orthonormal.
 // T's largest eigenvalues are 1/ω² of the lowest modes, which fall off like 1/i²: the basis
-// (q × (kept + 80)) stays small against the dense T (q × q).
+// (q × 2 kept) stays small against the dense T (q × q).
 void largestFlexibilities(const SparseCholesky& stiffness, const Eigen::SparseMatrix<double>& root, Eigen::Index kept,
                           Eigen::VectorXd& mu, Eigen::MatrixXd& phi) {
     const Eigen::Index nq = root.cols();
     MassiveFlexibility op(stiffness, root);
-    Spectra::SymEigsSolver<MassiveFlexibility> eigs(op, kept, std::min(nq, kept + kExtraLanczosVectors));
+    Spectra::SymEigsSolver<MassiveFlexibility> eigs(op, kept, std::min(nq, lanczosVectors(kept)));
     Eigen::VectorXd start(nq);
     for (Eigen::Index i = 0; i < nq; ++i) start[i] = startEntry(i, 0);
     eigs.init(start.data());
