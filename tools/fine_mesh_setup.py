@@ -124,8 +124,14 @@ def main():
         "load_average": os.getloadavg()[0],
         "stop_s": args.stop,
         "rows": rows,
-        "cpu_over_estimate": {"min": min(r["cpu_over_estimate"] for r in rows), "max": max(r["cpu_over_estimate"] for r in rows)},
-        "rss_over_estimate": {"min": min(r["rss_over_estimate"] for r in rows), "max": max(r["rss_over_estimate"] for r in rows)},
+        "cpu_over_estimate": {
+            "min": min(r["cpu_over_estimate"] for r in rows),
+            "max": max(r["cpu_over_estimate"] for r in rows),
+        },
+        "rss_over_estimate": {
+            "min": min(r["rss_over_estimate"] for r in rows),
+            "max": max(r["rss_over_estimate"] for r in rows),
+        },
     }
     Path(args.json).write_text(json.dumps(out, indent=1) + "\n")
     return 0

@@ -38,8 +38,8 @@ TEST(ResourceNotices, TheDefaultSceneHasNone) { EXPECT_TRUE(notices(PlateParamet
 // default mesh, examples/error_against_the_plate.py's accurate plate and the 56x20 goal.
 TEST(ResourceNotices, ThePaperAndExampleScenesHaveNone) {
     std::vector<PlateParameters> scenes;
-    for (const auto& [element, nx, ny] : {std::tuple{ElementType::Argyris, 14, 5}, {ElementType::Argyris, 16, 5},
-                                          {ElementType::Fvs, 20, 7}}) {
+    for (const auto& [element, nx, ny] :
+         {std::tuple{ElementType::Argyris, 14, 5}, {ElementType::Argyris, 16, 5}, {ElementType::Fvs, 20, 7}}) {
         PlateParameters p;
         p.element = element;
         p.nx = nx;
