@@ -5,7 +5,7 @@ against the resource estimate the FMU logs, then a short run of the default driv
 communication step 1e-4 s) to show it steps, with its CPU per communication step.
 
     python tools/fine_mesh_setup.py [--fmu build/PlateImpact.fmu] [--json docs/fine_mesh_setup.json]
-                                    [--stop 0.005] [--only 56x20]
+                                    [--stop 0.005] [--only 56x20] [--summarize]
 
 About five minutes on the 2-core machine (112 × 40 is most of it).
 """
@@ -34,6 +34,7 @@ CASES = [
     ((56, 20), 100, "conserving"),
     ((112, 40), 100, "flow"),
 ]
+FINE_DOFS = 10000
 GOALS = {"56x20": {"cpu_s": 3.0, "rss_mb": 300.0}, "112x40": {"cpu_s": 30.0, "rss_mb": 2048.0}}
 
 
@@ -88,8 +89,13 @@ def main():
     ap.add_argument("--json", default=str(REPO / "docs" / "fine_mesh_setup.json"))
     ap.add_argument("--stop", type=float, default=0.005, help="the short run after the setup, s")
     ap.add_argument("--only", help="one mesh, e.g. 56x20 (no JSON written)")
+    ap.add_argument("--summarize", action="store_true", help="recompute the goals and ratios of --json")
     ap.add_argument("--child", nargs=4, help=argparse.SUPPRESS)
     args = ap.parse_args()
+    if args.summarize:
+        out = summarize(json.loads(Path(args.json).read_text()))
+        Path(args.json).write_text(json.dumps(out, indent=1) + "\n")
+        return 0
     if args.child:
         nx, ny, modes = (int(v) for v in args.child[:3])
         print(json.dumps(one(args.fmu, nx, ny, modes, args.child[3], args.stop)))
@@ -101,12 +107,6 @@ def main():
         cmd = [sys.executable, __file__, "--fmu", args.fmu, "--stop", str(args.stop), "--child"]
         r = subprocess.run([*cmd, str(nx), str(ny), str(modes), law], capture_output=True, text=True, check=True)
         row = json.loads(r.stdout.strip().splitlines()[-1])
-        row["cpu_over_estimate"] = row["setup_cpu_s"] / row["est_init_s"]
-        row["rss_over_estimate"] = row["rss_mb"] / row["est_peak_mb"]
-        goal = GOALS.get(row["mesh"]) if modes == 100 and law == "flow" else None
-        if goal:
-            row["goal"] = goal
-            row["goal_met"] = row["setup_cpu_s"] <= goal["cpu_s"] and row["rss_mb"] <= goal["rss_mb"]
         rows.append(row)
         print(
             f"{row['mesh']:>7} m{modes:<4} {law:10s} {row['dofs']:6d} dofs {row['contact_rows']:5d} rows: setup "
@@ -124,17 +124,28 @@ def main():
         "load_average": os.getloadavg()[0],
         "stop_s": args.stop,
         "rows": rows,
-        "cpu_over_estimate": {
-            "min": min(r["cpu_over_estimate"] for r in rows),
-            "max": max(r["cpu_over_estimate"] for r in rows),
-        },
-        "rss_over_estimate": {
-            "min": min(r["rss_over_estimate"] for r in rows),
-            "max": max(r["rss_over_estimate"] for r in rows),
-        },
     }
-    Path(args.json).write_text(json.dumps(out, indent=1) + "\n")
+    Path(args.json).write_text(json.dumps(summarize(out), indent=1) + "\n")
     return 0
+
+
+def summarize(out):
+    """Each row's goal and its measured over estimated setup CPU and memory (the setup's own: the peak
+    less the process before it, Python and fmpy), and their range over the fine meshes (from
+    FINE_DOFS free dofs: the sparse condensation, the estimate's stated accuracy of 1.5×)."""
+    for row in out["rows"]:
+        row["cpu_over_estimate"] = row["setup_cpu_s"] / row["est_init_s"]
+        row["rss_over_estimate"] = (row["rss_mb"] - row["rss_before_mb"]) / row["est_peak_mb"]
+        goal = GOALS.get(row["mesh"]) if row["modes"] == 100 and row["law"] == "flow" else None
+        if goal:
+            row["goal"] = goal
+            row["goal_cpu_met"] = row["setup_cpu_s"] <= goal["cpu_s"]
+            row["goal_rss_met"] = row["rss_mb"] <= goal["rss_mb"]
+    fine = [r for r in out["rows"] if r["dofs"] >= FINE_DOFS]
+    out["fine_dofs"] = FINE_DOFS
+    for key in ("cpu_over_estimate", "rss_over_estimate"):
+        out[key] = {"min": min(r[key] for r in fine), "max": max(r[key] for r in fine)}
+    return out
 
 
 if __name__ == "__main__":

@@ -19,7 +19,8 @@ namespace {
 constexpr double kRitzTolerance = 1e-12;
 // Lanczos vectors beyond the kept modes: as many again, at least 80. 56x20's 100 lowest of 2240
 // converge in the first 200 products, no restart (measured: 80 more, 180; 120 more, 220; 50 more, 200
-// over 3 restarts); 250 with only 80 more took 56x20's setup from 8.8 to 11.3 s (restarts).
+// over 3 restarts); on 250 modes the setup is the same either way (11.3 s with 80 more, 11.5 s with
+// 250 more: the restarts cost little, tools/fine_mesh_setup.py).
 Eigen::Index lanczosVectors(Eigen::Index kept) { return kept + std::max<Eigen::Index>(80, kept); }
 
 // T = Rᵀ K⁻¹ R as Spectra's operator: one solve with the factor of K per product.
