@@ -116,6 +116,17 @@ def test_an_experiment_tolerance_is_said_to_change_nothing_at_the_warning_level(
     assert "the parameter dt" in warned[0] and "the parameter tolerance" in warned[0], warned
 
 
+def test_a_costly_run_is_said_once_at_the_warning_level(fmu_path):
+    """A run whose estimated cost passes a minute of CPU per simulated second says so once, as a
+    Warning (fmpy hides OK and info-level lines), with what would make it cheaper (issue 70): the
+    small plate's step over dt = 1e-9 s. The same plate at dt = 1e-4 (above) warns of nothing."""
+    with PlateRun(fmu_path, **SMALL, dt=1e-9) as run:
+        run.close()
+        costly = [m for m in warnings(run) if "each simulated second will cost" in m]
+        assert len(costly) == 1, warnings(run)
+        assert "coarser mesh" in costly[0] and "obstacle_lower_x_min" in costly[0], costly
+
+
 def test_a_call_after_a_refused_one_says_how_to_go_on(fmu_path):
     """After a refused call the instance is in the error state; every later call is refused too, and
     its message says what is still allowed: reset, set a saved state, or free (issue 71)."""

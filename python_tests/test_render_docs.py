@@ -131,6 +131,24 @@ def test_the_resources_table_is_one_run_of_resource_scaling(tmp_path):
     assert "| 4321 |" in text and "–7.77 (" in text
 
 
+def test_the_fine_mesh_table_is_one_run_of_fine_mesh_setup(tmp_path):
+    """Issue 70: "The condensed plate on fine meshes" held hand-typed measurements; its table and
+    ratios now come from docs/fine_mesh_setup.json (tools/fine_mesh_setup.py), and a new
+    measurement changes the page."""
+    template = (DOCS / "templates" / "performance.md").read_text()
+    start = template.index("## The condensed plate on fine meshes")
+    section = template[start : template.index("\n## ", start)]
+    bare = re.sub(r"\{\{.*?\}\}|\{%.*?%\}", "", section, flags=re.S)
+    assert not re.search(r"^\| \d+ × \d+ \|", bare, re.M), "a hand-typed row in the fine-mesh table"
+    assert not re.findall(r"\d+(?:\.\d+)? ?(?:s|MB) ?/ ?\d", bare), "a hand-typed measurement"
+    data = json.loads((DOCS / "fine_mesh_setup.json").read_text())
+    data["rows"][0]["setup_cpu_s"] = 98.76
+    data["cpu_over_estimate"]["max"] = 7.77
+    (tmp_path / "fine_mesh_setup.json").write_text(json.dumps(data))
+    text = render_docs.render("performance.md", tmp_path)
+    assert "| 98.76 |" in text and "–7.77," in text
+
+
 def test_a_changed_measurement_changes_the_readme(tmp_path):
     data = json.loads((DOCS / "step_latency.json").read_text())
     for r in data["rows"]:

@@ -5,7 +5,7 @@
 #   bash scripts/packages.sh build                           # scripts/setup.sh (run.sh): build/ and the venv
 #   bash scripts/packages.sh base win64 aarch64 qemu fuzz    # test.sh: every stage
 #
-#   build    cmake g++ make binutils Eigen GoogleTest xxhash python3-venv: what run.sh needs
+#   build    cmake g++ make binutils Eigen Spectra GoogleTest xxhash python3-venv: what run.sh needs
 #   base     build, and what only the tests need: valgrind, clang-format (libllvm14 and
 #            libclang-cpp14, which clang shares: 47 of the ~60 MB more than build; test.sh installs
 #            them in the background with clang)
@@ -31,6 +31,7 @@ for group in "$@"; do
       have_cmd make || need+=(make)
       have_cmd readelf || need+=(binutils)
       [ -f /usr/include/eigen3/Eigen/Core ] || need+=(libeigen3-dev)
+      [ -f /usr/include/Spectra/SymEigsSolver.h ] || need+=(libspectra-dev)  # the condensed plate's modes
       [ -f /usr/include/gtest/gtest.h ] || need+=(libgtest-dev)
       [ -f /usr/include/xxhash.h ] || need+=(libxxhash-dev)  # the FMU-state checksum (header-only)
       have_cmd python3 || need+=(python3)

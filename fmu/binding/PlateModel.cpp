@@ -118,12 +118,15 @@ public:
     void build() override {
         // A plate::ParameterError names the parameter, its value and the allowed range; a
         // plate::ResourceError the estimate and memory_limit. The estimate and the progress of
-        // long initializations go to the user (category logInfo).
+        // long initializations go to the user (category logInfo); a long setup or a costly run is
+        // said at status Warning (costNotices), which masters show by default.
         std::string estimate = "no estimate was made";
-        const plate::ProgressLog log = [this, &estimate](const std::string& line) {
-            if (estimate == "no estimate was made") estimate = line;
-            inform(line);
-        };
+        const plate::ProgressLog log(
+            [this, &estimate](const std::string& line) {
+                if (estimate == "no estimate was made") estimate = line;
+                inform(line);
+            },
+            [this](const std::string& line) { warn(line); });
         requireOneDrive();
         try {
             simulation_ = std::make_unique<plate::CheckedPlate>(

@@ -1,6 +1,6 @@
 #include "plate/CondensedSparse.h"
 
-#include <Eigen/Eigenvalues>
+#include <Spectra/SymEigsSolver.h>
 #include <algorithm>
 #include <cmath>
 #include <stdexcept>
@@ -13,50 +13,54 @@ namespace plate {
 
 namespace {
 
-// Lanczos' tolerance on each Ritz pair's residual ‖T φ − μ φ‖, relative to μ: the eigenvalues come
-// out to about its square over the gap (measured: within 1e-13 of the dense solution's).
-constexpr double kLanczosTolerance = 1e-12;
+// The Ritz pairs' tolerance: Spectra accepts a pair once its residual ‖T φ − μ φ‖ is below it times
+// μ; the eigenvalues come out to about its square over the gap (measured: within 1e-13 of the dense
+// solution's on 14x5 and 28x10).
+constexpr double kRitzTolerance = 1e-12;
+// Lanczos vectors beyond the kept modes: as many again, at least 80. 56x20's 100 lowest of 2240
+// converge in the first 200 products, no restart (measured: 80 more, 180; 120 more, 220; 50 more, 200
+// over 3 restarts); on 250 modes the setup is the same either way (11.3 s with 80 more, 11.5 s with
+// 250 more: the restarts cost little, tools/fine_mesh_setup.py).
+Eigen::Index lanczosVectors(Eigen::Index kept) { return kept + std::max<Eigen::Index>(80, kept); }
 
-// The `kept` largest eigenpairs of T = Rᵀ K⁻¹ R (one solve with K per product) by Lanczos with full
-// reorthogonalization, no restart: the plate's 1/ω² fall off like 1/i², so the leading ones converge
-// in about twice as many steps as are kept (measured: 56x20, 100 modes of 2240, 210 steps), and
-// the basis (q × steps) stays small against the dense T (q × q). The Ritz values are checked every
-// ten steps; μ descending, Φ orthonormal.
+// T = Rᵀ K⁻¹ R as Spectra's operator: one solve with the factor of K per product.
+class MassiveFlexibility {
+public:
+    using Scalar = double;
+    MassiveFlexibility(const SparseCholesky& stiffness, const Eigen::SparseMatrix<double>& root)
+        : stiffness_(stiffness), root_(root) {}
+    Eigen::Index rows() const { return root_.cols(); }
+    Eigen::Index cols() const { return root_.cols(); }
+    void perform_op(const double* in, double* out) const {
+        b_.noalias() = root_ * Eigen::Map<const Eigen::VectorXd>(in, root_.cols());
+        stiffness_.solve(b_, x_);
+        Eigen::Map<Eigen::VectorXd>(out, root_.cols()).noalias() = root_.transpose() * x_;
+    }
+
+private:
+    const SparseCholesky& stiffness_;
+    const Eigen::SparseMatrix<double>& root_;
+    mutable Eigen::VectorXd b_, x_;  // Spectra calls perform_op on a const operator
+};
+
+// The `kept` largest eigenpairs of T by Spectra's implicitly restarted Lanczos (README: why Spectra),
+// from the deterministic start vector (the same bits on every CPU): μ descending, Φ orthonormal.
+// T's largest eigenvalues are 1/ω² of the lowest modes, which fall off like 1/i²: the basis
+// (q × 2 kept) stays small against the dense T (q × q).
 void largestFlexibilities(const SparseCholesky& stiffness, const Eigen::SparseMatrix<double>& root, Eigen::Index kept,
                           Eigen::VectorXd& mu, Eigen::MatrixXd& phi) {
     const Eigen::Index nq = root.cols();
-    Eigen::MatrixXd basis(nq, std::min(nq, 2 * kept + 20));
-    Eigen::VectorXd alpha(basis.cols()), beta(basis.cols()), w(nq), b, x;
-    for (Eigen::Index i = 0; i < nq; ++i) w[i] = startEntry(i, 0);
-    basis.col(0) = w.normalized();
-    Eigen::SelfAdjointEigenSolver<Eigen::MatrixXd> ritz;
-    for (Eigen::Index j = 0;; ++j) {
-        b = root * basis.col(j);
-        stiffness.solve(b, x);
-        w.noalias() = root.transpose() * x;
-        alpha[j] = basis.col(j).dot(w);
-        for (int pass = 0; pass < 2; ++pass)  // twice is enough (Kahan): w ⟂ the basis to roundoff
-            w.noalias() -= basis.leftCols(j + 1) * (basis.leftCols(j + 1).transpose() * w);
-        beta[j] = w.norm();
-        const bool exhausted = j + 1 == nq || beta[j] <= 1e-14 * std::abs(alpha[j]);
-        if (exhausted || (j + 1 >= kept + 10 && (j + 1) % 10 == 0)) {
-            Eigen::MatrixXd tridiagonal = Eigen::MatrixXd::Zero(j + 1, j + 1);
-            tridiagonal.diagonal() = alpha.head(j + 1);
-            tridiagonal.diagonal(-1) = beta.head(j);
-            ritz.compute(tridiagonal);  // ascending: the largest last
-            bool converged = true;
-            for (Eigen::Index i = 0; i < kept && converged; ++i) {
-                const Eigen::Index c = j - i;
-                converged = beta[j] * std::abs(ritz.eigenvectors()(j, c)) <= kLanczosTolerance * ritz.eigenvalues()[c];
-            }
-            if (converged || exhausted) break;
-        }
-        if (j + 1 == basis.cols()) basis.conservativeResize(Eigen::NoChange, std::min(nq, 2 * basis.cols()));
-        basis.col(j + 1) = w / beta[j];
-    }
-    const Eigen::Index steps = ritz.eigenvalues().size();
-    mu = ritz.eigenvalues().tail(kept).reverse();
-    phi = basis.leftCols(steps) * ritz.eigenvectors().rightCols(kept).rowwise().reverse();
+    MassiveFlexibility op(stiffness, root);
+    Spectra::SymEigsSolver<MassiveFlexibility> eigs(op, kept, std::min(nq, lanczosVectors(kept)));
+    Eigen::VectorXd start(nq);
+    for (Eigen::Index i = 0; i < nq; ++i) start[i] = startEntry(i, 0);
+    eigs.init(start.data());
+    eigs.compute(Spectra::SortRule::LargestAlge, 1000, kRitzTolerance, Spectra::SortRule::LargestAlge);
+    if (eigs.info() != Spectra::CompInfo::Successful)
+        throw std::runtime_error("the lowest massive modes did not converge (Spectra's Lanczos, " +
+                                 std::to_string(eigs.num_iterations()) + " restarts)");
+    mu = eigs.eigenvalues();
+    phi = eigs.eigenvectors();
 }
 
 // The massless flexibility Q0 S⁻¹ Q0ᵀ applied to blocks of right-hand sides (CondensedSparse.h):

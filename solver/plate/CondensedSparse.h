@@ -3,7 +3,8 @@
 // condense() takes from the sparse factors instead of the dense massive flexibility T = Rᵀ K⁻¹ R
 // (q × q, q one per element) and its complete eigen solution (docs/theory.md §17):
 //
-// - the lowest `kept` massive modes by Lanczos on T applied through the factor of K,
+// - the lowest `kept` massive modes by Lanczos (Spectra's SymEigsSolver) on T applied through the
+//   factor of K,
 //   y = Rᵀ K⁻¹ R x: T's largest eigenvalues are 1/ω² of the lowest modes;
 // - the massless flexibility Q0 S⁻¹ Q0ᵀ v (the static response to v with Rᵀw = 0) by the augmented
 //   Lagrangian iteration on the factor of K + ρ M_s (M_s = R Rᵀ): w ← (K + ρM_s)⁻¹(v − Rλ),

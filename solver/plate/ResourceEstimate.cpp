@@ -42,12 +42,16 @@ constexpr double kPerFactorFlop = 1.0e-9;
 constexpr double kPerDenseEigenCube = 2.0e-9;
 constexpr double kPerSparseStepEntry = 0.55e-9;  // per nonzero of L and of K/M touched in a step
 constexpr double kPerModalStepEntry = 1.0e-9;  // per entry of CΦ and per dof of a modal step
-// Per flop of a solve with a simplicial factor (4 nnz(L) flops per right-hand side): 56x20, one
-// right-hand side at a time (Lanczos) ~1 ms, 32 at a time (the massless solves) 0.86 ms each.
-constexpr double kPerSolveFlop = 2.0e-10;
-// The contact rows' dense work once condensed (D's Cholesky, the schemes' r × r operators): per r³,
-// fitted to 112x40 (r = 4593: ~37 s of 117 s beyond the solves).
-constexpr double kPerRowCube = 3.5e-10;
+// Per flop of a solve with a simplicial factor (4 nnz(L) flops per right-hand side), and the contact
+// rows' dense work once condensed (D's Cholesky, the schemes' r × r operators) per r³: fitted to the
+// sparse condensation's setups (CPU, flow, 100 modes, tools/fine_mesh_setup.py) of 56x20 (~7 s; 3.8 k
+// solves of nnz(L) = 1.1 M, r = 1177) and 112x40 (~87 s; 14 k solves of 6.7 M, r = 4593): the larger
+// runs at ~0.22 ns per solve flop, the smaller at ~0.38, so the fit sits between (both within 1.5×).
+constexpr double kPerSolveFlop = 3.0e-10;
+// Per flop of a Lanczos product's solve, one right-hand side (Spectra, CondensedSparse.cpp): 56x20,
+// 201 products of 4 nnz(L) = 4.5 MFlop in 0.91 s.
+constexpr double kPerLanczosFlop = 0.9e-9;
+constexpr double kPerRowCube = 0.5e-10;
 constexpr int kSubspaceIterations = 60;  // typical subspace iterations (Spectrum.cpp, up to 300)
 constexpr int kPowerIterations = 300;  // typical power iterations for κ_h (up to 2000)
 
@@ -193,8 +197,8 @@ namespace {
 bool sparseCondensation(const PlateParameters& p, double massive) {
     return !denseCondensationServes(static_cast<Eigen::Index>(massive), p.modes);
 }
-// Lanczos' steps for m modes (CondensedSparse.cpp: about twice as many as kept, checked every ten).
-double lanczosSteps(double kept) { return 2.0 * kept + 20.0; }
+// Lanczos' products for m modes (CondensedSparse.cpp: the kept ones and as many more, at least 80).
+double lanczosSteps(double kept) { return kept + std::max(80.0, kept); }
 
 // The modal engines' memory beyond the clamped matrices (bytes) and their spectrum time (s).
 void modalCost(const PlateParameters& p, const ProblemSize& s, EngineKind engine, double& bytes, double& seconds) {
@@ -241,12 +245,13 @@ void estimateTimes(const PlateParameters& p, const ProblemSize& s, double massiv
     const double oneFactor = kPerAnalysisEntry * z + kPerFactorFlop * s.factorFlops;
     if (e.engine != EngineKind::ReducedModal) e.factorSeconds = 2 * oneFactor;
     if (e.engine == EngineKind::Condensed && sparseCondensation(p, massive)) {
-        // Factors of K and K + ρ M_s; a solve per Lanczos step, per mode (V) and three per row and
-        // for the load (the massless iteration, CondensedSparse.cpp).
+        // Factors of K and K + ρ M_s; a solve per Lanczos product (one right-hand side each), then
+        // blocked ones per mode (V) and three per row and for the load (the massless iteration,
+        // CondensedSparse.cpp).
         const double kept = p.modes;
         e.factorSeconds = 2 * oneFactor;
-        e.spectrumSeconds =
-            (lanczosSteps(kept) + kept + 3 * (rows + 1)) * 4.0 * l * kPerSolveFlop + kPerRowCube * rows * rows * rows;
+        e.spectrumSeconds = lanczosSteps(kept) * 4.0 * l * kPerLanczosFlop +
+                            (kept + 3 * (rows + 1)) * 4.0 * l * kPerSolveFlop + kPerRowCube * rows * rows * rows;
     } else if (e.engine == EngineKind::Condensed) {
         // One factor of K; a solve per massive coordinate and per row; the dense eigen solution of T.
         e.factorSeconds = oneFactor;
@@ -453,7 +458,7 @@ ResourceEstimate planResources(const PlateParameters& p, const FiniteElementSpac
     if (log) log(estimate.describe());
     requireWithinBudget(p, estimate);
     if (log)
-        for (const std::string& notice : costNotices(p, estimate)) log(notice);
+        for (const std::string& notice : costNotices(p, estimate)) log.warn(notice);
     return estimate;
 }
 

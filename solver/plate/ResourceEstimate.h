@@ -16,6 +16,8 @@
 #include <chrono>
 #include <functional>
 #include <string>
+#include <type_traits>
+#include <utility>
 #include <vector>
 
 #include "fe/Assembly.h"
@@ -98,8 +100,22 @@ inline constexpr double kLongSetupSeconds = 10.0;
 inline constexpr double kCostlyRunSeconds = 60.0;
 std::vector<std::string> costNotices(const PlateParameters& p, const ResourceEstimate& estimate);
 
-// Messages of an instance's initialization (the FMU's log); empty: none.
-using ProgressLog = std::function<void(const std::string&)>;
+// Messages of an instance's initialization (the FMU's log); empty: none. Called with a line, the
+// estimate and the progress (the FMU's logInfo); warn() the cost notices, which a master that shows
+// only warnings must show too (the FMU's status Warning; without a warning sink, the info one).
+class ProgressLog {
+public:
+    using Sink = std::function<void(const std::string&)>;
+    ProgressLog() = default;
+    template <class Info, class = std::enable_if_t<std::is_constructible_v<Sink, Info>>>
+    ProgressLog(Info info, Sink warning = {}) : info_(std::move(info)), warning_(std::move(warning)) {}
+    explicit operator bool() const { return static_cast<bool>(info_); }
+    void operator()(const std::string& line) const { info_(line); }
+    void warn(const std::string& line) const { (warning_ ? warning_ : info_)(line); }
+
+private:
+    Sink info_, warning_;
+};
 
 // The initialization's phases as log lines: what is being done, its estimated time and how
 // far the initialization is (elapsed against the estimate). Lines are written only when the

@@ -5,6 +5,7 @@
 #include <gtest/gtest.h>
 
 #include <string>
+#include <tuple>
 #include <vector>
 
 #include "plate/PlateParameters.h"
@@ -31,6 +32,32 @@ PlateParameters flow(int nx, int ny, int modes) {
 }  // namespace
 
 TEST(ResourceNotices, TheDefaultSceneHasNone) { EXPECT_TRUE(notices(PlateParameters{}).empty()); }
+
+// The paper's and the examples' scenes say nothing either (the FMU logs these at status Warning,
+// which masters show): examples/paper_scenes.py's meshes at its finest dt, the paper's law on the
+// default mesh, examples/error_against_the_plate.py's accurate plate and the 56x20 goal.
+TEST(ResourceNotices, ThePaperAndExampleScenesHaveNone) {
+    std::vector<PlateParameters> scenes;
+    for (const auto& [element, nx, ny] :
+         {std::tuple{ElementType::Argyris, 14, 5}, {ElementType::Argyris, 16, 5}, {ElementType::Fvs, 20, 7}}) {
+        PlateParameters p;
+        p.element = element;
+        p.nx = nx;
+        p.ny = ny;
+        p.dt = 2.5e-6;
+        scenes.push_back(p);
+    }
+    PlateParameters paperLaw;
+    paperLaw.mass = MassModel::SingularP0;
+    paperLaw.timeScheme = TimeScheme::Conserving;
+    scenes.push_back(paperLaw);
+    scenes.push_back(flow(28, 10, 40));
+    scenes.push_back(flow(56, 20, 100));
+    for (const PlateParameters& p : scenes) {
+        const std::vector<std::string> said = notices(p);
+        EXPECT_TRUE(said.empty()) << p.nx << "x" << p.ny << ": " << (said.empty() ? "" : said[0]);
+    }
+}
 
 // 112x40 on 100 modes: ~2 minutes of setup by the estimate (measured 117 s of CPU, docs/performance.md).
 TEST(ResourceNotices, ALongSetupSaysSoWithWhatShortensIt) {
@@ -61,4 +88,22 @@ TEST(ResourceNotices, ACostlyRunSaysSoOnceWithWhatMakesItCheaper) {
         EXPECT_NE(line.find("coarser mesh"), std::string::npos) << line;
     }
     EXPECT_EQ(costly, 1);
+}
+
+// The sparse condensation's memory (CondensedSparse.cpp; measured 1978 MB at 112x40 on 100 modes,
+// tools/fine_mesh_setup.py) is what refuses: 112x40 fits the default 2048 MB budget, not 1500 MB,
+// and the refusal names the estimate and memory_limit. Its setup is over ten seconds, 56x20's not.
+TEST(ResourceNotices, TheSparseCondensationIsRefusedBeyondTheBudget) {
+    PlateParameters p = flow(112, 40, 100);
+    const ResourceEstimate e = estimateResources(p, predictFromMesh(p));
+    EXPECT_NO_THROW(requireWithinBudget(p, e));
+    p.memoryLimit = 1500.0;
+    try {
+        requireWithinBudget(p, e);
+        FAIL() << "not refused at memory_limit = 1500 MB with " << e.peakMB << " MB estimated";
+    } catch (const ResourceError& refused) {
+        EXPECT_NE(std::string(refused.what()).find("memory_limit"), std::string::npos) << refused.what();
+    }
+    const PlateParameters small = flow(56, 20, 100);
+    EXPECT_LT(estimateResources(small, predictFromMesh(small)).initSeconds, kLongSetupSeconds);
 }
