@@ -31,12 +31,14 @@ endforeach()
 
 set(src "${dir}/sources")
 configure_file("${REPO}/fmu/source/CMakeLists.txt" "${src}/CMakeLists.txt" COPYONLY)
-# The solver's folders as they are (includes name them from solver/), and of fmu/ the
-# version-neutral core, the FMI 3.0 front end, the binding and the vendored FMI headers.
-foreach(part base fe plate schemes PlateSimulation.h PlateSimulation.cpp MakeScheme.h MakeScheme.cpp InputSignal.h InputSignal.cpp
-             DiscretizationCheck.h DiscretizationCheck.cpp)
+# The solver's folders as they are (includes name them from solver/) with every file at its top
+# (globbed: a new one cannot be forgotten), and of fmu/ the version-neutral core, the FMI 3.0 front
+# end, the binding and the vendored FMI headers.
+file(GLOB solver_top "${REPO}/solver/*.h" "${REPO}/solver/*.cpp")
+foreach(part base fe plate schemes)
   file(COPY "${REPO}/solver/${part}" DESTINATION "${src}/plateimpact/solver")
 endforeach()
+file(COPY ${solver_top} DESTINATION "${src}/plateimpact/solver")
 foreach(part core fmi3 binding headers)
   file(COPY "${REPO}/fmu/${part}" DESTINATION "${src}/plateimpact/fmu")
 endforeach()
