@@ -64,62 +64,71 @@ void largestFlexibilities(const SparseCholesky& stiffness, const Eigen::SparseMa
 }
 
 // The massless flexibility Q0 S⁻¹ Q0ᵀ applied to blocks of right-hand sides (CondensedSparse.h):
-// the augmented Lagrangian iteration on the factor of K_ρ = K + ρ M_s.
+// the displacement block of the saddle-point problem's solution,
+//
+//   [K  R] [w]   [v]
+//   [Rᵀ 0] [μ] = [0],     w = Q0 S⁻¹ Q0ᵀ v  (the static response to v with Rᵀw = 0, §17),
+//
+// one solve per right-hand side with an L D Lᵀ factor of the saddle-point matrix (n + q rows). Its
+// order is K's fill-reducing one with each multiplier μ_e right after the last dof of its column of
+// R: every pivot is then that of a leading block [[K_EE, R_E], [R_Eᵀ, 0]] with K_EE SPD and R_E of
+// full column rank — positive for the dofs, negative for the multipliers, never zero — and μ_e's
+// column of L is about its last dof's (the element's dofs are a clique of K already): nnz(L) grows
+// by about q columns.
 class MasslessFlexibility {
 public:
-    MasslessFlexibility(const Eigen::SparseMatrix<double>& stiffness, const Eigen::SparseMatrix<double>& root)
-        : root_(root), rho_(penalty(stiffness, root)), augmented_(augment(stiffness, root, rho_)) {}
+    // stiffnessOrder: the fill-reducing order of K's factor.
+    MasslessFlexibility(const std::vector<int>& stiffnessOrder, const Eigen::SparseMatrix<double>& k,
+                        const Eigen::SparseMatrix<double>& root)
+        : n_(k.rows()), q_(root.cols()), saddle_(saddlePoint(k, root), saddleOrder(stiffnessOrder, root)) {}
 
-    // X = Q0 S⁻¹ Q0ᵀ V. Each solve gives x for the current multipliers λ and their update, about λ's
-    // error (the contraction is ~1e-5: Argyris P0, 14x5 to 56x20): x is returned once that update
-    // is below kTolerance of λ in every column — three solves — or stops shrinking (the solves'
-    // roundoff, ~3e-10 of λ with kPenalty = 1e3) where that is below 1e-6.
+    // X = Q0 S⁻¹ Q0ᵀ V (V: n × columns).
     void apply(const Eigen::MatrixXd& v, Eigen::MatrixXd& x) const {
-        Eigen::MatrixXd lambda = Eigen::MatrixXd::Zero(root_.cols(), v.cols()), update;
-        augmented_.solve(v, x);
-        double previous = HUGE_VAL;
-        for (int it = 0; it < kMaxIterations; ++it) {
-            update.noalias() = rho_ * (root_.transpose() * x);
-            lambda += update;
-            double change = 0.0;  // the largest relative update over the block's columns
-            for (Eigen::Index j = 0; j < v.cols(); ++j) {
-                const double size = lambda.col(j).norm();
-                if (size > 0.0) change = std::max(change, update.col(j).norm() / size);
-            }
-            if (it > 0 && (change <= kTolerance || (change >= previous && change <= 1e-6))) return;
-            if (change >= previous) break;
-            previous = change;
-            augmented_.solve(v - root_ * lambda, x);
-        }
-        throw std::runtime_error(
-            "the massless flexibility of the singular mass did not converge (augmented Lagrangian iteration)");
+        Eigen::MatrixXd b = Eigen::MatrixXd::Zero(n_ + q_, v.cols()), y;
+        b.topRows(n_) = v;
+        saddle_.solve(b, y);
+        x = y.topRows(n_);
     }
 
 private:
-    static constexpr int kMaxIterations = 60;
-    static constexpr double kTolerance = 1e-9;
-    // ρ over the element-level ω² scale: the contraction per step is 1/(1 + ρ/ω²) at the highest
-    // massive ω² (measured ~7e-6), and the factor of K_ρ loses about log10(kPenalty) digits to ρ
-    // (the floor above; 1e2: contraction 7e-5, floor 3e-11, four solves; 1e4: floor 3e-9).
-    static constexpr double kPenalty = 1e3;
-
-    // max_i K_ii / M_s,ii: the element-level ω² scale, the order of the highest massive ω².
-    static double penalty(const Eigen::SparseMatrix<double>& stiffness, const Eigen::SparseMatrix<double>& root) {
-        const Eigen::VectorXd massDiagonal = root.cwiseAbs2() * Eigen::VectorXd::Ones(root.cols());
-        double scale = 0.0;
-        for (Eigen::Index i = 0; i < massDiagonal.size(); ++i)
-            if (massDiagonal[i] > 0.0) scale = std::max(scale, stiffness.coeff(i, i) / massDiagonal[i]);
-        return kPenalty * scale;
+    // [[K, R], [Rᵀ, 0]], both triangles.
+    static Eigen::SparseMatrix<double> saddlePoint(const Eigen::SparseMatrix<double>& k,
+                                                   const Eigen::SparseMatrix<double>& root) {
+        const Eigen::Index n = k.rows(), q = root.cols();
+        std::vector<Eigen::Triplet<double>> entries;
+        entries.reserve(static_cast<std::size_t>(k.nonZeros() + 2 * root.nonZeros()));
+        for (Eigen::Index j = 0; j < k.outerSize(); ++j)
+            for (Eigen::SparseMatrix<double>::InnerIterator it(k, j); it; ++it)
+                entries.emplace_back(it.row(), it.col(), it.value());
+        for (Eigen::Index e = 0; e < q; ++e)
+            for (Eigen::SparseMatrix<double>::InnerIterator it(root, e); it; ++it) {
+                entries.emplace_back(it.row(), n + e, it.value());
+                entries.emplace_back(n + e, it.row(), it.value());
+            }
+        Eigen::SparseMatrix<double> a(n + q, n + q);
+        a.setFromTriplets(entries.begin(), entries.end());
+        return a;
     }
-    static Eigen::SparseMatrix<double> augment(const Eigen::SparseMatrix<double>& stiffness,
-                                               const Eigen::SparseMatrix<double>& root, double rho) {
-        const Eigen::SparseMatrix<double> mass = root * root.transpose();
-        return stiffness + rho * mass;
+    // K's order with each multiplier after the last of its dofs (a column of R without any: last).
+    static std::vector<int> saddleOrder(const std::vector<int>& stiffnessOrder,
+                                        const Eigen::SparseMatrix<double>& root) {
+        const auto n = static_cast<int>(root.rows()), q = static_cast<int>(root.cols());
+        const Eigen::SparseMatrix<double, Eigen::RowMajor> byDof = root;
+        std::vector<int> remaining(static_cast<std::size_t>(q)), order;
+        order.reserve(static_cast<std::size_t>(n + q));
+        for (int e = 0; e < q; ++e) remaining[std::size_t(e)] = static_cast<int>(root.col(e).nonZeros());
+        for (int d : stiffnessOrder) {
+            order.push_back(d);
+            for (Eigen::SparseMatrix<double, Eigen::RowMajor>::InnerIterator it(byDof, d); it; ++it)
+                if (--remaining[std::size_t(it.col())] == 0) order.push_back(n + static_cast<int>(it.col()));
+        }
+        for (int e = 0; e < q; ++e)
+            if (root.col(e).nonZeros() == 0) order.push_back(n + e);
+        return order;
     }
 
-    const Eigen::SparseMatrix<double>& root_;
-    double rho_;
-    SparseCholesky augmented_;
+    Eigen::Index n_, q_;
+    SparseCholesky saddle_;
 };
 
 // Right-hand sides per block: the solves' four-column passes, and n × kBlock doubles at a time.
@@ -144,9 +153,11 @@ SparseRows constraintRows(const ClampedPlate& plate, const std::vector<Constrain
 void condenseSparse(const ClampedPlate& plate, const Eigen::SparseMatrix<double>& root, const SparseRows& rows,
                     Eigen::Index kept, const SparseRows& recovery, CondensedPlate& c) {
     const Eigen::Index r = rows.rows(), nl = recovery.rows();
+    std::vector<int> stiffnessOrder;
     {
-        // The lowest modes: T's largest eigenvalues μ = 1/ω², Φ orthonormal; V = K⁻¹ R Φ Ω².
         const SparseCholesky stiffness(plate.stiffness);
+        stiffnessOrder = stiffness.ordering();
+        // The lowest modes: T's largest eigenvalues μ = 1/ω², Φ orthonormal; V = K⁻¹ R Φ Ω².
         Eigen::VectorXd mu;
         Eigen::MatrixXd phi;
         largestFlexibilities(stiffness, root, kept, mu, phi);
@@ -163,7 +174,7 @@ void condenseSparse(const ClampedPlate& plate, const Eigen::SparseMatrix<double>
     }
     // The massless part, every massive mode excluded: D = C Q0 S⁻¹ Q0ᵀ Cᵀ block by block, the
     // recovery functionals on the same solves, then the load.
-    const MasslessFlexibility massless(plate.stiffness, root);
+    const MasslessFlexibility massless(stiffnessOrder, plate.stiffness, root);
     c.delassus.resize(r, r);
     if (nl > 0) c.recoveryRows.resize(nl, r);
     Eigen::MatrixXd x;

@@ -5,6 +5,7 @@
 #include <cstring>
 #include <new>
 #include <stdexcept>
+#include <string>
 
 namespace plate {
 
@@ -37,7 +38,22 @@ struct SparseCholesky::Workspace {
 
 SparseCholesky::SparseCholesky(const Eigen::SparseMatrix<double>& spd)
     : n_(spd.rows()), ws_(std::make_unique<Workspace>()) {
-    Eigen::SparseMatrix<double> lower = spd.triangularView<Eigen::Lower>();
+    factor(spd, nullptr);
+}
+
+SparseCholesky::SparseCholesky(const Eigen::SparseMatrix<double>& symmetric, const std::vector<int>& ordering)
+    : n_(symmetric.rows()), ws_(std::make_unique<Workspace>()) {
+    if (static_cast<Eigen::Index>(ordering.size()) != n_)
+        throw std::invalid_argument("SparseCholesky: the ordering has " + std::to_string(ordering.size()) +
+                                    " entries for a matrix of " + std::to_string(n_) + " rows");
+    ws_->common.nmethods = 1;
+    ws_->common.method[0].ordering = CHOLMOD_GIVEN;
+    ws_->common.final_ll = 0;  // L D Lᵀ: negative pivots allowed, zero ones refused
+    factor(symmetric, &ordering);
+}
+
+void SparseCholesky::factor(const Eigen::SparseMatrix<double>& symmetric, const std::vector<int>* ordering) {
+    Eigen::SparseMatrix<double> lower = symmetric.triangularView<Eigen::Lower>();
     lower.makeCompressed();
     cholmod_sparse view{};
     view.nrow = view.ncol = static_cast<size_t>(n_);
@@ -52,13 +68,15 @@ SparseCholesky::SparseCholesky(const Eigen::SparseMatrix<double>& spd)
     view.sorted = 1;
     view.packed = 1;
     auto& c = ws_->common;
-    ws_->factor = cholmod_analyze(&view, &c);
+    ws_->factor = ordering ? cholmod_analyze_p(&view, const_cast<int*>(ordering->data()), nullptr, 0, &c)
+                           : cholmod_analyze(&view, &c);
     if (c.status == CHOLMOD_OUT_OF_MEMORY) throw std::bad_alloc();
     if (!ws_->factor) throw std::runtime_error("CHOLMOD analysis failed");
     cholmod_factorize(&view, ws_->factor, &c);
     if (c.status == CHOLMOD_OUT_OF_MEMORY) throw std::bad_alloc();  // not "not positive definite"
     if (c.status != CHOLMOD_OK || ws_->factor->minor < ws_->factor->n)
-        throw std::runtime_error("matrix is not positive definite (CHOLMOD)");
+        throw std::runtime_error(ordering ? "matrix has a zero pivot in the given order (CHOLMOD LDLᵀ)"
+                                          : "matrix is not positive definite (CHOLMOD)");
 }
 
 SparseCholesky::~SparseCholesky() = default;
@@ -76,6 +94,11 @@ long long SparseCholesky::factorNonZeros() const {
 }
 
 bool SparseCholesky::supernodal() const { return ws_->factor->is_super != 0; }
+
+std::vector<int> SparseCholesky::ordering() const {
+    const auto* perm = static_cast<const int*>(ws_->factor->Perm);
+    return std::vector<int>(perm, perm + n_);
+}
 
 const char* SparseCholesky::backend() { return "CHOLMOD"; }
 
@@ -124,8 +147,9 @@ void SparseCholesky::solve(const Eigen::VectorXd& b, Eigen::VectorXd& x) const {
 
 // The block's rows are dofs with their right-hand sides side by side (row-major): each column of
 // the simplicial L is read once for the whole block and applied as a vectorized row update, where
-// cholmod_solve2 reads L once per four right-hand sides (CondensedSparse.cpp's massless solves:
-// 56x20 plate, 64 at a time, measured below in docs/performance.md).
+// cholmod_solve2 reads L once per four right-hand sides (CondensedSparse.cpp's massless solves).
+// A column whose row of the block is still zero in the forward sweep changes nothing: skipped, so
+// that unit right-hand sides cost only their paths up the elimination tree there.
 void SparseCholesky::solve(const Eigen::MatrixXd& b, Eigen::MatrixXd& x) const {
     const cholmod_factor& f = *ws_->factor;
     const auto* perm = static_cast<const int*>(f.Perm);
@@ -133,16 +157,19 @@ void SparseCholesky::solve(const Eigen::MatrixXd& b, Eigen::MatrixXd& x) const {
     const auto* count = static_cast<const int*>(f.nz);
     const auto* row = static_cast<const int*>(f.i);
     const auto* value = static_cast<const double*>(f.x);
-    // L Lᵀ = A(Perm, Perm), the diagonal first in each column of L.
+    const bool ll = f.is_ll != 0;  // L Lᵀ; else L D Lᵀ with unit L, D in L's diagonal slots
+    // L Lᵀ = A(Perm, Perm) (or L D Lᵀ), the diagonal first in each column of L.
     Eigen::Matrix<double, Eigen::Dynamic, Eigen::Dynamic, Eigen::RowMajor> w(n_, b.cols());
     for (Eigen::Index r = 0; r < n_; ++r) w.row(r) = b.row(perm[r]);
-    for (Eigen::Index j = 0; j < n_; ++j) {  // L z = P b
-        w.row(j) /= value[start[j]];
+    for (Eigen::Index j = 0; j < n_; ++j) {  // L z = P b, then z ← D⁻¹ z (LDLᵀ)
+        if ((w.row(j).array() == 0.0).all()) continue;
+        if (ll) w.row(j) /= value[start[j]];
         for (int t = start[j] + 1; t < start[j] + count[j]; ++t) w.row(row[t]) -= value[t] * w.row(j);
+        if (!ll) w.row(j) /= value[start[j]];
     }
     for (Eigen::Index j = n_ - 1; j >= 0; --j) {  // Lᵀ y = z
         for (int t = start[j] + 1; t < start[j] + count[j]; ++t) w.row(j) -= value[t] * w.row(row[t]);
-        w.row(j) /= value[start[j]];
+        if (ll) w.row(j) /= value[start[j]];
     }
     x.resize(n_, b.cols());
     for (Eigen::Index r = 0; r < n_; ++r) x.row(perm[r]) = w.row(r);
