@@ -90,6 +90,22 @@ public:
         x = y.topRows(n_);
     }
 
+    // The functionals (rows over the dofs) by where their first dof is eliminated: blocks of
+    // neighbours in this order share most of their forward sweeps' paths.
+    std::vector<Eigen::Index> byElimination(const SparseRows& f) const {
+        const std::vector<int> at = saddle_.positions();
+        std::vector<std::pair<int, Eigen::Index>> key;
+        for (Eigen::Index i = 0; i < f.rows(); ++i) {
+            int first = static_cast<int>(n_ + q_);
+            for (SparseRows::InnerIterator it(f, i); it; ++it) first = std::min(first, at[std::size_t(it.col())]);
+            key.emplace_back(first, i);
+        }
+        std::sort(key.begin(), key.end());
+        std::vector<Eigen::Index> order;
+        for (const auto& k : key) order.push_back(k.second);
+        return order;
+    }
+
 private:
     // [[K, R], [Rᵀ, 0]], both triangles.
     static Eigen::SparseMatrix<double> saddlePoint(const Eigen::SparseMatrix<double>& k,
@@ -172,17 +188,26 @@ void condenseSparse(const ClampedPlate& plate, const Eigen::SparseMatrix<double>
         c.modalRotationInertia = modes.transpose() * plate.rotationInertia;
         if (nl > 0) c.recoveryModes = recovery * modes;
     }
-    // The massless part, every massive mode excluded: D = C Q0 S⁻¹ Q0ᵀ Cᵀ block by block, the
-    // recovery functionals on the same solves, then the load.
+    // The massless part, every massive mode excluded: D = C Q0 S⁻¹ Q0ᵀ Cᵀ block by block (rows
+    // eliminated near each other together), the recovery functionals on the same solves, then the load.
     const MasslessFlexibility massless(stiffnessOrder, plate.stiffness, root);
     c.delassus.resize(r, r);
     if (nl > 0) c.recoveryRows.resize(nl, r);
-    Eigen::MatrixXd x;
+    const std::vector<Eigen::Index> order = massless.byElimination(rows);
+    Eigen::MatrixXd v, x, y;
     for (Eigen::Index first = 0; first < r; first += kBlock) {
         const Eigen::Index k = std::min(kBlock, r - first);
-        massless.apply(Eigen::MatrixXd(rows.middleRows(first, k).transpose()), x);
-        c.delassus.middleCols(first, k).noalias() = rows * x;
-        if (nl > 0) c.recoveryRows.middleCols(first, k).noalias() = recovery * x;
+        v.setZero(plate.stiffness.rows(), k);
+        for (Eigen::Index j = 0; j < k; ++j)
+            for (SparseRows::InnerIterator it(rows, order[std::size_t(first + j)]); it; ++it)
+                v(it.col(), j) = it.value();
+        massless.apply(v, x);
+        y.noalias() = rows * x;
+        for (Eigen::Index j = 0; j < k; ++j) c.delassus.col(order[std::size_t(first + j)]) = y.col(j);
+        if (nl > 0) {
+            y.noalias() = recovery * x;
+            for (Eigen::Index j = 0; j < k; ++j) c.recoveryRows.col(order[std::size_t(first + j)]) = y.col(j);
+        }
     }
     c.delassus = 0.5 * (c.delassus + c.delassus.transpose()).eval();
     massless.apply(Eigen::MatrixXd(plate.pressureLoad), x);
