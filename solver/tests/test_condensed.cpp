@@ -14,6 +14,7 @@
 #include "base/Errors.h"
 #include "fe/Assembly.h"
 #include "plate/CondensedPlate.h"
+#include "plate/CondensedSparse.h"
 #include "schemes/FlowScheme.h"
 #include "schemes/MidpointScheme.h"
 #include "plate/PlateParameters.h"
@@ -39,7 +40,7 @@ struct Condensed {
     CondensedPlate c;
 
     Condensed(ElementType element, int nx, int ny, MassProjection projection, int modes = 0,
-              Condensation method = Condensation::Auto) {
+              Condensation method = Condensation::Auto, bool rowsAsRecovery = false) {
         p.nx = nx;
         p.ny = ny;
         space = makeSpace(element, Mesh(p.length, p.width, nx, ny));
@@ -52,7 +53,9 @@ struct Condensed {
         // free_edge_mid between vertices as an extra row when ny is odd, as PlateSimulation does
         std::vector<ConstraintRow> extra;
         if (ny % 2 == 1) extra.push_back({clamped->probe(*space, p.length, 0.5 * p.width), p.length});
-        c = condense(*clamped, rootFree, extra, modes, {}, method);
+        // rowsAsRecovery: the constraint rows read again as recovery functionals (L = C)
+        c = condense(*clamped, rootFree, extra, modes, rowsAsRecovery ? constraintRows(*clamped, extra) : SparseRows{},
+                     method);
     }
 
     // C K⁻¹ Cᵀ, C K⁻¹ F and Fᵀ K⁻¹ F from a dense factor of K.
@@ -134,8 +137,8 @@ TEST(CondensedPlate, ReducedModelKeepsTheMasslessPartAndTheLowestModes) {
 // by 1e-9, against the dense difference C K⁻¹ Cᵀ − C K⁻¹ R T⁻¹ Rᵀ K⁻¹ Cᵀ, which cancels three of four
 // digits: C K⁻¹ Cᵀ is ~1700 times D), within 5e-9 of D's largest entry (measured 8e-10 and 2e-10).
 void expectSparseMatchesDense(int nx, int ny, int modes) {
-    const Condensed dense(ElementType::Argyris, nx, ny, MassProjection::P0, modes, Condensation::Dense);
-    const Condensed sparse(ElementType::Argyris, nx, ny, MassProjection::P0, modes, Condensation::Sparse);
+    const Condensed dense(ElementType::Argyris, nx, ny, MassProjection::P0, modes, Condensation::Dense, true);
+    const Condensed sparse(ElementType::Argyris, nx, ny, MassProjection::P0, modes, Condensation::Sparse, true);
     const CondensedPlate &d = dense.c, &s = sparse.c;
     ASSERT_EQ(s.modes(), modes);
     ASSERT_EQ(s.rows(), d.rows());
@@ -150,6 +153,10 @@ void expectSparseMatchesDense(int nx, int ny, int modes) {
     EXPECT_NEAR(s.clampMass, d.clampMass, 1e-10 * d.totalMass);
     EXPECT_NEAR(s.clampMassMoment, d.clampMassMoment, 1e-10 * std::abs(d.totalMassMoment));
     EXPECT_LE((s.delassus - d.delassus).cwiseAbs().maxCoeff(), 5e-9 * d.delassus.cwiseAbs().maxCoeff());
+    // The recovery functionals ride on the same solves (here L = C: L Q0 S⁻¹ Q0ᵀ Cᵀ is D again,
+    // column by column wherever the solves' blocks put each row).
+    EXPECT_LE((s.recoveryRows - d.recoveryRows).cwiseAbs().maxCoeff(), 5e-9 * d.delassus.cwiseAbs().maxCoeff());
+    EXPECT_LE((s.recoveryRows - s.delassus).cwiseAbs().maxCoeff(), 1e-12 * d.delassus.cwiseAbs().maxCoeff());
     // The uniform pressure's massless part is zero with P0 (F = p B·1 lies in the range of R): both
     // give roundoff of the whole flexibility's response C K⁻¹ F, Fᵀ K⁻¹ F.
     Eigen::MatrixXd rows;
