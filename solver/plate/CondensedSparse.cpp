@@ -81,20 +81,38 @@ public:
     // stiffnessOrder: the fill-reducing order of K's factor.
     MasslessFlexibility(const std::vector<int>& stiffnessOrder, const Eigen::SparseMatrix<double>& k,
                         const Eigen::SparseMatrix<double>& root)
-        : n_(k.rows()), q_(root.cols()), saddle_(saddlePoint(k, root), saddleOrder(stiffnessOrder, root)) {}
+        : n_(k.rows()),
+          q_(root.cols()),
+          saddle_(saddlePoint(k, root), saddleOrder(stiffnessOrder, root)),
+          at_(saddle_.positions()) {}
 
-    // X = Q0 S⁻¹ Q0ᵀ V (V: n × columns).
-    void apply(const Eigen::MatrixXd& v, Eigen::MatrixXd& x) const {
-        Eigen::MatrixXd b = Eigen::MatrixXd::Zero(n_ + q_, v.cols()), y;
-        b.topRows(n_) = v;
-        saddle_.solve(b, y);
-        x = y.topRows(n_);
+    using RowBlock = SparseCholesky::RowBlock;
+    // The responses to a block of functionals as loads: F (rows of `loads` listed in `which`) in,
+    // f Q0 S⁻¹ Q0ᵀ Fᵀ out for each functional set f in `read` (results[i]: read[i].rows() × block),
+    // all in the saddle factor's order, so that only the rows the functionals touch are filled and
+    // read (no permutation of the whole block, no n × block displacement).
+    void respond(const SparseRows& loads, const std::vector<Eigen::Index>& which,
+                 const std::vector<const SparseRows*>& read, std::vector<RowBlock>& results) const {
+        const auto k = static_cast<Eigen::Index>(which.size());
+        w_.setZero(n_ + q_, k);
+        for (Eigen::Index j = 0; j < k; ++j)
+            for (SparseRows::InnerIterator it(loads, which[std::size_t(j)]); it; ++it)
+                w_(at_[std::size_t(it.col())], j) += it.value();
+        saddle_.solveInOrder(w_);
+        results.resize(read.size());
+        for (std::size_t f = 0; f < read.size(); ++f) {
+            const SparseRows& rows = *read[f];
+            results[f].setZero(rows.rows(), k);
+            for (Eigen::Index i = 0; i < rows.rows(); ++i)
+                for (SparseRows::InnerIterator it(rows, i); it; ++it)
+                    results[f].row(i) += it.value() * w_.row(at_[std::size_t(it.col())]);
+        }
     }
 
     // The functionals (rows over the dofs) by where their first dof is eliminated: blocks of
     // neighbours in this order share most of their forward sweeps' paths.
     std::vector<Eigen::Index> byElimination(const SparseRows& f) const {
-        const std::vector<int> at = saddle_.positions();
+        const std::vector<int>& at = at_;
         std::vector<std::pair<int, Eigen::Index>> key;
         for (Eigen::Index i = 0; i < f.rows(); ++i) {
             int first = static_cast<int>(n_ + q_);
@@ -146,6 +164,8 @@ private:
 
     Eigen::Index n_, q_;
     SparseCholesky saddle_;
+    std::vector<int> at_;  // where each row of the saddle point is eliminated
+    mutable RowBlock w_;  // the block being solved (one instance, one thread: the condensation's)
 };
 
 // Right-hand sides per block: one pass over the factor each, (n + q) × kBlock doubles at a time
@@ -196,26 +216,25 @@ void condenseSparse(const ClampedPlate& plate, const Eigen::SparseMatrix<double>
     c.delassus.resize(r, r);
     if (nl > 0) c.recoveryRows.resize(nl, r);
     const std::vector<Eigen::Index> order = massless.byElimination(rows);
-    Eigen::MatrixXd v, x, y;
+    std::vector<const SparseRows*> read{&rows};
+    if (nl > 0) read.push_back(&recovery);
+    std::vector<MasslessFlexibility::RowBlock> y;
     for (Eigen::Index first = 0; first < r; first += kBlock) {
-        const Eigen::Index k = std::min(kBlock, r - first);
-        v.setZero(plate.stiffness.rows(), k);
-        for (Eigen::Index j = 0; j < k; ++j)
-            for (SparseRows::InnerIterator it(rows, order[std::size_t(first + j)]); it; ++it)
-                v(it.col(), j) = it.value();
-        massless.apply(v, x);
-        y.noalias() = rows * x;
-        for (Eigen::Index j = 0; j < k; ++j) c.delassus.col(order[std::size_t(first + j)]) = y.col(j);
-        if (nl > 0) {
-            y.noalias() = recovery * x;
-            for (Eigen::Index j = 0; j < k; ++j) c.recoveryRows.col(order[std::size_t(first + j)]) = y.col(j);
+        const std::vector<Eigen::Index> block(order.begin() + first, order.begin() + std::min(r, first + kBlock));
+        massless.respond(rows, block, read, y);
+        for (std::size_t j = 0; j < block.size(); ++j) {
+            c.delassus.col(block[j]) = y[0].col(Eigen::Index(j));
+            if (nl > 0) c.recoveryRows.col(block[j]) = y[1].col(Eigen::Index(j));
         }
     }
     c.delassus = 0.5 * (c.delassus + c.delassus.transpose()).eval();
-    massless.apply(Eigen::MatrixXd(plate.pressureLoad), x);
-    c.rowLoad = rows * x;
-    c.loadFlexibility = plate.pressureLoad.dot(x.col(0));
-    if (nl > 0) c.recoveryLoad = recovery * x;
+    // The load: F as a one-row functional, read by C, by F itself and by the recovery functionals.
+    SparseRows load = plate.pressureLoad.sparseView().transpose();
+    read.insert(read.begin() + 1, &load);
+    massless.respond(load, {0}, read, y);
+    c.rowLoad = y[0].col(0);
+    c.loadFlexibility = y[1](0, 0);
+    if (nl > 0) c.recoveryLoad = y[2].col(0);
 }
 
 }  // namespace plate

@@ -56,6 +56,10 @@ public:
     // fewest when the block's nonzeros are eliminated near each other, positions()).
     // Allocates: for the setup, not the step.
     void solve(const Eigen::MatrixXd& b, Eigen::MatrixXd& x) const;
+    // The same in the factor's order, without the permutations: row k of w is row ordering()[k]
+    // of B and X (for callers that fill and read a few rows of many, positions()).
+    using RowBlock = Eigen::Matrix<double, Eigen::Dynamic, Eigen::Dynamic, Eigen::RowMajor>;
+    void solveInOrder(RowBlock& w) const;
 
 private:
     struct Workspace;

@@ -205,9 +205,11 @@ PLATE_WIDE_CLONES void sweeps(const cholmod_factor& f, Eigen::Index n, Eigen::In
 // The block's rows are dofs with their right-hand sides side by side (row-major): each column of
 // the simplicial L is read once for the whole block and applied as a vectorized row update, where
 // cholmod_solve2 reads L once per four right-hand sides (CondensedSparse.cpp's massless solves).
+void SparseCholesky::solveInOrder(RowBlock& w) const { sweeps(*ws_->factor, n_, w.cols(), w.data()); }
+
 void SparseCholesky::solve(const Eigen::MatrixXd& b, Eigen::MatrixXd& x) const {
     const auto* perm = static_cast<const int*>(ws_->factor->Perm);
-    Eigen::Matrix<double, Eigen::Dynamic, Eigen::Dynamic, Eigen::RowMajor> w(n_, b.cols());
+    RowBlock w(n_, b.cols());
     for (Eigen::Index r = 0; r < n_; ++r) w.row(r) = b.row(perm[r]);
     sweeps(*ws_->factor, n_, b.cols(), w.data());
     x.resize(n_, b.cols());
