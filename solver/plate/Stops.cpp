@@ -93,4 +93,25 @@ void validateStops(const PlateParameters& p) {
     }
 }
 
+void requireStartBetween(const Obstacles& obstacles, double baseDisplacement0) {
+    if (std::isfinite(baseDisplacement0) && baseDisplacement0 >= obstacles.lower &&
+        baseDisplacement0 <= obstacles.upper)
+        return;
+    std::ostringstream msg;
+    msg.precision(15);  // round-trips what users type (0.7, not 0.69999999999999996)
+    // The plate starts flat at the clamp's height: what is refused is the plate under the stop, which
+    // reaches the clamped edge or not (a tip stop: issue 71's user read the clamp blamed).
+    const bool below = !(baseDisplacement0 >= obstacles.lower);
+    const bool atClamp = below ? obstacles.lowerAtClamp : obstacles.upperAtClamp;
+    msg << "invalid initial state: base_displacement = " << baseDisplacement0
+        << " starts the plate flat at that height, " << (below ? "below obstacle_lower = " : "above obstacle_upper = ")
+        << (below ? obstacles.lower : obstacles.upper)
+        << (atClamp ? " (its stop covers the clamped edge)"
+                    : " under that obstacle's stop (which does not reach the clamped edge: the plate there, not the "
+                      "clamp, is outside)")
+        << " (allowed: obstacle_lower = " << obstacles.lower
+        << " <= base_displacement <= obstacle_upper = " << obstacles.upper << " at the start)";
+    throw ParameterError(msg.str());
+}
+
 }  // namespace plate

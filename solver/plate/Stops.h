@@ -33,4 +33,8 @@ Obstacles obstaclesOf(const PlateParameters& p);
 // the plate and holds a contact point; the message names the nearest contact point.
 void validateStops(const PlateParameters& p);
 
+// Throws ParameterError unless the plate, flat at the clamp's height baseDisplacement0, starts
+// between the obstacles (under a stop that does not reach the clamp: the plate there is outside).
+void requireStartBetween(const Obstacles& obstacles, double baseDisplacement0);
+
 }  // namespace plate
