@@ -8,6 +8,7 @@
 // The plate itself never sees the companion: its results are the same bits with the check or
 // without it.
 #include <array>
+#include <limits>
 #include <memory>
 #include <string>
 #include <vector>
@@ -39,7 +40,7 @@ public:
     void follow(const PlateSimulation& plate, const InputSignal& base, const InputSignal& load);
     // The estimate so far (m): Richardson's factor times the largest difference while it holds;
     // from when it cannot (theory §26), at least the range the reported points have swept on
-    // either mesh, and between two obstacles their gap: a bound, not a correction.
+    // either mesh joined with the obstacles' heights: a bound, not a correction.
     double error() const;
     // From when the estimate is the bound (theory §26, "When it cannot"), said once: the
     // message the first time it is asked after that time, then empty.
@@ -55,7 +56,8 @@ private:
     double largestDifference_ = 0.0;
     double scale_ = 0.0;  // the largest |w| of the reported points so far: the motion's size
     double partingScale_ = 0.0;  // the nearer obstacle's distance; 0 without obstacles (never parted)
-    double gap_ = 0.0;  // upper − lower with both obstacles on, else 0: the bound between them
+    // The enabled obstacles (±∞ where off): the converged plate's points stay between them.
+    double floor_ = std::numeric_limits<double>::infinity(), ceiling_ = -std::numeric_limits<double>::infinity();
     // Each reported point's lowest and highest value so far on either mesh: the range it swept.
     std::array<double, 3> lowest_{}, highest_{};
     bool consistentMass_;  // the paper's impact law, whose limit after impact the check cannot see
