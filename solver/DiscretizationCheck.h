@@ -31,8 +31,9 @@ public:
     // refused meshes of one cell and carried clamps), twice the step, no tolerance, no probes, no
     // stress, no check of its own.
     static PlateParameters companionParameters(const PlateParameters& plate);
-    // Builds the companion (ParameterError when it cannot be: a stop its mesh cannot resolve).
-    DiscretizationCheck(const PlateParameters& plate, double baseDisplacement0, double loadAtStart);
+    // Builds the companion of `plate` at its start (ParameterError when it cannot be: a stop its mesh
+    // cannot resolve) and compares the two there.
+    DiscretizationCheck(const PlateSimulation& plate, double baseDisplacement0, double loadAtStart);
     ~DiscretizationCheck();
 
     // After the plate's communication step (the plate now at `plate.time()`): the companion steps
@@ -51,6 +52,10 @@ public:
     void restoreState(const std::vector<double>& state);  // throws std::invalid_argument
 
 private:
+    // The reported points of the plate against the companion's at the same time: the largest
+    // difference, the ranges, and whether the estimate still holds.
+    void compare(const PlateSimulation& plate);
+
     std::unique_ptr<PlateSimulation> companion_;
     double factor_;  // Richardson's 1/(r^p − 1) for the refinement r between the meshes (theory §26)
     double largestDifference_ = 0.0;
