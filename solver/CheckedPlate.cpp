@@ -11,7 +11,7 @@ CheckedPlate::CheckedPlate(const PlateParameters& p, double baseDisplacement0, d
                            const ProgressLog& log)
     : PlateSimulation(p, baseDisplacement0, loadAtStart, log) {
     if (p.outputs.discretizationCheck)
-        check_ = std::make_unique<DiscretizationCheck>(p, baseDisplacement0, loadAtStart);
+        check_ = std::make_unique<DiscretizationCheck>(*this, baseDisplacement0, loadAtStart);
 }
 
 CheckedPlate::~CheckedPlate() = default;

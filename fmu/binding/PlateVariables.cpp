@@ -278,15 +278,16 @@ const Row kRows[] = {
         "tolerance at max_contact_substeps sub-steps (the cap bounded their work; error_estimate includes them)"),
     booleanParameter(kVrDiscretizationCheck, "discretization_check", PARAMETER(outputs.discretizationCheck),
         "Estimate the error the mesh and the modal basis make (discretization_error) while the run goes: a companion "
-        "plate on the mesh coarsened by two (ceil(nx/2) x ceil(ny/2) cells) is fed the same inputs; the outputs stay "
+        "plate on the mesh coarsened by two (ceil(nx/2) x ceil(ny/2) cells, on half the modes) is fed the same "
+        "inputs; the outputs stay "
         "the same bits; needs nx, ny >= 2 and base_drive displacement, velocity or acceleration (the theory, "
         "section 26)"),
     output(kVrDiscretizationError,     "discretization_error",       "m",    OUTPUT(discretizationError),
         "discretization_check = true: the largest error of the reported points (corner_1, corner_2, free_edge_mid) "
         "since t = 0 against the converged plate that comes from the mesh and the modal basis, estimated from the "
         "companion's difference by Richardson's factor; from the Warning that says so on (the paper's law after "
-        "its first impact, or the meshes parted) a bound: the range the points swept, between two obstacles at "
-        "least their gap (the theory, section 26; error_estimate is the time error of this mesh, not this); 0 "
+        "its first impact, or the meshes parted) a bound: the range the points swept joined with the obstacles' "
+        "heights, between two obstacles at least their gap (the theory, section 26; error_estimate is the time error of this mesh, not this); 0 "
         "otherwise"),
     output(kVrClampForce,              "clamp_force",                "N",    PORT(clampForce),
         "Vertical force the plate exerts on the clamp (positive upward): what a shaker carrying the clamp feels; the "
