@@ -26,22 +26,19 @@ double distance(const ObstacleParameters::StopRect& r, const Eigen::Vector2d& x)
 }  // namespace
 
 StopMap::StopMap(const ObstacleParameters& o, const MeshParameters& mesh)
-    : slack_(kSlack * std::max(mesh.length, mesh.width)) {
-    whole_ = true;
+    : o_(o), slack_(kSlack * std::max(mesh.length, mesh.width)), whole_(true) {
     for (int k = 0; k < 2; ++k) {
-        rect_[k] = o.stop(k);
-        present_[k] = o.present(k);
-        const auto& r = rect_[k];
-        if (present_[k])
+        const auto& r = o.stop(k);
+        if (o.present(k))
             whole_ = whole_ && r.xMin <= 0.0 && r.yMin <= 0.0 && r.xMax >= mesh.length && r.yMax >= mesh.width;
     }
 }
 
 unsigned char StopMap::at(const Eigen::Vector2d& x) const {
-    if (!present_[0] && !present_[1]) return kUnderBoth;
+    if (!o_.present(0) && !o_.present(1)) return kUnderBoth;
     unsigned char bits = 0;
-    if (present_[0] && covers(rect_[0], x, slack_)) bits |= kUnderLower;
-    if (present_[1] && covers(rect_[1], x, slack_)) bits |= kUnderUpper;
+    if (o_.present(0) && covers(o_.lowerStop, x, slack_)) bits |= kUnderLower;
+    if (o_.present(1) && covers(o_.upperStop, x, slack_)) bits |= kUnderUpper;
     return bits;
 }
 

@@ -20,8 +20,7 @@ public:
     bool wholePlate() const { return whole_; }
 
 private:
-    ObstacleParameters::StopRect rect_[2];
-    bool present_[2];
+    ObstacleParameters o_;
     double slack_;  // a vertex on a stop's edge is under it, whatever the roundoff of i·length/nx
     bool whole_;
 };
