@@ -6,8 +6,8 @@
 // complete modal basis is 95 % of its 0.6 s initialization.
 //
 // - Keyed by the bytes of every parameter that determines the object (the key functions below,
-//   the one place they are written; a new PlateParameters field fails a static_assert in
-//   DiscretizationCache.cpp until someone decides whether it belongs in a key).
+//   the one place they are written; a new field in a part of PlateParameters they read fails a
+//   static_assert in DiscretizationCache.cpp until someone decides whether it belongs in a key).
 // - Immutable, shared: entries are shared_ptr<const T> of objects without mutable state (the
 //   sparse engine's factor has a workspace, so FullOrderPlate is not cached: each instance
 //   factors A itself). The same code builds them either way: results are bit for bit the same.
