@@ -135,9 +135,9 @@ void* loadedModule(const std::string& location) {
             static_cast<unsigned char>((digit - kDigits) << (k % 2 ? 0 : 4));
     }
     HMODULE module = nullptr;
-    const bool found = GetModuleHandleExA(GET_MODULE_HANDLE_EX_FLAG_FROM_ADDRESS |
-                                              GET_MODULE_HANDLE_EX_FLAG_UNCHANGED_REFCOUNT,
-                                          reinterpret_cast<LPCSTR>(address), &module);
+    const bool found =
+        GetModuleHandleExA(GET_MODULE_HANDLE_EX_FLAG_FROM_ADDRESS | GET_MODULE_HANDLE_EX_FLAG_UNCHANGED_REFCOUNT,
+                           reinterpret_cast<LPCSTR>(address), &module);
     return found && reinterpret_cast<std::uintptr_t>(module) == address ? module : nullptr;
 }
 
@@ -151,7 +151,9 @@ std::string environment(const std::string& name) {
     return n > 0 && n < sizeof value ? value : "";
 }
 
-void publish(const std::string& name, const std::string& value) { SetEnvironmentVariableA(name.c_str(), value.c_str()); }
+void publish(const std::string& name, const std::string& value) {
+    SetEnvironmentVariableA(name.c_str(), value.c_str());
+}
 
 #else
 

@@ -48,26 +48,26 @@ void* moduleFunction(void* module, const char* name);
 #define FMU_COMPLETE(R, name, params, args) &&table.name
 #define FMU_FORWARD(R, name, params, args) \
     R name params { return entryPoints().name args; }
-#define FMU_FORWARDED_EXPORTS(LIST, VERSION)                                       \
-    extern "C" {                                                                   \
-    LIST(FMU_OWN_DECLARATION)                                                      \
-    }                                                                              \
-    namespace {                                                                    \
-    struct EntryPoints {                                                           \
-        LIST(FMU_TABLE_MEMBER)                                                     \
-    };                                                                             \
-    EntryPoints choose() {                                                         \
-        const EntryPoints own{LIST(FMU_OWN_ENTRY)};                                \
-        void* primary = fmu::primaryModule(VERSION); \
-        if (!primary) return own;                                                  \
-        const EntryPoints table{LIST(FMU_PRIMARY_ENTRY)};                          \
-        return (true LIST(FMU_COMPLETE)) ? table : own;                            \
-    }                                                                              \
-    const EntryPoints& entryPoints() {                                             \
-        static const EntryPoints chosen = choose();                                \
-        return chosen;                                                             \
-    }                                                                              \
-    }                                                                              \
-    extern "C" {                                                                   \
-    LIST(FMU_FORWARD)                                                              \
+#define FMU_FORWARDED_EXPORTS(LIST, VERSION)              \
+    extern "C" {                                          \
+    LIST(FMU_OWN_DECLARATION)                             \
+    }                                                     \
+    namespace {                                           \
+    struct EntryPoints {                                  \
+        LIST(FMU_TABLE_MEMBER)                            \
+    };                                                    \
+    EntryPoints choose() {                                \
+        const EntryPoints own{LIST(FMU_OWN_ENTRY)};       \
+        void* primary = fmu::primaryModule(VERSION);      \
+        if (!primary) return own;                         \
+        const EntryPoints table{LIST(FMU_PRIMARY_ENTRY)}; \
+        return (true LIST(FMU_COMPLETE)) ? table : own;   \
+    }                                                     \
+    const EntryPoints& entryPoints() {                    \
+        static const EntryPoints chosen = choose();       \
+        return chosen;                                    \
+    }                                                     \
+    }                                                     \
+    extern "C" {                                          \
+    LIST(FMU_FORWARD)                                     \
     }
