@@ -38,6 +38,7 @@ from checkout import add_checkout_arguments, fmu_path
 from plateimpact import PlateImpactFMU
 
 TIMING = ("wall_s", "setup_s", "plate_shared")  # a map point's fields that are not its result
+SIMULATE_FMU_STOP_TIME = 0.01  # s simulated per simulate_fmu call
 SHARED = re.compile(r"discretization: (\d+) of (\d+) parts shared from the process's cache")
 
 
@@ -58,7 +59,7 @@ def simulate_fmu_setups(fmu, calls, parameters):
     """CPU s of ExitInitializationMode in each of `calls` simulate_fmu calls of this process (fmpy
     calls fmi_call_logger after each FMI call returns: the CPU between the call before and it),
     whether each instance shared its plate from the cache (its log line), and each whole call's CPU
-    (extracting the FMU, loading its library, 0.01 s simulated)."""
+    (extracting the FMU, loading its library, SIMULATE_FMU_STOP_TIME simulated)."""
     from fmpy import simulate_fmu
 
     cpu, shared, whole = [], [], []
@@ -85,7 +86,7 @@ def simulate_fmu_setups(fmu, calls, parameters):
         cpu.append(exit_cpu[0])
         parts = [SHARED.search(m).groups() for m in lines if SHARED.search(m)]
         shared.append(bool(parts) and parts[0][0] == parts[0][1])
-    return {"cpu_s": cpu, "shared": shared, "call_cpu_s": whole}
+    return {"cpu_s": cpu, "shared": shared, "call_cpu_s": whole, "stop_time": SIMULATE_FMU_STOP_TIME}
 
 
 def simulate_fmu_in_a_new_process(fmu, calls, parameters):
