@@ -11,6 +11,7 @@ the next calls' ExitInitializationMode CPU and their ratio."""
 from __future__ import annotations
 
 import json
+import re
 import shutil
 import subprocess
 import sys
@@ -18,6 +19,8 @@ import zipfile
 from pathlib import Path
 
 import pytest
+
+REPO = Path(__file__).resolve().parent.parent
 
 # Runs simulate_fmu on each FMU (file or folder) of argv[2:] in turn and prints, per call, the
 # instance's cache line (shared, parts), the process's resident memory (MB) and a digest of the
@@ -134,3 +137,26 @@ def test_a_value_left_before_an_exec_is_replaced(fmu_path, tmp_path):
     parts = before["cache"][0][1]
     assert before["cache"] == [[0, parts]] and first["cache"] == [[0, parts]] and second["cache"] == [[parts, parts]]
     assert first["digest"] == second["digest"] == before["digest"]
+
+
+@pytest.mark.parametrize("version", ["fmi2", "fmi3"])
+def test_the_library_exports_every_function_of_the_header_and_nothing_else(version, fmu_path, fmu3, tmp_path):
+    """fmi2Exports.cpp and fmi3Exports.cpp write the list of exported functions by hand (each
+    forwards to this copy's implementation or the primary's): one per <name>TYPE of the standard's
+    header, none more (the implementations, plateimpactOwn_*, stay inside)."""
+    header = (REPO / "fmu" / "headers" / version / f"{version}FunctionTypes.h").read_text()
+    header = re.sub(r"/\*.*?\*/", "", header, flags=re.S)
+    expected = set(re.findall(rf"\btypedef\s[^;(]*?\b({version}\w+)TYPE\s*\(", header))
+    fmu = fmu_path if version == "fmi2" else fmu3
+    with zipfile.ZipFile(fmu) as archive:
+        member = next(
+            n
+            for n in archive.namelist()
+            if n.endswith("linux64/PlateImpact.so") or n.endswith("x86_64-linux/PlateImpact.so")
+        )
+        library = Path(archive.extract(member, tmp_path))
+    text = subprocess.run(
+        ["nm", "-D", "--defined-only", str(library)], capture_output=True, text=True, check=True
+    ).stdout
+    exported = {line.split()[-1] for line in text.splitlines() if line.strip()}
+    assert len(expected) > 40 and exported == expected, (expected - exported, exported - expected)

@@ -3,7 +3,7 @@
 // or, when another copy of the same build is the process's primary, the primary's, so that one
 // copy's code and one discretization cache serve the whole process (core/PrimaryCopy.h).
 // The list is that of fmi3FunctionTypes.h (one X per fmi3XTYPE); a signature that differs from
-// the header's declaration does not compile, a missing one fails test_fmi_packaging.
+// the header's declaration does not compile, a missing one fails test_primary_copy.py.
 #include "core/PrimaryCopy.h"
 #include "fmi3Functions.h"
 
