@@ -11,6 +11,7 @@ the next calls' ExitInitializationMode CPU and their ratio."""
 from __future__ import annotations
 
 import json
+import os
 import re
 import shutil
 import subprocess
@@ -160,3 +161,113 @@ def test_the_library_exports_every_function_of_the_header_and_nothing_else(versi
     ).stdout
     exported = {line.split()[-1] for line in text.splitlines() if line.strip()}
     assert len(expected) > 40 and exported == expected, (expected - exported, exported - expected)
+
+
+def copies(library: Path, folder: Path, names=("first", "second")):
+    """`library` copied into one folder per name (as importers extract an FMU to a new folder)."""
+    paths = []
+    for name in names:
+        (folder / name).mkdir(parents=True)
+        paths.append(folder / name / library.name)
+        shutil.copy2(library, paths[-1])
+    return paths
+
+
+def guid_of(fmu):
+    with zipfile.ZipFile(fmu) as archive:
+        return re.search(r'guid="([^"]+)"', archive.read("modelDescription.xml").decode()).group(1)
+
+
+def test_copies_loaded_and_unloaded_by_a_c_master_are_clean_under_memcheck(fmu_path, tmp_path):
+    """python_tests/copies_driver.c: the first copy, a second from another folder, that one again
+    (unloaded in between, so loaded anew), the first again; the later runs share the first one's
+    plate and repeat its outputs bit for bit. Under memcheck: a forwarding copy's load and unload
+    leave nothing behind (no definite or indirect leak), and nothing reads freed or unmapped memory."""
+    from test_valgrind import SUPPRESSIONS
+
+    valgrind = shutil.which("valgrind")
+    assert valgrind, "valgrind is not installed (bash scripts/packages.sh base)"
+    with zipfile.ZipFile(fmu_path) as archive:
+        library = Path(archive.extract("binaries/linux64/PlateImpact.so", tmp_path / "fmu"))
+    if b"__asan_init" in library.read_bytes():
+        pytest.skip("a sanitizer build of the FMU (AddressSanitizer and valgrind exclude each other)")
+    first, second = copies(library, tmp_path / "copies")
+    driver = tmp_path / "copies_driver"
+    subprocess.run(
+        [
+            "cc",
+            "-std=c99",
+            "-D_DEFAULT_SOURCE",
+            "-g",
+            "-O1",
+            "-Wall",
+            "-Wextra",
+            "-Werror",
+            f"-I{REPO / 'fmu' / 'headers' / 'fmi2'}",
+            str(REPO / "python_tests" / "copies_driver.c"),
+            "-o",
+            str(driver),
+            "-ldl",
+        ],
+        check=True,
+    )
+    (tmp_path / "plateimpact.supp").write_text(SUPPRESSIONS)
+    env = {k: v for k, v in os.environ.items() if k != "LD_PRELOAD"}
+    proc = subprocess.run(
+        [
+            valgrind,
+            "--leak-check=full",
+            "--error-exitcode=99",
+            "--errors-for-leak-kinds=definite,indirect",
+            "--show-leak-kinds=definite,indirect",
+            f"--suppressions={tmp_path / 'plateimpact.supp'}",
+            str(driver),
+            guid_of(fmu_path),
+            str(first),
+            str(second),
+            str(second),
+            str(first),
+        ],
+        capture_output=True,
+        text=True,
+        timeout=600,
+        env=env,
+    )
+    assert "copies_driver: all checks passed" in proc.stdout, proc.stdout + proc.stderr[-4000:]
+    assert proc.returncode == 0 and "ERROR SUMMARY: 0 errors" in proc.stderr, proc.stderr[-6000:]
+
+
+def test_copies_of_the_win64_dll_share_the_first_ones_plate_under_wine(fmu_path, tmp_path):
+    """The Windows side (GetModuleHandleEx's pin, the PE time stamp, the environment through
+    kernel32): the same C master built with mingw-w64, the win64 DLL copied into two folders."""
+    from test_win64 import WINE
+
+    dll = REPO / "build-win64" / "fmu" / "PlateImpact.dll"
+    compiler = shutil.which("x86_64-w64-mingw32-gcc")
+    if not (dll.is_file() and compiler and WINE.exists()):
+        pytest.skip("no win64 build, mingw-w64 or Wine (bash scripts/build-win64.sh)")
+    first, second = copies(dll, tmp_path / "copies")
+    driver = tmp_path / "copies_driver.exe"
+    subprocess.run(
+        [
+            compiler,
+            "-std=c99",
+            "-O1",
+            "-Wall",
+            "-Wextra",
+            "-Werror",
+            "-static",
+            f"-I{REPO / 'fmu' / 'headers' / 'fmi2'}",
+            str(REPO / "python_tests" / "copies_driver.c"),
+            "-o",
+            str(driver),
+        ],
+        check=True,
+    )
+    windows = ["Z:" + str(p).replace("/", "\\") for p in (first, second, second, first)]
+    env = dict(os.environ, WINEDEBUG="-all", WINEPREFIX=str(REPO / "build-win64" / "wineprefix"))
+    env["WINEDLLOVERRIDES"] = "mscoree,mshtml="
+    proc = subprocess.run(
+        [str(WINE), str(driver), guid_of(fmu_path), *windows], capture_output=True, text=True, timeout=300, env=env
+    )
+    assert "copies_driver: all checks passed" in proc.stdout, proc.stdout + proc.stderr[-4000:]
