@@ -271,3 +271,57 @@ def test_copies_of_the_win64_dll_share_the_first_ones_plate_under_wine(fmu_path,
         [str(WINE), str(driver), guid_of(fmu_path), *windows], capture_output=True, text=True, timeout=300, env=env
     )
     assert "copies_driver: all checks passed" in proc.stdout, proc.stdout + proc.stderr[-4000:]
+
+
+THREADS = r"""
+import json, re, sys, threading
+from plateimpact import PlateImpactFMU
+from plateimpact.driver import unzipped
+SHARED = re.compile(r"discretization: (\d+) of (\d+) parts shared")
+folders = sys.argv[1:]
+for folder in folders:
+    unzipped(folder)  # the model descriptions read here: lxml's schema parsing is not for two threads
+barrier = threading.Barrier(2)
+results = {}
+def run(folder, key, wait):
+    lines = []
+    if wait:
+        barrier.wait()  # both copies make their first FMI call at the same moment
+    with PlateImpactFMU(folder, nx=4, ny=2, dt=1e-4, initial_load=8600.0,
+                        logger=lambda s, c, m: lines.append(m)) as plate:
+        for _ in range(5):
+            out = plate.step(1e-3)
+    cache = [list(map(int, SHARED.search(m).groups())) for m in lines if SHARED.search(m)]
+    results[key] = {"cache": cache, "outputs": out}
+threads = [threading.Thread(target=run, args=(folders[k], k, True)) for k in (0, 1)]
+for t in threads:
+    t.start()
+for t in threads:
+    t.join()
+run(folders[2], 2, False)
+print(json.dumps(results))
+"""
+
+
+@pytest.mark.sanitizer
+def test_two_copies_starting_in_two_threads_at_once(fmu_path, tmp_path):
+    """Two copies from two folders make their first FMI call at the same moment in two threads
+    (each decides once whether it is the primary or forwards: core/PrimaryCopy.h); a third copy
+    after them. Every instance runs whole and gives the same outputs; the third shares its plate
+    with one of them (whichever became the primary)."""
+    extracted = tmp_path / "fmu"
+    with zipfile.ZipFile(fmu_path) as archive:
+        archive.extractall(extracted)
+    folders = [tmp_path / name for name in ("a", "b", "c")]
+    for folder in folders:
+        shutil.copytree(extracted, folder)
+    script = tmp_path / "threads.py"
+    script.write_text(THREADS)
+    done = subprocess.run(
+        [sys.executable, str(script), *map(str, folders)], capture_output=True, text=True, timeout=600
+    )
+    assert done.returncode == 0, done.stderr[-3000:]
+    results = json.loads(done.stdout.splitlines()[-1])
+    assert results["0"]["outputs"] == results["1"]["outputs"] == results["2"]["outputs"]
+    parts = results["2"]["cache"][0][1]
+    assert parts >= 3 and results["2"]["cache"] == [[parts, parts]]
