@@ -237,15 +237,19 @@ def test_copies_loaded_and_unloaded_by_a_c_master_are_clean_under_memcheck(fmu_p
     assert proc.returncode == 0 and "ERROR SUMMARY: 0 errors" in proc.stderr, proc.stderr[-6000:]
 
 
-def test_copies_of_the_win64_dll_share_the_first_ones_plate_under_wine(fmu_path, tmp_path):
+def test_copies_of_the_win64_dll_share_the_first_ones_plate_under_wine(tmp_path):
     """The Windows side (GetModuleHandleEx's pin, the PE time stamp, the environment through
-    kernel32): the same C master built with mingw-w64, the win64 DLL copied into two folders."""
-    from test_win64 import WINE
+    kernel32): the same C master built with mingw-w64, the dual FMU's win64 DLL copied into two
+    folders."""
+    from test_win64 import DUAL, WINE
 
-    dll = REPO / "build-win64" / "fmu" / "PlateImpact.dll"
     compiler = shutil.which("x86_64-w64-mingw32-gcc")
-    if not (dll.is_file() and compiler and WINE.exists()):
-        pytest.skip("no win64 build, mingw-w64 or Wine (bash scripts/build-win64.sh)")
+    if not (DUAL.is_file() and compiler and WINE.exists()):
+        pytest.skip("no dual-platform FMU, mingw-w64 or Wine (bash scripts/build-win64.sh)")
+    with zipfile.ZipFile(DUAL) as archive:
+        if "binaries/win64/PlateImpact.dll" not in archive.namelist():
+            pytest.skip("the dual-platform FMU has no win64 binary (bash scripts/build-win64.sh)")
+        dll = Path(archive.extract("binaries/win64/PlateImpact.dll", tmp_path / "fmu"))
     first, second = copies(dll, tmp_path / "copies")
     driver = tmp_path / "copies_driver.exe"
     subprocess.run(
@@ -264,11 +268,11 @@ def test_copies_of_the_win64_dll_share_the_first_ones_plate_under_wine(fmu_path,
         ],
         check=True,
     )
-    windows = ["Z:" + str(p).replace("/", "\\") for p in (first, second, second, first)]
+    windows = ["Z:" + str(p).replace("/", "\\\\") for p in (first, second, second, first)]
     env = dict(os.environ, WINEDEBUG="-all", WINEPREFIX=str(REPO / "build-win64" / "wineprefix"))
     env["WINEDLLOVERRIDES"] = "mscoree,mshtml="
     proc = subprocess.run(
-        [str(WINE), str(driver), guid_of(fmu_path), *windows], capture_output=True, text=True, timeout=300, env=env
+        [str(WINE), str(driver), guid_of(DUAL), *windows], capture_output=True, text=True, timeout=300, env=env
     )
     assert "copies_driver: all checks passed" in proc.stdout, proc.stdout + proc.stderr[-4000:]
 
