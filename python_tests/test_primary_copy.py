@@ -268,7 +268,7 @@ def test_copies_of_the_win64_dll_share_the_first_ones_plate_under_wine(tmp_path)
         ],
         check=True,
     )
-    windows = ["Z:" + str(p).replace("/", "\\\\") for p in (first, second, second, first)]
+    windows = ["Z:" + str(p).replace("/", "\\") for p in (first, second, second, first)]
     env = dict(os.environ, WINEDEBUG="-all", WINEPREFIX=str(REPO / "build-win64" / "wineprefix"))
     env["WINEDLLOVERRIDES"] = "mscoree,mshtml="
     proc = subprocess.run(
