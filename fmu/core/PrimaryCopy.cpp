@@ -180,12 +180,12 @@ void* primaryModule(const char* fmiVersion) {
     const std::string published = environment(variable);
     const std::size_t at = published.find(process);
     if (at != std::string::npos && published.find(':') == at) {
-        // (At its own location: a value left before an exec; the primary is pinned, so a copy at its
-        // location is the primary.) The primary's reference taken here is never released: it is pinned.
+        // The published location is this copy's own only in a value left before an exec (a primary is
+        // pinned: no other copy loads at its location while it lives); this copy then replaces it below.
         const std::string location = published.substr(at + process.size());
         if (location != copy.location)
-            if (void* primary = loadedModule(location))
-                // A live primary of another build: this copy runs its own code, unpinned.
+            if (void* primary = loadedModule(location))  // a reference never released: the primary is pinned
+                // The same build: forward to it; another build: this copy runs its own code, unpinned.
                 return published.compare(0, at, build) == 0 ? primary : nullptr;
     }
     // No live primary (none yet, or a value another process left): this copy becomes it.
