@@ -183,8 +183,6 @@ def test_copies_loaded_and_unloaded_by_a_c_master_are_clean_under_memcheck(fmu_p
     (unloaded in between, so loaded anew), the first again; the later runs share the first one's
     plate and repeat its outputs bit for bit. Under memcheck: a forwarding copy's load and unload
     leave nothing behind (no definite or indirect leak), and nothing reads freed or unmapped memory."""
-    from test_valgrind import SUPPRESSIONS
-
     valgrind = shutil.which("valgrind")
     assert valgrind, "valgrind is not installed (bash scripts/packages.sh base)"
     with zipfile.ZipFile(fmu_path) as archive:
@@ -192,46 +190,11 @@ def test_copies_loaded_and_unloaded_by_a_c_master_are_clean_under_memcheck(fmu_p
     if b"__asan_init" in library.read_bytes():
         pytest.skip("a sanitizer build of the FMU (AddressSanitizer and valgrind exclude each other)")
     first, second = copies(library, tmp_path / "copies")
-    driver = tmp_path / "copies_driver"
-    subprocess.run(
-        [
-            "cc",
-            "-std=c99",
-            "-D_DEFAULT_SOURCE",
-            "-g",
-            "-O1",
-            "-Wall",
-            "-Wextra",
-            "-Werror",
-            f"-I{REPO / 'fmu' / 'headers' / 'fmi2'}",
-            str(REPO / "python_tests" / "copies_driver.c"),
-            "-o",
-            str(driver),
-            "-ldl",
-        ],
-        check=True,
-    )
-    (tmp_path / "plateimpact.supp").write_text(SUPPRESSIONS)
-    env = {k: v for k, v in os.environ.items() if k != "LD_PRELOAD"}
-    proc = subprocess.run(
-        [
-            valgrind,
-            "--leak-check=full",
-            "--error-exitcode=99",
-            "--errors-for-leak-kinds=definite,indirect",
-            "--show-leak-kinds=definite,indirect",
-            f"--suppressions={tmp_path / 'plateimpact.supp'}",
-            str(driver),
-            guid_of(fmu_path),
-            str(first),
-            str(second),
-            str(second),
-            str(first),
-        ],
-        capture_output=True,
-        text=True,
-        timeout=600,
-        env=env,
+    from test_valgrind import compile_master, memcheck_run
+
+    driver = compile_master("cc", REPO / "python_tests" / "copies_driver.c", tmp_path / "copies_driver")
+    proc = memcheck_run(
+        valgrind, driver.parent / "plateimpact.supp", driver, guid_of(fmu_path), first, second, second, first
     )
     assert "copies_driver: all checks passed" in proc.stdout, proc.stdout + proc.stderr[-4000:]
     assert proc.returncode == 0 and "ERROR SUMMARY: 0 errors" in proc.stderr, proc.stderr[-6000:]
