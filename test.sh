@@ -155,7 +155,8 @@ bash scripts/package-dist.sh
 took "builds (asan + fuzz | win64 | aarch64)"
 
 # --- The Python suite -----------------------------------------------------------------------
-"$py" -m pytest -q "${workers[@]}" python_tests "$@"
+# --durations: the slowest tests in the log, where the stage's time goes on the machine it ran on.
+"$py" -m pytest -q "${workers[@]}" --durations=15 python_tests "$@"
 took pytest
 
 status=0

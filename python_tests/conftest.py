@@ -75,6 +75,8 @@ SLOW = {
     "test_aarch64.py",  # the C master under qemu-aarch64 (28 s)
     "test_win64.py",  # Wine (25 s)
     "test_valgrind.py",  # memcheck (6 s)
+    "test_primary_copy.py::test_copies_loaded_and_unloaded_by_a_c_master_are_clean_under_memcheck",  # (5 s)
+    "test_primary_copy.py::test_copies_of_the_win64_dll_share_the_first_ones_plate_under_wine",  # Wine
     "test_speed_report.py",  # tools/speed_vs_error.py --quick (10 s)
     "test_examples.py",  # the examples as users run them (17 s)
     "test_fmi_conformance.py::test_catalogue",  # one child process per case (31 s)

@@ -214,3 +214,17 @@ def test_a_capped_step_is_counted_and_warned_of_once(fmu_path):
         assert len(capped) == 1 and len(passed) == 1, warnings(run)
         # Past the horizon a contact step takes contact_substeps = 16 sub-steps within the cap: 2.
         assert "Later contact steps take 2 sub-steps" in passed[0], passed[0]
+
+
+def test_a_step_capped_at_the_largest_cap_is_not_told_to_raise_it(fmu_path):
+    """Issue 71, item 8: at max_contact_substeps = 1024, the range's top, the capped step's warning
+    names what can still help (a larger tolerance, a smaller dt), not raising the cap. At dt = 1e-4 s
+    the first impact of the release (t = 0.0676 s) needs more than 1024 sub-steps for 1e-10 m."""
+    with PlateRun(fmu_path, nx=8, ny=3, dt=H, **RELEASE, tolerance=1e-10, max_contact_substeps=1024) as run:
+        for _ in range(700):
+            out = run.step(H)
+        assert out["capped_steps"] > 0
+        capped = [m for m in warnings(run) if "needed more than max_contact_substeps = 1024" in m]
+        assert len(capped) == 1, warnings(run)
+        assert "is its largest: take a larger tolerance or a smaller dt" in capped[0], capped[0]
+        assert "raise max_contact_substeps" not in capped[0]

@@ -65,7 +65,12 @@ def driver(tmp_path_factory):
     compiler = os.environ.get("CC") or shutil.which("cc") or shutil.which("gcc")
     assert compiler, "no C compiler (cc) to build python_tests/fmu_driver.c"
     folder = tmp_path_factory.mktemp("fmu_driver")
-    exe = folder / "fmu_driver"
+    return compile_master(compiler, DRIVER_SOURCE, folder / "fmu_driver")
+
+
+def compile_master(compiler, source, exe):
+    """A C master of the FMI 2.0 headers for memcheck (-g -O1, warnings as errors), the
+    suppressions beside it."""
     subprocess.run(
         [
             compiler,
@@ -77,7 +82,7 @@ def driver(tmp_path_factory):
             "-Wextra",
             "-Werror",
             f"-I{FMI_HEADERS}",
-            str(DRIVER_SOURCE),
+            str(source),
             "-o",
             str(exe),
             "-ldl",
@@ -87,13 +92,14 @@ def driver(tmp_path_factory):
         capture_output=True,
         text=True,
     )
-    (folder / "plateimpact.supp").write_text(SUPPRESSIONS)
+    (exe.parent / "plateimpact.supp").write_text(SUPPRESSIONS)
     return exe
 
 
-def memcheck(valgrind, driver, unzipped_fmu, *options):
+def memcheck_run(valgrind, suppressions, *command):
+    """`command` under memcheck: any definite or indirect leak or invalid access exits 99."""
     env = {k: v for k, v in os.environ.items() if k != "LD_PRELOAD"}  # no sanitizer runtime
-    proc = subprocess.run(
+    return subprocess.run(
         [
             valgrind,
             "--leak-check=full",
@@ -102,18 +108,18 @@ def memcheck(valgrind, driver, unzipped_fmu, *options):
             "--show-leak-kinds=definite,indirect",
             "--num-callers=30",
             "--keep-debuginfo=yes",
-            f"--suppressions={driver.parent / 'plateimpact.supp'}",
-            str(driver),
-            *options,
-            str(unzipped_fmu),
-            str(STEPS),
+            f"--suppressions={suppressions}",
+            *map(str, command),
         ],
         capture_output=True,
         text=True,
         timeout=600,
         env=env,
     )
-    return proc
+
+
+def memcheck(valgrind, driver, unzipped_fmu, *options):
+    return memcheck_run(valgrind, driver.parent / "plateimpact.supp", driver, *options, unzipped_fmu, STEPS)
 
 
 def test_instance_lifecycle_is_clean_under_memcheck(valgrind, driver, unzipped_fmu):

@@ -10,7 +10,8 @@ namespace plate {
 CheckedPlate::CheckedPlate(const PlateParameters& p, double baseDisplacement0, double loadAtStart,
                            const ProgressLog& log)
     : PlateSimulation(p, baseDisplacement0, loadAtStart, log) {
-    if (p.discretizationCheck) check_ = std::make_unique<DiscretizationCheck>(p, baseDisplacement0, loadAtStart);
+    if (p.outputs.discretizationCheck)
+        check_ = std::make_unique<DiscretizationCheck>(*this, baseDisplacement0, loadAtStart);
 }
 
 CheckedPlate::~CheckedPlate() = default;

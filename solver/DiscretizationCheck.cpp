@@ -24,12 +24,9 @@ constexpr double kParted = 0.1;
 
 PlateParameters DiscretizationCheck::companionParameters(const PlateParameters& plate) {
     PlateParameters c = plate;
-    c.nx = (plate.nx + 1) / 2;
-    c.ny = (plate.ny + 1) / 2;
-    c.discretizationCheck = false;
-    c.probeX.clear();
-    c.probeY.clear();
-    c.stressOutputs = false;
+    c.mesh.nx = (plate.mesh.nx + 1) / 2;
+    c.mesh.ny = (plate.mesh.ny + 1) / 2;
+    c.outputs = {};  // no check of its own, no probes, no stresses
     // Twice the step and a quarter of the contact sub-steps (no tolerance): the companion's time
     // error stays far below its mesh's (the flow law's 1e-6–1e-5 m against 1e-3 m, theory §22 and
     // §26; 4 sub-steps instead of 16 moved 28×10 on 40 modes by less than its distance from the
@@ -37,41 +34,56 @@ PlateParameters DiscretizationCheck::companionParameters(const PlateParameters& 
     // mesh, and in contact steps, whose sub-steps cost more than their rows, it costs a fraction of
     // the plate's steps (the check ≤ 1.5× the plate's CPU). A dt at the edge of its range keeps the
     // plate's.
-    c.tolerance = 0.0;
-    c.contactSubsteps = (plate.contactSubsteps + 3) / 4;  // 16 → 4: on §5.2 28×10 on 40 modes is as near the plate
-    c.dt = 2.0 * plate.dt;
+    c.refinement.tolerance = 0.0;
+    // Half the plate's modes, or every mode where that would leave fewer than two: on a truncated
+    // modal basis the truncation is the error, and a companion on the same `modes` makes the same one
+    // (theory §26: 7 × 3 and 14 × 5 on one mode 3e-4 m apart, both 3e-2 m from the plate); one mode
+    // against two cannot see it either where a symmetric drive leaves the second (the first torsion)
+    // at rest.
+    c.law.modes = plate.law.modes / 2 >= 2 ? plate.law.modes / 2 : 0;
+    c.refinement.substeps =
+        (plate.refinement.substeps + 3) / 4;  // 16 → 4: on §5.2 28×10 on 40 modes is as near the plate
+    c.law.dt = 2.0 * plate.law.dt;
     try {
         validate(c);
     } catch (const ParameterError&) {
-        c.dt = plate.dt;
+        c.law.dt = plate.law.dt;
     }
     return c;
 }
 
-DiscretizationCheck::DiscretizationCheck(const PlateParameters& plate, double baseDisplacement0, double loadAtStart)
-    : consistentMass_(!plate.singularMass()) {
+DiscretizationCheck::DiscretizationCheck(const PlateSimulation& simulation, double baseDisplacement0,
+                                         double loadAtStart)
+    : consistentMass_(!simulation.parameters().law.singularMass()) {
+    const PlateParameters& plate = simulation.parameters();
     // The scene's own size for "parted": the nearer obstacle's distance from the plate's start (an
     // impact earlier or later moves the points by about that); without obstacles the motion is linear
     // and the meshes never part.
-    const Obstacles o = obstaclesOf(plate);
-    if (plate.obstacleLowerEnabled) partingScale_ = -o.lower;
-    if (plate.obstacleUpperEnabled) partingScale_ = partingScale_ > 0.0 ? std::min(partingScale_, o.upper) : o.upper;
-    if (plate.obstacleLowerEnabled && plate.obstacleUpperEnabled) gap_ = o.upper - o.lower;
+    const Obstacles o = obstaclesOf(plate.obstacles);
+    if (plate.obstacles.lowerEnabled) partingScale_ = -o.lower;
+    if (plate.obstacles.upperEnabled) partingScale_ = partingScale_ > 0.0 ? std::min(partingScale_, o.upper) : o.upper;
+    // The converged plate stays between the obstacles at every point; the discrete one only at its
+    // contact vertices (a reported point between vertices may pass them): the bound's range (T.26c).
+    if (plate.obstacles.lowerEnabled) floor_ = o.lower;
+    if (plate.obstacles.upperEnabled) ceiling_ = o.upper;
     const PlateParameters c = companionParameters(plate);
     try {
         companion_ = std::make_unique<PlateSimulation>(c, baseDisplacement0, loadAtStart);
     } catch (const ParameterError& e) {
-        throw ParameterError(std::string("discretization_check: the companion on ") + std::to_string(c.nx) + " x " +
-                             std::to_string(c.ny) + " cells cannot be built (" + e.what() +
+        throw ParameterError(std::string("discretization_check: the companion on ") + std::to_string(c.mesh.nx) +
+                             " x " + std::to_string(c.mesh.ny) + " cells cannot be built (" + e.what() +
                              "); set discretization_check = false, or choose a mesh whose coarsening by two keeps "
                              "the scene (its stops on mesh lines)");
     }
     // The refinement between the two meshes: 2 in each direction when nx and ny are even; with an
     // odd count the geometric mean of the cell areas' ratio (14×5 against 7×3: r = 1.83).
-    const double r = std::sqrt(double(plate.nx) * plate.ny / (double(c.nx) * c.ny));
+    const double r = std::sqrt(double(plate.mesh.nx) * plate.mesh.ny / (double(c.mesh.nx) * c.mesh.ny));
     factor_ = 1.0 / (std::pow(r, kAssumedOrder) - 1.0);
     const PlateOutputs start = companion_->outputs();
     lowest_ = highest_ = {start.corner1, start.corner2, start.freeEdgeMid};
+    // Already at t = 0 the two meshes differ: a static start (initial_load, a pressed plate) is each
+    // mesh's own static shape (on §5.2 14 × 5 starts 4e-5 m below 56 × 20).
+    compare(simulation);
 }
 
 DiscretizationCheck::~DiscretizationCheck() = default;
@@ -81,8 +93,12 @@ void DiscretizationCheck::follow(const PlateSimulation& plate, const InputSignal
     // To the plate's communication time on the companion's own grid (§15), the same signals from
     // the same start; an early return at no step at all (FMI 3.0) leaves nothing to take.
     const double h = plate.time() - c.time();
-    if (h > 1e-9 * c.parameters().dt) c.communicate(c.plan(h), base, load);
-    const PlateOutputs a = plate.outputs(), b = c.outputs();
+    if (h > 1e-9 * c.parameters().law.dt) c.communicate(c.plan(h), base, load);
+    compare(plate);
+}
+
+void DiscretizationCheck::compare(const PlateSimulation& plate) {
+    const PlateOutputs a = plate.outputs(), b = companion_->outputs();
     const double difference = std::max(
         {std::fabs(a.corner1 - b.corner1), std::fabs(a.corner2 - b.corner2), std::fabs(a.freeEdgeMid - b.freeEdgeMid)});
     const std::array<double, 3> pa{a.corner1, a.corner2, a.freeEdgeMid}, pb{b.corner1, b.corner2, b.freeEdgeMid};
@@ -107,10 +123,12 @@ double DiscretizationCheck::error() const {
     if (cannotSince_ < 0.0) return richardson;
     // Past the horizon (theory §26, "When it cannot") the plate and the converged plate are two
     // trajectories through the same space: their distance is bounded by the range each point swept
-    // (on either mesh), and between two obstacles by their gap, not by a correction of the mesh.
+    // (on either mesh) joined with the obstacles' (the converged plate's range where both are on),
+    // not by a correction of the mesh.
     double swept = 0.0;
-    for (std::size_t k = 0; k < 3; ++k) swept = std::max(swept, highest_[k] - lowest_[k]);
-    return std::max({richardson, swept, gap_});
+    for (std::size_t k = 0; k < 3; ++k)
+        swept = std::max(swept, std::max(highest_[k], ceiling_) - std::min(lowest_[k], floor_));
+    return std::max(richardson, swept);
 }
 
 std::string DiscretizationCheck::takeWarning() {

@@ -8,6 +8,7 @@
 // The plate itself never sees the companion: its results are the same bits with the check or
 // without it.
 #include <array>
+#include <limits>
 #include <memory>
 #include <string>
 #include <vector>
@@ -30,8 +31,9 @@ public:
     // refused meshes of one cell and carried clamps), twice the step, no tolerance, no probes, no
     // stress, no check of its own.
     static PlateParameters companionParameters(const PlateParameters& plate);
-    // Builds the companion (ParameterError when it cannot be: a stop its mesh cannot resolve).
-    DiscretizationCheck(const PlateParameters& plate, double baseDisplacement0, double loadAtStart);
+    // Builds the companion of `plate` at its start (ParameterError when it cannot be: a stop its mesh
+    // cannot resolve) and compares the two there.
+    DiscretizationCheck(const PlateSimulation& plate, double baseDisplacement0, double loadAtStart);
     ~DiscretizationCheck();
 
     // After the plate's communication step (the plate now at `plate.time()`): the companion steps
@@ -39,7 +41,7 @@ public:
     void follow(const PlateSimulation& plate, const InputSignal& base, const InputSignal& load);
     // The estimate so far (m): Richardson's factor times the largest difference while it holds;
     // from when it cannot (theory §26), at least the range the reported points have swept on
-    // either mesh, and between two obstacles their gap: a bound, not a correction.
+    // either mesh joined with the obstacles' heights: a bound, not a correction.
     double error() const;
     // From when the estimate is the bound (theory §26, "When it cannot"), said once: the
     // message the first time it is asked after that time, then empty.
@@ -50,12 +52,17 @@ public:
     void restoreState(const std::vector<double>& state);  // throws std::invalid_argument
 
 private:
+    // The reported points of the plate against the companion's at the same time: the largest
+    // difference, the ranges, and whether the estimate still holds.
+    void compare(const PlateSimulation& plate);
+
     std::unique_ptr<PlateSimulation> companion_;
     double factor_;  // Richardson's 1/(r^p − 1) for the refinement r between the meshes (theory §26)
     double largestDifference_ = 0.0;
     double scale_ = 0.0;  // the largest |w| of the reported points so far: the motion's size
     double partingScale_ = 0.0;  // the nearer obstacle's distance; 0 without obstacles (never parted)
-    double gap_ = 0.0;  // upper − lower with both obstacles on, else 0: the bound between them
+    // The enabled obstacles (±∞ where off): the converged plate's points stay between them.
+    double floor_ = std::numeric_limits<double>::infinity(), ceiling_ = -std::numeric_limits<double>::infinity();
     // Each reported point's lowest and highest value so far on either mesh: the range it swept.
     std::array<double, 3> lowest_{}, highest_{};
     bool consistentMass_;  // the paper's impact law, whose limit after impact the check cannot see

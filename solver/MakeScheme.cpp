@@ -40,11 +40,11 @@ void requireStableStep(const SchemeSetup& setup) {
     const double kappaH = *cached<double>(  // a power iteration: once per plate and process
         kappaKey(p), [&] { return std::make_shared<const double>(largestEigenvalue(*setup.clamped)); },
         [](double) { return sizeof(double); }, setup.cache);
-    const double bound = 2.0 / std::sqrt((1.0 - 4.0 * p.beta) * kappaH);
-    if (!(p.dt < bound)) {
+    const double bound = 2.0 / std::sqrt((1.0 - 4.0 * p.law.beta) * kappaH);
+    if (!(p.law.dt < bound)) {
         std::ostringstream msg;
         msg.precision(6);
-        msg << "invalid parameter dt = " << p.dt << " for beta = " << p.beta
+        msg << "invalid parameter dt = " << p.law.dt << " for beta = " << p.law.beta
             << " (allowed: dt < 2/sqrt((1-4 beta) kappa_h) = " << bound << " s, kappa_h = " << kappaH
             << " s^-2; or beta >= 0.25)";
         throw ParameterError(msg.str());
@@ -77,12 +77,12 @@ void initializeState(const SchemeSetup& s, const std::shared_ptr<const DiscreteP
         // Exact mode in modal coordinates: solve the static problem with the sparse factor of
         // K (roundoff ~eps·cond(K) rather than the dense eigen solution's eps·λ_max/λ_1) and
         // change coordinates, α0 = ΦᵀM w0, exact for the complete basis.
-        const FullOrderPlate full(s.space, s.clamped, p.dt, p.beta);
+        const FullOrderPlate full(s.space, s.clamped, p.law.dt, p.law.beta);
         w0 = modalPlate->fromFullSpace(staticEquilibrium(full, obstacles, baseDisplacement0, p.initialLoad, &force));
-    } else if (!p.singularMass()) {
+    } else if (!p.law.singularMass()) {
         w0 = staticEquilibrium(*discrete, obstacles, baseDisplacement0, p.initialLoad, &force);
     }
-    if (!p.singularMass()) {
+    if (!p.law.singularMass()) {
         setInitialReaction(s, scheme, force);
         scheme.initialize(w0, baseDisplacement0, 0.0);
     } else {
@@ -118,7 +118,7 @@ std::size_t condensedBytes(const CondensedPlate& c) {
 std::shared_ptr<const CondensedPlate> condensedPlate(const SchemeSetup& s, OutputRows& rows) {
     const PlateParameters& p = s.parameters;
     const Mesh& mesh = s.space->mesh();
-    const StopMap stops(p);
+    const StopMap stops(p.obstacles, p.mesh);
     std::vector<int> vertexRows(static_cast<std::size_t>(mesh.vertexCount()), -1);
     for (std::size_t i = 0; i < s.clamped->contactVertices.size(); ++i)
         vertexRows[static_cast<std::size_t>(s.clamped->contactVertices[i])] = static_cast<int>(i);
@@ -131,15 +131,17 @@ std::shared_ptr<const CondensedPlate> condensedPlate(const SchemeSetup& s, Outpu
         const int row = vertexRows[static_cast<std::size_t>(v)];
         return row >= 0 ? row : rowOf(mesh.point(v));
     };
-    std::array<int, 3> probeRows{vertexRow(mesh.vertex(p.nx, 0)), vertexRow(mesh.vertex(p.nx, p.ny)), -1};
-    probeRows[2] = p.ny % 2 == 0 ? vertexRow(mesh.vertex(p.nx, p.ny / 2)) : rowOf({p.length, 0.5 * p.width});
+    std::array<int, 3> probeRows{vertexRow(mesh.vertex(p.mesh.nx, 0)), vertexRow(mesh.vertex(p.mesh.nx, p.mesh.ny)),
+                                 -1};
+    probeRows[2] = p.mesh.ny % 2 == 0 ? vertexRow(mesh.vertex(p.mesh.nx, p.mesh.ny / 2))
+                                      : rowOf({p.mesh.length, 0.5 * p.mesh.width});
     rows.probes = probeRows;
     rows.vertices = std::move(vertexRows);
     return cached<CondensedPlate>(
         condensedPlateKey(p),
         [&] {
             return std::make_shared<const CondensedPlate>(
-                condense(*s.clamped, s.rootFree, extra, p.modes, s.recovery.functionals()));
+                condense(*s.clamped, s.rootFree, extra, p.law.modes, s.recovery.functionals()));
         },
         condensedBytes, s.cache);
 }
@@ -149,7 +151,7 @@ std::shared_ptr<const CondensedPlate> condensedPlate(const SchemeSetup& s, Outpu
 // initial state.
 std::unique_ptr<Scheme> makeNewmark(const SchemeSetup& s, InitProgress& progress) {
     const PlateParameters& p = s.parameters;
-    if (p.beta < 0.25) {
+    if (p.law.beta < 0.25) {
         progress.phase("kappa_h by power iteration with the factor of M", s.resources.spectrumSeconds);
         requireStableStep(s);
     }
@@ -164,32 +166,32 @@ std::unique_ptr<Scheme> makeNewmark(const SchemeSetup& s, InitProgress& progress
         // itself shared (the key of a complete-engine instance's; the cache builds without its lock
         // held): a sweep over `modes`, complete basis included, solves the eigenproblem once.
         const auto basis = [&] {
-            if (complete || !denseSolutionServes(s.clamped->mass.rows(), p.modes))
-                return std::make_shared<const ModalBasis>(*s.clamped, p.modes);
+            if (complete || !denseSolutionServes(s.clamped->mass.rows(), p.law.modes))
+                return std::make_shared<const ModalBasis>(*s.clamped, p.law.modes);
             PlateParameters whole = p;
-            whole.modes = 0;
+            whole.law.modes = 0;
             const auto all = cached<ModalBasis>(
                 modalBasisKey(whole, true), [&] { return std::make_shared<const ModalBasis>(*s.clamped, 0); },
                 modalBytes, s.cache);
-            return std::make_shared<const ModalBasis>(*s.clamped, p.modes, all.get());
+            return std::make_shared<const ModalBasis>(*s.clamped, p.law.modes, all.get());
         };
         discrete = std::make_shared<const ModalPlate>(
-            s.space, s.clamped, cached<ModalBasis>(modalBasisKey(p, complete), basis, modalBytes, s.cache), p.dt,
-            p.beta, p.dampingMass, p.dampingStiffness);
+            s.space, s.clamped, cached<ModalBasis>(modalBasisKey(p, complete), basis, modalBytes, s.cache), p.law.dt,
+            p.law.beta, p.law.dampingMass, p.law.dampingStiffness);
     } else {
-        discrete =
-            std::make_shared<const FullOrderPlate>(s.space, s.clamped, p.dt, p.beta, p.dampingMass, p.dampingStiffness);
+        discrete = std::make_shared<const FullOrderPlate>(s.space, s.clamped, p.law.dt, p.law.beta, p.law.dampingMass,
+                                                          p.law.dampingStiffness);
     }
     SchemeOptions options;
-    options.restitution = p.restitution;
-    options.dampingMass = p.dampingMass;
-    options.dampingStiffness = p.dampingStiffness;
-    options.singularMass = p.singularMass();  // carry the impulses (§11; the tests of the plain
+    options.restitution = p.law.restitution;
+    options.dampingMass = p.law.dampingMass;
+    options.dampingStiffness = p.law.dampingStiffness;
+    options.singularMass = p.law.singularMass();  // carry the impulses (§11; the tests of the plain
         // step build their NewmarkScheme directly)
     options.carried = p.carrier != PlateParameters::Carrier::None;  // §18–19
     if (options.carried) options.carrier = carrierOptions(p, s.baseDisplacement0);
-    auto scheme = std::make_unique<NewmarkScheme>(discrete, s.obstacles, options,
-                                                  OutputPoints{p.length, p.width, s.space->mesh().vertexCount()});
+    auto scheme = std::make_unique<NewmarkScheme>(
+        discrete, s.obstacles, options, OutputPoints{p.mesh.length, p.mesh.width, s.space->mesh().vertexCount()});
     scheme->setRecovery(discrete->rows(s.recovery.functionals()));
     progress.phase("static initial state (factor of K)", s.resources.staticSeconds + 0.5 * s.resources.factorSeconds);
     initializeState(s, discrete, *scheme);
@@ -200,20 +202,18 @@ std::unique_ptr<Scheme> makeNewmark(const SchemeSetup& s, InitProgress& progress
 
 std::unique_ptr<Scheme> makeScheme(const SchemeSetup& setup, InitProgress& progress) {
     const PlateParameters& p = setup.parameters;
-    if (p.timeScheme == TimeScheme::Newmark) return makeNewmark(setup, progress);
+    if (p.law.timeScheme == TimeScheme::Newmark) return makeNewmark(setup, progress);
     progress.phase("condensed singular plate (massive modes, massless Delassus operator)",
                    setup.resources.spectrumSeconds + setup.resources.factorSeconds);
     OutputRows rows;
     auto condensed = condensedPlate(setup, rows);
     std::unique_ptr<CondensedScheme> scheme;
-    if (p.timeScheme == TimeScheme::Flow)
-        scheme = std::make_unique<FlowScheme>(
-            condensed, setup.obstacles, p.dt,
-            ContactRefinement{p.contactSubsteps, p.tolerance, p.maxContactSubsteps, p.contactRowSpace}, p.dampingMass,
-            p.dampingStiffness, std::move(rows));
+    if (p.law.timeScheme == TimeScheme::Flow)
+        scheme = std::make_unique<FlowScheme>(condensed, setup.obstacles, p.law.dt, p.refinement, p.law.dampingMass,
+                                              p.law.dampingStiffness, std::move(rows));
     else
-        scheme = std::make_unique<MidpointScheme>(condensed, setup.obstacles, p.dt, p.dampingMass, p.dampingStiffness,
-                                                  std::move(rows));
+        scheme = std::make_unique<MidpointScheme>(condensed, setup.obstacles, p.law.dt, p.law.dampingMass,
+                                                  p.law.dampingStiffness, std::move(rows));
     scheme->initialize(setup.baseDisplacement0, p.initialLoad);
     scheme->setLoadAtStart(setup.loadAtStart);
     return scheme;

@@ -39,23 +39,24 @@ struct ClampedDiscretization {
 ClampedDiscretization clampedDiscretization(const PlateParameters& p, std::shared_ptr<const FiniteElementSpace> space) {
     ClampedDiscretization d;
     d.space = std::move(space);
-    PlateMatrices matrices = assemble(*d.space, p.surfaceDensity(), p.bendingStiffness(), p.poissonRatio);
+    PlateMatrices matrices = assemble(*d.space, p.material);
     Eigen::SparseMatrix<double> coupling, root;  // B and R of the singular mass, all dofs
-    if (p.singularMass()) {
-        SingularMass singular = assembleSingularMass(
-            *d.space, p.surfaceDensity(), p.mass == MassModel::SingularP0 ? MassProjection::P0 : MassProjection::P1dg);
+    if (p.law.singularMass()) {
+        SingularMass singular =
+            assembleSingularMass(*d.space, p.material.surfaceDensity(),
+                                 p.law.mass == MassModel::SingularP0 ? MassProjection::P0 : MassProjection::P1dg);
         matrices.mass = std::move(singular.mass);
         matrices.massMoment = std::move(singular.massMoment);
         coupling = std::move(singular.coupling);
         root = std::move(singular.root);
     }
-    const StopMap stops(p);  // only the vertices under a stop are contact rows (docs/theory.md §25)
+    const StopMap stops(p.obstacles, p.mesh);  // only the vertices under a stop are contact rows (docs/theory.md §25)
     d.clamped = std::make_shared<const ClampedPlate>(
         clamp(*d.space, matrices, [&stops](const Eigen::Vector2d& x) { return stops.at(x); }));
-    if (p.singularMass()) {
+    if (p.law.singularMass()) {
         d.couplingFree = freeRows(coupling, *d.clamped);
         requireMasslessContact(d.couplingFree, *d.clamped,
-                               p.mass == MassModel::SingularP0 ? "singular_p0" : "singular_p1dg");
+                               p.law.mass == MassModel::SingularP0 ? "singular_p0" : "singular_p1dg");
         d.rootFree = freeRows(root, *d.clamped);
     }
     return d;
@@ -89,7 +90,7 @@ struct PlateSimulation::Impl {
     ImpactEpisodes episodes;  // per obstacle (docs/theory.md §14), counted every step (part of the state)
     // Only with stress_outputs: off, the peak stays 0 and the step costs nothing more.
     void trackRoot() {
-        if (parameters.stressOutputs) rootPeak = std::max(rootPeak, recovery->rootCurvature(*scheme));
+        if (parameters.outputs.stressOutputs) rootPeak = std::max(rootPeak, recovery->rootCurvature(*scheme));
     }
     // Between grid points (docs/theory.md §15): the communication time, and the outputs at the
     // grid point before it (the one after it is the scheme's state).
@@ -98,7 +99,9 @@ struct PlateSimulation::Impl {
     PlateOutputs before;
     ProbeOutputs probesBefore;
     // Where t_c lies between t_{n−1} and t_n, as a fraction of Δt (the interpolation's weight).
-    double theta() const { return (commTime - double(scheme->stepCount() - 1) * parameters.dt) / parameters.dt; }
+    double theta() const {
+        return (commTime - double(scheme->stepCount() - 1) * parameters.law.dt) / parameters.law.dt;
+    }
     ResourceEstimate resources;  // made before the assembly
     InputSampler sampler;  // setInputSampler
 };
@@ -108,18 +111,14 @@ PlateSimulation::PlateSimulation(const PlateParameters& p, double baseDisplaceme
     : impl_(std::make_unique<Impl>()) {
     portable::fixDenseBlocking();  // the same bits on every CPU (docs/theory.md §20)
     validate(p);
-    const Obstacles obstacles = obstaclesOf(p);
-    requireBaseBetween(obstacles, baseDisplacement0);
+    const Obstacles obstacles = obstaclesOf(p.obstacles);
+    requireStartBetween(obstacles, baseDisplacement0);
     Impl& s = *impl_;
     s.parameters = p;
     requireMeshWithinBudget(p);  // far beyond memory_limit: refused before the space is built
     CacheUse cache;
     const auto space = cached<FiniteElementSpace>(
-        spaceKey(p),
-        [&] {
-            return std::shared_ptr<const FiniteElementSpace>(makeSpace(p.element, Mesh(p.length, p.width, p.nx, p.ny)));
-        },
-        spaceBytes, cache);
+        spaceKey(p), [&] { return std::shared_ptr<const FiniteElementSpace>(makeSpace(p.mesh)); }, spaceBytes, cache);
     s.resources = planResources(p, *space, log);  // refuses beyond memory_limit
     InitProgress progress(log, s.resources.initSeconds);
     progress.phase("assembly of M and K", s.resources.assemblySeconds);
@@ -136,31 +135,8 @@ PlateSimulation::PlateSimulation(const PlateParameters& p, double baseDisplaceme
                           progress);
     if (log) log(describe(cache));
     s.trackRoot();  // the initial state's (t = 0 belongs to the peak)
-    s.episodes = ImpactEpisodes(p.firstFrequencyEstimate(), p.dt);
+    s.episodes = ImpactEpisodes(p.firstFrequencyEstimate(), p.law.dt);
     progress.done(s.resources.peakMB);
-}
-
-void PlateSimulation::requireBaseBetween(const Obstacles& obstacles, double baseDisplacement0) {
-    if (!std::isfinite(baseDisplacement0) || baseDisplacement0 < obstacles.lower ||
-        baseDisplacement0 > obstacles.upper) {
-        std::ostringstream msg;
-        msg.precision(15);  // round-trips what users type (0.7, not 0.69999999999999996)
-        // The plate starts flat at the clamp's height: what is refused is the plate under the stop, which
-        // reaches the clamped edge or not (a tip stop: issue 71's user read the clamp blamed).
-        const bool below = !(baseDisplacement0 >= obstacles.lower);
-        const bool atClamp = below ? obstacles.lowerAtClamp : obstacles.upperAtClamp;
-        msg << "invalid initial state: base_displacement = " << baseDisplacement0
-            << " starts the plate flat at that height, "
-            << (below ? "below obstacle_lower = " : "above obstacle_upper = ")
-            << (below ? obstacles.lower : obstacles.upper)
-            << (atClamp
-                    ? " (its stop covers the clamped edge)"
-                    : " under that obstacle's stop (which does not reach the clamped edge: the plate there, not the "
-                      "clamp, is outside)")
-            << " (allowed: obstacle_lower = " << obstacles.lower
-            << " <= base_displacement <= obstacle_upper = " << obstacles.upper << " at the start)";
-        throw ParameterError(msg.str());
-    }
 }
 
 PlateSimulation::~PlateSimulation() = default;
@@ -173,13 +149,13 @@ void PlateSimulation::advance(long long steps, const InputSignal& base, const In
     if (!impl_->onGrid) throw StepError("advance() needs a communication time on the grid; use communicate()");
     StepPlan plan;
     plan.steps = steps;
-    plan.end = double(impl_->scheme->stepCount() + steps) * impl_->parameters.dt;
+    plan.end = double(impl_->scheme->stepCount() + steps) * impl_->parameters.law.dt;
     communicate(plan, base, load);
 }
 
 StepPlan PlateSimulation::plan(double h) const {
     const Impl& s = *impl_;
-    return planStep(h, s.parameters.dt, s.scheme->stepCount(), s.commTime, s.onGrid);
+    return planStep(h, s.parameters.law.dt, s.scheme->stepCount(), s.commTime, s.onGrid);
 }
 
 // The one loop of a communication step (docs/theory.md §15): the plan's internal steps with
@@ -191,7 +167,7 @@ template <class StopAfter>
 bool PlateSimulation::stepThrough(const StepPlan& plan, const InputSignal& base, const InputSignal& load,
                                   StopAfter&& stopAfter) {
     Impl& s = *impl_;
-    const double dt = s.parameters.dt;
+    const double dt = s.parameters.law.dt;
     if (!std::isfinite(load.value)) throw StepError("non-finite load input at the step start");
     s.scheme->setLoadAtStart(load.value);
     Armature* carrier = s.scheme->carrier();
@@ -236,7 +212,7 @@ void PlateSimulation::communicate(const StepPlan& plan, const InputSignal& base,
 bool PlateSimulation::communicateUntilContactChange(const StepPlan& plan, const InputSignal& base,
                                                     const InputSignal& load, const GridPointObserver& observer) {
     Impl& s = *impl_;
-    const double dt = s.parameters.dt;
+    const double dt = s.parameters.law.dt;
     if (!std::isfinite(load.value)) throw StepError("non-finite load input at the step start");
     const auto inContact = [&s] { return s.scheme->contactVertices() > 0; };
     // The last step ended between grid points and the grid point ahead changed the contact set:
@@ -270,7 +246,7 @@ PlateOutputs PlateSimulation::outputs(bool port, FieldOutputs field) const {
 ProbeOutputs PlateSimulation::probes() const {
     const Impl& s = *impl_;
     ProbeOutputs o;
-    s.recovery->fillProbes(*s.scheme, s.parameters.dt, o);
+    s.recovery->fillProbes(*s.scheme, s.parameters.law.dt, o);
     if (s.onGrid) return o;
     // Between grid points as outputs(): the linear interpolation of the two neighbours.
     const double theta = s.theta();
@@ -388,7 +364,7 @@ void PlateSimulation::restoreState(const std::vector<double>& all) {
     const std::vector<double> current = scheme.saveState();
     scheme.restoreState(std::vector<double>(in.begin(), split));  // throws, the state unchanged
     // On the grid the time is the grid point's; between, within one step before it.
-    const double dt = s.parameters.dt, gridTime = double(scheme.stepCount()) * dt;
+    const double dt = s.parameters.law.dt, gridTime = double(scheme.stepCount()) * dt;
     const bool onGrid = grid.onGrid == 1;
     if (!(onGrid ? grid.commTime == gridTime : (grid.commTime < gridTime && grid.commTime > gridTime - dt))) {
         scheme.restoreState(current);

@@ -13,7 +13,6 @@
 #include "InputSignal.h"
 #include "StepPlan.h"
 #include "schemes/PlateOutputs.h"
-#include "plate/Obstacles.h"
 #include "plate/PlateParameters.h"
 #include "plate/ResourceEstimate.h"
 
@@ -102,7 +101,6 @@ public:
     virtual void restoreState(const std::vector<double>& state);  // throws std::invalid_argument
 
 private:
-    static void requireBaseBetween(const Obstacles& obstacles, double baseDisplacement0);
     PlateOutputs gridOutputs(bool port, FieldOutputs field = FieldOutputs::None) const;
     struct Impl;
     template <class StopAfter>

@@ -1,8 +1,11 @@
 """What the FMU's cache of discretizations saves, measured in one run (README, "Performance";
-docs/instance_setup.json). Two measurements:
+docs/instance_setup.json). Three measurements:
 
 - the CPU an instance spends in ExitInitializationMode, first and next instances of one plate in
   one process (issue 54 asks the next ones for at most 5 % of the first one's CPU);
+- the same through fmpy's simulate_fmu, in a fresh interpreter: each call extracts the FMU anew
+  and loads and unloads its own copy of the library, which forwards to the process's first copy
+  (fmu/core/PrimaryCopy.h; issue 71 asks the next calls for at most 5 % of the first one's CPU);
 - a response map on Dask (plateimpact.response_map, as examples/frequency_response.py runs it):
   its points' setup summed and the map's wall time with the cache on and with it off
   (PLATEIMPACT_CACHE_MB=0 in the workers), and whether the two maps' results agree bit for bit.
@@ -10,8 +13,8 @@ docs/instance_setup.json). Two measurements:
 Prints one line per instance and per map; --json FILE also writes the numbers (docs/instance_setup.json,
 which tools/render_docs.py quotes in the README).
 
-    .venv/bin/python tools/instance_setup.py [--fmu FMU] [--instances 4] [--map-points 16] \\
-        [--json docs/instance_setup.json] [key=value ...]
+    .venv/bin/python tools/instance_setup.py [--fmu FMU] [--instances 4] [--simulate-fmu-calls 4] \\
+        [--map-points 16] [--json docs/instance_setup.json] [key=value ...]
     .venv/bin/python tools/render_docs.py
 
 key=value: parameters of the plate (nx=20 ny=7 mass=2 time_scheme=2 ...); the default plate
@@ -24,6 +27,7 @@ import argparse
 import json
 import math
 import os
+import re
 import statistics
 import subprocess
 import sys
@@ -34,6 +38,8 @@ from checkout import add_checkout_arguments, fmu_path
 from plateimpact import PlateImpactFMU
 
 TIMING = ("wall_s", "setup_s", "plate_shared")  # a map point's fields that are not its result
+SIMULATE_FMU_STOP_TIME = 0.01  # s simulated per simulate_fmu call
+SHARED = re.compile(r"discretization: (\d+) of (\d+) parts shared from the process's cache")
 
 
 def setup_cpu(fmu, parameters):
@@ -47,6 +53,52 @@ def setup_cpu(fmu, parameters):
     finally:
         plate.close()
     return cpu, wall
+
+
+def simulate_fmu_setups(fmu, calls, parameters):
+    """CPU s of ExitInitializationMode in each of `calls` simulate_fmu calls of this process (fmpy
+    calls fmi_call_logger after each FMI call returns: the CPU between the call before and it),
+    whether each instance shared its plate from the cache (its log line), and each whole call's CPU
+    (extracting the FMU, loading its library, SIMULATE_FMU_STOP_TIME simulated)."""
+    from fmpy import simulate_fmu
+
+    cpu, shared, whole = [], [], []
+    for _ in range(calls):
+        start = time.process_time()
+        last, exit_cpu, lines = [time.process_time()], [], []
+
+        def calls_logged(message, last=last, exit_cpu=exit_cpu):
+            now = time.process_time()
+            if "ExitInitializationMode" in message:
+                exit_cpu.append(now - last[0])
+            last[0] = now
+
+        simulate_fmu(
+            fmu,
+            stop_time=0.01,
+            output_interval=1e-3,
+            start_values=parameters,
+            debug_logging=True,
+            fmi_call_logger=calls_logged,
+            logger=lambda *a, lines=lines: lines.append(str(a[-1])),
+        )
+        whole.append(time.process_time() - start)
+        cpu.append(exit_cpu[0])
+        parts = [SHARED.search(m).groups() for m in lines if SHARED.search(m)]
+        shared.append(bool(parts) and parts[0][0] == parts[0][1])
+    return {"cpu_s": cpu, "shared": shared, "call_cpu_s": whole, "stop_time": SIMULATE_FMU_STOP_TIME}
+
+
+def simulate_fmu_in_a_new_process(fmu, calls, parameters):
+    """simulate_fmu_setups in a fresh interpreter (this one has loaded the FMU already)."""
+    done = subprocess.run(
+        [sys.executable, __file__, "--fmu", fmu, "--simulate-fmu-child", str(calls)]
+        + [f"{k}={v}" for k, v in parameters.items()],
+        capture_output=True,
+        text=True,
+        check=True,
+    )
+    return json.loads(done.stdout.splitlines()[-1])
 
 
 def map_points(count):
@@ -103,6 +155,8 @@ def main(argv=None):
     ap = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
     add_checkout_arguments(ap)
     ap.add_argument("--instances", type=int, default=4)
+    ap.add_argument("--simulate-fmu-calls", type=int, default=4, help="simulate_fmu calls in a fresh process (0: none)")
+    ap.add_argument("--simulate-fmu-child", type=int, default=0, help=argparse.SUPPRESS)
     ap.add_argument("--map-points", type=int, default=16, help="points of the response map (0: no map)")
     ap.add_argument("--map-workers", type=int, default=2, help="the map's Dask worker processes")
     ap.add_argument("--map-stop-time", type=float, default=0.1, help="s simulated per map point")
@@ -114,6 +168,9 @@ def main(argv=None):
         key, value = item.split("=", 1)
         parameters[key] = float(value) if "." in value or "e" in value else int(value)
     fmu = str(os.path.abspath(fmu_path(args)))
+    if args.simulate_fmu_child:
+        print(json.dumps(simulate_fmu_setups(fmu, args.simulate_fmu_child, parameters)))
+        return 0
     runs = [setup_cpu(fmu, parameters) for _ in range(args.instances)]
     for i, (cpu, wall) in enumerate(runs):
         print(f"instance {i + 1}: ExitInitializationMode {cpu:.4f} s CPU ({wall:.4f} s wall)", flush=True)
@@ -128,6 +185,27 @@ def main(argv=None):
         "next_cpu_s": rest,
         "next_over_first": rest / first,
     }
+    if args.simulate_fmu_calls > 1:
+        sim = simulate_fmu_in_a_new_process(fmu, args.simulate_fmu_calls, parameters)
+        for i, (cpu, shared, whole) in enumerate(zip(sim["cpu_s"], sim["shared"], sim["call_cpu_s"])):
+            plate = "shared from the cache" if shared else "built"
+            print(
+                f"simulate_fmu call {i + 1}: ExitInitializationMode {cpu:.4f} s CPU, its plate {plate} "
+                f"(the whole call {whole:.3f} s CPU)",
+                flush=True,
+            )
+        first_call, next_calls = sim["cpu_s"][0], statistics.median(sim["cpu_s"][1:])
+        print(
+            f"next simulate_fmu calls (median): {next_calls:.4f} s CPU = {100 * next_calls / first_call:.1f} % "
+            "of the first one's",
+            flush=True,
+        )
+        report["simulate_fmu"] = {
+            **sim,
+            "first_cpu_s": first_call,
+            "next_cpu_s": next_calls,
+            "next_over_first": next_calls / first_call,
+        }
     if args.map_points > 0:
         points = map_points(args.map_points)
         maps = {}

@@ -102,6 +102,4 @@ double Shaker::energy() const {
     return 0.5 * p_.mass * s_.velocity * s_.velocity + 0.5 * p_.stiffness * s_.displacement * s_.displacement;
 }
 
-double Shaker::ledgerResidual() const { return energy() - (s_.driveWork + s_.plateWork - s_.damperLoss); }
-
 }  // namespace shaker

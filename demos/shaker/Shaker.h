@@ -57,8 +57,6 @@ public:
     void settle(double driveForce, double plateForce);
 
     double energy() const;  // J, m v²/2 + k x²/2
-    // energy - (drive_work + plate_work - damper_loss): zero up to roundoff.
-    double ledgerResidual() const;
 
     const ShakerState& state() const { return s_; }
     void setState(const ShakerState& s) { s_ = s; }

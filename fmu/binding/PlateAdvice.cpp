@@ -21,14 +21,14 @@ double roundedDown(double x) {
 
 std::string capAdvice(const plate::PlateParameters& p) {
     const plate::PlateParameters defaults;
-    if (p.timeScheme != plate::TimeScheme::Flow || p.tolerance > 0.0 ||
-        p.maxContactSubsteps == defaults.maxContactSubsteps)
+    if (p.law.timeScheme != plate::TimeScheme::Flow || p.refinement.tolerance > 0.0 ||
+        p.refinement.maxSubsteps == defaults.refinement.maxSubsteps)
         return "";
     return format(
         "max_contact_substeps = %g caps the sub-steps of time_scheme = flow with a tolerance > 0 only; with "
         "tolerance = 0 every contact step takes contact_substeps = %g sub-steps and this run ignores the cap: "
         "to bound a contact step's work set contact_substeps (e.g. %g), or a tolerance in m",
-        double(p.maxContactSubsteps), double(p.contactSubsteps), double(p.maxContactSubsteps));
+        double(p.refinement.maxSubsteps), double(p.refinement.substeps), double(p.refinement.maxSubsteps));
 }
 
 bool isStressOutput(fmu::ValueReference vr) {
@@ -44,7 +44,7 @@ bool isStressOutput(fmu::ValueReference vr) {
 }
 
 std::string stressReadAdvice(const char* name, const plate::PlateParameters& p) {
-    if (p.stressOutputs) return "";
+    if (p.outputs.stressOutputs) return "";
     return std::string(name) +
            " was read while stress_outputs = false: it reads 0, not computed (so do root_stress, root_stress_peak, "
            "max_stress, max_stress_x, max_stress_y and vertex_stress); set the parameter stress_outputs = true "
@@ -180,7 +180,7 @@ void PlateAdvisor::onBuild(const plate::PlateParameters& p) {
 
 void PlateAdvisor::onRead(fmu::ValueReference vr, const char* name, const plate::PlateParameters& p) {
     if (stressReadWarned_ || !isStressOutput(vr)) return;
-    stressReadWarned_ = !p.stressOutputs;
+    stressReadWarned_ = !p.outputs.stressOutputs;
     say(stressReadAdvice(name, p));
 }
 
@@ -192,7 +192,7 @@ void PlateAdvisor::onStep(const plate::PlateParameters& p, const plate::StepPlan
             format("communicationStepSize h = %.17g is shorter than two internal steps of dt = %g: the outputs "
                    "are interpolated between the grid points around t (docs/theory.md §15); for the scheme's own "
                    "values take h a whole multiple of dt, or a smaller dt",
-                   h, p.dt));
+                   h, p.law.dt));
     }
     if (longStepWarned_ || h <= longestCommunicationStep(p)) return;
     const char* input = inputChanged(drive) ? driveName : inputChanged(load) ? "load" : nullptr;
@@ -203,16 +203,16 @@ void PlateAdvisor::onStep(const plate::PlateParameters& p, const plate::StepPlan
 
 void PlateAdvisor::afterStep(const plate::PlateParameters& p, const plate::PlateOutputs& o, double t,
                              const plate::ToleranceHorizon& horizon) {
-    if (p.tolerance <= 0.0 || p.timeScheme != plate::TimeScheme::Flow) return;
-    if (!errorWarned_ && o.errorEstimate > p.tolerance) {
+    if (p.refinement.tolerance <= 0.0 || p.law.timeScheme != plate::TimeScheme::Flow) return;
+    if (!errorWarned_ && o.errorEstimate > p.refinement.tolerance) {
         errorWarned_ = true;
-        warn_(format("error_estimate = %.3g m passed tolerance = %.3g m at t = %.17g", o.errorEstimate, p.tolerance,
-                     horizon.lostAt) +
+        warn_(format("error_estimate = %.3g m passed tolerance = %.3g m at t = %.17g", o.errorEstimate,
+                     p.refinement.tolerance, horizon.lostAt) +
               ": the flow law cannot hold the tolerance from this time on (errors made at earlier impacts grew at "
               "later ones, or the sub-step cap bounded a step): this is the scene's horizon for this tolerance. " +
               format("Later contact steps take %g sub-steps (contact_substeps = %g down to a power of two, at most "
                      "max_contact_substeps = %g)",
-                     double(horizon.substeps), double(p.contactSubsteps), double(p.maxContactSubsteps)) +
+                     double(horizon.substeps), double(p.refinement.substeps), double(p.refinement.maxSubsteps)) +
               "; between two obstacles error_estimate reads their gap from now on, the one bound left (docs/theory.md "
               "section 22)");
     }
@@ -220,12 +220,12 @@ void PlateAdvisor::afterStep(const plate::PlateParameters& p, const plate::Plate
         cappedWarned_ = true;
         warn_(format("a contact step before t = %.17g needed more than max_contact_substeps = %g sub-steps for "
                      "its target",
-                     t, double(p.maxContactSubsteps)) +
-              (p.maxContactSubsteps < plate::ranges::kMaxContactSubsteps.max
+                     t, double(p.refinement.maxSubsteps)) +
+              (p.refinement.maxSubsteps < plate::ranges::kMaxContactSubsteps.max
                    ? "; raise max_contact_substeps (capped_steps counts such steps; error_estimate includes them)"
                    : format("; max_contact_substeps = %g is its largest: take a larger tolerance or a smaller dt "
                             "(capped_steps counts such steps; error_estimate includes them)",
-                            double(p.maxContactSubsteps))));
+                            double(p.refinement.maxSubsteps))));
     }
 }
 

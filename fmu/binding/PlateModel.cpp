@@ -92,7 +92,7 @@ public:
         return "the parameter dt (s, the internal step of a fixed grid) and, under time_scheme = flow, the parameter "
                "tolerance (m, a bound on the error of the reported points)";
     }
-    double fixedInternalStepSize() const override { return plate::PlateParameters{}.dt; }
+    double fixedInternalStepSize() const override { return plate::PlateParameters{}.law.dt; }
     bool doStepUntilEvent(double t, double h) override {
         stopAtContactChange_ = true;
         endedAtEvent_ = false;
@@ -142,7 +142,7 @@ public:
         clampVelocity_ = 0.0;
         refreshOutputs();
         const plate::PlateParameters& p = values_.parameters;
-        trace(format("simulation built (nx = %g, ny = %g, dt = %g s)", p.nx, p.ny, p.dt));
+        trace(format("simulation built (nx = %g, ny = %g, dt = %g s)", p.mesh.nx, p.mesh.ny, p.law.dt));
         for (const std::string& message : buildWarnings(values_, fmiVersion() == 3)) warn(message);
         driveSet_ = false;
         advisor_.onBuild(p);
@@ -188,17 +188,17 @@ public:
             throw fmu::ModelError(format(
                 "communicationStepSize h = %.17g is not a whole multiple of dt = %g: with base_drive = force or tlm "
                 "the clamp is carried inside the FMU, which takes communication steps on the grid of dt only",
-                h, values_.parameters.dt));
+                h, values_.parameters.law.dt));
         const double now = simulation_->time();
         advisor_.onStep(values_.parameters, plan, h, t, drivePort(), driveName(), values_.load);
         const std::optional<DriveSample> sample = driveSample(t);
         for (InputPort* port : ports()) {
             port->beginStep(now);
-            port->reach = plan.offset + double(plan.steps) * values_.parameters.dt;  // the last grid point read
+            port->reach = plan.offset + double(plan.steps) * values_.parameters.law.dt;  // the last grid point read
         }
         try {
             const plate::InputSignal base = clampSignal(now, plan.span);
-            if (sample) advisor_.onDriveSample(*sample, base.value, h, values_.parameters.dt, driveName());
+            if (sample) advisor_.onDriveSample(*sample, base.value, h, values_.parameters.law.dt, driveName());
             const plate::InputSignal load = values_.load.stepSignal(now, plan.span, -plate::kMaxLoad, plate::kMaxLoad);
             advanceClamp(base, communicate(plan, base, load));
         } catch (const plate::StepError& e) {
@@ -424,7 +424,7 @@ private:
     // reconstructed clamp stays between the obstacles the master's values respect.
     plate::InputSignal clampSignal(double now, double span) {
         const plate::PlateParameters& p = simulation_->parameters();
-        const plate::Obstacles obstacles = plate::obstaclesOf(p);  // those whose stops reach the clamp
+        const plate::Obstacles obstacles = plate::obstaclesOf(p.obstacles);  // those whose stops reach the clamp
         const double lower = std::max(obstacles.clampLower(), -plate::kMaxDisplacement);
         const double upper = std::min(obstacles.clampUpper(), plate::kMaxDisplacement);
         return mode().path(values_, {clampPosition_, clampVelocity_}, now, span, lower, upper);
@@ -443,7 +443,7 @@ private:
                 refreshOutputs();
                 const double t = simulation_->time();
                 returnAt_ = std::min(returnAt_, intermediateUpdate(t));
-                returnRequested_ = t >= returnAt_ - 1e-9 * values_.parameters.dt;
+                returnRequested_ = t >= returnAt_ - 1e-9 * values_.parameters.law.dt;
                 return returnRequested_;
             };
         }

@@ -81,8 +81,10 @@ Row fmi2Only(Row row) {
 constexpr plate::Range kScalarProbeCount{0.0, double(kScalarProbes)};
 
 // The switches' accessors (Integer values of the items above).
-double getElement(const PlateValues& v) { return v.parameters.element == ElementType::Fvs ? 2.0 : 1.0; }
-void setElement(PlateValues& v, double x) { v.parameters.element = x == 2.0 ? ElementType::Fvs : ElementType::Argyris; }
+double getElement(const PlateValues& v) { return v.parameters.mesh.element == ElementType::Fvs ? 2.0 : 1.0; }
+void setElement(PlateValues& v, double x) {
+    v.parameters.mesh.element = x == 2.0 ? ElementType::Fvs : ElementType::Argyris;
+}
 double getBaseInputMode(const PlateValues& v) { return double(static_cast<int>(v.baseDisplacement.mode)); }
 void setBaseInputMode(PlateValues& v, double x) {
     // One mode for every input of the clamp's motion.
@@ -91,10 +93,10 @@ void setBaseInputMode(PlateValues& v, double x) {
 }
 double getLoadInputMode(const PlateValues& v) { return double(static_cast<int>(v.load.mode)); }
 void setLoadInputMode(PlateValues& v, double x) { v.load.mode = static_cast<InputMode>(int(x)); }
-double getMass(const PlateValues& v) { return double(static_cast<int>(v.parameters.mass)); }
-void setMass(PlateValues& v, double x) { v.parameters.mass = static_cast<MassModel>(int(x)); }
-double getTimeScheme(const PlateValues& v) { return double(static_cast<int>(v.parameters.timeScheme)); }
-void setTimeScheme(PlateValues& v, double x) { v.parameters.timeScheme = static_cast<TimeScheme>(int(x)); }
+double getMass(const PlateValues& v) { return double(static_cast<int>(v.parameters.law.mass)); }
+void setMass(PlateValues& v, double x) { v.parameters.law.mass = static_cast<MassModel>(int(x)); }
+double getTimeScheme(const PlateValues& v) { return double(static_cast<int>(v.parameters.law.timeScheme)); }
+void setTimeScheme(PlateValues& v, double x) { v.parameters.law.timeScheme = static_cast<TimeScheme>(int(x)); }
 double getBaseDrive(const PlateValues& v) { return double(static_cast<int>(v.baseDrive)); }
 void setBaseDrive(PlateValues& v, double x) {
     v.baseDrive = static_cast<BaseDrive>(int(x));
@@ -124,10 +126,10 @@ double getQpIterationsTotal(const PlateValues& v) { return saturate(v.outputs.co
     [](const PlateValues& v) { return v.member.signal.value; }, [](PlateValues& v, double x) { v.member.setValue(x); }
 #define OUTPUT(field) [](const PlateValues& v) { return double(v.outputs.field); }
 // An edge of an obstacle's stop (docs/theory.md §25): obstacle_<side>_<edge>, m.
-#define STOP_EDGE(vr, side, edge, member, more)                                       \
-    parameter(vr, "obstacle_" side "_" edge, "m", kStopCoordinate, PARAMETER(member), \
-              "Edge " edge " of the " side                                            \
-              " obstacle's stop: the mesh vertices inside its rectangle (clipped to " \
+#define STOP_EDGE(vr, side, edge, member, more)                                                 \
+    parameter(vr, "obstacle_" side "_" edge, "m", kStopCoordinate, PARAMETER(obstacles.member), \
+              "Edge " edge " of the " side                                                      \
+              " obstacle's stop: the mesh vertices inside its rectangle (clipped to "           \
               "the plate) are its contact points" more)
 #define PORT(field) [](const PlateValues& v) { return v.port().field; }
 #define FIELD(member) [](const PlateValues& v) { return v.field().member; }
@@ -146,31 +148,31 @@ using namespace plate::ranges;  // the parameters' ranges: kLength, kCells, ...
 // description after it.
 // clang-format off
 const Row kRows[] = {
-    parameter(kVrLength,            "length",             "m",     kLength,            PARAMETER(length),
+    parameter(kVrLength,            "length",             "m",     kLength,            PARAMETER(mesh.length),
         "Plate length along x (clamped edge at x = 0)"),
-    parameter(kVrWidth,             "width",              "m",     kWidth,             PARAMETER(width),
+    parameter(kVrWidth,             "width",              "m",     kWidth,             PARAMETER(mesh.width),
         "Plate width along y"),
-    parameter(kVrThickness,         "thickness",          "m",     kThickness,         PARAMETER(thickness),
+    parameter(kVrThickness,         "thickness",          "m",     kThickness,         PARAMETER(material.thickness),
         "Plate thickness"),
-    parameter(kVrYoungsModulus,     "youngs_modulus",     "Pa",    kYoungsModulus,     PARAMETER(youngsModulus),
+    parameter(kVrYoungsModulus,     "youngs_modulus",     "Pa",    kYoungsModulus,     PARAMETER(material.youngsModulus),
         "Young's modulus E"),
-    parameter(kVrPoissonRatio,      "poisson_ratio",      "1",     kPoissonRatio,      PARAMETER(poissonRatio),
+    parameter(kVrPoissonRatio,      "poisson_ratio",      "1",     kPoissonRatio,      PARAMETER(material.poissonRatio),
         "Poisson's ratio, in (0, 0.5)"),
-    parameter(kVrDensity,           "density",            "kg/m3", kDensity,           PARAMETER(density),
+    parameter(kVrDensity,           "density",            "kg/m3", kDensity,           PARAMETER(material.density),
         "Mass density of the plate material"),
-    integerParameter(kVrNx,    "nx",    kCells, PARAMETER(nx),
+    integerParameter(kVrNx,    "nx",    kCells, PARAMETER(mesh.nx),
         "Number of mesh cells along x (at least 1)"),
-    integerParameter(kVrNy,    "ny",    kCells, PARAMETER(ny),
+    integerParameter(kVrNy,    "ny",    kCells, PARAMETER(mesh.ny),
         "Number of mesh cells along y (at least 1)"),
     choice(kVrElement,       "element",         elementType(), getElement,       setElement,
         "Finite element"),
-    parameter(kVrObstacleLower,     "obstacle_lower",     "m",     kObstacleLower,     PARAMETER(obstacleLower),
+    parameter(kVrObstacleLower,     "obstacle_lower",     "m",     kObstacleLower,     PARAMETER(obstacles.lower),
         "Height of the lower obstacle (negative; used when obstacle_lower_enabled)"),
-    parameter(kVrObstacleUpper,     "obstacle_upper",     "m",     kObstacleUpper,     PARAMETER(obstacleUpper),
+    parameter(kVrObstacleUpper,     "obstacle_upper",     "m",     kObstacleUpper,     PARAMETER(obstacles.upper),
         "Height of the upper obstacle (positive; used when obstacle_upper_enabled)"),
-    booleanParameter(kVrObstacleLowerEnabled, "obstacle_lower_enabled", PARAMETER(obstacleLowerEnabled),
+    booleanParameter(kVrObstacleLowerEnabled, "obstacle_lower_enabled", PARAMETER(obstacles.lowerEnabled),
         "Whether the lower obstacle is present"),
-    booleanParameter(kVrObstacleUpperEnabled, "obstacle_upper_enabled", PARAMETER(obstacleUpperEnabled),
+    booleanParameter(kVrObstacleUpperEnabled, "obstacle_upper_enabled", PARAMETER(obstacles.upperEnabled),
         "Whether the upper obstacle is present"),
     STOP_EDGE(kVrObstacleLowerXMin, "lower", "x_min", lowerStop.xMin, ""),
     STOP_EDGE(kVrObstacleLowerXMax, "lower", "x_max", lowerStop.xMax, " (default 1e4: to the plate's edge)"),
@@ -180,14 +182,14 @@ const Row kRows[] = {
     STOP_EDGE(kVrObstacleUpperXMax, "upper", "x_max", upperStop.xMax, " (default 1e4: to the plate's edge)"),
     STOP_EDGE(kVrObstacleUpperYMin, "upper", "y_min", upperStop.yMin, ""),
     STOP_EDGE(kVrObstacleUpperYMax, "upper", "y_max", upperStop.yMax, " (default 1e4: to the plate's edge)"),
-    parameter(kVrDt,                "dt",                 "s",     kDt,                PARAMETER(dt),
+    parameter(kVrDt,                "dt",                 "s",     kDt,                PARAMETER(law.dt),
         "Internal time step of the scheme's fixed grid; a communication step of any length is taken on it, the "
         "outputs interpolated between grid points"),
-    parameter(kVrBeta,              "beta",               "1",     kBeta,              PARAMETER(beta),
+    parameter(kVrBeta,              "beta",               "1",     kBeta,              PARAMETER(law.beta),
         "Newmark parameter beta in [0, 0.5] (gamma = 1/2); unconditionally stable for beta >= 1/4"),
     parameter(kVrInitialLoad,       "initial_load",       "Pa",    kInitialLoad,       PARAMETER(initialLoad),
         "Uniform pressure (positive upward) whose static equilibrium is the initial shape; the plate starts at rest"),
-    integerParameter(kVrModes, "modes", kModes, PARAMETER(modes),
+    integerParameter(kVrModes, "modes", kModes, PARAMETER(law.modes),
         "0: full finite element space (exact scheme); m > 0: reduced model on m modes"),
     choice(kVrBaseInputMode, "base_input_mode", inputMode(),   getBaseInputMode, setBaseInputMode,
         "How base_displacement (and base_velocity, base_acceleration) moves inside a communication step{fmi2: when "
@@ -204,25 +206,25 @@ const Row kRows[] = {
         "closes exactly through impacts at any dt and every reported displacement stays within the obstacles; modes "
         "= m keeps the m lowest massive modes, damping acts on them; beta and restitution do not apply) or flow (the "
         "conserving scheme with exact free flight and sub-stepped contact steps: accurate after impact)"),
-    integerParameter(kVrContactSubsteps, "contact_substeps", kContactSubsteps, PARAMETER(contactSubsteps),
+    integerParameter(kVrContactSubsteps, "contact_substeps", kContactSubsteps, PARAMETER(refinement.substeps),
         "time_scheme = flow: midpoint sub-steps of each internal step in which a constraint row is or becomes "
         "active when tolerance = 0 (1..64; the free steps take the exact modal flow whatever this is)"),
-    parameter(kVrTolerance,         "tolerance",          "m",     kTolerance,         PARAMETER(tolerance),
+    parameter(kVrTolerance,         "tolerance",          "m",     kTolerance,         PARAMETER(refinement.tolerance),
         "time_scheme = flow: > 0 bounds the time error of the reported points (corner_1, corner_2, free_edge_mid): "
         "their distance from the exact motion of this mesh (its distance from the converged plate: "
         "discretization_error); each contact step takes the sub-steps the global error estimate asks for, and "
         "a warning says when the estimate passes the tolerance (the scene's horizon for it; contact steps then "
         "take contact_substeps sub-steps); 0 = contact_substeps sub-steps"),
     integerParameter(kVrMaxContactSubsteps, "max_contact_substeps", kMaxContactSubsteps,
-        PARAMETER(maxContactSubsteps),
+        PARAMETER(refinement.maxSubsteps),
         "time_scheme = flow with tolerance > 0: the most sub-steps one contact step may take (a power of two, "
         "2..1024): the cap on one internal step's work; capped_steps counts the steps it bounded"),
-    parameter(kVrRestitution,       "restitution",        "1",     kRestitution,       PARAMETER(restitution),
+    parameter(kVrRestitution,       "restitution",        "1",     kRestitution,       PARAMETER(law.restitution),
         "Restitution coefficient e in [0, 1] of the impact law on (u+ + e u-)/(1 + e); 0 is the paper's scheme"),
-    parameter(kVrDampingMass,       "damping_mass",       "1/s",   kDampingMass,       PARAMETER(dampingMass),
+    parameter(kVrDampingMass,       "damping_mass",       "1/s",   kDampingMass,       PARAMETER(law.dampingMass),
         "Rayleigh damping, mass-proportional coefficient a (C = a M + b K; damping ratio a/(2 omega) + b omega/2), "
         ">= 0"),
-    parameter(kVrDampingStiffness,  "damping_stiffness",  "s",     kDampingStiffness,  PARAMETER(dampingStiffness),
+    parameter(kVrDampingStiffness,  "damping_stiffness",  "s",     kDampingStiffness,  PARAMETER(law.dampingStiffness),
         "Rayleigh damping, stiffness-proportional coefficient b (C = a M + b K), >= 0"),
     parameter(kVrMemoryLimit,       "memory_limit",       "MB",    kMemoryLimit,       PARAMETER(memoryLimit),
         "Memory budget of the instance: one whose estimated peak exceeds it is refused at fmiXExitInitializationMode "
@@ -274,17 +276,18 @@ const Row kRows[] = {
     integerOutput(kVrCappedSteps,       "capped_steps",        OUTPUT(cappedSteps),
         "time_scheme = flow with tolerance > 0: contact steps whose own error stayed above their share of the "
         "tolerance at max_contact_substeps sub-steps (the cap bounded their work; error_estimate includes them)"),
-    booleanParameter(kVrDiscretizationCheck, "discretization_check", PARAMETER(discretizationCheck),
+    booleanParameter(kVrDiscretizationCheck, "discretization_check", PARAMETER(outputs.discretizationCheck),
         "Estimate the error the mesh and the modal basis make (discretization_error) while the run goes: a companion "
-        "plate on the mesh coarsened by two (ceil(nx/2) x ceil(ny/2) cells) is fed the same inputs; the outputs stay "
+        "plate on the mesh coarsened by two (ceil(nx/2) x ceil(ny/2) cells, on half the modes) is fed the same "
+        "inputs; the outputs stay "
         "the same bits; needs nx, ny >= 2 and base_drive displacement, velocity or acceleration (the theory, "
         "section 26)"),
     output(kVrDiscretizationError,     "discretization_error",       "m",    OUTPUT(discretizationError),
         "discretization_check = true: the largest error of the reported points (corner_1, corner_2, free_edge_mid) "
         "since t = 0 against the converged plate that comes from the mesh and the modal basis, estimated from the "
         "companion's difference by Richardson's factor; from the Warning that says so on (the paper's law after "
-        "its first impact, or the meshes parted) a bound: the range the points swept, between two obstacles at "
-        "least their gap (the theory, section 26; error_estimate is the time error of this mesh, not this); 0 "
+        "its first impact, or the meshes parted) a bound: the range the points swept joined with the obstacles' "
+        "heights, between two obstacles at least their gap (the theory, section 26; error_estimate is the time error of this mesh, not this); 0 "
         "otherwise"),
     output(kVrClampForce,              "clamp_force",                "N",    PORT(clampForce),
         "Vertical force the plate exerts on the clamp (positive upward): what a shaker carrying the clamp feels; the "
@@ -362,7 +365,7 @@ const Row kRows[] = {
     output(kVrTlmLineLoss,             "tlm_line_loss",              "J",    CARRIER(lineLoss),
         "Energy this end launched that the mean wave does not carry, since t = 0 (>= 0: the line is passive)"),
     // Stress and probes (docs/theory.md §23).
-    booleanParameter(kVrStressOutputs, "stress_outputs", PARAMETER(stressOutputs),
+    booleanParameter(kVrStressOutputs, "stress_outputs", PARAMETER(outputs.stressOutputs),
         "Compute the stress outputs (root_stress, root_stress_peak, max_stress and its place, vertex_stress): the "
         "root's peak is then tracked at every internal step; off (default) they read 0 and cost nothing"),
     fmi2Only(integerParameter(kVrProbeCount, "probe_count", kScalarProbeCount, getProbeCount, setProbeCount,

@@ -103,8 +103,8 @@ struct PlateValues {
     // The solver's parameters: `parameters` with the first probes.count places.
     plate::PlateParameters solverParameters() const {
         plate::PlateParameters p = parameters;
-        p.probeX.assign(probes.x.begin(), probes.x.begin() + std::ptrdiff_t(probes.count));
-        p.probeY.assign(probes.y.begin(), probes.y.begin() + std::ptrdiff_t(probes.count));
+        p.outputs.probeX.assign(probes.x.begin(), probes.x.begin() + std::ptrdiff_t(probes.count));
+        p.outputs.probeY.assign(probes.y.begin(), probes.y.begin() + std::ptrdiff_t(probes.count));
         return p;
     }
     // Default modes, chosen by measurement (docs/input-accuracy.md): a clamp motion is smooth

@@ -22,10 +22,11 @@ namespace {
 void warnOfCoarseStep(const PlateValues& values, std::vector<std::string>& out) {
     const plate::PlateParameters& p = values.parameters;
     const double period = 1.0 / p.firstFrequencyEstimate();
-    if (p.dt <= period / 20.0) return;
-    out.push_back(format("dt = %g s is %.3g of the plate's first period T1 = %.4g s", p.dt, p.dt / period, period) +
-                  " (fewer than 20 steps per period): the outputs resolve the first mode only roughly; take dt <= " +
-                  format("%.4g s (T1/20) for accurate results", period / 20.0, 0.0));
+    if (p.law.dt <= period / 20.0) return;
+    out.push_back(
+        format("dt = %g s is %.3g of the plate's first period T1 = %.4g s", p.law.dt, p.law.dt / period, period) +
+        " (fewer than 20 steps per period): the outputs resolve the first mode only roughly; take dt <= " +
+        format("%.4g s (T1/20) for accurate results", period / 20.0, 0.0));
 }
 // Units (issue 71): a geometry in millimetres runs as a plate a thousand times larger, silently. Said:
 // a thickness above a tenth of the smaller side (outside the thin-plate range of the Kirchhoff model the
@@ -33,74 +34,74 @@ void warnOfCoarseStep(const PlateValues& values, std::vector<std::string>& out) 
 // 1e3 or 1e6: g/cm3, kg/mm3, MPa, GPa in place of SI).
 void warnOfUnits(const PlateValues& values, std::vector<std::string>& out) {
     const plate::PlateParameters& p = values.parameters;
-    const double side = std::min(p.length, p.width);
-    if (p.thickness > 0.1 * side)
+    const double side = std::min(p.mesh.length, p.mesh.width);
+    if (p.material.thickness > 0.1 * side)
         out.push_back(
             format("thickness = %g m is %.3g of the plate's smaller side (%g m): outside the thin-plate "
                    "range of the Kirchhoff model this FMU solves (thickness <= a tenth of the smaller side), "
                    "its results are not those of so thick a plate; the FMU takes SI units: lengths in m",
-                   p.thickness, p.thickness / side, side));
-    if (std::max(p.length, p.width) > 100.0)
+                   p.material.thickness, p.material.thickness / side, side));
+    if (std::max(p.mesh.length, p.mesh.width) > 100.0)
         out.push_back(
             format("length = %g m, width = %g m: a plate over 100 m; the FMU takes SI units (lengths, "
                    "thickness and obstacle heights in m: 1200 mm is 1.2)",
-                   p.length, p.width));
-    if (p.density < 100.0 || p.density > 3e4)
+                   p.mesh.length, p.mesh.width));
+    if (p.material.density < 100.0 || p.material.density > 3e4)
         out.push_back(
             format("density = %g kg/m3 is no structural material's (steel 7850, aluminium 2700 kg/m3): the "
                    "FMU takes SI units (kg/m3; 7.85 g/cm3 is 7850)",
-                   p.density));
-    if (p.youngsModulus < 1e7 || p.youngsModulus > 2e12)
+                   p.material.density));
+    if (p.material.youngsModulus < 1e7 || p.material.youngsModulus > 2e12)
         out.push_back(
             format("youngs_modulus = %g Pa is no structural material's (steel 2.1e11, aluminium 7e10 Pa): "
                    "the FMU takes SI units (Pa; 210 GPa is 2.1e11, 210000 MPa too)",
-                   p.youngsModulus));
+                   p.material.youngsModulus));
 }
 // modes above what the plate has (issue 71): the engine keeps every mode there is, the full model of
 // modes = 0, at the full model's cost. Said with the count where the engine states it: the free dofs
 // under newmark; under the condensed laws the massive modes, whose count the engine keeps to itself.
 void warnOfModesBeyondModel(const PlateValues& values, std::vector<std::string>& out) {
     const plate::PlateParameters& p = values.parameters;
-    if (p.modes <= 0 || !values.simulation) return;
+    if (p.law.modes <= 0 || !values.simulation) return;
     const std::string engine = values.simulation->engine();
     const bool complete = engine.size() >= 9 && engine.compare(engine.size() - 9, 9, "-complete") == 0;
     if (!complete) return;
-    if (!p.condensed()) {
+    if (!p.law.condensed()) {
         const double dofs = double(values.simulation->dofCount());
-        if (p.modes <= dofs) return;  // modes = dofs: every mode, as asked
+        if (p.law.modes <= dofs) return;  // modes = dofs: every mode, as asked
         out.push_back(
             format("modes = %g is more than the plate's %g free dofs (nx = %g, ny = %g): there are no more "
                    "modes than dofs, so this run keeps all of them, the full model of modes = 0, at its "
                    "cost; take modes < the dofs for a reduced model",
-                   double(p.modes), dofs, double(p.nx), double(p.ny)));
+                   double(p.law.modes), dofs, double(p.mesh.nx), double(p.mesh.ny)));
     } else {
         out.push_back(
             format("modes = %g is at least the count of the singular mass's massive modes on this mesh "
                    "(nx = %g, ny = %g): this run keeps all of them, the full model of modes = 0, at its "
                    "cost; take fewer modes for a reduced model",
-                   double(p.modes), double(p.nx), double(p.ny)));
+                   double(p.law.modes), double(p.mesh.nx), double(p.mesh.ny)));
     }
 }
 // A tolerance or sub-step count only the flow law uses (docs/theory.md §21–22), set for another
 // scheme: said at build.
 void warnOfUnusedTolerance(const PlateValues& values, std::vector<std::string>& out) {
     const plate::PlateParameters& p = values.parameters;
-    if (p.timeScheme == plate::TimeScheme::Flow) return;
-    if (p.tolerance > 0.0)
+    if (p.law.timeScheme == plate::TimeScheme::Flow) return;
+    if (p.refinement.tolerance > 0.0)
         out.push_back(
             format("tolerance = %g m is used by time_scheme = flow only (3): this run's scheme ignores it, and "
                    "error_estimate stays 0",
-                   p.tolerance, 0.0));
+                   p.refinement.tolerance, 0.0));
     const plate::PlateParameters defaults;
-    if (p.contactSubsteps != defaults.contactSubsteps)
+    if (p.refinement.substeps != defaults.refinement.substeps)
         out.push_back(
             format("contact_substeps = %g is used by time_scheme = flow only (3): this run's scheme ignores it",
-                   double(p.contactSubsteps), 0.0));
-    if (p.maxContactSubsteps != defaults.maxContactSubsteps)
+                   double(p.refinement.substeps), 0.0));
+    if (p.refinement.maxSubsteps != defaults.refinement.maxSubsteps)
         out.push_back(
             format("max_contact_substeps = %g is used by time_scheme = flow with a tolerance only: this run's "
                    "scheme ignores it",
-                   double(p.maxContactSubsteps), 0.0));
+                   double(p.refinement.maxSubsteps), 0.0));
 }
 // Probes (docs/theory.md §23) that are not what they seem, among those the importer placed or
 // counted: an FMI 2.0 probe placed but not counted (it reads 0), one counted but on the clamped

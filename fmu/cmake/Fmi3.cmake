@@ -7,7 +7,7 @@
 # Cross builds (win64, aarch64) make only the shared object (target <Model>3); the scripts
 # add it to the FMU (scripts/build-win64.sh, scripts/build-aarch64.sh).
 
-add_library(fmu_layer3 OBJECT fmi3/fmi3Functions.cpp fmi3/fmi3Unsupported.cpp fmi3/Fmi3Values.cpp)
+add_library(fmu_layer3 OBJECT fmi3/fmi3Functions.cpp fmi3/fmi3Unsupported.cpp fmi3/Fmi3Values.cpp fmi3/fmi3Exports.cpp)
 target_include_directories(fmu_layer3 PUBLIC "${CMAKE_CURRENT_SOURCE_DIR}/headers/fmi3")
 target_link_libraries(fmu_layer3 PUBLIC fmu_core)
 target_compile_options(fmu_layer3 PRIVATE -Wall -Wextra)
@@ -20,6 +20,7 @@ function(add_fmu3 model)
   set(out_dir "${CMAKE_CURRENT_BINARY_DIR}/fmi3")
   add_library(${model}3 SHARED $<TARGET_OBJECTS:fmu_core> $<TARGET_OBJECTS:fmu_layer3> $<TARGET_OBJECTS:${model}Binding>)
   target_link_libraries(${model}3 PRIVATE ${ARG_LIBRARIES})
+  fmu_primary_copy_link_options(${model}3)
   set_target_properties(${model}3 PROPERTIES PREFIX "" OUTPUT_NAME ${model}
     LIBRARY_OUTPUT_DIRECTORY "${out_dir}" RUNTIME_OUTPUT_DIRECTORY "${out_dir}")
   if(WIN32)

@@ -109,6 +109,7 @@ foreach(i IN LISTS includes ITEMS eigen3 spectra)
   string(APPEND xml "      <IncludeDirectory name=\"${i}\"/>\n")
 endforeach()
 string(APPEND xml "    </SourceFileSet>\n    <Library name=\"m\" external=\"true\" description=\"the C maths library (Unix)\"/>\n")
+string(APPEND xml "    <Library name=\"dl\" external=\"true\" description=\"dladdr and dlopen (Linux with glibc before 2.34; later glibc has them in libc)\"/>\n")
 string(APPEND xml "  </BuildConfiguration>\n</fmiBuildDescription>\n")
 file(WRITE "${src}/buildDescription.xml" "${xml}")
 

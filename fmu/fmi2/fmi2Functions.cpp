@@ -13,7 +13,7 @@
 #include <vector>
 
 #include "core/Instance.h"
-#include "fmi2Functions.h"
+#include "fmi2/Fmi2Own.h"
 
 using fmu::Instance;
 using fmu::Status;

@@ -18,7 +18,7 @@
 #include "fmi3/Fmi3Interface.h"
 #include "fmi3/Fmi3Values.h"
 #include "core/Instance.h"
-#include "fmi3Functions.h"
+#include "fmi3/Fmi3Own.h"
 
 using fmu::Instance;
 using fmu::Status;

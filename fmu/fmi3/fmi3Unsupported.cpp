@@ -2,7 +2,7 @@
 // directional and adjoint derivatives, per-element dependencies, discrete-state evaluation: each
 // logs why and returns fmi3Error (an instantiation: NULL), as the Reference FMUs do.
 #include "fmi3/Fmi3Instance.h"
-#include "fmi3Functions.h"
+#include "fmi3/Fmi3Own.h"
 
 using fmu::fmi3::kModelExchange;
 using fmu::fmi3::kNoClocks;

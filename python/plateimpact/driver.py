@@ -19,13 +19,11 @@ was wrong and what is allowed.
 from __future__ import annotations
 
 import atexit
-import ctypes
 import functools
 import re
 import shutil
-from pathlib import Path
 
-from fmpy import calloc, extract, free, platform, platform_tuple, read_model_description, sharedLibraryExtension
+from fmpy import calloc, extract, free, read_model_description
 from fmpy.fmi1 import FMICallException
 from fmpy.fmi2 import (
     FMU2Slave,
@@ -81,28 +79,21 @@ def switch_items(v) -> dict[str, int]:
 
 
 _extracted = {}  # (resolved path, mtime) -> (unzip directory, model description)
-_pinned = []  # the FMUs' libraries, loaded once more and never freed (unzipped)
 
 
 def unzipped(fmu_path):
     """(unzip directory, model description) of an FMU file, extracted once per process (and file
     version) and removed at exit, or of a directory holding an extracted FMU.
 
-    Its library stays loaded for the process: fmpy unloads it when an instance is freed, and with
-    it the FMU's cache of discretizations (instances of the same plate share its modal basis:
-    README, "Performance"), so a sweep of one instance after another would otherwise pay the
-    whole setup at every point."""
+    fmpy unloads the library when an instance is freed; the FMU's cache of discretizations
+    (instances of the same plate share its modal basis: README, "Performance") outlives it all the
+    same: the first copy of the library loaded in a process stays loaded and serves every later one
+    (fmu/core/PrimaryCopy.h)."""
     path = fmu_file(fmu_path)
     key = (str(path), path.stat().st_mtime_ns)
     if key not in _extracted:
         unzip_dir = str(path) if path.is_dir() else _extract(path)
-        md = read_model_description(str(path))
-        _extracted[key] = (unzip_dir, md)
-        if md.coSimulation is not None:
-            folder = platform_tuple if md.fmiVersion.startswith("3") else platform
-            library = Path(unzip_dir, "binaries", folder, md.coSimulation.modelIdentifier + sharedLibraryExtension)
-            if library.is_file():
-                _pinned.append(ctypes.CDLL(str(library)))
+        _extracted[key] = (unzip_dir, read_model_description(str(path)))
     return _extracted[key]
 
 

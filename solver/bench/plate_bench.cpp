@@ -97,10 +97,9 @@ struct Floor {
     Eigen::VectorXd load;
 };
 std::unique_ptr<Floor> makeFloor(const plate::PlateParameters& p) {
-    const plate::Mesh mesh(p.length, p.width, p.nx, p.ny);
-    const auto space = plate::makeSpace(p.element, mesh);
-    const auto matrices = plate::assemble(*space, p.surfaceDensity(), p.bendingStiffness(), p.poissonRatio);
-    return std::make_unique<Floor>(plate::clamp(*space, matrices), p.beta * p.dt * p.dt);
+    const auto space = plate::makeSpace(p.mesh);
+    const auto matrices = plate::assemble(*space, p.material);
+    return std::make_unique<Floor>(plate::clamp(*space, matrices), p.law.beta * p.law.dt * p.law.dt);
 }
 // One solve's time by `clock` (wall or process CPU): the median over 20 batches after a warm-up batch.
 double floorSeconds(const Floor& floor, int repeats, double (*clock)()) {
@@ -125,9 +124,8 @@ double floorSeconds(const Floor& floor, int repeats, double (*clock)()) {
 // ∫ D w_xx dy over x = 0 (5 Gauss points per element edge: exact for the cubic w_xx of Argyris and the
 // linear one of FVS) against the exact clamp moment P W L²/2, and the FMU's root_stress of that state.
 int staticStress(plate::PlateParameters p, double pressure) {
-    const plate::Mesh mesh(p.length, p.width, p.nx, p.ny);
-    const auto space = plate::makeSpace(p.element, mesh);
-    const auto matrices = plate::assemble(*space, p.surfaceDensity(), p.bendingStiffness(), p.poissonRatio);
+    const auto space = plate::makeSpace(p.mesh);
+    const auto matrices = plate::assemble(*space, p.material);
     const auto clamped = plate::clamp(*space, matrices);
     const plate::SparseCholesky stiffness(clamped.stiffness);
     Eigen::VectorXd b = pressure * clamped.pressureLoad, w(b.size());
@@ -140,18 +138,18 @@ int staticStress(plate::PlateParameters p, double pressure) {
         for (std::size_t k = 0; k < f.dofs.size(); ++k) sum += f.coefficients[k] * u[f.dofs[k]];
         return sum;
     };
-    const double D = p.bendingStiffness(), t = p.thickness;
+    const double D = p.material.bendingStiffness(), t = p.material.thickness;
     // The samples nearest the middle and the corner of the clamped edge: the edge's own elements.
-    plate::PointLocation middle = plate::locate(*space, {0.0, 0.5 * p.width - 1e-9 * p.width});
-    middle.point = {0.0, 0.5 * p.width};
-    plate::PointLocation corner = plate::locate(*space, {0.0, 1e-9 * p.width});
+    plate::PointLocation middle = plate::locate(*space, {0.0, 0.5 * p.mesh.width - 1e-9 * p.mesh.width});
+    middle.point = {0.0, 0.5 * p.mesh.width};
+    plate::PointLocation corner = plate::locate(*space, {0.0, 1e-9 * p.mesh.width});
     corner.point = {0.0, 0.0};
     const double gauss[5] = {-0.9061798459386640, -0.5384693101056831, 0.0, 0.5384693101056831, 0.9061798459386640};
     const double weight[5] = {0.2369268850561891, 0.4786286704993665, 0.5688888888888889, 0.4786286704993665,
                               0.2369268850561891};
     double moment = 0.0;
-    for (int j = 0; j < p.ny; ++j) {
-        const double y0 = j * mesh.hy(), y1 = (j + 1) * mesh.hy();
+    for (int j = 0; j < p.mesh.ny; ++j) {
+        const double y0 = j * space->mesh().hy(), y1 = (j + 1) * space->mesh().hy();
         plate::PointLocation at = plate::locate(*space, {0.0, 0.5 * (y0 + y1)});
         for (int g = 0; g < 5; ++g) {
             at.point = {0.0, 0.5 * (y0 + y1) + 0.5 * (y1 - y0) * gauss[g]};
@@ -159,27 +157,27 @@ int staticStress(plate::PlateParameters p, double pressure) {
         }
     }
     p.initialLoad = pressure;
-    p.obstacleLowerEnabled = p.obstacleUpperEnabled = false;
+    p.obstacles.lowerEnabled = p.obstacles.upperEnabled = false;
     p.memoryLimit = 0.0;
-    p.stressOutputs = true;
+    p.outputs.stressOutputs = true;
     const plate::PlateSimulation sim(p, 0.0, pressure);
-    const double strip = 3.0 * pressure * p.length * p.length / (t * t);  // 6 M/t², M = p L²/2
+    const double strip = 3.0 * pressure * p.mesh.length * p.mesh.length / (t * t);  // 6 M/t², M = p L²/2
     std::printf(
         "{\"element\": \"%s\", \"nx\": %d, \"ny\": %d, \"dofs\": %ld, \"pressure\": %.17g, "
         "\"sigma_xx_mid\": %.17g, \"sigma_xx_corner\": %.17g, \"sigma_strip\": %.17g, \"root_moment\": %.17g, "
         "\"clamp_moment\": %.17g, \"root_stress\": %.17g, \"poisson_ratio\": %.17g}\n",
-        p.element == plate::ElementType::Fvs ? "fvs" : "argyris", p.nx, p.ny, static_cast<long>(w.size()), pressure,
-        6.0 * D * curvature(middle) / (t * t), 6.0 * D * curvature(corner) / (t * t), strip, moment,
-        0.5 * pressure * p.width * p.length * p.length, sim.outputs(false, plate::FieldOutputs::Points).rootStress,
-        p.poissonRatio);
+        p.mesh.element == plate::ElementType::Fvs ? "fvs" : "argyris", p.mesh.nx, p.mesh.ny,
+        static_cast<long>(w.size()), pressure, 6.0 * D * curvature(middle) / (t * t),
+        6.0 * D * curvature(corner) / (t * t), strip, moment,
+        0.5 * pressure * p.mesh.width * p.mesh.length * p.mesh.length,
+        sim.outputs(false, plate::FieldOutputs::Points).rootStress, p.material.poissonRatio);
     return 0;
 }
 
 // The clamped plate's matrices for independent checks and the plain Python/SciPy baseline.
 int exportMatrices(const plate::PlateParameters& p, const std::string& dir) {
-    const plate::Mesh mesh(p.length, p.width, p.nx, p.ny);
-    const auto space = plate::makeSpace(p.element, mesh);
-    const auto matrices = plate::assemble(*space, p.surfaceDensity(), p.bendingStiffness(), p.poissonRatio);
+    const auto space = plate::makeSpace(p.mesh);
+    const auto matrices = plate::assemble(*space, p.material);
     const auto clamped = plate::clamp(*space, matrices);
     Eigen::saveMarket(clamped.mass, dir + "/mass.mtx");
     Eigen::saveMarket(clamped.stiffness, dir + "/stiffness.mtx");
@@ -192,8 +190,8 @@ int exportMatrices(const plate::PlateParameters& p, const std::string& dir) {
     for (auto d : clamped.contactDofs) contact << d << "\n";
     std::ofstream probes(dir + "/probes.txt");
     probes.precision(17);
-    for (const auto& xy :
-         {std::pair{p.length, 0.0}, std::pair{p.length, p.width}, std::pair{p.length, 0.5 * p.width}}) {
+    for (const auto& xy : {std::pair{p.mesh.length, 0.0}, std::pair{p.mesh.length, p.mesh.width},
+                           std::pair{p.mesh.length, 0.5 * p.mesh.width}}) {
         const auto probe = clamped.probe(*space, xy.first, xy.second);
         for (std::size_t k = 0; k < probe.dofs.size(); ++k)
             probes << probe.dofs[k] << ":" << probe.coefficients[k] << " ";
@@ -210,7 +208,7 @@ int printEstimate(const plate::PlateParameters& p) {
         plate::validate(p);
         const auto t0 = std::chrono::steady_clock::now();
         plate::requireMeshWithinBudget(p);
-        const auto space = plate::makeSpace(p.element, plate::Mesh(p.length, p.width, p.nx, p.ny));
+        const auto space = plate::makeSpace(p.mesh);
         const plate::ResourceEstimate e = plate::planResources(p, *space, {});
         const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
         const char* engine = e.engine == plate::EngineKind::Sparse          ? "sparse"
@@ -221,8 +219,9 @@ int printEstimate(const plate::PlateParameters& p) {
             "{\"element\": \"%s\", \"nx\": %d, \"ny\": %d, \"engine\": \"%s\", \"dofs\": %lld, \"nnz_k\": %lld, "
             "\"nnz_l\": %lld, \"factor_gflop\": %.4g, \"est_peak_mb\": %.4g, \"est_init_s\": %.4g, \"est_step_s\": "
             "%.4g, \"estimate_s\": %.4g}\n",
-            p.element == plate::ElementType::Fvs ? "fvs" : "argyris", p.nx, p.ny, engine, e.size.dofs, e.size.nonZeros,
-            e.size.factorNonZeros, e.size.factorFlops * 1e-9, e.peakMB, e.initSeconds, e.stepSeconds, seconds);
+            p.mesh.element == plate::ElementType::Fvs ? "fvs" : "argyris", p.mesh.nx, p.mesh.ny, engine, e.size.dofs,
+            e.size.nonZeros, e.size.factorNonZeros, e.size.factorFlops * 1e-9, e.peakMB, e.initSeconds, e.stepSeconds,
+            seconds);
     } catch (const std::exception& e) {
         std::fprintf(stderr, "plate_bench: %s\n", e.what());
         return 1;
@@ -248,48 +247,50 @@ int main(int argc, char** argv) {
         return it == args.end() ? fallback : std::atof(it->second.c_str());
     };
     plate::PlateParameters p;
-    p.element =
+    p.mesh.element =
         args.count("element") && args["element"] == "fvs" ? plate::ElementType::Fvs : plate::ElementType::Argyris;
-    p.nx = static_cast<int>(num("nx", p.nx));
-    p.ny = static_cast<int>(num("ny", p.ny));
-    p.dt = num("dt", p.dt);
-    p.beta = num("beta", p.beta);
-    p.modes = static_cast<int>(num("modes", 0));
+    p.mesh.nx = static_cast<int>(num("nx", p.mesh.nx));
+    p.mesh.ny = static_cast<int>(num("ny", p.mesh.ny));
+    p.law.dt = num("dt", p.law.dt);
+    p.law.beta = num("beta", p.law.beta);
+    p.law.modes = static_cast<int>(num("modes", 0));
     p.initialLoad = num("initial_load", 0.0);
     const double gap = num("gap", 0.1);
-    p.obstacleLowerEnabled = p.obstacleUpperEnabled = gap > 0.0;
-    if (gap > 0.0) p.obstacleLower = -gap, p.obstacleUpper = gap;
-    if (num("lower_only", 0) != 0) p.obstacleUpperEnabled = false;
+    p.obstacles.lowerEnabled = p.obstacles.upperEnabled = gap > 0.0;
+    if (gap > 0.0) p.obstacles.lower = -gap, p.obstacles.upper = gap;
+    if (num("lower_only", 0) != 0) p.obstacles.upperEnabled = false;
     // A stop (docs/theory.md §25): lower=H the lower obstacle's height; lower_x_min, lower_x_max,
     // lower_y_min, lower_y_max its rectangle (the upper_… keys the upper one's).
-    p.obstacleLower = num("lower", p.obstacleLower);
-    p.lowerStop = {num("lower_x_min", 0.0), num("lower_x_max", 1e4), num("lower_y_min", 0.0), num("lower_y_max", 1e4)};
-    p.upperStop = {num("upper_x_min", 0.0), num("upper_x_max", 1e4), num("upper_y_min", 0.0), num("upper_y_max", 1e4)};
+    p.obstacles.lower = num("lower", p.obstacles.lower);
+    p.obstacles.lowerStop = {num("lower_x_min", 0.0), num("lower_x_max", 1e4), num("lower_y_min", 0.0),
+                             num("lower_y_max", 1e4)};
+    p.obstacles.upperStop = {num("upper_x_min", 0.0), num("upper_x_max", 1e4), num("upper_y_min", 0.0),
+                             num("upper_y_max", 1e4)};
     if (args.count("engine")) {
         const std::string e = args["engine"];
-        p.engine = e == "sparse"  ? plate::PlateParameters::Engine::SparseFactor
-                   : e == "modal" ? plate::PlateParameters::Engine::CompleteModal
-                                  : plate::PlateParameters::Engine::Auto;
+        p.law.engine = e == "sparse"  ? plate::LawParameters::Engine::SparseFactor
+                       : e == "modal" ? plate::LawParameters::Engine::CompleteModal
+                                      : plate::LawParameters::Engine::Auto;
     }
     if (args.count("mass"))
-        p.mass = args["mass"] == "singular_p0"     ? plate::MassModel::SingularP0
-                 : args["mass"] == "singular_p1dg" ? plate::MassModel::SingularP1dg
-                                                   : plate::MassModel::Consistent;
-    if (args.count("scheme") && args["scheme"] == "conserving") p.timeScheme = plate::TimeScheme::Conserving;
-    if (args.count("scheme") && args["scheme"] == "flow") p.timeScheme = plate::TimeScheme::Flow;
-    p.contactSubsteps = static_cast<int>(num("substeps", p.contactSubsteps));
-    p.tolerance = num("tolerance", p.tolerance);
-    p.maxContactSubsteps = static_cast<int>(num("max_substeps", p.maxContactSubsteps));
-    p.contactRowSpace = num("rowspace", 1.0) != 0.0;
+        p.law.mass = args["mass"] == "singular_p0"     ? plate::MassModel::SingularP0
+                     : args["mass"] == "singular_p1dg" ? plate::MassModel::SingularP1dg
+                                                       : plate::MassModel::Consistent;
+    if (args.count("scheme") && args["scheme"] == "conserving") p.law.timeScheme = plate::TimeScheme::Conserving;
+    if (args.count("scheme") && args["scheme"] == "flow") p.law.timeScheme = plate::TimeScheme::Flow;
+    p.refinement.substeps = static_cast<int>(num("substeps", p.refinement.substeps));
+    p.refinement.tolerance = num("tolerance", p.refinement.tolerance);
+    p.refinement.maxSubsteps = static_cast<int>(num("max_substeps", p.refinement.maxSubsteps));
+    p.refinement.rowSpace = num("rowspace", 1.0) != 0.0;
     p.memoryLimit = num("memory_limit", 0.0);
-    p.dampingMass = num("damping_mass", 0.0);
-    p.dampingStiffness = num("damping_stiffness", 0.0);
+    p.law.dampingMass = num("damping_mass", 0.0);
+    p.law.dampingStiffness = num("damping_stiffness", 0.0);
     // stress=1 (stress_outputs: the root's peak tracked every step), probes=N (N probes, all at
     // corner_1's point: their cost does not depend on where they are)
-    p.stressOutputs = num("stress", 0.0) != 0.0;
-    p.discretizationCheck = num("check", 0.0) != 0.0;  // discretization_check (docs/theory.md §26)
-    p.probeX.assign(static_cast<std::size_t>(num("probes", 0.0)), p.length);
-    p.probeY.assign(p.probeX.size(), 0.0);
+    p.outputs.stressOutputs = num("stress", 0.0) != 0.0;
+    p.outputs.discretizationCheck = num("check", 0.0) != 0.0;  // discretization_check (docs/theory.md §26)
+    p.outputs.probeX.assign(static_cast<std::size_t>(num("probes", 0.0)), p.mesh.length);
+    p.outputs.probeY.assign(p.outputs.probeX.size(), 0.0);
     if (args.count("export")) return exportMatrices(p, args["export"]);
     if (num("estimate_only", 0) != 0) return printEstimate(p);
     if (args.count("static_stress")) return staticStress(p, num("static_stress", 1000.0));
@@ -308,15 +309,15 @@ int main(int argc, char** argv) {
         const std::string resources = resourceJson(sim, std::chrono::duration<double>(t1 - t0).count(), rssBefore);
         if (num("init_only", 0) != 0) {
             std::printf("{\"element\": \"%s\", \"nx\": %d, \"ny\": %d, \"engine\": \"%s\", \"dofs\": %ld, %s}\n",
-                        p.element == plate::ElementType::Fvs ? "fvs" : "argyris", p.nx, p.ny, sim.engine().c_str(),
-                        static_cast<long>(sim.dofCount()), resources.c_str());
+                        p.mesh.element == plate::ElementType::Fvs ? "fvs" : "argyris", p.mesh.nx, p.mesh.ny,
+                        sim.engine().c_str(), static_cast<long>(sim.dofCount()), resources.c_str());
             return 0;
         }
         const int floorRepeats = std::max(20, static_cast<int>(num("floor_repeats", 2000)));
         const auto floorFactor = makeFloor(p);
         const double floorBefore = floorSeconds(*floorFactor, floorRepeats, wallSeconds);
         // Communication step 1e-4 s (or dt if larger), input derivatives as the FMU gets them.
-        const long long perComm = std::max(1LL, std::llround(num("comm", 1e-4) / p.dt));
+        const long long perComm = std::max(1LL, std::llround(num("comm", 1e-4) / p.law.dt));
         const bool readPort = num("port", 0.0) != 0.0;
         // field=1: read the probes and the root's stress too, every communication step; field=2 also
         // the plate's largest stress and vertex_stress (docs/theory.md §23).
@@ -348,7 +349,7 @@ int main(int argc, char** argv) {
             sim.advance(std::min(perComm, steps - done), base, plate::InputSignal{});
             // Outputs are read every communication step; port=1 reads the port's too (§14).
             energySum += sim.outputs(readPort, readField).energy;
-            if (fieldLevel >= 1 && !p.probeX.empty()) energySum += 1e-300 * sim.probes().displacement[0];
+            if (fieldLevel >= 1 && !p.outputs.probeX.empty()) energySum += 1e-300 * sim.probes().displacement[0];
             if (fieldLevel >= 2) energySum += 1e-300 * sim.vertexStress()[0];  // the FMI 3.0 array as well
             record(amplitude * std::sin(omega * sim.time()));
         }
@@ -378,8 +379,8 @@ int main(int argc, char** argv) {
             "\"energy_dissipated\": %.10g, \"contact_onsets_lower\": %.0f, \"contact_onsets_upper\": %.0f, "
             "\"checksum\": %.10g, "
             "\"error_estimate\": %.6g, \"discretization_error\": %.6g, \"capped_steps\": %.0f, %s%s}\n",
-            p.element == plate::ElementType::Fvs ? "fvs" : "argyris", p.nx, p.ny, p.dt, p.beta, p.modes,
-            sim.engine().c_str(), static_cast<long>(sim.dofCount()), steps,
+            p.mesh.element == plate::ElementType::Fvs ? "fvs" : "argyris", p.mesh.nx, p.mesh.ny, p.law.dt, p.law.beta,
+            p.law.modes, sim.engine().c_str(), static_cast<long>(sim.dofCount()), steps,
             std::chrono::duration<double>(t1 - t0).count(), cpu1 - cpu0, std::chrono::duration<double>(t3 - t2).count(),
             perStep, (cpu3 - cpu2) / steps, floorCpu, floor, perStep / floor, o.contactSolves, o.energyDissipated,
             o.contactOnsets[0], o.contactOnsets[1], energySum, o.errorEstimate, o.discretizationError, o.cappedSteps,

@@ -6,8 +6,8 @@
 
 namespace plate {
 
-PlateMatrices assemble(const FiniteElementSpace& space, double surfaceDensity, double bendingStiffness,
-                       double poissonRatio) {
+PlateMatrices assemble(const FiniteElementSpace& space, const MaterialParameters& material) {
+    const double surfaceDensity = material.surfaceDensity(), bendingStiffness = material.bendingStiffness();
     const Eigen::Index n = space.dofCount();
     std::vector<Eigen::Triplet<double>> massTriplets, stiffnessTriplets;
     // Reserved at their final size: no reallocation doubles the peak (ResourceEstimate.h).
@@ -17,7 +17,7 @@ PlateMatrices assemble(const FiniteElementSpace& space, double surfaceDensity, d
     stiffnessTriplets.reserve(entries);
     Eigen::VectorXd load = Eigen::VectorXd::Zero(n), momentLoad = Eigen::VectorXd::Zero(n);
     LocalBasis basis;
-    const double nu = poissonRatio;
+    const double nu = material.poissonRatio;
     for (int e = 0; e < space.elementCount(); ++e) {
         const auto& dofs = space.elementDofs(e);
         const int nl = static_cast<int>(dofs.size());

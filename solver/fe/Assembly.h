@@ -21,8 +21,18 @@ struct PlateMatrices {
     Eigen::VectorXd massMoment;  // M·X over all dofs (replaced with the singular mass's)
 };
 
-PlateMatrices assemble(const FiniteElementSpace& space, double surfaceDensity, double bendingStiffness,
-                       double poissonRatio);
+// The plate's material (PlateParameters' material part): what M and K are made of beside the space.
+struct MaterialParameters {
+    double thickness = 0.01;  // m
+    double youngsModulus = 2.1e11;  // Pa
+    double poissonRatio = 0.3;
+    double density = 7770.0;  // kg/m^3
+    double bendingStiffness() const {
+        return youngsModulus * thickness * thickness * thickness / (12.0 * (1.0 - poissonRatio * poissonRatio));
+    }
+    double surfaceDensity() const { return density * thickness; }
+};
+PlateMatrices assemble(const FiniteElementSpace& space, const MaterialParameters& material);
 
 // A point evaluation w(x) = Σ coefficient_k · w_free[dof_k] over the free dofs.
 struct PointProbe {

@@ -63,4 +63,14 @@ std::unique_ptr<FiniteElementSpace> makeArgyrisSpace(const Mesh& mesh);
 std::unique_ptr<FiniteElementSpace> makeFvsSpace(const Mesh& mesh);
 std::unique_ptr<FiniteElementSpace> makeSpace(ElementType type, const Mesh& mesh);
 
+// The plate's rectangle and its mesh (PlateParameters' mesh part): what makeSpace builds a space of.
+struct MeshParameters {
+    double length = 1.2, width = 0.4;  // m
+    int nx = 14, ny = 5;
+    ElementType element = ElementType::Argyris;
+};
+inline std::unique_ptr<FiniteElementSpace> makeSpace(const MeshParameters& m) {
+    return makeSpace(m.element, Mesh(m.length, m.width, m.nx, m.ny));
+}
+
 }  // namespace plate

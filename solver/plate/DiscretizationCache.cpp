@@ -12,11 +12,13 @@
 
 namespace plate {
 
-// A field added to PlateParameters changes its size: decide whether it determines the space, the
-// matrices, the modal basis or the condensed operators, add it to the keys below if it does, then
-// write the new size here. (The same on every platform the FMU is built for: LP64 and LLP64 lay
-// doubles, ints, enums and bools out alike.)
-static_assert(sizeof(PlateParameters) == 336,
+// A field added to a part the keys read changes its size: decide whether it determines the space,
+// the matrices, the modal basis or the condensed operators, add it to the keys below if it does,
+// then write the new size here. (The same on every platform the FMU is built for: LP64 and LLP64
+// lay doubles, ints, enums and bools out alike.) The refinement, the carrier, the initial load and
+// the memory limit determine none of them.
+static_assert(sizeof(MeshParameters) == 32 && sizeof(MaterialParameters) == 32 && sizeof(ObstacleParameters) == 88 &&
+                  sizeof(LawParameters) == 64 && sizeof(OutputParameters) == 56,
               "PlateParameters changed: check the discretization cache's keys (DiscretizationCache.cpp)");
 
 CacheKey& CacheKey::add(double x) {
@@ -35,42 +37,36 @@ CacheKey& CacheKey::add(long long x) {
 
 namespace {
 
-// Mesh and makeSpace.
-CacheKey& addSpace(CacheKey& key, const PlateParameters& p) {
-    return key.add(static_cast<int>(p.element)).add(p.length).add(p.width).add(p.nx).add(p.ny);
+// Mesh and makeSpace: the mesh part.
+CacheKey& addSpace(CacheKey& key, const MeshParameters& m) {
+    return key.add(static_cast<int>(m.element)).add(m.length).add(m.width).add(m.nx).add(m.ny);
 }
 
 // Which vertices are contact rows and which obstacles hold each (docs/theory.md §25): the present
 // obstacles (a row's bits name them, whole plate or not), and their rectangles unless they cover
 // the whole plate.
-CacheKey& addStops(CacheKey& key, const PlateParameters& p) {
-    const bool present[2] = {p.obstacleLowerEnabled, p.obstacleUpperEnabled};
-    key.add(present[0] ? 1 : 0).add(present[1] ? 1 : 0);
-    const bool whole = StopMap(p).wholePlate();
+CacheKey& addStops(CacheKey& key, const ObstacleParameters& o, const MeshParameters& mesh) {
+    key.add(o.present(0) ? 1 : 0).add(o.present(1) ? 1 : 0);
+    const bool whole = StopMap(o, mesh).wholePlate();
     key.add(whole ? 0 : 1);
     if (whole) return key;
-    const PlateParameters::StopRect* rect[2] = {&p.lowerStop, &p.upperStop};
     for (int k = 0; k < 2; ++k)
-        if (present[k]) key.add(rect[k]->xMin).add(rect[k]->xMax).add(rect[k]->yMin).add(rect[k]->yMax);
+        if (o.present(k)) key.add(o.stop(k).xMin).add(o.stop(k).xMax).add(o.stop(k).yMin).add(o.stop(k).yMax);
     return key;
 }
 
-// The space, the material (assemble: ρt, D, ν; the singular mass) and the contact rows.
+// The space, the material part (assemble: ρt, D, ν), the singular mass and the contact rows.
 CacheKey& addPlate(CacheKey& key, const PlateParameters& p) {
-    addSpace(key, p)
-        .add(p.thickness)
-        .add(p.youngsModulus)
-        .add(p.poissonRatio)
-        .add(p.density)
-        .add(static_cast<int>(p.mass));
-    return addStops(key, p);
+    const MaterialParameters& m = p.material;
+    addSpace(key, p.mesh).add(m.thickness).add(m.youngsModulus).add(m.poissonRatio).add(m.density);
+    return addStops(key.add(static_cast<int>(p.law.mass)), p.obstacles, p.mesh);
 }
 
 }  // namespace
 
 CacheKey spaceKey(const PlateParameters& p) {
     CacheKey key("space");
-    return addSpace(key, p);
+    return addSpace(key, p.mesh);
 }
 
 CacheKey clampedPlateKey(const PlateParameters& p) {
@@ -83,15 +79,16 @@ CacheKey clampedPlateKey(const PlateParameters& p) {
 // shares one eigen solution.
 CacheKey modalBasisKey(const PlateParameters& p, bool completeEngine) {
     CacheKey key("modal basis");
-    return addPlate(key, p).add(completeEngine ? 1 : 0).add(p.modes);
+    return addPlate(key, p).add(completeEngine ? 1 : 0).add(p.law.modes);
 }
 
 // condense(clamped, R, the output rows, modes, the recovery functionals): the functionals are the
 // probes' points (their count, then each) and samples the space fixes.
 CacheKey condensedPlateKey(const PlateParameters& p) {
     CacheKey key("condensed plate");
-    addPlate(key, p).add(p.modes).add(double(p.probeCount()));
-    for (std::size_t k = 0; k < p.probeCount(); ++k) key.add(p.probeX[k]).add(p.probeY[k]);
+    const OutputParameters& o = p.outputs;
+    addPlate(key, p).add(p.law.modes).add(double(o.probeCount()));
+    for (std::size_t k = 0; k < o.probeCount(); ++k) key.add(o.probeX[k]).add(o.probeY[k]);
     return key;
 }
 

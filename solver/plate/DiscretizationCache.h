@@ -6,8 +6,8 @@
 // complete modal basis is 95 % of its 0.6 s initialization.
 //
 // - Keyed by the bytes of every parameter that determines the object (the key functions below,
-//   the one place they are written; a new PlateParameters field fails a static_assert in
-//   DiscretizationCache.cpp until someone decides whether it belongs in a key).
+//   the one place they are written; a new field in a part of PlateParameters they read fails a
+//   static_assert in DiscretizationCache.cpp until someone decides whether it belongs in a key).
 // - Immutable, shared: entries are shared_ptr<const T> of objects without mutable state (the
 //   sparse engine's factor has a workspace, so FullOrderPlate is not cached: each instance
 //   factors A itself). The same code builds them either way: results are bit for bit the same.
@@ -17,9 +17,11 @@
 //   are dropped (an instance holding one keeps its copy alive). The budget is read from the
 //   environment variable PLATEIMPACT_CACHE_MB at every lookup (default kDefaultCacheMB; 0 turns
 //   the cache off: every instance builds its own, as before the cache).
-// - It lives as long as the FMU's library stays loaded: a master that unloads the library with
-//   its last instance (fmpy's freeInstance) starts the next one empty; plateimpact's driver keeps
-//   the library loaded for the process (python/plateimpact/driver.py).
+// - It lives as long as the process: the first copy of the FMU's library loaded in a process stays
+//   loaded and every later copy of the same build forwards its FMI calls to it, so a master that
+//   unloads the library with its instance, or extracts the FMU anew for each run (fmpy's
+//   simulate_fmu), still finds the plates built before (fmu/core/PrimaryCopy.h): one cache, one
+//   budget per process (per FMI version of the FMU).
 #include <Eigen/Core>
 #include <Eigen/Sparse>
 #include <cstddef>

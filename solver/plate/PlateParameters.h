@@ -1,11 +1,9 @@
 #pragma once
 // Physical and numerical parameters of one PlateImpact run, with their validation.
-#include <array>
-#include <stdexcept>
-#include <string>
 #include <vector>
 
 #include "base/Errors.h"
+#include "fe/Assembly.h"
 #include "fe/FiniteElementSpace.h"
 
 namespace plate {
@@ -20,47 +18,30 @@ enum class MassModel { Consistent = 1, SingularP0 = 2, SingularP1dg = 3 };
 // massless boundary, stepped by the midpoint rule with a discrete gradient of the boundary
 // potential: the energy balance closes exactly through impacts, at any Δt. Flow (§21): the same
 // condensed plate with every massive mode advanced by its exact flow between contacts and each
-// contact step taken as `contactSubsteps` discrete-gradient midpoint sub-steps.
+// contact step taken as `refinement.substeps` discrete-gradient midpoint sub-steps.
 enum class TimeScheme { Newmark = 1, Conserving = 2, Flow = 3 };
 
-struct PlateParameters {
-    double length = 1.2;  // m
-    double width = 0.4;  // m
-    double thickness = 0.01;  // m
-    double youngsModulus = 2.1e11;  // Pa
-    double poissonRatio = 0.3;
-    double density = 7770.0;  // kg/m^3
-    int nx = 14;
-    int ny = 5;
-    ElementType element = ElementType::Argyris;
-    double obstacleLower = -0.1;  // m
-    double obstacleUpper = 0.1;  // m
-    bool obstacleLowerEnabled = true;
-    bool obstacleUpperEnabled = true;
-    // Where each obstacle is (docs/theory.md §25): a stop over the rectangle [xMin, xMax] × [yMin, yMax]
-    // of the plate, clipped to it. The defaults reach past any plate the ranges allow: the whole plate.
+// The two obstacles (obstaclesOf, StopMap): their heights, whether each is present, and where each is
+// (docs/theory.md §25): a stop over the rectangle [xMin, xMax] × [yMin, yMax] of the plate, clipped to
+// it. The stops' defaults reach past any plate the ranges allow: the whole plate.
+struct ObstacleParameters {
     struct StopRect {
         double xMin = 0.0, xMax = 1e4, yMin = 0.0, yMax = 1e4;  // m
     };
+    double lower = -0.1, upper = 0.1;  // m
+    bool lowerEnabled = true, upperEnabled = true;
     StopRect lowerStop, upperStop;
+    bool present(int k) const { return k == 0 ? lowerEnabled : upperEnabled; }  // k = 0: lower, 1: upper
+    const StopRect& stop(int k) const { return k == 0 ? lowerStop : upperStop; }
+};
+
+// The law (makeScheme): the time scheme and its step, the mass, the modes, the impact law, the damping.
+struct LawParameters {
+    TimeScheme timeScheme = TimeScheme::Newmark;
+    MassModel mass = MassModel::Consistent;
+    int modes = 0;  // 0 = full space (exact)
     double dt = 1e-5;  // s
     double beta = 0.5;
-    double initialLoad = 0.0;  // Pa
-    int modes = 0;  // 0 = full space (exact)
-    MassModel mass = MassModel::Consistent;
-    TimeScheme timeScheme = TimeScheme::Newmark;
-    // time_scheme = flow: the midpoint sub-steps of a step in which a constraint row is or
-    // becomes active (docs/theory.md §21).
-    int contactSubsteps = 16;
-    // time_scheme = flow with tolerance > 0 (m, on displacements; docs/theory.md §22): each
-    // contact step as many sub-steps as its own error estimate asks (step doubling), at most
-    // maxContactSubsteps; 0 = every contact step in contactSubsteps sub-steps.
-    double tolerance = 0.0;
-    int maxContactSubsteps = 128;
-    // Not an FMU parameter: false takes every flow contact sub-step in every row instead of the rows
-    // that can touch (docs/theory.md §24) — the baseline plate_bench rowspace=0 measures against.
-    bool contactRowSpace = true;
-    bool condensed() const { return timeScheme == TimeScheme::Conserving || timeScheme == TimeScheme::Flow; }
     // Impact law (docs/theory.md §12): the contact constraint holds on (u⁺ + e u⁻)/(1 + e);
     // e = 0 is the paper's scheme.
     double restitution = 0.0;
@@ -68,20 +49,29 @@ struct PlateParameters {
     // clamp (docs/theory.md §13).
     double dampingMass = 0.0;  // 1/s
     double dampingStiffness = 0.0;  // s
-    // Budget of one instance's memory (ResourceEstimate.h): an instance whose estimated peak
-    // exceeds it is refused before anything large is allocated. 0 = no limit.
-    double memoryLimit = 2048.0;  // MB
     // How exact mode runs (not an FMU parameter: the result is the same scheme either way;
     // benchmarks and tests pin it to compare the two).
     enum class Engine { Auto, SparseFactor, CompleteModal } engine = Engine::Auto;
-    // What carries the clamp (docs/theory.md §18–19; not an FMU parameter: base_drive chooses):
-    // the master's motion input (None), an armature driven by a force inside the step, or the end
-    // of a transmission line to a partner FMU. The carrier's values are checked only when used.
-    enum class Carrier { None, Armature, Line } carrier = Carrier::None;
-    double armatureMass = 20.0;  // kg
-    double armatureStiffness = 3158.0;  // N/m (2 Hz with 20 kg)
-    double armatureDamping = 50.0;  // N·s/m
-    double tlmImpedance = 2.0e4;  // N·s/m, the line's characteristic impedance
+    bool condensed() const { return timeScheme == TimeScheme::Conserving || timeScheme == TimeScheme::Flow; }
+    bool singularMass() const { return mass != MassModel::Consistent; }
+};
+
+// How the flow law divides a contact step (docs/theory.md §21–22; FlowScheme).
+struct ContactRefinement {
+    // tolerance = 0: every contact step in `substeps` sub-steps (contact_substeps, the midpoint sub-steps
+    // of a step in which a constraint row is or becomes active). tolerance > 0 (m, on displacements;
+    // §22): each contact step as many sub-steps as its own error estimate asks (step doubling), at most
+    // maxSubsteps (a power of two); the estimate accumulates in error_estimate.
+    int substeps = 16;
+    double tolerance = 0.0;
+    int maxSubsteps = 128;
+    // Not an FMU parameter: false takes every contact sub-step in every row instead of the rows that can
+    // touch (docs/theory.md §24) — the baseline plate_bench rowspace=0 measures against.
+    bool rowSpace = true;
+};
+
+// What the plate reports beyond the points and the ledger (FieldRecovery, CheckedPlate).
+struct OutputParameters {
     // The probes (docs/theory.md §23): any number of points (probeX[k], probeY[k]) of the plate, m,
     // each within [0, length] × [0, width] (validate); the two vectors have one entry per probe.
     // None by default: a master that records every output (fmpy's default) pays nothing for them.
@@ -93,16 +83,34 @@ struct PlateParameters {
     // the mesh coarsened by two, fed the same inputs. Off by default: it costs the companion's steps.
     bool discretizationCheck = false;
     std::size_t probeCount() const { return probeX.size(); }
+};
 
-    double bendingStiffness() const {
-        return youngsModulus * thickness * thickness * thickness / (12.0 * (1.0 - poissonRatio * poissonRatio));
-    }
-    double surfaceDensity() const { return density * thickness; }
+// The parameters of one PlateImpact run, in the parts each builder takes: makeSpace the mesh,
+// assemble the material, obstaclesOf and StopMap the obstacles, makeScheme the law, FlowScheme the
+// refinement, FieldRecovery and CheckedPlate the outputs.
+struct PlateParameters {
+    MeshParameters mesh;
+    MaterialParameters material;
+    ObstacleParameters obstacles;
+    LawParameters law;
+    ContactRefinement refinement;  // time_scheme = flow (§21–22)
+    OutputParameters outputs;
+    // What carries the clamp (docs/theory.md §18–19; not an FMU parameter: base_drive chooses):
+    // the master's motion input (None), an armature driven by a force inside the step, or the end
+    // of a transmission line to a partner FMU. The carrier's values are checked only when used.
+    enum class Carrier { None, Armature, Line } carrier = Carrier::None;
+    double armatureMass = 20.0;  // kg
+    double armatureStiffness = 3158.0;  // N/m (2 Hz with 20 kg)
+    double armatureDamping = 50.0;  // N·s/m
+    double tlmImpedance = 2.0e4;  // N·s/m, the line's characteristic impedance
+    double initialLoad = 0.0;  // Pa
+    // Budget of one instance's memory (ResourceEstimate.h): an instance whose estimated peak
+    // exceeds it is refused before anything large is allocated. 0 = no limit.
+    double memoryLimit = 2048.0;  // MB
     // The plate's first natural frequency as the clamped-free strip has it, 1.8751²/(2π L²)·√(D/ρh)
     // (Hz): a yardstick for dt that costs nothing (the default plate: 6.10 Hz against 5.95 Hz of
     // its first mode; docs/theory.md §4). The plate's own: PlateSimulation::firstFrequency.
     double firstFrequencyEstimate() const;
-    bool singularMass() const { return mass != MassModel::Consistent; }
 };
 
 // Bounds of the inputs and of what the parameters place (obstacles): far beyond any plate,

@@ -98,10 +98,10 @@ double factorBytes(const ProblemSize& s) {
 ProblemSize predictFromMesh(const PlateParameters& p) {
     ProblemSize s;
     s.predicted = true;
-    const double nx = p.nx, ny = p.ny, vertices = (nx + 1) * (ny + 1);
+    const double nx = p.mesh.nx, ny = p.mesh.ny, vertices = (nx + 1) * (ny + 1);
     s.contactVertices = static_cast<long long>(nx * (ny + 1));
     double nnzPerEntry, factorPerDof, factorExponent, reference;
-    if (p.element == ElementType::Fvs) {
+    if (p.mesh.element == ElementType::Fvs) {
         // One 12-dof quadrilateral per cell; w, w_x, w_y at each vertex.
         s.elements = static_cast<long long>(nx * ny);
         s.elementEntries = s.elements * 144;
@@ -186,21 +186,21 @@ bool completeModalPays(long long n, long long m, long long stiffnessNonZeros) {
 }
 
 EngineKind engineFor(const PlateParameters& p, const ProblemSize& size) {
-    using Engine = PlateParameters::Engine;
-    if (p.condensed()) return EngineKind::Condensed;
+    using Engine = LawParameters::Engine;
+    if (p.law.condensed()) return EngineKind::Condensed;
     const bool modal =
-        !p.singularMass() &&
-        (p.modes > 0 || p.engine == Engine::CompleteModal ||
-         (p.engine == Engine::Auto && completeModalPays(size.dofs, size.contactVertices, size.nonZeros)));
+        !p.law.singularMass() &&
+        (p.law.modes > 0 || p.law.engine == Engine::CompleteModal ||
+         (p.law.engine == Engine::Auto && completeModalPays(size.dofs, size.contactVertices, size.nonZeros)));
     if (!modal) return EngineKind::Sparse;
-    return p.modes > 0 && p.modes < size.dofs ? EngineKind::ReducedModal : EngineKind::CompleteModal;
+    return p.law.modes > 0 && p.law.modes < size.dofs ? EngineKind::ReducedModal : EngineKind::CompleteModal;
 }
 
 namespace {
 
 // Does the condensed engine take the sparse condensation (CondensedPlate.h)? q massive coordinates.
 bool sparseCondensation(const PlateParameters& p, double massive) {
-    return !denseCondensationServes(static_cast<Eigen::Index>(massive), p.modes);
+    return !denseCondensationServes(static_cast<Eigen::Index>(massive), p.law.modes);
 }
 // Lanczos' products for m modes (CondensedSparse.cpp: the kept ones and as many more, at least 80).
 double lanczosSteps(double kept) { return kept + std::max(80.0, kept); }
@@ -208,7 +208,7 @@ double lanczosSteps(double kept) { return kept + std::max(80.0, kept); }
 // The modal engines' memory beyond the clamped matrices (bytes) and their spectrum time (s).
 void modalCost(const PlateParameters& p, const ProblemSize& s, EngineKind engine, double& bytes, double& seconds) {
     const double n = double(s.dofs), c = double(s.contactVertices);
-    const double m = engine == EngineKind::CompleteModal ? n : double(p.modes);
+    const double m = engine == EngineKind::CompleteModal ? n : double(p.law.modes);
     const bool subspace = engine == EngineKind::ReducedModal && ((4 * m <= n && n > 1200) || n > 3000);
     if (subspace) {
         const double q = std::min(n, std::max(2 * m, m + 16));  // Spectrum.cpp's block size
@@ -229,15 +229,15 @@ void modalCost(const PlateParameters& p, const ProblemSize& s, EngineKind engine
 // constraint rows with the temporaries of their condensation (conserving), or a sparse copy.
 double recoveryBytes(const PlateParameters& p, const ProblemSize& s, EngineKind engine, double massive, double rows) {
     const double n = double(s.dofs);
-    const double recoveryRows = 3.0 * double(s.contactVertices + p.ny + 1) + 2.0 * p.ny + 5.0;
-    const double perRow = p.element == ElementType::Fvs ? 12.0 : 21.0;
+    const double recoveryRows = 3.0 * double(s.contactVertices + p.mesh.ny + 1) + 2.0 * p.mesh.ny + 5.0;
+    const double perRow = p.mesh.element == ElementType::Fvs ? 12.0 : 21.0;
     double recovery = (kTriplet + kEntry) * recoveryRows * perRow;
     if (engine == EngineKind::Condensed)
         recovery += kDouble * recoveryRows * (3.0 * massive + 2.0 * rows);
     else if (engine == EngineKind::Sparse)
         recovery += kEntry * recoveryRows * perRow;
     else
-        recovery += kDouble * recoveryRows * (engine == EngineKind::CompleteModal ? n : double(p.modes));
+        recovery += kDouble * recoveryRows * (engine == EngineKind::CompleteModal ? n : double(p.law.modes));
     return recovery;
 }
 
@@ -245,15 +245,15 @@ double recoveryBytes(const PlateParameters& p, const ProblemSize& s, EngineKind 
 void estimateTimes(const PlateParameters& p, const ProblemSize& s, double massive, double rows, ResourceEstimate& e) {
     const double n = double(s.dofs), t = double(s.elementEntries);
     const double zFull = double(s.fullNonZeros), z = double(s.nonZeros), l = double(s.factorNonZeros);
-    const double perEntry = p.element == ElementType::Fvs ? kAssemblyPerEntryFvs : kAssemblyPerEntryArgyris;
-    e.assemblySeconds = perEntry * t * (p.singularMass() ? 2.0 : 1.0) + kPerPatternEntry * (t + zFull);
+    const double perEntry = p.mesh.element == ElementType::Fvs ? kAssemblyPerEntryFvs : kAssemblyPerEntryArgyris;
+    e.assemblySeconds = perEntry * t * (p.law.singularMass() ? 2.0 : 1.0) + kPerPatternEntry * (t + zFull);
     const double oneFactor = kPerAnalysisEntry * z + kPerFactorFlop * s.factorFlops;
     if (e.engine != EngineKind::ReducedModal) e.factorSeconds = 2 * oneFactor;
     if (e.engine == EngineKind::Condensed && sparseCondensation(p, massive)) {
         // Factors of K and of the saddle point; a solve per Lanczos product (one right-hand side
         // each), then blocked ones per mode (V, with K) and one per row and for the load (with the
         // saddle point's factor, CondensedSparse.cpp).
-        const double kept = p.modes;
+        const double kept = p.law.modes;
         e.factorSeconds = 2 * kPerAnalysisEntry * z + (1.0 + kSaddleFlops) * kPerFactorFlop * s.factorFlops;
         e.spectrumSeconds = lanczosSteps(kept) * 4.0 * l * kPerLanczosFlop +
                             (kept + kSaddleFill * (rows + 1)) * 4.0 * l * kPerSolveFlop +
@@ -264,16 +264,16 @@ void estimateTimes(const PlateParameters& p, const ProblemSize& s, double massiv
         e.spectrumSeconds =
             (massive + rows) * 4.0 * (l + z) * kPerFactorFlop + kPerDenseEigenCube * massive * massive * massive;
     }
-    if (p.beta < 0.25) e.spectrumSeconds += oneFactor + kPowerIterations * kPerFactorFlop * 4.0 * (l + z);
+    if (p.law.beta < 0.25) e.spectrumSeconds += oneFactor + kPowerIterations * kPerFactorFlop * 4.0 * (l + z);
     e.staticSeconds = kPerAnalysisEntry * z;  // the QP of the static state is small without contact
     e.initSeconds = e.assemblySeconds + e.factorSeconds + e.spectrumSeconds + e.staticSeconds;
     if (e.engine == EngineKind::Condensed) {
-        const double m = p.modes > 0 && p.modes < massive ? double(p.modes) : massive;
+        const double m = p.law.modes > 0 && p.law.modes < massive ? double(p.law.modes) : massive;
         e.stepSeconds = kPerModalStepEntry * (8 * m + m * rows / 10);  // a look at the rows every ~10 steps
     } else if (e.engine == EngineKind::Sparse) {
         e.stepSeconds = kPerSparseStepEntry * (2 * l + 2 * z);
     } else {
-        const double m = e.engine == EngineKind::CompleteModal ? n : double(p.modes);
+        const double m = e.engine == EngineKind::CompleteModal ? n : double(p.law.modes);
         e.stepSeconds = kPerModalStepEntry * (m * double(s.contactVertices) + 8 * m);
     }
 }
@@ -289,7 +289,7 @@ ResourceEstimate estimateResources(const PlateParameters& p, const ProblemSize& 
     const double zFull = double(s.fullNonZeros), z = double(s.nonZeros);
     // Assembly.cpp: the triplets of M and K, setFromTriplets' temporary, both assembled matrices.
     const double assembly = 2 * kTriplet * t + kEntry * t + 2 * kEntry * zFull + 6 * kDouble * nFull;
-    if (p.singularMass())
+    if (p.law.singularMass())
         e.assemblyMB = (assembly + kTriplet * t + kEntry * zFull) / kMB;  // B, C of SingularMass
     else
         e.assemblyMB = assembly / kMB;
@@ -299,35 +299,35 @@ ResourceEstimate estimateResources(const PlateParameters& p, const ProblemSize& 
     e.matricesMB = (clamped + kEntry * (z + n)) / kMB;  // + FullOrderPlate's upper row copies
     const double lower = kEntry * (z + n) / 2;  // SparseCholesky's lower-triangle copy
     double phases = std::max(assembly, clampPeak);
-    if (p.beta < 0.25) phases = std::max(phases, clamped + factorBytes(s) + lower);  // κ_h: factor of M
+    if (p.law.beta < 0.25) phases = std::max(phases, clamped + factorBytes(s) + lower);  // κ_h: factor of M
     double engineBytes = 0.0;
     // The conserving engine (CondensedPlate.cpp): the factor of K, then dense matrices over the
     // massive coordinates (q: one per element, three for P1dg) and the constraint rows (r: the
     // contact vertices and an output point): T, its eigenvectors and the eigen solver's workspace
     // (4 q², measured), C K⁻¹ R and its product with Φ (2 r q), and about sixteen r × r matrices (C K⁻¹ Cᵀ, D,
     // W₂, the two contact matrices and their QP columns, the static problem's).
-    const double massive = double(s.elements) * (p.mass == MassModel::SingularP1dg ? 3.0 : 1.0);
+    const double massive = double(s.elements) * (p.law.mass == MassModel::SingularP1dg ? 3.0 : 1.0);
     const double rows = double(s.contactVertices) + 1.0;
     if (e.engine == EngineKind::Condensed && sparseCondensation(p, massive)) {
         // The sparse condensation (CondensedSparse.cpp): the factor of K, then the saddle point's
         // (one at a time), the Lanczos basis (q × steps), the modes V (n × m) and their right-hand
         // sides, the massless solves' block ((n + q) × 64) and its rows read, the rows' matrices.
-        const double kept = p.modes;
+        const double kept = p.law.modes;
         e.factorsMB = kSaddleFill * factorBytes(s) / kMB;
         // (three r × r matrices, not sixteen as below: measured 174 MB at 56x20, 1978 MB at 112x40, flow)
         engineBytes = kDouble * (massive * lanczosSteps(kept) + 2 * n * kept + 64 * (n + massive) + 2 * 64 * rows +
                                  rows * kept + 3 * rows * rows) +
                       kSaddleFill * factorBytes(s);
-        if (p.timeScheme == TimeScheme::Flow && p.tolerance > 0.0)
-            engineBytes += kDouble * (3 * std::log2(double(p.maxContactSubsteps)) * rows * rows + rows * kept);
+        if (p.law.timeScheme == TimeScheme::Flow && p.refinement.tolerance > 0.0)
+            engineBytes += kDouble * (3 * std::log2(double(p.refinement.maxSubsteps)) * rows * rows + rows * kept);
         phases = std::max(phases, e.matricesMB * kMB + factorBytes(s) + lower + engineBytes);
     } else if (e.engine == EngineKind::Condensed) {
         e.factorsMB = factorBytes(s) / kMB;
         engineBytes = kDouble * (4 * massive * massive + 2 * rows * massive + 16 * rows * rows);
         // time_scheme = flow with a tolerance (FlowScheme.h): the midpoint matrices of every
         // sub-step level (W₂, ½W₂ + D and its QP columns: three r × r each) and |G|.
-        if (p.timeScheme == TimeScheme::Flow && p.tolerance > 0.0)
-            engineBytes += kDouble * (3 * std::log2(double(p.maxContactSubsteps)) * rows * rows + rows * massive);
+        if (p.law.timeScheme == TimeScheme::Flow && p.refinement.tolerance > 0.0)
+            engineBytes += kDouble * (3 * std::log2(double(p.refinement.maxSubsteps)) * rows * rows + rows * massive);
         phases = std::max(phases, e.matricesMB * kMB + factorBytes(s) + lower + engineBytes);
     } else if (e.engine == EngineKind::Sparse) {
         // The step factor of A, then the factor of K for the static state beside it.
@@ -347,14 +347,14 @@ ResourceEstimate estimateResources(const PlateParameters& p, const ProblemSize& 
     }
     // (the sparse condensation's recovery rows reach the kept modes only, not every massive one)
     const bool sparse = e.engine == EngineKind::Condensed && sparseCondensation(p, massive);
-    const double recovery = recoveryBytes(p, s, e.engine, sparse ? double(p.modes) : massive, rows);
+    const double recovery = recoveryBytes(p, s, e.engine, sparse ? double(p.law.modes) : massive, rows);
     engineBytes += recovery;
     phases += recovery;
     e.engineMB = engineBytes / kMB;
     // The pattern walk and the symbolic analysis (AMD's copy of the pattern and its workspace).
     phases = std::max(phases, 4.0 * (3.0 * z + 8.0 * nFull));
     const double space =
-        double(s.elements) * (p.element == ElementType::Fvs ? kSpacePerElementFvs : kSpacePerElementArgyris);
+        double(s.elements) * (p.mesh.element == ElementType::Fvs ? kSpacePerElementFvs : kSpacePerElementArgyris);
     e.peakMB = (space + phases + kBaseMB * kMB) / kMB;
     if (!e.complete) e.peakMB = (space + 2 * kTriplet * t) / kMB;  // stage 1: the certain part only
     estimateTimes(p, s, massive, rows, e);
@@ -393,7 +393,7 @@ void requireWithinBudget(const PlateParameters& p, const ResourceEstimate& e) {
     if (!e.complete) msg << " (the element bases and the assembly of M and K alone)";
     if (e.size.predicted)
         msg << " (predicted from the mesh size; factor nnz(L) ~ " << double(e.size.factorNonZeros) << ")";
-    msg << " and memory_limit = " << p.memoryLimit << " MB (nx = " << p.nx << ", ny = " << p.ny
+    msg << " and memory_limit = " << p.memoryLimit << " MB (nx = " << p.mesh.nx << ", ny = " << p.mesh.ny
         << "); raise memory_limit to at least " << std::ceil(e.peakMB)
         << " MB if the machine has that memory (0 = no limit), or use a coarser mesh";
     throw ResourceError(msg.str());
@@ -438,24 +438,25 @@ std::vector<std::string> costNotices(const PlateParameters& p, const ResourceEst
         std::snprintf(text, sizeof text,
                       "this initialization will take about %.2g s (estimated: %.2g s to assemble, %.2g s to factor, "
                       "%.2g s for the modes and the condensation); %sa coarser mesh (nx = %d, ny = %d) shortens it",
-                      e.initSeconds, e.assemblySeconds, e.factorSeconds, e.spectrumSeconds, modes, p.nx, p.ny);
+                      e.initSeconds, e.assemblySeconds, e.factorSeconds, e.spectrumSeconds, modes, p.mesh.nx,
+                      p.mesh.ny);
         notices.emplace_back(text);
     }
-    const double perSecond = e.stepSeconds / p.dt;  // CPU per simulated second, without contact
+    const double perSecond = e.stepSeconds / p.law.dt;  // CPU per simulated second, without contact
     if (perSecond > kCostlyRunSeconds) {
         std::snprintf(text, sizeof text,
                       "each simulated second will cost about %.3g s of CPU (%.3g s per time step of dt = %g s, "
                       "without contact; more with it); cheaper: %sa stop covering only the contact region "
                       "(obstacle_lower_x_min ... obstacle_upper_y_max: fewer contact rows), or a coarser mesh "
                       "(nx = %d, ny = %d)",
-                      perSecond, e.stepSeconds, p.dt, modes, p.nx, p.ny);
+                      perSecond, e.stepSeconds, p.law.dt, modes, p.mesh.nx, p.mesh.ny);
         notices.emplace_back(text);
     }
     return notices;
 }
 
 ResourceEstimate planResources(const PlateParameters& p, const FiniteElementSpace& space, const ProgressLog& log) {
-    const StopMap stops(p);
+    const StopMap stops(p.obstacles, p.mesh);
     ProblemSize size = countEntries(space, [&stops](const Eigen::Vector2d& x) { return stops.at(x); });
     const ResourceEstimate lowerBound = estimateResources(p, size);
     requireWithinBudget(p, lowerBound);  // the assembly alone exceeds the budget: refuse now

@@ -14,23 +14,26 @@ namespace plate {
 // vertex as it had before stops (its outputs bit for bit).
 class StopMap {
 public:
-    explicit StopMap(const PlateParameters& p);
+    StopMap(const ObstacleParameters& obstacles, const MeshParameters& mesh);
     unsigned char at(const Eigen::Vector2d& x) const;
     // Whether the present obstacles' stops cover every point of the plate (the rows are every vertex).
     bool wholePlate() const { return whole_; }
 
 private:
-    PlateParameters::StopRect rect_[2];
-    bool present_[2];
+    ObstacleParameters o_;
     double slack_;  // a vertex on a stop's edge is under it, whatever the roundoff of i·length/nx
     bool whole_;
 };
 
 // The heights and which of them hold the clamp (a stop that reaches x = 0).
-Obstacles obstaclesOf(const PlateParameters& p);
+Obstacles obstaclesOf(const ObstacleParameters& obstacles);
 
 // Throws ParameterError unless each present obstacle's stop is a rectangle (min ≤ max) that meets
 // the plate and holds a contact point; the message names the nearest contact point.
-void validateStops(const PlateParameters& p);
+void validateStops(const ObstacleParameters& obstacles, const MeshParameters& mesh);
+
+// Throws ParameterError unless the plate, flat at the clamp's height baseDisplacement0, starts
+// between the obstacles (under a stop that does not reach the clamp: the plate there is outside).
+void requireStartBetween(const Obstacles& obstacles, double baseDisplacement0);
 
 }  // namespace plate

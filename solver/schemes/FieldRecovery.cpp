@@ -22,11 +22,11 @@ void addRow(const PointFunctional& f, const ClampedPlate& clamped, Eigen::Index 
 }  // namespace
 
 FieldRecovery::FieldRecovery(const FiniteElementSpace& space, const ClampedPlate& clamped, const PlateParameters& p)
-    : moment_(6.0 * p.bendingStiffness() / (p.thickness * p.thickness)),
-      nu_(p.poissonRatio),
+    : moment_(6.0 * p.material.bendingStiffness() / (p.material.thickness * p.material.thickness)),
+      nu_(p.material.poissonRatio),
       rootFactor_(moment_ * std::sqrt(1.0 - nu_ + nu_ * nu_)),
-      stress_(p.stressOutputs),
-      probeCount_(Eigen::Index(p.probeCount())),
+      stress_(p.outputs.stressOutputs),
+      probeCount_(Eigen::Index(p.outputs.probeCount())),
       vertexCount_(space.mesh().vertexCount()) {
     rootSamples_ = clampedEdgeSamples(space);
     const std::vector<PointLocation>& root = rootSamples_;
@@ -42,9 +42,10 @@ FieldRecovery::FieldRecovery(const FiniteElementSpace& space, const ClampedPlate
     const Eigen::Index rows = valueFirst_ + Eigen::Index(valueVertex_.size());
     std::vector<Eigen::Triplet<double>> entries;
     for (Eigen::Index k = 0; k < probeCount_; ++k)
-        addRow(pointFunctional(space, locate(space, {p.probeX[std::size_t(k)], p.probeY[std::size_t(k)]}),
-                               PointQuantity::Value),
-               clamped, k, entries);
+        addRow(
+            pointFunctional(space, locate(space, {p.outputs.probeX[std::size_t(k)], p.outputs.probeY[std::size_t(k)]}),
+                            PointQuantity::Value),
+            clamped, k, entries);
     for (std::size_t i = 0; i < root.size(); ++i)
         addRow(pointFunctional(space, root[i], PointQuantity::Dxx), clamped, rootFirst_ + Eigen::Index(i), entries);
     const PointQuantity curvatures[3] = {PointQuantity::Dxx, PointQuantity::Dyy, PointQuantity::Dxy};

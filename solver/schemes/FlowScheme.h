@@ -16,18 +16,6 @@
 
 namespace plate {
 
-// How the flow law divides a contact step (docs/theory.md §21–22): the parameters' contactSubsteps,
-// tolerance, maxContactSubsteps and contactRowSpace, whose defaults (PlateParameters.h) are its own.
-struct ContactRefinement {
-    // tolerance = 0: every contact step in `substeps` sub-steps; > 0 (m): each contact step as many
-    // sub-steps as its error estimate asks (step doubling), at most maxSubsteps (a power of two); the
-    // estimate accumulates in errorEstimate.
-    int substeps = PlateParameters{}.contactSubsteps;
-    double tolerance = PlateParameters{}.tolerance;
-    int maxSubsteps = PlateParameters{}.maxContactSubsteps;
-    bool rowSpace = PlateParameters{}.contactRowSpace;  // in the rows that can touch (§24); false: every row
-};
-
 class FlowScheme final : public CondensedScheme {
 public:
     FlowScheme(std::shared_ptr<const CondensedPlate> plate, Obstacles obstacles, double dt,

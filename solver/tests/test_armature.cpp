@@ -24,12 +24,11 @@ struct Rig {
     std::shared_ptr<const FullOrderPlate> plate;
     CarrierOptions carrier;
     Rig() {
-        p.nx = 5;
-        p.ny = 2;
+        p.mesh.nx = 5;
+        p.mesh.ny = 2;
         space = std::shared_ptr<const FiniteElementSpace>(
-            makeSpace(ElementType::Argyris, Mesh(p.length, p.width, p.nx, p.ny)));
-        clamped = std::make_shared<const ClampedPlate>(
-            clamp(*space, assemble(*space, p.surfaceDensity(), p.bendingStiffness(), p.poissonRatio)));
+            makeSpace(ElementType::Argyris, Mesh(p.mesh.length, p.mesh.width, p.mesh.nx, p.mesh.ny)));
+        clamped = std::make_shared<const ClampedPlate>(clamp(*space, assemble(*space, p.material)));
         plate = std::make_shared<const FullOrderPlate>(space, clamped, 1e-4, 0.5);
         carrier.mass = 20.0;
         carrier.stiffness = 3158.0;

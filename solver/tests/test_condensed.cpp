@@ -41,18 +41,18 @@ struct Condensed {
 
     Condensed(ElementType element, int nx, int ny, MassProjection projection, int modes = 0,
               Condensation method = Condensation::Auto, bool rowsAsRecovery = false) {
-        p.nx = nx;
-        p.ny = ny;
-        space = makeSpace(element, Mesh(p.length, p.width, nx, ny));
-        PlateMatrices m = assemble(*space, p.surfaceDensity(), p.bendingStiffness(), p.poissonRatio);
-        SingularMass s = assembleSingularMass(*space, p.surfaceDensity(), projection);
+        p.mesh.nx = nx;
+        p.mesh.ny = ny;
+        space = makeSpace(element, Mesh(p.mesh.length, p.mesh.width, nx, ny));
+        PlateMatrices m = assemble(*space, p.material);
+        SingularMass s = assembleSingularMass(*space, p.material.surfaceDensity(), projection);
         m.mass = s.mass;
         m.massMoment = s.massMoment;
         clamped = std::make_shared<const ClampedPlate>(clamp(*space, m));
         rootFree = freeRows(s.root, *clamped);
         // free_edge_mid between vertices as an extra row when ny is odd, as PlateSimulation does
         std::vector<ConstraintRow> extra;
-        if (ny % 2 == 1) extra.push_back({clamped->probe(*space, p.length, 0.5 * p.width), p.length});
+        if (ny % 2 == 1) extra.push_back({clamped->probe(*space, p.mesh.length, 0.5 * p.mesh.width), p.mesh.length});
         // rowsAsRecovery: the constraint rows read again as recovery functionals (L = C)
         c = condense(*clamped, rootFree, extra, modes, rowsAsRecovery ? constraintRows(*clamped, extra) : SparseRows{},
                      method);
@@ -66,7 +66,7 @@ struct Condensed {
         Eigen::MatrixXd ct = Eigen::MatrixXd::Zero(n, r);
         for (std::size_t i = 0; i < clamped->contactDofs.size(); ++i) ct(clamped->contactDofs[i], Eigen::Index(i)) = 1;
         if (r > Eigen::Index(clamped->contactDofs.size())) {
-            const PointProbe probe = clamped->probe(*space, p.length, 0.5 * p.width);
+            const PointProbe probe = clamped->probe(*space, p.mesh.length, 0.5 * p.mesh.width);
             for (std::size_t k2 = 0; k2 < probe.dofs.size(); ++k2) ct(probe.dofs[k2], r - 1) += probe.coefficients[k2];
         }
         const Eigen::MatrixXd x = llt.solve(ct);

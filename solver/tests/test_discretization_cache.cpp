@@ -28,16 +28,18 @@ public:
 // the condensed plate (with a probe, so that the recovery rows are part of the key).
 PlateParameters scene(int kind, double gap) {
     PlateParameters p;
-    p.obstacleLower = -gap;
-    p.obstacleUpper = gap;
+    p.obstacles.lower = -gap;
+    p.obstacles.upper = gap;
     switch (kind % 5) {
         case 0: break;
-        case 1: p.nx = 8, p.ny = 3, p.modes = 12, p.beta = 0.2, p.dt = 5e-6; break;
-        case 2: p.nx = 6, p.ny = 2, p.engine = PlateParameters::Engine::SparseFactor; break;
-        case 3: p.nx = 8, p.ny = 3, p.mass = MassModel::SingularP0, p.timeScheme = TimeScheme::Conserving; break;
+        case 1: p.mesh.nx = 8, p.mesh.ny = 3, p.law.modes = 12, p.law.beta = 0.2, p.law.dt = 5e-6; break;
+        case 2: p.mesh.nx = 6, p.mesh.ny = 2, p.law.engine = LawParameters::Engine::SparseFactor; break;
+        case 3:
+            p.mesh.nx = 8, p.mesh.ny = 3, p.law.mass = MassModel::SingularP0, p.law.timeScheme = TimeScheme::Conserving;
+            break;
         default:
-            p.nx = 8, p.ny = 3, p.mass = MassModel::SingularP1dg, p.timeScheme = TimeScheme::Flow;
-            p.probeX = {1.0}, p.probeY = {0.3}, p.stressOutputs = true;
+            p.mesh.nx = 8, p.mesh.ny = 3, p.law.mass = MassModel::SingularP1dg, p.law.timeScheme = TimeScheme::Flow;
+            p.outputs.probeX = {1.0}, p.outputs.probeY = {0.3}, p.outputs.stressOutputs = true;
             break;
     }
     return p;
@@ -54,7 +56,7 @@ std::vector<double> run(const PlateParameters& p, double frequency, int steps = 
         InputSignal base{0.015 * std::sin(w * t), 0.015 * w * std::cos(w * t), -0.015 * w * w * std::sin(w * t)};
         s.advance(100, base, InputSignal{});
         const PlateOutputs o = s.outputs(true, FieldOutputs::Plate);
-        const double probe = p.probeCount() > 0 ? s.probes().displacement[0] : 0.0;
+        const double probe = p.outputs.probeCount() > 0 ? s.probes().displacement[0] : 0.0;
         out.insert(out.end(), {o.corner1, o.corner2, o.freeEdgeMid, o.energy, o.clampForce, o.rootStress, probe,
                                o.maxStress, o.contactVertices});
     }
@@ -117,13 +119,13 @@ TEST(DiscretizationCache, BasesOfOnePlateShareOneEigenSolution) {
     std::vector<std::vector<double>> alone;
     for (int modes : counts) {
         CacheBudget off("0");
-        p.modes = modes;
+        p.law.modes = modes;
         alone.push_back(run(p, 25.0));
     }
     clearDiscretizationCache();
     long long builds[3], hits[3];
     for (int k = 0; k < 3; ++k) {
-        p.modes = counts[k];
+        p.law.modes = counts[k];
         const CacheStatistics before = discretizationCacheStatistics();
         EXPECT_TRUE(bitIdentical(alone[std::size_t(k)], run(p, 25.0))) << "modes " << counts[k];
         builds[k] = discretizationCacheStatistics().builds - before.builds;
@@ -142,7 +144,7 @@ TEST(DiscretizationCache, ADifferentPlateIsNotShared) {
     PlateParameters p = scene(1, 0.02);
     (void)run(p, 20.0, 100);
     const CacheStatistics before = discretizationCacheStatistics();
-    p.thickness *= 0.9;  // the same space, other matrices: everything but the space is built again
+    p.material.thickness *= 0.9;  // the same space, other matrices: everything but the space is built again
     const std::vector<double> thicker = run(p, 20.0, 100);
     const CacheStatistics after = discretizationCacheStatistics();
     EXPECT_EQ(after.hits - before.hits, 1);
@@ -158,20 +160,20 @@ TEST(DiscretizationCache, ADifferentPlateIsNotShared) {
 TEST(DiscretizationCache, EveryKeyParameterChangesTheResult) {
     using Change = void (*)(PlateParameters&);
     const std::vector<std::pair<const char*, Change>> changes = {
-        {"element", [](PlateParameters& p) { p.element = ElementType::Fvs; }},
-        {"length", [](PlateParameters& p) { p.length *= 1.1; }},
-        {"width", [](PlateParameters& p) { p.width *= 1.1; }},
-        {"nx", [](PlateParameters& p) { p.nx += 1; }},
-        {"ny", [](PlateParameters& p) { p.ny += 1; }},
-        {"thickness", [](PlateParameters& p) { p.thickness *= 0.9; }},
-        {"youngsModulus", [](PlateParameters& p) { p.youngsModulus *= 0.9; }},
-        {"poissonRatio", [](PlateParameters& p) { p.poissonRatio = 0.25; }},
-        {"density", [](PlateParameters& p) { p.density *= 1.1; }},
-        {"dt", [](PlateParameters& p) { p.dt *= 0.5; }},
-        {"beta", [](PlateParameters& p) { p.beta = 0.3; }},
-        {"modes", [](PlateParameters& p) { p.modes += 2; }},
-        {"dampingMass", [](PlateParameters& p) { p.dampingMass = 3.0; }},
-        {"dampingStiffness", [](PlateParameters& p) { p.dampingStiffness = 1e-5; }},
+        {"element", [](PlateParameters& p) { p.mesh.element = ElementType::Fvs; }},
+        {"length", [](PlateParameters& p) { p.mesh.length *= 1.1; }},
+        {"width", [](PlateParameters& p) { p.mesh.width *= 1.1; }},
+        {"nx", [](PlateParameters& p) { p.mesh.nx += 1; }},
+        {"ny", [](PlateParameters& p) { p.mesh.ny += 1; }},
+        {"thickness", [](PlateParameters& p) { p.material.thickness *= 0.9; }},
+        {"youngsModulus", [](PlateParameters& p) { p.material.youngsModulus *= 0.9; }},
+        {"poissonRatio", [](PlateParameters& p) { p.material.poissonRatio = 0.25; }},
+        {"density", [](PlateParameters& p) { p.material.density *= 1.1; }},
+        {"dt", [](PlateParameters& p) { p.law.dt *= 0.5; }},
+        {"beta", [](PlateParameters& p) { p.law.beta = 0.3; }},
+        {"modes", [](PlateParameters& p) { p.law.modes += 2; }},
+        {"dampingMass", [](PlateParameters& p) { p.law.dampingMass = 3.0; }},
+        {"dampingStiffness", [](PlateParameters& p) { p.law.dampingStiffness = 1e-5; }},
     };
     for (int kind : {1, 3, 4}) {  // Newmark's reduced modal basis, the conserving and flow laws
         for (const auto& [name, change] : changes) {
@@ -190,7 +192,7 @@ TEST(DiscretizationCache, EveryKeyParameterChangesTheResult) {
     PlateParameters p = scene(4, 0.02);
     clearDiscretizationCache();
     (void)run(p, 20.0, 100);
-    p.probeX[0] = 0.7;
+    p.outputs.probeX[0] = 0.7;
     const std::vector<double> moved = run(p, 20.0, 200);
     CacheBudget off("0");
     EXPECT_TRUE(bitIdentical(moved, run(p, 20.0, 200))) << "probe_1_x";

@@ -20,10 +20,10 @@ namespace {
 
 PlateParameters contactScene(bool check) {
     PlateParameters p;
-    p.nx = 8, p.ny = 3;  // the companion: 4 × 2
-    p.obstacleLower = -0.01, p.obstacleUpper = 0.01;
-    p.mass = MassModel::SingularP0, p.timeScheme = TimeScheme::Flow;
-    p.discretizationCheck = check;
+    p.mesh.nx = 8, p.mesh.ny = 3;  // the companion: 4 × 2
+    p.obstacles.lower = -0.01, p.obstacles.upper = 0.01;
+    p.law.mass = MassModel::SingularP0, p.law.timeScheme = TimeScheme::Flow;
+    p.outputs.discretizationCheck = check;
     return p;
 }
 
@@ -57,9 +57,9 @@ Record run(CheckedPlate& s, int steps, int first = 0) {
 TEST(DiscretizationCheck, ThePlateIsTheSameBitsAndTheEstimateIsRichardsonsFactorThenTheBound) {
     CheckedPlate plain(contactScene(false), 0.0), checked(contactScene(true), 0.0);
     CheckedPlate companion(DiscretizationCheck::companionParameters(contactScene(true)), 0.0);  // no check of its own
-    EXPECT_EQ(companion.parameters().nx, 4);
-    EXPECT_EQ(companion.parameters().ny, 2);
-    EXPECT_EQ(companion.parameters().dt, 2.0 * contactScene(true).dt);
+    EXPECT_EQ(companion.parameters().mesh.nx, 4);
+    EXPECT_EQ(companion.parameters().mesh.ny, 2);
+    EXPECT_EQ(companion.parameters().law.dt, 2.0 * contactScene(true).law.dt);
     const Record a = run(plain, 120), b = run(checked, 120), c = run(companion, 120);
     EXPECT_EQ(a.points, b.points);  // bit for bit
     EXPECT_EQ(a.estimate, 0.0);
@@ -106,7 +106,7 @@ TEST(DiscretizationCheck, AStateRestoredIntoAFreshSimulationContinuesBitForBit) 
 
 TEST(DiscretizationCheck, RefusesMeshesOfOneCellAndCarriedClamps) {
     PlateParameters p = contactScene(true);
-    p.ny = 1;
+    p.mesh.ny = 1;
     try {
         CheckedPlate s(p, 0.0);
         FAIL() << "a mesh of one cell across was accepted";
@@ -114,7 +114,7 @@ TEST(DiscretizationCheck, RefusesMeshesOfOneCellAndCarriedClamps) {
         EXPECT_NE(std::string(e.what()).find("nx >= 2 and ny >= 2"), std::string::npos) << e.what();
     }
     p = PlateParameters{};
-    p.discretizationCheck = true;
+    p.outputs.discretizationCheck = true;
     p.carrier = PlateParameters::Carrier::Armature;
     EXPECT_THROW(CheckedPlate(p, 0.0), ParameterError);
 }

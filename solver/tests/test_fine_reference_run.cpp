@@ -14,14 +14,14 @@
 
 TEST(FineReferenceRun, FlowWithAToleranceAtAFineStepCompletes) {
     plate::PlateParameters p;
-    p.nx = 7;
-    p.ny = 3;
-    p.obstacleLower = -0.02;
-    p.obstacleUpper = 0.02;
-    p.mass = plate::MassModel::SingularP0;
-    p.timeScheme = plate::TimeScheme::Flow;
-    p.dt = 6.25e-7;
-    p.tolerance = 1e-7;
+    p.mesh.nx = 7;
+    p.mesh.ny = 3;
+    p.obstacles.lower = -0.02;
+    p.obstacles.upper = 0.02;
+    p.law.mass = plate::MassModel::SingularP0;
+    p.law.timeScheme = plate::TimeScheme::Flow;
+    p.law.dt = 6.25e-7;
+    p.refinement.tolerance = 1e-7;
     plate::PlateSimulation sim(p, 0.0);
     const double amplitude = 0.012, omega = 2.0 * M_PI * 25.0;
     const long long perComm = 160;  // 1e-4 s

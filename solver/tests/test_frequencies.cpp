@@ -67,7 +67,7 @@ struct Assembled {
 Assembled build(ElementType type, int n, double nu) {
     Assembled a;
     a.space = makeSpace(type, Mesh(kSide, kSide, n, n));
-    a.full = assemble(*a.space, kDensity * kThickness, bending(nu), nu);
+    a.full = assemble(*a.space, MaterialParameters{kThickness, kYoung, nu, kDensity});
     a.clamped = clamp(*a.space, a.full);
     return a;
 }

@@ -33,12 +33,12 @@ struct Rig {
 
     explicit Rig(int nx = 14, int ny = 5, ElementType element = ElementType::Argyris,
                  MassProjection projection = MassProjection::P0) {
-        p.nx = nx;
-        p.ny = ny;
-        space = makeSpace(element, Mesh(p.length, p.width, nx, ny));
-        matrices = assemble(*space, p.surfaceDensity(), p.bendingStiffness(), p.poissonRatio);
+        p.mesh.nx = nx;
+        p.mesh.ny = ny;
+        space = makeSpace(element, Mesh(p.mesh.length, p.mesh.width, nx, ny));
+        matrices = assemble(*space, p.material);
         consistent = std::make_shared<const ClampedPlate>(clamp(*space, matrices));
-        singular = assembleSingularMass(*space, p.surfaceDensity(), projection);
+        singular = assembleSingularMass(*space, p.material.surfaceDensity(), projection);
         PlateMatrices s = matrices;
         s.mass = singular.mass;
         withSingular = std::make_shared<const ClampedPlate>(clamp(*space, s));
@@ -99,8 +99,8 @@ TEST(SingularMass, EveryContactVertexNeedsAMasslessDirection) {
     // Reduced FVS has 3 dofs per vertex; P1dg puts 3 functions on each quadrilateral: about as
     // many as the dofs, which leaves too few massless directions for the vertices.
     PlateParameters p;
-    p.element = ElementType::Fvs;
-    p.mass = MassModel::SingularP1dg;
+    p.mesh.element = ElementType::Fvs;
+    p.law.mass = MassModel::SingularP1dg;
     try {
         PlateSimulation sim(p, 0.0);
         FAIL() << "FVS with singular_p1dg was accepted";
@@ -111,8 +111,8 @@ TEST(SingularMass, EveryContactVertexNeedsAMasslessDirection) {
     for (auto [element, mass] :
          {std::pair{ElementType::Fvs, MassModel::SingularP0}, std::pair{ElementType::Argyris, MassModel::SingularP0},
           std::pair{ElementType::Argyris, MassModel::SingularP1dg}}) {
-        p.element = element;
-        p.mass = mass;
+        p.mesh.element = element;
+        p.law.mass = mass;
         EXPECT_NO_THROW(PlateSimulation(p, 0.0));
     }
 }

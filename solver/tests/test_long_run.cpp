@@ -73,7 +73,7 @@ TEST(LongRun, StepsOfTheSineSceneStayFiniteBoundedAndBalanced) {
     const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - begin).count();
     const plate::PlateOutputs end = sim.outputs();
     EXPECT_EQ(sim.stepCount(), kSteps);
-    EXPECT_NEAR(sim.time(), kSteps * p.dt, 1e-9);
+    EXPECT_NEAR(sim.time(), kSteps * p.law.dt, 1e-9);
     // The scene is not trivial: it hits the obstacles often and loses energy there.
     EXPECT_GT(impactSteps, kSteps / 1000);  // 1000 of the 10^5 communication steps of 10 s
     EXPECT_GT(end.energyDissipated, 0.0);

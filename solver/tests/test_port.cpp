@@ -28,11 +28,11 @@ Eigen::VectorXd fullField(const ClampedPlate& c, const Eigen::VectorXd& constant
 
 TEST(Port, ClampForceAndMomentAreTheClampedRowsResidual) {
     PlateParameters p;
-    p.nx = 7;
-    p.ny = 3;
-    const auto space =
-        std::shared_ptr<const FiniteElementSpace>(makeSpace(ElementType::Argyris, Mesh(p.length, p.width, p.nx, p.ny)));
-    const PlateMatrices full = assemble(*space, p.surfaceDensity(), p.bendingStiffness(), p.poissonRatio);
+    p.mesh.nx = 7;
+    p.mesh.ny = 3;
+    const auto space = std::shared_ptr<const FiniteElementSpace>(
+        makeSpace(ElementType::Argyris, Mesh(p.mesh.length, p.mesh.width, p.mesh.nx, p.mesh.ny)));
+    const PlateMatrices full = assemble(*space, p.material);
     const auto clamped = std::make_shared<const ClampedPlate>(clamp(*space, full));
     // X, the dof vector of the function x: its Galerkin projection is exact (x is in the space).
     Eigen::SimplicialLDLT<Eigen::SparseMatrix<double>> massFactor(full.mass);
@@ -87,5 +87,5 @@ TEST(Port, ClampForceAndMomentAreTheClampedRowsResidual) {
     // Roundoff: a second difference of momenta (~1 kg·m/s) over dt² = 1e-8 s²: ~1e-8 relative
     // to the force; 1e-7 leaves a margin.
     EXPECT_LE(worstForce, 1e-7 * largestForce);
-    EXPECT_LE(worstMoment, 1e-7 * largestForce * p.length);
+    EXPECT_LE(worstMoment, 1e-7 * largestForce * p.mesh.length);
 }

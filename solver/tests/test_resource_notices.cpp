@@ -21,11 +21,11 @@ std::vector<std::string> notices(const PlateParameters& p) {
 
 PlateParameters flow(int nx, int ny, int modes) {
     PlateParameters p;
-    p.nx = nx;
-    p.ny = ny;
-    p.modes = modes;
-    p.mass = MassModel::SingularP0;
-    p.timeScheme = TimeScheme::Flow;
+    p.mesh.nx = nx;
+    p.mesh.ny = ny;
+    p.law.modes = modes;
+    p.law.mass = MassModel::SingularP0;
+    p.law.timeScheme = TimeScheme::Flow;
     return p;
 }
 
@@ -41,21 +41,21 @@ TEST(ResourceNotices, ThePaperAndExampleScenesHaveNone) {
     for (const auto& [element, nx, ny] :
          {std::tuple{ElementType::Argyris, 14, 5}, {ElementType::Argyris, 16, 5}, {ElementType::Fvs, 20, 7}}) {
         PlateParameters p;
-        p.element = element;
-        p.nx = nx;
-        p.ny = ny;
-        p.dt = 2.5e-6;
+        p.mesh.element = element;
+        p.mesh.nx = nx;
+        p.mesh.ny = ny;
+        p.law.dt = 2.5e-6;
         scenes.push_back(p);
     }
     PlateParameters paperLaw;
-    paperLaw.mass = MassModel::SingularP0;
-    paperLaw.timeScheme = TimeScheme::Conserving;
+    paperLaw.law.mass = MassModel::SingularP0;
+    paperLaw.law.timeScheme = TimeScheme::Conserving;
     scenes.push_back(paperLaw);
     scenes.push_back(flow(28, 10, 40));
     scenes.push_back(flow(56, 20, 100));
     for (const PlateParameters& p : scenes) {
         const std::vector<std::string> said = notices(p);
-        EXPECT_TRUE(said.empty()) << p.nx << "x" << p.ny << ": " << (said.empty() ? "" : said[0]);
+        EXPECT_TRUE(said.empty()) << p.mesh.nx << "x" << p.mesh.ny << ": " << (said.empty() ? "" : said[0]);
     }
 }
 
@@ -76,9 +76,9 @@ TEST(ResourceNotices, ALongSetupSaysSoWithWhatShortensIt) {
 TEST(ResourceNotices, ACostlyRunSaysSoOnceWithWhatMakesItCheaper) {
     PlateParameters p = flow(56, 20, 100);
     for (const std::string& line : notices(p)) EXPECT_EQ(line.find("each simulated second"), std::string::npos);
-    p.dt = 1e-7;
+    p.law.dt = 1e-7;
     const ResourceEstimate e = estimateResources(p, predictFromMesh(p));
-    ASSERT_GT(e.stepSeconds / p.dt, kCostlyRunSeconds);
+    ASSERT_GT(e.stepSeconds / p.law.dt, kCostlyRunSeconds);
     int costly = 0;
     for (const std::string& line : costNotices(p, e)) {
         if (line.find("each simulated second will cost") == std::string::npos) continue;

@@ -22,9 +22,9 @@ namespace {
 
 std::shared_ptr<const CondensedPlate> condensedPlate(ElementType element, int nx, int ny) {
     PlateParameters p;
-    const auto space = makeSpace(element, Mesh(p.length, p.width, nx, ny));
-    PlateMatrices m = assemble(*space, p.surfaceDensity(), p.bendingStiffness(), p.poissonRatio);
-    const SingularMass s = assembleSingularMass(*space, p.surfaceDensity(), MassProjection::P0);
+    const auto space = makeSpace(element, Mesh(p.mesh.length, p.mesh.width, nx, ny));
+    PlateMatrices m = assemble(*space, p.material);
+    const SingularMass s = assembleSingularMass(*space, p.material.surfaceDensity(), MassProjection::P0);
     m.mass = s.mass;
     m.massMoment = s.massMoment;
     const ClampedPlate clamped = clamp(*space, m);

@@ -69,9 +69,9 @@ void run(plate::PlateSimulation& sim, long long steps, long long perComm = 10) {
 
 TEST(Stepper, SparseAndModalEnginesRunTheSameScheme) {
     plate::PlateParameters p;
-    p.engine = plate::PlateParameters::Engine::SparseFactor;
+    p.law.engine = plate::LawParameters::Engine::SparseFactor;
     plate::PlateSimulation sparse(p, 0.0);
-    p.engine = plate::PlateParameters::Engine::CompleteModal;
+    p.law.engine = plate::LawParameters::Engine::CompleteModal;
     plate::PlateSimulation modal(p, 0.0);
     ASSERT_EQ(sparse.engine(), "sparse");
     ASSERT_EQ(modal.engine(), "modal-complete");
@@ -106,7 +106,7 @@ long allocationsOfSteps(plate::PlateSimulation& sim, long long steps) {
 TEST(Stepper, TimeStepDoesNotAllocate) {
     // Both engines with the paper's scheme, then the laws of docs/theory.md §11–13 (restitution
     // and damping on the modal engine, the singular mass on the sparse one, all three at once).
-    using Engine = plate::PlateParameters::Engine;
+    using Engine = plate::LawParameters::Engine;
     struct Case {
         Engine engine;
         plate::MassModel mass;
@@ -117,11 +117,11 @@ TEST(Stepper, TimeStepDoesNotAllocate) {
                          Case{Engine::CompleteModal, plate::MassModel::Consistent, 0.5, 2.0, 1e-5},
                          Case{Engine::SparseFactor, plate::MassModel::SingularP0, 0.5, 2.0, 1e-5}}) {
         plate::PlateParameters p;
-        p.engine = c.engine;
-        p.mass = c.mass;
-        p.restitution = c.e;
-        p.dampingMass = c.a;
-        p.dampingStiffness = c.b;
+        p.law.engine = c.engine;
+        p.law.mass = c.mass;
+        p.law.restitution = c.e;
+        p.law.dampingMass = c.a;
+        p.law.dampingStiffness = c.b;
         plate::PlateSimulation sim(p, 0.0);
         run(sim, 6000);  // the first impact near 0.05 s
         const long long before = static_cast<long long>(sim.outputs().contactSolves);
@@ -153,10 +153,10 @@ TEST(Stepper, CondensedLawsStepWithoutAllocating) {
           Case{"flow m=20", plate::TimeScheme::Flow, 0.0, 20},
           Case{"flow tolerance", plate::TimeScheme::Flow, 1e-5, 0}}) {
         plate::PlateParameters p;
-        p.mass = plate::MassModel::SingularP0;
-        p.timeScheme = c.scheme;
-        p.tolerance = c.tolerance;
-        p.modes = c.modes;
+        p.law.mass = plate::MassModel::SingularP0;
+        p.law.timeScheme = c.scheme;
+        p.refinement.tolerance = c.tolerance;
+        p.law.modes = c.modes;
         plate::PlateSimulation sim(p, 0.0);
         run(sim, 6000);  // the first impact near 0.05 s
         const long long before = static_cast<long long>(sim.outputs().contactSolves);

@@ -30,16 +30,16 @@ enum class Law { Newmark, Conserving, Flow };
 
 PlateParameters tipStop(Law law, plate::ElementType element) {
     PlateParameters p;
-    p.element = element;
-    if (element == plate::ElementType::Fvs) p.nx = 20, p.ny = 7;  // the paper's FVS mesh
-    p.obstacleLower = kStop;
-    p.obstacleUpperEnabled = false;
-    p.lowerStop.xMin = kTipFrom;
-    if (law != Law::Newmark) p.mass = plate::MassModel::SingularP0;
-    if (law == Law::Conserving) p.timeScheme = plate::TimeScheme::Conserving;
-    if (law == Law::Flow) p.timeScheme = plate::TimeScheme::Flow;
-    p.probeX = {0.6};
-    p.probeY = {0.2};
+    p.mesh.element = element;
+    if (element == plate::ElementType::Fvs) p.mesh.nx = 20, p.mesh.ny = 7;  // the paper's FVS mesh
+    p.obstacles.lower = kStop;
+    p.obstacles.upperEnabled = false;
+    p.obstacles.lowerStop.xMin = kTipFrom;
+    if (law != Law::Newmark) p.law.mass = plate::MassModel::SingularP0;
+    if (law == Law::Conserving) p.law.timeScheme = plate::TimeScheme::Conserving;
+    if (law == Law::Flow) p.law.timeScheme = plate::TimeScheme::Flow;
+    p.outputs.probeX = {0.6};
+    p.outputs.probeY = {0.2};
     return p;
 }
 
@@ -58,7 +58,7 @@ TEST_P(TipStop, HoldsTheVerticesUnderItAndNoOthers) {
     const LawCase c = GetParam();
     const PlateParameters p = tipStop(c.law, c.element);
     plate::PlateSimulation sim(p, stopSceneBase(0.0).value);
-    const plate::Mesh mesh(p.length, p.width, p.nx, p.ny);
+    const plate::Mesh mesh(p.mesh.length, p.mesh.width, p.mesh.nx, p.mesh.ny);
     std::vector<int> under;
     for (int v = 0; v < mesh.vertexCount(); ++v)
         if (mesh.point(v).x() >= kTipFrom - 1e-12) under.push_back(v);
@@ -96,7 +96,7 @@ INSTANTIATE_TEST_SUITE_P(Laws, TipStop,
 TEST(TipStopEnergy, ClosesEveryStepForTheConservingLaws) {
     for (Law law : {Law::Conserving, Law::Flow}) {
         PlateParameters p = tipStop(law, plate::ElementType::Argyris);
-        p.modes = law == Law::Conserving ? 40 : 0;  // a reduced model too (modes)
+        p.law.modes = law == Law::Conserving ? 40 : 0;  // a reduced model too (modes)
         plate::PlateSimulation sim(p, 0.0);
         double previous = 0.0, scale = std::abs(sim.outputs().energy), worst = 0.0;
         const double e0 = sim.outputs().energy;
@@ -120,12 +120,12 @@ TEST(TipStopEnergy, ClosesEveryStepForTheConservingLaws) {
 TEST(WholePlateStop, IsTheDefaultBitForBit) {
     for (Law law : {Law::Newmark, Law::Conserving, Law::Flow}) {
         PlateParameters a = tipStop(law, plate::ElementType::Argyris);
-        a.obstacleLower = -0.1;
-        a.obstacleUpperEnabled = true;
-        a.lowerStop = {};
+        a.obstacles.lower = -0.1;
+        a.obstacles.upperEnabled = true;
+        a.obstacles.lowerStop = {};
         PlateParameters b = a;
-        b.lowerStop = {0.0, b.length, 0.0, b.width};
-        b.upperStop = {0.0, b.length, 0.0, b.width};
+        b.obstacles.lowerStop = {0.0, b.mesh.length, 0.0, b.mesh.width};
+        b.obstacles.upperStop = {0.0, b.mesh.length, 0.0, b.mesh.width};
         plate::PlateSimulation simA(a, 0.0), simB(b, 0.0);
         for (int k = 0; k < 700; ++k) {  // 0.07 s: the first impacts from ≈ 0.05 s on
             simA.advance(10, stopSceneBase(simA.time()), plate::InputSignal{});
@@ -164,22 +164,22 @@ std::string refusal(const PlateParameters& p) {
 // Bad stops are refused at initialization with the allowed range (issue 52, item 5).
 TEST(StopValidation, RefusesInvertedOutsideAndEmptyRectangles) {
     PlateParameters p;
-    p.lowerStop.xMin = 1.1, p.lowerStop.xMax = 1.0;
+    p.obstacles.lowerStop.xMin = 1.1, p.obstacles.lowerStop.xMax = 1.0;
     EXPECT_NE(refusal(p).find("x_min <= x_max"), std::string::npos) << refusal(p);
-    p.lowerStop = {};
-    p.upperStop.yMin = 0.5;  // the plate is 0.4 m wide
+    p.obstacles.lowerStop = {};
+    p.obstacles.upperStop.yMin = 0.5;  // the plate is 0.4 m wide
     EXPECT_NE(refusal(p).find("meets the plate"), std::string::npos) << refusal(p);
-    p.upperStop = {};
+    p.obstacles.upperStop = {};
     // Between the vertex columns x = 0.9429 and 1.0286 (14 cells): no contact point; the nearest (0.0171 m off) is named.
-    p.lowerStop.xMin = 0.96, p.lowerStop.xMax = 1.0;
+    p.obstacles.lowerStop.xMin = 0.96, p.obstacles.lowerStop.xMax = 1.0;
     const std::string empty = refusal(p);
     EXPECT_NE(empty.find("nearest"), std::string::npos) << empty;
     EXPECT_NE(empty.find("(0.942857142857143, 0)"), std::string::npos) << empty;
     // Only at the clamped edge: its vertices move with the clamp, none is a contact point.
-    p.lowerStop.xMin = 0.0, p.lowerStop.xMax = 0.0;
+    p.obstacles.lowerStop.xMin = 0.0, p.obstacles.lowerStop.xMax = 0.0;
     EXPECT_NE(refusal(p).find("nearest"), std::string::npos) << refusal(p);
     // An absent obstacle's stop is not looked at.
-    p.obstacleLowerEnabled = false;
+    p.obstacles.lowerEnabled = false;
     EXPECT_EQ(refusal(p), "");
 }
 

@@ -147,7 +147,10 @@ extern "C" {
 Export FMI2 API functions on Windows and under GCC. 
 This definition has been changed to always export the symbols.
 */
-#if defined _WIN32 || defined __CYGWIN__
+#if defined(FMI2_FUNCTION_PREFIX)
+    /* PlateImpact: prefixed implementations are not exported (fmi2/Fmi2Own.h). */
+    #define FMI2_Export
+#elif defined _WIN32 || defined __CYGWIN__
     /* Note: both gcc & MSVC on Windows support this syntax. */
     #define FMI2_Export __declspec(dllexport)
 #else
@@ -159,11 +162,17 @@ This definition has been changed to always export the symbols.
 #endif
 
 
-/* 
-Macro to construct the real function name.
-This definition has been changed to add no prefix.
+/*
+Macro to construct the real function name (as in the standard header: prepend
+FMI2_FUNCTION_PREFIX when defined; PlateImpact defines it in fmi2/Fmi2Own.h only).
 */
+#if !defined(FMI2_FUNCTION_PREFIX)
 #define fmi2FullName(name) name
+#else
+#define fmi2Paste(a,b)     a ## b
+#define fmi2PasteB(a,b)    fmi2Paste(a,b)
+#define fmi2FullName(name) fmi2PasteB(FMI2_FUNCTION_PREFIX, name)
+#endif
 
 
 /***************************************************
