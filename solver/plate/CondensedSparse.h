@@ -6,12 +6,10 @@
 // - the lowest `kept` massive modes by Lanczos (Spectra's SymEigsSolver) on T applied through the
 //   factor of K,
 //   y = Rᵀ K⁻¹ R x: T's largest eigenvalues are 1/ω² of the lowest modes;
-// - the massless flexibility Q0 S⁻¹ Q0ᵀ v (the static response to v with Rᵀw = 0) by the augmented
-//   Lagrangian iteration on the factor of K + ρ M_s (M_s = R Rᵀ): w ← (K + ρM_s)⁻¹(v − Rλ),
-//   λ ← λ + ρRᵀw, converging by 1/(1 + ρ/ω²) per iteration in each massive mode, so in a few
-//   iterations once ρ is well above the highest massive ω² — only for the constraint rows'
-//   directions Cᵀ and the load: D = C Q0 S⁻¹ Q0ᵀ Cᵀ with every massive mode, no matrix of the
-//   plate's size.
+// - the massless flexibility Q0 S⁻¹ Q0ᵀ v (the static response to v with Rᵀw = 0) as the
+//   displacement part of the saddle-point problem [[K, R], [Rᵀ, 0]] [w; μ] = [v; 0], one solve
+//   with its L D Lᵀ factor per right-hand side — only for the constraint rows' directions Cᵀ and
+//   the load: D = C Q0 S⁻¹ Q0ᵀ Cᵀ with every massive mode, no matrix of the plate's size.
 #include <Eigen/Core>
 #include <Eigen/Sparse>
 #include <vector>
@@ -25,7 +23,7 @@ SparseRows constraintRows(const ClampedPlate& plate, const std::vector<Constrain
 
 // Fills c's modal and massless parts (omega2, rowModesT, delassus, rowLoad, loadFlexibility,
 // modalLoad, modalBaseInertia, modalRotationInertia, the recovery parts) with `kept` < q modes.
-// Throws std::runtime_error when Lanczos or the massless iteration does not converge.
+// Throws std::runtime_error when Lanczos does not converge or the saddle-point factor meets a zero pivot.
 void condenseSparse(const ClampedPlate& plate, const Eigen::SparseMatrix<double>& root, const SparseRows& rows,
                     Eigen::Index kept, const SparseRows& recovery, CondensedPlate& c);
 

@@ -42,16 +42,21 @@ constexpr double kPerFactorFlop = 1.0e-9;
 constexpr double kPerDenseEigenCube = 2.0e-9;
 constexpr double kPerSparseStepEntry = 0.55e-9;  // per nonzero of L and of K/M touched in a step
 constexpr double kPerModalStepEntry = 1.0e-9;  // per entry of CΦ and per dof of a modal step
-// Per flop of a solve with a simplicial factor (4 nnz(L) flops per right-hand side), and the contact
-// rows' dense work once condensed (D's Cholesky, the schemes' r × r operators) per r³: fitted to the
-// sparse condensation's setups (CPU, flow, 100 modes, tools/fine_mesh_setup.py) of 56x20 (~7 s; 3.8 k
-// solves of nnz(L) = 1.1 M, r = 1177) and 112x40 (~87 s; 14 k solves of 6.7 M, r = 4593): the larger
-// runs at ~0.22 ns per solve flop, the smaller at ~0.38, so the fit sits between (both within 1.5×).
-constexpr double kPerSolveFlop = 3.0e-10;
+// The sparse condensation's saddle-point factor [[K, R], [Rᵀ, 0]] (CondensedSparse.cpp) against K's:
+// nnz(L) 1.70× (56x20: 1.92 M against 1.13 M) and 1.77× (112x40: 11.9 M against 6.7 M), its
+// factorization 2.5× the flops (112x40: 5.1 against 2.05 GFlop; CHOLMOD's symbolic analyses).
+constexpr double kSaddleFill = 1.75;
+constexpr double kSaddleFlops = 2.5;
+// Per nominal flop (4 nnz(L) per right-hand side) of the blocked solves (64 right-hand sides, AVX2
+// where the CPU has it; the forward sweep skips what unit right-hand sides do not reach), and the
+// contact rows' dense work once condensed (D's Cholesky, the schemes' r × r operators) per r³:
+// perf of plate_bench init_only=1 (flow, 100 modes): 56x20, the saddle's solves ~0.9 s for 9 GFlop;
+// 112x40, ~15 s for 218 GFlop and ~2.9 s of dense kernels (r = 4593).
+constexpr double kPerSolveFlop = 0.08e-9;
 // Per flop of a Lanczos product's solve, one right-hand side (Spectra, CondensedSparse.cpp): 56x20,
-// 201 products of 4 nnz(L) = 4.5 MFlop in 0.91 s.
-constexpr double kPerLanczosFlop = 0.9e-9;
-constexpr double kPerRowCube = 0.5e-10;
+// 201 products of 4 nnz(L) = 4.5 MFlop in 0.37 s; 112x40, 26.8 MFlop each in 3.0 s.
+constexpr double kPerLanczosFlop = 0.5e-9;
+constexpr double kPerRowCube = 0.3e-10;
 constexpr int kSubspaceIterations = 60;  // typical subspace iterations (Spectrum.cpp, up to 300)
 constexpr int kPowerIterations = 300;  // typical power iterations for κ_h (up to 2000)
 
@@ -245,13 +250,14 @@ void estimateTimes(const PlateParameters& p, const ProblemSize& s, double massiv
     const double oneFactor = kPerAnalysisEntry * z + kPerFactorFlop * s.factorFlops;
     if (e.engine != EngineKind::ReducedModal) e.factorSeconds = 2 * oneFactor;
     if (e.engine == EngineKind::Condensed && sparseCondensation(p, massive)) {
-        // Factors of K and K + ρ M_s; a solve per Lanczos product (one right-hand side each), then
-        // blocked ones per mode (V) and three per row and for the load (the massless iteration,
-        // CondensedSparse.cpp).
+        // Factors of K and of the saddle point; a solve per Lanczos product (one right-hand side
+        // each), then blocked ones per mode (V, with K) and one per row and for the load (with the
+        // saddle point's factor, CondensedSparse.cpp).
         const double kept = p.law.modes;
-        e.factorSeconds = 2 * oneFactor;
+        e.factorSeconds = 2 * kPerAnalysisEntry * z + (1.0 + kSaddleFlops) * kPerFactorFlop * s.factorFlops;
         e.spectrumSeconds = lanczosSteps(kept) * 4.0 * l * kPerLanczosFlop +
-                            (kept + 3 * (rows + 1)) * 4.0 * l * kPerSolveFlop + kPerRowCube * rows * rows * rows;
+                            (kept + kSaddleFill * (rows + 1)) * 4.0 * l * kPerSolveFlop +
+                            kPerRowCube * rows * rows * rows;
     } else if (e.engine == EngineKind::Condensed) {
         // One factor of K; a solve per massive coordinate and per row; the dense eigen solution of T.
         e.factorSeconds = oneFactor;
@@ -303,15 +309,15 @@ ResourceEstimate estimateResources(const PlateParameters& p, const ProblemSize& 
     const double massive = double(s.elements) * (p.law.mass == MassModel::SingularP1dg ? 3.0 : 1.0);
     const double rows = double(s.contactVertices) + 1.0;
     if (e.engine == EngineKind::Condensed && sparseCondensation(p, massive)) {
-        // The sparse condensation (CondensedSparse.cpp): factors of K and K + ρ M_s, the Lanczos
-        // basis (q × steps), the modes V (n × m) and their right-hand sides, the massless solves'
-        // blocks (n × 32, four at once), the rows' matrices as below.
+        // The sparse condensation (CondensedSparse.cpp): the factor of K, then the saddle point's
+        // (one at a time), the Lanczos basis (q × steps), the modes V (n × m) and their right-hand
+        // sides, the massless solves' block ((n + q) × 64) and its rows read, the rows' matrices.
         const double kept = p.law.modes;
-        e.factorsMB = 2 * factorBytes(s) / kMB;
+        e.factorsMB = kSaddleFill * factorBytes(s) / kMB;
         // (three r × r matrices, not sixteen as below: measured 174 MB at 56x20, 1978 MB at 112x40, flow)
-        engineBytes =
-            kDouble * (massive * lanczosSteps(kept) + 2 * n * kept + 4 * 32 * n + rows * kept + 3 * rows * rows) +
-            factorBytes(s);
+        engineBytes = kDouble * (massive * lanczosSteps(kept) + 2 * n * kept + 64 * (n + massive) + 2 * 64 * rows +
+                                 rows * kept + 3 * rows * rows) +
+                      kSaddleFill * factorBytes(s);
         if (p.law.timeScheme == TimeScheme::Flow && p.refinement.tolerance > 0.0)
             engineBytes += kDouble * (3 * std::log2(double(p.refinement.maxSubsteps)) * rows * rows + rows * kept);
         phases = std::max(phases, e.matricesMB * kMB + factorBytes(s) + lower + engineBytes);

@@ -2,9 +2,11 @@
 
 #include <cholmod.h>
 
+#include <algorithm>
 #include <cstring>
 #include <new>
 #include <stdexcept>
+#include <string>
 
 namespace plate {
 
@@ -37,7 +39,22 @@ struct SparseCholesky::Workspace {
 
 SparseCholesky::SparseCholesky(const Eigen::SparseMatrix<double>& spd)
     : n_(spd.rows()), ws_(std::make_unique<Workspace>()) {
-    Eigen::SparseMatrix<double> lower = spd.triangularView<Eigen::Lower>();
+    factor(spd, nullptr);
+}
+
+SparseCholesky::SparseCholesky(const Eigen::SparseMatrix<double>& symmetric, const std::vector<int>& ordering)
+    : n_(symmetric.rows()), ws_(std::make_unique<Workspace>()) {
+    if (static_cast<Eigen::Index>(ordering.size()) != n_)
+        throw std::invalid_argument("SparseCholesky: the ordering has " + std::to_string(ordering.size()) +
+                                    " entries for a matrix of " + std::to_string(n_) + " rows");
+    ws_->common.nmethods = 1;
+    ws_->common.method[0].ordering = CHOLMOD_GIVEN;
+    ws_->common.final_ll = 0;  // L D Lᵀ: negative pivots allowed, zero ones refused
+    factor(symmetric, &ordering);
+}
+
+void SparseCholesky::factor(const Eigen::SparseMatrix<double>& symmetric, const std::vector<int>* ordering) {
+    Eigen::SparseMatrix<double> lower = symmetric.triangularView<Eigen::Lower>();
     lower.makeCompressed();
     cholmod_sparse view{};
     view.nrow = view.ncol = static_cast<size_t>(n_);
@@ -52,13 +69,15 @@ SparseCholesky::SparseCholesky(const Eigen::SparseMatrix<double>& spd)
     view.sorted = 1;
     view.packed = 1;
     auto& c = ws_->common;
-    ws_->factor = cholmod_analyze(&view, &c);
+    ws_->factor = ordering ? cholmod_analyze_p(&view, const_cast<int*>(ordering->data()), nullptr, 0, &c)
+                           : cholmod_analyze(&view, &c);
     if (c.status == CHOLMOD_OUT_OF_MEMORY) throw std::bad_alloc();
     if (!ws_->factor) throw std::runtime_error("CHOLMOD analysis failed");
     cholmod_factorize(&view, ws_->factor, &c);
     if (c.status == CHOLMOD_OUT_OF_MEMORY) throw std::bad_alloc();  // not "not positive definite"
     if (c.status != CHOLMOD_OK || ws_->factor->minor < ws_->factor->n)
-        throw std::runtime_error("matrix is not positive definite (CHOLMOD)");
+        throw std::runtime_error(ordering ? "matrix has a zero pivot in the given order (CHOLMOD LDLᵀ)"
+                                          : "matrix is not positive definite (CHOLMOD)");
 }
 
 SparseCholesky::~SparseCholesky() = default;
@@ -76,6 +95,18 @@ long long SparseCholesky::factorNonZeros() const {
 }
 
 bool SparseCholesky::supernodal() const { return ws_->factor->is_super != 0; }
+
+std::vector<int> SparseCholesky::ordering() const {
+    const auto* perm = static_cast<const int*>(ws_->factor->Perm);
+    return std::vector<int>(perm, perm + n_);
+}
+
+std::vector<int> SparseCholesky::positions() const {
+    const auto* perm = static_cast<const int*>(ws_->factor->Perm);
+    std::vector<int> at(static_cast<std::size_t>(n_));
+    for (Eigen::Index k = 0; k < n_; ++k) at[std::size_t(perm[k])] = static_cast<int>(k);
+    return at;
+}
 
 const char* SparseCholesky::backend() { return "CHOLMOD"; }
 
@@ -122,28 +153,65 @@ void SparseCholesky::solve(const Eigen::VectorXd& b, Eigen::VectorXd& x) const {
     std::memcpy(x.data(), ws_->x->x, sizeof(double) * static_cast<size_t>(n_));
 }
 
-// The block's rows are dofs with their right-hand sides side by side (row-major): each column of
-// the simplicial L is read once for the whole block and applied as a vectorized row update, where
-// cholmod_solve2 reads L once per four right-hand sides (CondensedSparse.cpp's massless solves:
-// 56x20 plate, 64 at a time, measured below in docs/performance.md).
-void SparseCholesky::solve(const Eigen::MatrixXd& b, Eigen::MatrixXd& x) const {
-    const cholmod_factor& f = *ws_->factor;
-    const auto* perm = static_cast<const int*>(f.Perm);
+namespace {
+
+// The block solve's sweeps (SparseCholesky::solve below) for GCC on x86-64 Linux twice, for the
+// baseline and for AVX2, the loader picking by CPU (target_clones): the row updates are the same
+// element-wise products and differences at either width (no FMA, no reordering), so the same bits
+// on every CPU, twice as many per instruction where AVX2 is there (56x20's massless solves,
+// docs/performance.md). Elsewhere (MinGW, aarch64, clang) the baseline alone.
+#if defined(__GNUC__) && !defined(__clang__) && defined(__x86_64__) && defined(__linux__)
+#define PLATE_WIDE_CLONES __attribute__((target_clones("avx2", "default")))
+#else
+#define PLATE_WIDE_CLONES
+#endif
+
+inline void subtractScaled(double* __restrict y, const double* __restrict x, double a, Eigen::Index k) {
+    for (Eigen::Index c = 0; c < k; ++c) y[c] -= a * x[c];
+}
+inline void divide(double* y, double d, Eigen::Index k) {
+    for (Eigen::Index c = 0; c < k; ++c) y[c] /= d;
+}
+
+// w (n × k, row-major, in the factor's order) ← (L Lᵀ)⁻¹ w, or (L Δ Lᵀ)⁻¹ w with Δ in L's diagonal
+// slots; the diagonal first in each column of L. A column whose row of the block is still zero in
+// the forward sweep changes nothing: skipped, so that unit right-hand sides cost only their paths
+// up the elimination tree there.
+PLATE_WIDE_CLONES void sweeps(const cholmod_factor& f, Eigen::Index n, Eigen::Index k, double* w) {
     const auto* start = static_cast<const int*>(f.p);
     const auto* count = static_cast<const int*>(f.nz);
     const auto* row = static_cast<const int*>(f.i);
     const auto* value = static_cast<const double*>(f.x);
-    // L Lᵀ = A(Perm, Perm), the diagonal first in each column of L.
-    Eigen::Matrix<double, Eigen::Dynamic, Eigen::Dynamic, Eigen::RowMajor> w(n_, b.cols());
+    const bool ll = f.is_ll != 0;
+    for (Eigen::Index j = 0; j < n; ++j) {  // L z = P b
+        double* wj = w + j * k;
+        if (std::all_of(wj, wj + k, [](double v) { return v == 0.0; })) continue;
+        if (ll) divide(wj, value[start[j]], k);
+        for (int t = start[j] + 1; t < start[j] + count[j]; ++t)
+            subtractScaled(w + Eigen::Index(row[t]) * k, wj, value[t], k);
+    }
+    if (!ll)
+        for (Eigen::Index j = 0; j < n; ++j) divide(w + j * k, value[start[j]], k);  // z ← Δ⁻¹ z
+    for (Eigen::Index j = n - 1; j >= 0; --j) {  // Lᵀ y = z
+        double* wj = w + j * k;
+        for (int t = start[j] + 1; t < start[j] + count[j]; ++t)
+            subtractScaled(wj, w + Eigen::Index(row[t]) * k, value[t], k);
+        if (ll) divide(wj, value[start[j]], k);
+    }
+}
+
+}  // namespace
+
+// The block's rows are dofs with their right-hand sides side by side (row-major): each column of
+// the simplicial L is read once for the whole block and applied as a vectorized row update, where
+// cholmod_solve2 reads L once per four right-hand sides (CondensedSparse.cpp's massless solves).
+void SparseCholesky::solveInOrder(RowBlock& w) const { sweeps(*ws_->factor, n_, w.cols(), w.data()); }
+
+void SparseCholesky::solve(const Eigen::MatrixXd& b, Eigen::MatrixXd& x) const {
+    const auto* perm = static_cast<const int*>(ws_->factor->Perm);
+    RowBlock w(n_, b.cols());
     for (Eigen::Index r = 0; r < n_; ++r) w.row(r) = b.row(perm[r]);
-    for (Eigen::Index j = 0; j < n_; ++j) {  // L z = P b
-        w.row(j) /= value[start[j]];
-        for (int t = start[j] + 1; t < start[j] + count[j]; ++t) w.row(row[t]) -= value[t] * w.row(j);
-    }
-    for (Eigen::Index j = n_ - 1; j >= 0; --j) {  // Lᵀ y = z
-        for (int t = start[j] + 1; t < start[j] + count[j]; ++t) w.row(j) -= value[t] * w.row(row[t]);
-        w.row(j) /= value[start[j]];
-    }
+    sweeps(*ws_->factor, n_, b.cols(), w.data());
     x.resize(n_, b.cols());
     for (Eigen::Index r = 0; r < n_; ++r) x.row(perm[r]) = w.row(r);
 }

@@ -14,6 +14,7 @@
 #include "base/Errors.h"
 #include "fe/Assembly.h"
 #include "plate/CondensedPlate.h"
+#include "plate/CondensedSparse.h"
 #include "schemes/FlowScheme.h"
 #include "schemes/MidpointScheme.h"
 #include "plate/PlateParameters.h"
@@ -39,7 +40,7 @@ struct Condensed {
     CondensedPlate c;
 
     Condensed(ElementType element, int nx, int ny, MassProjection projection, int modes = 0,
-              Condensation method = Condensation::Auto) {
+              Condensation method = Condensation::Auto, bool rowsAsRecovery = false) {
         p.mesh.nx = nx;
         p.mesh.ny = ny;
         space = makeSpace(element, Mesh(p.mesh.length, p.mesh.width, nx, ny));
@@ -52,7 +53,9 @@ struct Condensed {
         // free_edge_mid between vertices as an extra row when ny is odd, as PlateSimulation does
         std::vector<ConstraintRow> extra;
         if (ny % 2 == 1) extra.push_back({clamped->probe(*space, p.mesh.length, 0.5 * p.mesh.width), p.mesh.length});
-        c = condense(*clamped, rootFree, extra, modes, {}, method);
+        // rowsAsRecovery: the constraint rows read again as recovery functionals (L = C)
+        c = condense(*clamped, rootFree, extra, modes, rowsAsRecovery ? constraintRows(*clamped, extra) : SparseRows{},
+                     method);
     }
 
     // C K⁻¹ Cᵀ, C K⁻¹ F and Fᵀ K⁻¹ F from a dense factor of K.
@@ -130,12 +133,12 @@ TEST(CondensedPlate, ReducedModelKeepsTheMasslessPartAndTheLowestModes) {
 // (Lanczos' residuals of 1e-12 square into far less); the modes themselves up to the sign, and
 // rotations within a cluster of near-equal frequencies, through what the schemes read of them: the
 // rows' massive flexibility G Ω⁻² Gᵀ and the modal load's energy. The massless part, the same
-// operator by another route (the augmented Lagrangian iteration, stopped where its multipliers move
-// by 1e-9, against the dense difference C K⁻¹ Cᵀ − C K⁻¹ R T⁻¹ Rᵀ K⁻¹ Cᵀ, which cancels three of four
-// digits: C K⁻¹ Cᵀ is ~1700 times D), within 5e-9 of D's largest entry (measured 8e-10 and 2e-10).
+// operator by another route (one L D Lᵀ factor of the saddle point [K R; Rᵀ 0], against the dense
+// difference C K⁻¹ Cᵀ − C K⁻¹ R T⁻¹ Rᵀ K⁻¹ Cᵀ, which cancels three of four digits: C K⁻¹ Cᵀ is ~1700
+// times D), within 5e-9 of D's largest entry (measured 1.3e-11 and 1.9e-10).
 void expectSparseMatchesDense(int nx, int ny, int modes) {
-    const Condensed dense(ElementType::Argyris, nx, ny, MassProjection::P0, modes, Condensation::Dense);
-    const Condensed sparse(ElementType::Argyris, nx, ny, MassProjection::P0, modes, Condensation::Sparse);
+    const Condensed dense(ElementType::Argyris, nx, ny, MassProjection::P0, modes, Condensation::Dense, true);
+    const Condensed sparse(ElementType::Argyris, nx, ny, MassProjection::P0, modes, Condensation::Sparse, true);
     const CondensedPlate &d = dense.c, &s = sparse.c;
     ASSERT_EQ(s.modes(), modes);
     ASSERT_EQ(s.rows(), d.rows());
@@ -150,6 +153,10 @@ void expectSparseMatchesDense(int nx, int ny, int modes) {
     EXPECT_NEAR(s.clampMass, d.clampMass, 1e-10 * d.totalMass);
     EXPECT_NEAR(s.clampMassMoment, d.clampMassMoment, 1e-10 * std::abs(d.totalMassMoment));
     EXPECT_LE((s.delassus - d.delassus).cwiseAbs().maxCoeff(), 5e-9 * d.delassus.cwiseAbs().maxCoeff());
+    // The recovery functionals ride on the same solves (here L = C: L Q0 S⁻¹ Q0ᵀ Cᵀ is D again,
+    // column by column wherever the solves' blocks put each row).
+    EXPECT_LE((s.recoveryRows - d.recoveryRows).cwiseAbs().maxCoeff(), 5e-9 * d.delassus.cwiseAbs().maxCoeff());
+    EXPECT_LE((s.recoveryRows - s.delassus).cwiseAbs().maxCoeff(), 1e-12 * d.delassus.cwiseAbs().maxCoeff());
     // The uniform pressure's massless part is zero with P0 (F = p B·1 lies in the range of R): both
     // give roundoff of the whole flexibility's response C K⁻¹ F, Fᵀ K⁻¹ F.
     Eigen::MatrixXd rows;

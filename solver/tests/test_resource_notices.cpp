@@ -59,7 +59,7 @@ TEST(ResourceNotices, ThePaperAndExampleScenesHaveNone) {
     }
 }
 
-// 112x40 on 100 modes: ~2 minutes of setup by the estimate (measured 117 s of CPU, docs/performance.md).
+// 112x40 on 100 modes: ~30 s of setup by the estimate (measured 34-39 s of CPU, docs/performance.md).
 TEST(ResourceNotices, ALongSetupSaysSoWithWhatShortensIt) {
     const PlateParameters p = flow(112, 40, 100);
     const ResourceEstimate e = estimateResources(p, predictFromMesh(p));
@@ -90,7 +90,7 @@ TEST(ResourceNotices, ACostlyRunSaysSoOnceWithWhatMakesItCheaper) {
     EXPECT_EQ(costly, 1);
 }
 
-// The sparse condensation's memory (CondensedSparse.cpp; measured 1978 MB at 112x40 on 100 modes,
+// The sparse condensation's memory (CondensedSparse.cpp; measured 1997-2022 MB at 112x40 on 100 modes,
 // tools/fine_mesh_setup.py) is what refuses: 112x40 fits the default 2048 MB budget, not 1500 MB,
 // and the refusal names the estimate and memory_limit. Its setup is over ten seconds, 56x20's not.
 TEST(ResourceNotices, TheSparseCondensationIsRefusedBeyondTheBudget) {
