@@ -263,8 +263,8 @@ void estimateTimes(const PlateParameters& p, const ProblemSize& s, double massiv
         const double kept = p.law.modes;
         e.factorSeconds = 2 * kPerAnalysisEntry * z + (1.0 + kSaddleFlops) * kPerFactorFlop * s.factorFlops;
         e.spectrumSeconds = lanczosSteps(kept) * 4.0 * l * kPerLanczosFlop +
-                            (kept + kSaddleFill * (rows * (p.outputs.stressOutputs ? 1.0 : kTriangleWork) + 1)) *
-                                4.0 * l * kPerSolveFlop +
+                            (kept + kSaddleFill * (rows * (p.outputs.stressOutputs ? 1.0 : kTriangleWork) + 1)) * 4.0 *
+                                l * kPerSolveFlop +
                             kPerRowCube * rows * rows * rows;
     } else if (e.engine == EngineKind::Condensed) {
         // One factor of K; a solve per massive coordinate and per row; the dense eigen solution of T.
