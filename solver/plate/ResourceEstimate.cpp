@@ -61,7 +61,6 @@ constexpr double kTriangleWork = 0.66;
 // 201 products of 4 nnz(L) = 4.5 MFlop in 0.37 s; 112x40, 26.8 MFlop each in 3.0 s.
 constexpr double kPerLanczosFlop = 0.5e-9;
 constexpr double kPerRowCube = 0.3e-10;
-constexpr int kSubspaceIterations = 60;  // typical subspace iterations (Spectrum.cpp, up to 300)
 constexpr int kPowerIterations = 300;  // typical power iterations for κ_h (up to 2000)
 
 // dof → elements containing it, in compressed rows.
@@ -206,20 +205,23 @@ namespace {
 bool sparseCondensation(const PlateParameters& p, double massive) {
     return !denseCondensationServes(static_cast<Eigen::Index>(massive), p.law.modes);
 }
-// Lanczos' products for m modes (CondensedSparse.cpp: the kept ones and as many more, at least 80).
+// Lanczos' products for m modes (CondensedSparse.cpp, Spectrum.cpp: the kept ones and as many more, at
+// least 80).
 double lanczosSteps(double kept) { return kept + std::max(80.0, kept); }
 
 // The modal engines' memory beyond the clamped matrices (bytes) and their spectrum time (s).
 void modalCost(const PlateParameters& p, const ProblemSize& s, EngineKind engine, double& bytes, double& seconds) {
     const double n = double(s.dofs), c = double(s.contactVertices);
     const double m = engine == EngineKind::CompleteModal ? n : double(p.law.modes);
-    const bool subspace = engine == EngineKind::ReducedModal && ((4 * m <= n && n > 1200) || n > 3000);
-    if (subspace) {
-        const double q = std::min(n, std::max(2 * m, m + 16));  // Spectrum.cpp's block size
-        bytes = factorBytes(s) + kDouble * (5 * n * q + 4 * q * q);
-        seconds = s.factorFlops * kPerFactorFlop + kSubspaceIterations * q *
-                                                       (4.0 * double(s.factorNonZeros) + 4.0 * double(s.nonZeros)) *
-                                                       kPerFactorFlop;
+    const bool lanczos = engine == EngineKind::ReducedModal && ((4 * m <= n && n > 1200) || n > 3000);
+    if (lanczos) {
+        // Spectrum.cpp's Lanczos: per step a solve with the factor of K, a product with M and the
+        // basis' reorthogonalization (n × steps); the basis, the Ritz vectors and the factor kept.
+        const double steps = std::min(n, lanczosSteps(m));
+        bytes = factorBytes(s) + kDouble * (2 * n * steps + steps * steps);
+        seconds = s.factorFlops * kPerFactorFlop +
+                  steps * ((4.0 * double(s.factorNonZeros) + 2.0 * double(s.nonZeros)) * kPerLanczosFlop +
+                           2.0 * n * steps * kPerFactorFlop);
     } else {
         bytes = kDenseEigenMatrices * kDouble * n * n;
         seconds = kPerDenseEigenCube * n * n * n;
