@@ -36,10 +36,8 @@ public:
 
     Eigen::Index size() const { return n_; }
     long long factorNonZeros() const;
-    bool supernodal() const;
     std::vector<int> ordering() const;  // the fill-reducing order: row ordering()[k] eliminated k-th
     std::vector<int> positions() const;  // its inverse: row i eliminated positions()[i]-th
-    static const char* backend();  // "CHOLMOD" or "Eigen"
 
     // The symbolic analysis alone of a symmetric pattern given by its lower triangle in
     // compressed columns (columnStart has n + 1 entries; rows sorted within each column, the

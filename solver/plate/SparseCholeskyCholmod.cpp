@@ -94,8 +94,6 @@ long long SparseCholesky::factorNonZeros() const {
     return nnz;
 }
 
-bool SparseCholesky::supernodal() const { return ws_->factor->is_super != 0; }
-
 std::vector<int> SparseCholesky::ordering() const {
     const auto* perm = static_cast<const int*>(ws_->factor->Perm);
     return std::vector<int>(perm, perm + n_);
@@ -107,8 +105,6 @@ std::vector<int> SparseCholesky::positions() const {
     for (Eigen::Index k = 0; k < n_; ++k) at[std::size_t(perm[k])] = static_cast<int>(k);
     return at;
 }
-
-const char* SparseCholesky::backend() { return "CHOLMOD"; }
 
 SymbolicFactor SparseCholesky::analyze(Eigen::Index n, const std::vector<int>& columnStart,
                                        const std::vector<int>& rowIndex) {
