@@ -132,11 +132,11 @@ def test_the_resources_table_is_one_run_of_resource_scaling(tmp_path):
 
 
 def test_the_fine_mesh_table_is_one_run_of_fine_mesh_setup(tmp_path):
-    """Issue 70: "The condensed plate on fine meshes" held hand-typed measurements; its table and
+    """Issue 70: "Fine meshes on a few modes" held hand-typed measurements; its table and
     ratios now come from docs/fine_mesh_setup.json (tools/fine_mesh_setup.py), and a new
     measurement changes the page."""
     template = (DOCS / "templates" / "performance.md").read_text()
-    start = template.index("## The condensed plate on fine meshes")
+    start = template.index("## Fine meshes on a few modes")
     section = template[start : template.index("\n## ", start)]
     bare = re.sub(r"\{\{.*?\}\}|\{%.*?%\}", "", section, flags=re.S)
     assert not re.search(r"^\| \d+ × \d+ \|", bare, re.M), "a hand-typed row in the fine-mesh table"
