@@ -45,8 +45,7 @@ FlowScheme::FlowScheme(std::shared_ptr<const CondensedPlate> plate, Obstacles ob
             refreshDerived(to);
         };
         doubling_ = std::make_unique<StepDoubling>(c, CondensedScheme::outputRows().probes, rowLower(), rowUpper(),
-                                                   exact_, dampedModes_, refinement_.tolerance, refinement_.substeps,
-                                                   int(levels_.size()), dt, flow_, run, perturb);
+                                                   exact_, dampedModes_, refinement_, dt, flow_, run, perturb);
     } else {
         buildOperator(sub_, dt / refinement_.substeps);
     }
