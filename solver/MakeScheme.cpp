@@ -77,7 +77,7 @@ void initializeState(const SchemeSetup& s, const std::shared_ptr<const DiscreteP
         // Exact mode in modal coordinates: solve the static problem with the sparse factor of
         // K (roundoff ~eps·cond(K) rather than the dense eigen solution's eps·λ_max/λ_1) and
         // change coordinates, α0 = ΦᵀM w0, exact for the complete basis.
-        const FullOrderPlate full(s.space, s.clamped, p.law.dt, p.law.beta);
+        const FullOrderPlate full(s.space, s.clamped, p.law);
         w0 = modalPlate->fromFullSpace(staticEquilibrium(full, obstacles, baseDisplacement0, p.initialLoad, &force));
     } else if (!p.law.singularMass()) {
         w0 = staticEquilibrium(*discrete, obstacles, baseDisplacement0, p.initialLoad, &force);
@@ -176,16 +176,11 @@ std::unique_ptr<Scheme> makeNewmark(const SchemeSetup& s, InitProgress& progress
             return std::make_shared<const ModalBasis>(*s.clamped, p.law.modes, all.get());
         };
         discrete = std::make_shared<const ModalPlate>(
-            s.space, s.clamped, cached<ModalBasis>(modalBasisKey(p, complete), basis, modalBytes, s.cache), p.law.dt,
-            p.law.beta, p.law.dampingMass, p.law.dampingStiffness);
+            s.space, s.clamped, cached<ModalBasis>(modalBasisKey(p, complete), basis, modalBytes, s.cache), p.law);
     } else {
-        discrete = std::make_shared<const FullOrderPlate>(s.space, s.clamped, p.law.dt, p.law.beta, p.law.dampingMass,
-                                                          p.law.dampingStiffness);
+        discrete = std::make_shared<const FullOrderPlate>(s.space, s.clamped, p.law);
     }
     SchemeOptions options;
-    options.restitution = p.law.restitution;
-    options.dampingMass = p.law.dampingMass;
-    options.dampingStiffness = p.law.dampingStiffness;
     options.singularMass = p.law.singularMass();  // carry the impulses (§11; the tests of the plain
         // step build their NewmarkScheme directly)
     options.carried = p.carrier != PlateParameters::Carrier::None;  // §18–19
@@ -209,11 +204,9 @@ std::unique_ptr<Scheme> makeScheme(const SchemeSetup& setup, InitProgress& progr
     auto condensed = condensedPlate(setup, rows);
     std::unique_ptr<CondensedScheme> scheme;
     if (p.law.timeScheme == TimeScheme::Flow)
-        scheme = std::make_unique<FlowScheme>(condensed, setup.obstacles, p.law.dt, p.refinement, p.law.dampingMass,
-                                              p.law.dampingStiffness, std::move(rows));
+        scheme = std::make_unique<FlowScheme>(condensed, setup.obstacles, p.law, p.refinement, std::move(rows));
     else
-        scheme = std::make_unique<MidpointScheme>(condensed, setup.obstacles, p.law.dt, p.law.dampingMass,
-                                                  p.law.dampingStiffness, std::move(rows));
+        scheme = std::make_unique<MidpointScheme>(condensed, setup.obstacles, p.law, std::move(rows));
     scheme->initialize(setup.baseDisplacement0, p.initialLoad);
     scheme->setLoadAtStart(setup.loadAtStart);
     return scheme;

@@ -108,27 +108,28 @@ std::string missAdvice(const DriveSample& s, double start, double amplitude, dou
 }
 
 void PlateAdvisor::onDriveSample(const DriveSample& sample, double start, double h, double dt, const char* input) {
-    if (samples_++ == 0) lowest_ = highest_ = lastValue_ = sample.value;
-    lowest_ = std::min(lowest_, sample.value);
-    highest_ = std::max(highest_, sample.value);
+    if (state_.samples++ == 0) state_.lowest = state_.highest = state_.lastValue = sample.value;
+    state_.lowest = std::min(state_.lowest, sample.value);
+    state_.highest = std::max(state_.highest, sample.value);
     // Its amplitude is known once it turned twice (a whole swing); before, the range is still growing.
-    const double increment = sample.value - lastValue_;
-    lastValue_ = sample.value;
-    const int direction = increment > 0.0 ? 1 : increment < 0.0 ? -1 : direction_;
-    if (direction_ != 0 && direction != direction_) ++turns_;
-    direction_ = direction;
-    if (missWarned_) return;
+    const double increment = sample.value - state_.lastValue;
+    state_.lastValue = sample.value;
+    const int direction = increment > 0.0 ? 1 : increment < 0.0 ? -1 : state_.direction;
+    if (state_.direction != 0 && direction != state_.direction) ++state_.turns;
+    state_.direction = direction;
+    if (state_.missWarned) return;
     // The worst sample so far, from the fourth value on (before, the model's history is still filling:
     // its miss measures the start, not the step); a jump counts where the step is longer than dt.
     const double jumpScore = h > 1.5 * dt ? std::fabs(start - sample.modelEnd) / kJumpOfAmplitude : 0.0;
     const double score = std::max(std::fabs(sample.value - sample.modelEnd) / kMissOfAmplitude, jumpScore);
-    if (samples_ > plate::InputHistory::kCapacity && score > worstScore_) {
-        worstScore_ = score;
-        worst_ = {sample, start, h};
+    if (state_.samples > plate::InputHistory::kCapacity && score > state_.worstScore) {
+        state_.worstScore = score;
+        state_.worst = {sample, start, h};
     }
-    if (turns_ < 2 || worstScore_ == 0.0) return;
-    const std::string advice = missAdvice(worst_.sample, worst_.start, 0.5 * (highest_ - lowest_), worst_.h, dt, input);
-    missWarned_ = !advice.empty();
+    if (state_.turns < 2 || state_.worstScore == 0.0) return;
+    const std::string advice = missAdvice(state_.worst.sample, state_.worst.start,
+                                          0.5 * (state_.highest - state_.lowest), state_.worst.h, dt, input);
+    state_.missWarned = !advice.empty();
     say(advice);
 }
 
@@ -153,14 +154,14 @@ std::string driftAdvice(double t, double elapsed, double drift, double swing) {
 }
 
 void PlateAdvisor::onIntegratedClamp(double t, double elapsed, double drift, double velocity, double acceleration) {
-    slowest_ = std::min(slowest_, velocity);
-    fastest_ = std::max(fastest_, velocity);
+    state_.slowest = std::min(state_.slowest, velocity);
+    state_.fastest = std::max(state_.fastest, velocity);
     const int sign = acceleration > 0.0 ? 1 : acceleration < 0.0 ? -1 : 0;
-    if (sign != 0 && accelerationSign_ != 0 && sign != accelerationSign_) ++accelerationTurns_;
-    if (sign != 0) accelerationSign_ = sign;
-    if (driftWarned_ || accelerationTurns_ < 3) return;
-    const std::string advice = driftAdvice(t, elapsed, drift, fastest_ - slowest_);
-    driftWarned_ = !advice.empty();
+    if (sign != 0 && state_.accelerationSign != 0 && sign != state_.accelerationSign) ++state_.accelerationTurns;
+    if (sign != 0) state_.accelerationSign = sign;
+    if (state_.driftWarned || state_.accelerationTurns < 3) return;
+    const std::string advice = driftAdvice(t, elapsed, drift, state_.fastest - state_.slowest);
+    state_.driftWarned = !advice.empty();
     say(advice);
 }
 
@@ -169,43 +170,38 @@ void PlateAdvisor::say(const std::string& advice) {
 }
 
 void PlateAdvisor::onBuild(const plate::PlateParameters& p) {
-    interpolationWarned_ = errorWarned_ = cappedWarned_ = stressReadWarned_ = longStepWarned_ = missWarned_ = false;
-    samples_ = turns_ = direction_ = 0;
-    worstScore_ = 0.0;
-    driftWarned_ = false;
-    slowest_ = fastest_ = 0.0;
-    accelerationSign_ = accelerationTurns_ = 0;
+    state_ = {};
     say(capAdvice(p));
 }
 
 void PlateAdvisor::onRead(fmu::ValueReference vr, const char* name, const plate::PlateParameters& p) {
-    if (stressReadWarned_ || !isStressOutput(vr)) return;
-    stressReadWarned_ = !p.outputs.stressOutputs;
+    if (state_.stressReadWarned || !isStressOutput(vr)) return;
+    state_.stressReadWarned = !p.outputs.stressOutputs;
     say(stressReadAdvice(name, p));
 }
 
 void PlateAdvisor::onStep(const plate::PlateParameters& p, const plate::StepPlan& plan, double h, double t,
                           const InputPort& drive, const char* driveName, const InputPort& load) {
-    if (!plan.endsOnGrid && plan.steps < 2 && !interpolationWarned_) {
-        interpolationWarned_ = true;
+    if (!plan.endsOnGrid && plan.steps < 2 && !state_.interpolationWarned) {
+        state_.interpolationWarned = true;
         warn_(
             format("communicationStepSize h = %.17g is shorter than two internal steps of dt = %g: the outputs "
                    "are interpolated between the grid points around t (docs/theory.md §15); for the scheme's own "
                    "values take h a whole multiple of dt, or a smaller dt",
                    h, p.law.dt));
     }
-    if (longStepWarned_ || h <= longestCommunicationStep(p)) return;
+    if (state_.longStepWarned || h <= longestCommunicationStep(p)) return;
     const char* input = inputChanged(drive) ? driveName : inputChanged(load) ? "load" : nullptr;
     if (!input) return;
-    longStepWarned_ = true;
+    state_.longStepWarned = true;
     say(longStepAdvice(p, h, t, input));
 }
 
 void PlateAdvisor::afterStep(const plate::PlateParameters& p, const plate::PlateOutputs& o, double t,
                              const plate::ToleranceHorizon& horizon) {
     if (p.refinement.tolerance <= 0.0 || p.law.timeScheme != plate::TimeScheme::Flow) return;
-    if (!errorWarned_ && o.errorEstimate > p.refinement.tolerance) {
-        errorWarned_ = true;
+    if (!state_.errorWarned && o.errorEstimate > p.refinement.tolerance) {
+        state_.errorWarned = true;
         warn_(format("error_estimate = %.3g m passed tolerance = %.3g m at t = %.17g", o.errorEstimate,
                      p.refinement.tolerance, horizon.lostAt) +
               ": the flow law cannot hold the tolerance from this time on (errors made at earlier impacts grew at "
@@ -216,8 +212,8 @@ void PlateAdvisor::afterStep(const plate::PlateParameters& p, const plate::Plate
               "; between two obstacles error_estimate reads their gap from now on, the one bound left (docs/theory.md "
               "section 22)");
     }
-    if (!cappedWarned_ && o.cappedSteps > 0) {
-        cappedWarned_ = true;
+    if (!state_.cappedWarned && o.cappedSteps > 0) {
+        state_.cappedWarned = true;
         warn_(format("a contact step before t = %.17g needed more than max_contact_substeps = %g sub-steps for "
                      "its target",
                      t, double(p.refinement.maxSubsteps)) +

@@ -107,23 +107,26 @@ private:
     void say(const std::string& advice);
 
     const Sink& warn_;
-    bool interpolationWarned_ = false;  // a step shorter than two grid steps
-    bool longStepWarned_ = false;  // a communication step too long for the plate and the inputs
-    bool stressReadWarned_ = false;  // a stress output read while stress_outputs = false
-    bool errorWarned_ = false;  // the error estimate past the tolerance
-    bool cappedWarned_ = false;  // a contact step the sub-step cap bounded
-    bool missWarned_ = false;  // the master's value far from the FMU's model of the input
-    int samples_ = 0;  // the drive's values set since the build, their range, and how often they turned
-    double lowest_ = 0.0, highest_ = 0.0, lastValue_ = 0.0;
-    int turns_ = 0, direction_ = 0;
-    struct Worst {  // the sample whose miss or jump is largest against its limit so far
-        DriveSample sample;
-        double start = 0.0, h = 0.0;
-    } worst_;
-    double worstScore_ = 0.0;
-    bool driftWarned_ = false;  // the integrated clamp drifting (driftAdvice)
-    double slowest_ = 0.0, fastest_ = 0.0;  // the clamp's velocity range since the build (it starts at rest)
-    int accelerationSign_ = 0, accelerationTurns_ = 0;  // the input's sign and how often it changed
+    // What was said and seen since the build (onBuild resets it whole).
+    struct State {
+        bool interpolationWarned = false;  // a step shorter than two grid steps
+        bool longStepWarned = false;  // a communication step too long for the plate and the inputs
+        bool stressReadWarned = false;  // a stress output read while stress_outputs = false
+        bool errorWarned = false;  // the error estimate past the tolerance
+        bool cappedWarned = false;  // a contact step the sub-step cap bounded
+        bool missWarned = false;  // the master's value far from the FMU's model of the input
+        int samples = 0;  // the drive's values set since the build, their range, and how often they turned
+        double lowest = 0.0, highest = 0.0, lastValue = 0.0;
+        int turns = 0, direction = 0;
+        struct Worst {  // the sample whose miss or jump is largest against its limit so far
+            DriveSample sample;
+            double start = 0.0, h = 0.0;
+        } worst;
+        double worstScore = 0.0;
+        bool driftWarned = false;  // the integrated clamp drifting (driftAdvice)
+        double slowest = 0.0, fastest = 0.0;  // the clamp's velocity range since the build (it starts at rest)
+        int accelerationSign = 0, accelerationTurns = 0;  // the input's sign and how often it changed
+    } state_;
 };
 
 }  // namespace plateimpact

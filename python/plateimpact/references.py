@@ -15,6 +15,8 @@ reference and its tolerances are made, and what they cover: tools/write_referenc
 
 from __future__ import annotations
 
+import contextlib
+import io
 import math
 import re
 from dataclasses import dataclass, field
@@ -199,15 +201,12 @@ STATES = (StateExperiment("forced_state", "forced", 0.05),)
 
 def serialized_state(fmu, exp: Experiment, at: float) -> bytes:
     """The FMU's serialized state after `at` seconds of the experiment through fmpy."""
-    from fmpy import instantiate_fmu
+    from fmpy import instantiate_fmu, simulate_fmu
 
     from .driver import unzipped
 
     unzipdir, md = unzipped(fmu)  # extracted once per process, its library kept loaded (simulate)
     if md.fmiVersion.startswith("3") and uses_probes(exp.parameters, exp.outputs):
-        import contextlib
-        import io
-
         with contextlib.redirect_stdout(io.StringIO()):
             stimuli = stimuli_table(exp)
             _, data = simulate_probe_arrays(
@@ -216,11 +215,6 @@ def serialized_state(fmu, exp: Experiment, at: float) -> bytes:
         return data
     inst = instantiate_fmu(unzipdir, md, "CoSimulation")
     try:
-        import contextlib
-        import io
-
-        from fmpy import simulate_fmu
-
         with contextlib.redirect_stdout(io.StringIO()):
             simulate_fmu(
                 unzipdir,
@@ -234,10 +228,9 @@ def serialized_state(fmu, exp: Experiment, at: float) -> bytes:
                 terminate=False,
                 model_description=md,
             )
-        data = serialized(inst)
+        return serialized(inst)
     finally:
         inst.freeInstance()
-    return data
 
 
 def serialized(inst) -> bytes:
@@ -395,9 +388,6 @@ def simulate(fmu, start, stop, step, parameters: dict, stimuli, outputs, fmu_sta
     the experiments of one plate share its discretization (the FMU's cache, README "Performance"):
     the validator's and the generator's runs of the default plate build it once, not once per run
     (issue 54; the results are the same bits, docs/theory.md)."""
-    import contextlib
-    import io
-
     from fmpy import simulate_fmu
 
     from .driver import unzipped

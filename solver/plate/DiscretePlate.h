@@ -6,6 +6,7 @@
 
 #include "fe/Assembly.h"
 #include "plate/LinearRows.h"
+#include "plate/PlateParameters.h"
 
 namespace plate {
 
@@ -15,8 +16,10 @@ public:
 
     // The time step and β the step matrix A = M + βΔt²K was factored with: the one place the
     // scheme's Δt and β live (the stepper and the impact laws read them here).
-    double dt() const { return dt_; }
-    double beta() const { return beta_; }
+    double dt() const { return law_.dt; }
+    double beta() const { return law_.beta; }
+    // The law its step matrix was made for (Δt, β, the damping) and the scheme steps it with (restitution).
+    const LawParameters& law() const { return law_; }
 
     virtual Eigen::Index size() const = 0;
     virtual void applyStiffness(const Eigen::VectorXd& w, Eigen::VectorXd& out) const = 0;
@@ -56,10 +59,10 @@ public:
     virtual LinearRows rows(const SparseRows& functionals) const = 0;
 
 protected:
-    DiscretePlate(double dt, double beta) : dt_(dt), beta_(beta) {}
+    explicit DiscretePlate(const LawParameters& law) : law_(law) {}
 
 private:
-    double dt_, beta_;
+    LawParameters law_;
 };
 
 }  // namespace plate

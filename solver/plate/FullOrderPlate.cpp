@@ -6,23 +6,15 @@
 
 namespace plate {
 
-namespace {
-
-// A = M + βΔt²K, or (1 + aΔt/2) M + (βΔt² + bΔt/2) K with Rayleigh damping a M + b K (§13).
-Eigen::SparseMatrix<double> stepMatrix(const ClampedPlate& p, double dt, double beta, double a, double b) {
-    if (a == 0.0 && b == 0.0) return p.mass + (beta * dt * dt) * p.stiffness;  // the undamped bits as always
-    return (1.0 + 0.5 * a * dt) * p.mass + (beta * dt * dt + 0.5 * b * dt) * p.stiffness;
-}
-
-}  // namespace
-
 FullOrderPlate::FullOrderPlate(std::shared_ptr<const FiniteElementSpace> space,
-                               std::shared_ptr<const ClampedPlate> plate, double dt, double beta, double dampingMass,
-                               double dampingStiffness)
-    : DiscretePlate(dt, beta),
+                               std::shared_ptr<const ClampedPlate> plate, const LawParameters& law)
+    : DiscretePlate(law),
       space_(std::move(space)),
       plate_(std::move(plate)),
-      stepFactor_(stepMatrix(*plate_, dt, beta, dampingMass, dampingStiffness)),
+      // A = (1 + aΔt/2) M + (βΔt² + bΔt/2) K with Rayleigh damping a M + b K (§13); undamped, the terms of a
+      // and b are exact zeros (no contraction: -ffp-contract=off) and A = M + βΔt²K bit for bit.
+      stepFactor_((1.0 + 0.5 * law.dampingMass * law.dt) * plate_->mass +
+                  (law.beta * law.dt * law.dt + 0.5 * law.dampingStiffness * law.dt) * plate_->stiffness),
       stiffnessUpper_(plate_->stiffness.triangularView<Eigen::Upper>()),
       massUpper_(plate_->mass.triangularView<Eigen::Upper>()) {
     // The kernel reads each row's diagonal first: it must be stored, even where it is zero.

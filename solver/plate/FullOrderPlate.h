@@ -10,8 +10,9 @@ namespace plate {
 
 class FullOrderPlate : public DiscretePlate {
 public:
+    // The step matrix of the law's Δt, β and damping factored.
     FullOrderPlate(std::shared_ptr<const FiniteElementSpace> space, std::shared_ptr<const ClampedPlate> plate,
-                   double dt, double beta, double dampingMass = 0.0, double dampingStiffness = 0.0);
+                   const LawParameters& law);
 
     Eigen::Index size() const override { return plate_->mass.rows(); }
     void applyStiffness(const Eigen::VectorXd& w, Eigen::VectorXd& out) const override;

@@ -23,23 +23,15 @@ ModalBasis::ModalBasis(const ClampedPlate& plate, int modes, const ModalBasis* w
 }
 
 ModalPlate::ModalPlate(std::shared_ptr<const FiniteElementSpace> space, std::shared_ptr<const ClampedPlate> plate,
-                       double dt, double beta, int modes, double dampingMass, double dampingStiffness)
-    : ModalPlate(space, plate, std::make_shared<const ModalBasis>(*plate, modes), dt, beta, dampingMass,
-                 dampingStiffness) {}
-
-ModalPlate::ModalPlate(std::shared_ptr<const FiniteElementSpace> space, std::shared_ptr<const ClampedPlate> plate,
-                       std::shared_ptr<const ModalBasis> basis, double dt, double beta, double dampingMass,
-                       double dampingStiffness)
-    : DiscretePlate(dt, beta), space_(std::move(space)), plate_(std::move(plate)), basis_(std::move(basis)) {
-    const Eigen::VectorXd& omega2 = basis_->omega2;
-    // Rayleigh damping is diagonal in modal coordinates (§13): ζ_k = a/(2ω_k) + bω_k/2.
-    if (dampingMass == 0.0 && dampingStiffness == 0.0)
-        inverseStep_ = (1.0 + beta * dt * dt * omega2.array()).inverse().matrix();
-    else
-        inverseStep_ =
-            ((1.0 + 0.5 * dampingMass * dt) + (beta * dt * dt + 0.5 * dampingStiffness * dt) * omega2.array())
-                .inverse()
-                .matrix();
+                       std::shared_ptr<const ModalBasis> basis, const LawParameters& law)
+    : DiscretePlate(law), space_(std::move(space)), plate_(std::move(plate)), basis_(std::move(basis)) {
+    // Rayleigh damping is diagonal in modal coordinates (§13): ζ_k = a/(2ω_k) + bω_k/2. Undamped, the
+    // terms of a and b add exact zeros (no contraction: -ffp-contract=off): the undamped bits.
+    const double dt = law.dt;
+    inverseStep_ = ((1.0 + 0.5 * law.dampingMass * dt) +
+                    (law.beta * dt * dt + 0.5 * law.dampingStiffness * dt) * basis_->omega2.array())
+                       .inverse()
+                       .matrix();
 }
 
 void ModalPlate::applyStiffness(const Eigen::VectorXd& w, Eigen::VectorXd& out) const {

@@ -31,12 +31,9 @@ struct ModalBasis {
 
 class ModalPlate : public DiscretePlate {
 public:
-    // The basis of `modes` computed here (see ModalBasis), or one shared.
-    ModalPlate(std::shared_ptr<const FiniteElementSpace> space, std::shared_ptr<const ClampedPlate> plate, double dt,
-               double beta, int modes, double dampingMass = 0.0, double dampingStiffness = 0.0);
+    // The step of the law's Δt, β and damping on a basis shared (DiscretizationCache).
     ModalPlate(std::shared_ptr<const FiniteElementSpace> space, std::shared_ptr<const ClampedPlate> plate,
-               std::shared_ptr<const ModalBasis> basis, double dt, double beta, double dampingMass = 0.0,
-               double dampingStiffness = 0.0);
+               std::shared_ptr<const ModalBasis> basis, const LawParameters& law);
 
     Eigen::Index size() const override { return basis_->omega2.size(); }
     void applyStiffness(const Eigen::VectorXd& w, Eigen::VectorXd& out) const override;

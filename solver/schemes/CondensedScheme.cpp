@@ -48,13 +48,13 @@ void RowBuffers::resize(Eigen::Index rows) {
     multiplierUsed = false;
 }
 
-CondensedScheme::CondensedScheme(std::shared_ptr<const CondensedPlate> plate, Obstacles obstacles, double dt,
-                                 double dampingMass, double dampingStiffness, OutputRows outputRows)
-    : Scheme(obstacles, dt), plate_(std::move(plate)), rows_(std::move(outputRows)) {
+CondensedScheme::CondensedScheme(std::shared_ptr<const CondensedPlate> plate, Obstacles obstacles,
+                                 const LawParameters& law, OutputRows outputRows)
+    : Scheme(obstacles, law.dt), plate_(std::move(plate)), rows_(std::move(outputRows)) {
     const CondensedPlate& c = *plate_;
     const Eigen::Index m = c.modes(), rows = c.rows();
-    damping_ = (dampingMass + dampingStiffness * c.omega2.array()).matrix();
-    buildOperator(full_, dt);
+    damping_ = (law.dampingMass + law.dampingStiffness * c.omega2.array()).matrix();
+    buildOperator(full_, law.dt);
     endMatrix_ = c.delassus;
     endColumns_ = denseColumns(endMatrix_);
     endQP_ = std::make_unique<BoxQP>(*endColumns_);

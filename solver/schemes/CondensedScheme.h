@@ -149,8 +149,9 @@ protected:
     virtual std::vector<double> saveOwn() const { return {}; }
     virtual void restoreOwn(const std::vector<double>& own);
 
-    CondensedScheme(std::shared_ptr<const CondensedPlate> plate, Obstacles obstacles, double dt, double dampingMass,
-                    double dampingStiffness, OutputRows rows);
+    // The law's Δt and damping (the rest of LawParameters is the choice of this scheme).
+    CondensedScheme(std::shared_ptr<const CondensedPlate> plate, Obstacles obstacles, const LawParameters& law,
+                    OutputRows rows);
 
     void buildOperator(MidpointOperator& op, double h) const;
     // One step of space.op->h from x to (zNext, pNext) (T.17b–c); zBefore: the base one such step

@@ -15,12 +15,12 @@ constexpr int kResolveDepth = 3;
 
 }  // namespace
 
-FlowScheme::FlowScheme(std::shared_ptr<const CondensedPlate> plate, Obstacles obstacles, double dt,
-                       ContactRefinement refinement, double dampingMass, double dampingStiffness, OutputRows outputRows)
-    : CondensedScheme(std::move(plate), obstacles, dt, dampingMass, dampingStiffness, std::move(outputRows)),
-      refinement_(refinement) {
+FlowScheme::FlowScheme(std::shared_ptr<const CondensedPlate> plate, Obstacles obstacles, const LawParameters& law,
+                       ContactRefinement refinement, OutputRows outputRows)
+    : CondensedScheme(std::move(plate), obstacles, law, std::move(outputRows)), refinement_(refinement) {
     const CondensedPlate& c = CondensedScheme::plate();
     const Eigen::Index m = c.modes(), rows = c.rows();
+    const double dt = law.dt;
     flow_.errorQ = flow_.errorMomentum = flow_.eventError2 = Eigen::VectorXd::Zero(m);
     exact_ = ExactFlow(c.omega2, damping(), dt);
     inverseOmega2_ = c.omega2.cwiseInverse();
@@ -45,8 +45,7 @@ FlowScheme::FlowScheme(std::shared_ptr<const CondensedPlate> plate, Obstacles ob
             refreshDerived(to);
         };
         doubling_ = std::make_unique<StepDoubling>(c, CondensedScheme::outputRows().probes, rowLower(), rowUpper(),
-                                                   exact_, dampedModes_, refinement_.tolerance, refinement_.substeps,
-                                                   int(levels_.size()), dt, flow_, run, perturb);
+                                                   exact_, dampedModes_, refinement_, dt, flow_, run, perturb);
     } else {
         buildOperator(sub_, dt / refinement_.substeps);
     }

@@ -18,9 +18,8 @@ namespace plate {
 
 class FlowScheme final : public CondensedScheme {
 public:
-    FlowScheme(std::shared_ptr<const CondensedPlate> plate, Obstacles obstacles, double dt,
-               ContactRefinement refinement, double dampingMass = 0.0, double dampingStiffness = 0.0,
-               OutputRows rows = {});
+    FlowScheme(std::shared_ptr<const CondensedPlate> plate, Obstacles obstacles, const LawParameters& law,
+               ContactRefinement refinement, OutputRows rows = {});
 
     std::string name() const override;
     const FlowState& flowState() const { return flow_; }

@@ -10,9 +10,9 @@ namespace plate {
 
 class MidpointScheme final : public CondensedScheme {
 public:
-    MidpointScheme(std::shared_ptr<const CondensedPlate> plate, Obstacles obstacles, double dt,
-                   double dampingMass = 0.0, double dampingStiffness = 0.0, OutputRows rows = {})
-        : CondensedScheme(std::move(plate), obstacles, dt, dampingMass, dampingStiffness, std::move(rows)) {}
+    MidpointScheme(std::shared_ptr<const CondensedPlate> plate, Obstacles obstacles, const LawParameters& law,
+                   OutputRows rows = {})
+        : CondensedScheme(std::move(plate), obstacles, law, std::move(rows)) {}
 
 private:
     void advance(double zNext, double pNext) override {

@@ -27,7 +27,7 @@ NewmarkScheme::NewmarkScheme(std::shared_ptr<const DiscretePlate> plate, Obstacl
     d_.resize(n);
     wNext_.resize(n);
     kwNext_.resize(n);
-    if (options_.dampingMass > 0.0 || options_.dampingStiffness > 0.0) {
+    if (plate_->law().dampingMass > 0.0 || plate_->law().dampingStiffness > 0.0) {
         dampingBuffer_.resize(n);
         massVelocity_.resize(n);
         massVelocityNext_.resize(n);
@@ -41,7 +41,7 @@ NewmarkScheme::NewmarkScheme(std::shared_ptr<const DiscretePlate> plate, Obstacl
             [p](const Eigen::VectorXd& z, Eigen::VectorXd& y) { p->gatherContact(z, y); });
         if (armature_) columns_ = armature_->contactColumns();  // the bordered matrix's (T.19)
         qp_ = std::make_unique<BoxQP>(*columns_);
-        law_ = makeImpactLaw(*plate_, obstacles_, options_.restitution, options_.singularMass);
+        law_ = makeImpactLaw(*plate_, obstacles_, plate_->law().restitution, options_.singularMass);
         for (Eigen::VectorXd* v : {&contact_.yFree, &contact_.y, &contact_.yPrev, &contact_.lower, &contact_.upper})
             v->resize(m);
         contact_.mu = Eigen::VectorXd::Zero(m);
@@ -131,14 +131,15 @@ void NewmarkScheme::assembleRightHandSide(double baseJump, double pBeta) {
     if (dampingBuffer_.size() > 0) {
         // (T.5): centered damping C(w⁺ − w⁻)/(2Δt) with w⁺ − w⁻ = d + 2(w − w⁻): A carries C d Δt/2, the
         // rest is −Δt C(w − w⁻) (§13); K w and K w⁻ are kept, so the stiffness part is free.
-        if (options_.dampingStiffness > 0.0) rhs_.noalias() -= (dt * options_.dampingStiffness) * (s.kw - s.kwPrev);
-        if (options_.dampingMass > 0.0) {
+        const double a = plate_->law().dampingMass, b = plate_->law().dampingStiffness;  // C = a M + b K
+        if (b > 0.0) rhs_.noalias() -= (dt * b) * (s.kw - s.kwPrev);
+        if (a > 0.0) {
             if (!massVelocityValid_) {
                 dampingBuffer_.noalias() = s.w - s.wPrev;
                 plate_->applyMass(dampingBuffer_, massVelocity_);
                 massVelocityValid_ = true;
             }
-            rhs_.noalias() -= (dt * options_.dampingMass) * massVelocity_;
+            rhs_.noalias() -= (dt * a) * massVelocity_;
         }
     }
     if (law_) law_->addCarried(s, rhs_);
@@ -170,16 +171,16 @@ double NewmarkScheme::dampingWork() {
     const NewmarkState& s = state_;
     // (w⁺ − w⁻)ᵀ C (w⁺ − w⁻) / (4Δt): the damping term of the step times (w⁺ − w⁻)/2 (§13).
     double damped = 0.0;
-    if (options_.dampingMass > 0.0) {
+    const double a = plate_->law().dampingMass, b = plate_->law().dampingStiffness;  // C = a M + b K
+    if (a > 0.0) {
         // M(w⁺ − w⁻) = M(w⁺ − w) + M(w − w⁻): one product per step, the first part kept
         // for the next step's right-hand side.
         dampingBuffer_.noalias() = wNext_ - s.w;
         plate_->applyMass(dampingBuffer_, massVelocityNext_);
     }
     dampingBuffer_.noalias() = wNext_ - s.wPrev;
-    if (options_.dampingStiffness > 0.0) damped += options_.dampingStiffness * dampingBuffer_.dot(kwNext_ - s.kwPrev);
-    if (options_.dampingMass > 0.0)
-        damped += options_.dampingMass * dampingBuffer_.dot(massVelocityNext_ + massVelocity_);
+    if (b > 0.0) damped += b * dampingBuffer_.dot(kwNext_ - s.kwPrev);
+    if (a > 0.0) damped += a * dampingBuffer_.dot(massVelocityNext_ + massVelocity_);
     return damped / (4.0 * dt());
 }
 
@@ -215,7 +216,7 @@ void NewmarkScheme::commit(double zNext, double pNext, double sNext, double tNex
     const double force[2] = {contact.sum[0] / dt2, contact.sum[1] / dt2};  // the port (§14)
     bookContact(s, force, dt);
     s.stepContactMoment = contact.moment / dt2;
-    if (options_.dampingMass > 0.0) massVelocity_.swap(massVelocityNext_);
+    if (plate_->law().dampingMass > 0.0) massVelocity_.swap(massVelocityNext_);
     if (law_) law_->commit(s);
     if (qp_) s.contactState.swap(trialState_);
     s.contactPoints = contactCount;

@@ -5,8 +5,8 @@
 //   M d + Δt² K (w + β d) = Δt² p^{nβ} F − (M·1)(z⁺ − 2z + z⁻) + Cᵀμ,   d = w⁺ − 2w + w⁻,
 //   lower − z⁺ ≤ C w⁺ ≤ upper − z⁺,  μ the contact multipliers of the step's QP.
 //
-// Beyond the paper (SchemeOptions, all off by default: then the step is the above, bit for bit):
-// the restitution law on (u⁺ + e u⁻)/(1 + e) (§12), Rayleigh damping (§13), and with a singular
+// Beyond the paper (the plate's law and SchemeOptions, all off by default: then the step is the above,
+// bit for bit): the restitution law on (u⁺ + e u⁻)/(1 + e) (§12), Rayleigh damping (§13), and with a singular
 // mass the contact impulses of the two previous steps on the right-hand side, which keep the
 // massless part in equilibrium at every t_n (§11).
 //
@@ -29,8 +29,6 @@
 namespace plate {
 
 struct SchemeOptions {
-    double restitution = 0.0;  // e ∈ [0, 1]
-    double dampingMass = 0.0, dampingStiffness = 0.0;  // Rayleigh C = a M + b K on w
     // The plate's mass is singular: carry the contact impulses (docs/theory.md §11). It only
     // chooses the law (makeImpactLaw: SingularMassImpact, which keeps the impulses in the state;
     // no obstacle, no law: nothing carried). Off with a singular mass gives the plain Newmark
@@ -52,7 +50,8 @@ struct OutputPoints {
 
 class NewmarkScheme final : public Scheme {
 public:
-    // Δt and β are the plate's (DiscretePlate::dt, beta: its step matrix was factored with them).
+    // Δt, β, the damping and the restitution are the plate's law (DiscretePlate::law: its step matrix was
+    // factored with them).
     NewmarkScheme(std::shared_ptr<const DiscretePlate> plate, Obstacles obstacles, SchemeOptions options = {},
                   OutputPoints points = {});
 

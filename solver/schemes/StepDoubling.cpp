@@ -26,19 +26,20 @@ constexpr double kBlindPair = 8.0;
 }  // namespace
 
 StepDoubling::StepDoubling(const CondensedPlate& plate, const std::array<int, 3>& probes, const Eigen::VectorXd& lower,
-                           const Eigen::VectorXd& upper, const ExactFlow& exact, bool damped, double tolerance,
-                           int substeps, int levels, double dt, FlowState& state, Run run, Perturb perturb)
+                           const Eigen::VectorXd& upper, const ExactFlow& exact, bool damped,
+                           const ContactRefinement& refinement, double dt, FlowState& state, Run run, Perturb perturb)
     : plate_(plate),
       lower_(lower),
       upper_(upper),
       exact_(exact),
       dampedModes_(damped),
-      tolerance_(tolerance),
-      top_(levels),
+      tolerance_(refinement.tolerance),
+      top_(std::ilogb(refinement.maxSubsteps)),
       dt_(dt),
       flow_(state),
       run_(std::move(run)),
-      perturb_(std::move(perturb)) {
+      perturb_(std::move(perturb)),
+      fixedLevel_(std::ilogb(refinement.substeps)) {
     const Eigen::Index m = plate.modes();
     std::vector<int> measured;
     for (int i : probes)
@@ -54,7 +55,6 @@ StepDoubling::StepDoubling(const CondensedPlate& plate, const std::array<int, 3>
                                &eventQ_, &eventMomentum_, &lastEventQ_, &lastEventMomentum_})
         v->resize(m);
     rowBound_.resize(Eigen::Index(measured.size()));
-    while ((2 << fixedLevel_) <= substeps) ++fixedLevel_;  // 2^level ≤ contact_substeps
     stepDecay_ = exact.f11.cwiseProduct(exact.f22) - exact.f12.cwiseProduct(exact.f21);
 }
 

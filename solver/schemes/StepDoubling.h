@@ -50,11 +50,11 @@ public:
     using Perturb =
         std::function<void(const StepState& from, const Eigen::VectorXd& dq, const Eigen::VectorXd& dP, StepState& to)>;
     // `probes`: the reported points' rows, where the error is measured (every row without them, as in
-    // the unit tests); `levels`: the highest level (log2 max_contact_substeps); `exact`: the free flow
-    // over Δt; `state`: the scheme's FlowState.
+    // the unit tests); `exact`: the free flow over Δt; `refinement`: the tolerance, the levels up to
+    // log2 max_contact_substeps, and contact_substeps past the horizon; `state`: the scheme's FlowState.
     StepDoubling(const CondensedPlate& plate, const std::array<int, 3>& probes, const Eigen::VectorXd& lower,
-                 const Eigen::VectorXd& upper, const ExactFlow& exact, bool damped, double tolerance, int substeps,
-                 int levels, double dt, FlowState& state, Run run, Perturb perturb);
+                 const Eigen::VectorXd& upper, const ExactFlow& exact, bool damped, const ContactRefinement& refinement,
+                 double dt, FlowState& state, Run run, Perturb perturb);
 
     // The contact step from `start` (its rows at t_n, the free trial's at its end): the kept run into
     // `kept`, its work counting the other runs'. A throw leaves the estimate as it was.
@@ -117,7 +117,7 @@ private:
     double gapBound_ = 0.0;  // the largest gap between the obstacles at a reported point (∞: one lacks one)
     bool smooth_ = false;  // the last localError's pair: no row changed sides
     double difference_ = 0.0;  // and its difference at the reported points, m
-    int fixedLevel_ = 0;  // past the tolerance's horizon: 2^fixedLevel_ sub-steps (≤ contact_substeps)
+    const int fixedLevel_;  // past the tolerance's horizon: 2^fixedLevel_ sub-steps (≤ contact_substeps)
     Eigen::MatrixXd measuredRows_;  // G at the reported points
     Eigen::MatrixXd measuredRows2_;  // and its entries squared (amplitudes of independent phases, no temporary)
     Eigen::VectorXd inverseOmega_, amplitude_, rowBound_, errorNextQ_, errorNextMomentum_, localQ_, localMomentum_,

@@ -29,7 +29,8 @@ struct Rig {
         space = std::shared_ptr<const FiniteElementSpace>(
             makeSpace(ElementType::Argyris, Mesh(p.mesh.length, p.mesh.width, p.mesh.nx, p.mesh.ny)));
         clamped = std::make_shared<const ClampedPlate>(clamp(*space, assemble(*space, p.material)));
-        plate = std::make_shared<const FullOrderPlate>(space, clamped, 1e-4, 0.5);
+        p.law.dt = 1e-4;
+        plate = std::make_shared<const FullOrderPlate>(space, clamped, p.law);
         carrier.mass = 20.0;
         carrier.stiffness = 3158.0;
         carrier.damping = 50.0;

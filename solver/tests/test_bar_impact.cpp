@@ -20,7 +20,7 @@ namespace {
 
 class Bar : public DiscretePlate {
 public:
-    Bar(int elements, bool singular, double dt, double beta) : DiscretePlate(dt, beta), n_(elements + 1) {
+    Bar(int elements, bool singular, const LawParameters& law) : DiscretePlate(law), n_(elements + 1) {
         const double h = 1.0 / elements;
         std::vector<Eigen::Triplet<double>> k, m;
         for (int e = 0; e < elements; ++e) {
@@ -37,7 +37,7 @@ public:
         mass_.resize(n_, n_);
         stiffness_.setFromTriplets(k.begin(), k.end());
         mass_.setFromTriplets(m.begin(), m.end());
-        factor_.compute(Eigen::SparseMatrix<double>(mass_ + (beta * dt * dt) * stiffness_));
+        factor_.compute(Eigen::SparseMatrix<double>(mass_ + (law.beta * law.dt * law.dt) * stiffness_));
         if (factor_.info() != Eigen::Success) throw std::runtime_error("bar step matrix not SPD");
         zero_ = Eigen::VectorXd::Zero(n_);
         clamped_.contactAbscissae = {0.0};
@@ -87,7 +87,10 @@ struct BarImpact {
 // The bar at u = 0 moving at −v0 toward the wall at u = −gap, hit at t = gap / v0 = 0.2.
 BarImpact simulate(int elements, double dt, bool singular) {
     const double v0 = 0.5, gap = 0.1, beta = 0.5;
-    auto bar = std::make_shared<const Bar>(elements, singular, dt, beta);
+    LawParameters law;
+    law.dt = dt;
+    law.beta = beta;
+    auto bar = std::make_shared<const Bar>(elements, singular, law);
     Obstacles wall;
     wall.lower = -gap;
     SchemeOptions options;

@@ -24,12 +24,21 @@ using namespace plate;
 
 namespace {
 
+// The law's step and Rayleigh damping (the rest of LawParameters the schemes do not read).
+LawParameters law(double dt, double a = 0.0, double b = 0.0) {
+    LawParameters l;
+    l.dt = dt;
+    l.dampingMass = a;
+    l.dampingStiffness = b;
+    return l;
+}
+
 // time_scheme = conserving (substeps = 0) or flow (substeps = m > 0), as makeScheme makes them.
 std::unique_ptr<CondensedScheme> condensedScheme(std::shared_ptr<const CondensedPlate> plate, Obstacles obstacles,
                                                  double dt, double a, double b, int substeps) {
     if (substeps > 0)
-        return std::make_unique<FlowScheme>(std::move(plate), obstacles, dt, ContactRefinement{substeps}, a, b);
-    return std::make_unique<MidpointScheme>(std::move(plate), obstacles, dt, a, b);
+        return std::make_unique<FlowScheme>(std::move(plate), obstacles, law(dt, a, b), ContactRefinement{substeps});
+    return std::make_unique<MidpointScheme>(std::move(plate), obstacles, law(dt, a, b));
 }
 
 struct Condensed {
@@ -214,8 +223,8 @@ struct LedgerRun {
 
 LedgerRun runLedger(const std::shared_ptr<const CondensedPlate>& plate, const Obstacles& obstacles, double dt,
                     int steps, int substeps, double tolerance = 0.0) {
-    const auto scheme = tolerance > 0.0 ? std::make_unique<FlowScheme>(plate, obstacles, dt,
-                                                                       ContactRefinement{16, tolerance}, 1.0, 1e-5)
+    const auto scheme = tolerance > 0.0 ? std::make_unique<FlowScheme>(plate, obstacles, law(dt, 1.0, 1e-5),
+                                                                       ContactRefinement{16, tolerance})
                                         : condensedScheme(plate, obstacles, dt, 1.0, 1e-5, substeps);
     CondensedScheme& stepper = *scheme;
     stepper.initialize(0.0, 8600.0);
@@ -342,7 +351,7 @@ TEST(FlowStepper, AContactStepThatThrowsLeavesTheStateAsItWas) {
             ContactRefinement refinement{16, tolerance};
             refinement.rowSpace = rowSpace;
             auto plate = std::make_shared<CondensedPlate>(s.c);
-            FlowScheme scheme(plate, obstacles, 2e-5, refinement), twin(plate, obstacles, 2e-5, refinement);
+            FlowScheme scheme(plate, obstacles, law(2e-5), refinement), twin(plate, obstacles, law(2e-5), refinement);
             for (FlowScheme* f : {&scheme, &twin}) {
                 f->initialize(0.0, 8600.0);
                 f->setLoadAtStart(0.0);
@@ -454,7 +463,7 @@ CornerRun releaseRun(const std::shared_ptr<const CondensedPlate>& plate, double 
     obstacles.upper = upper;
     OutputRows corner;  // the estimate measured where the run is compared: row 0
     corner.probes = {0, 0, 0};
-    FlowScheme scheme(plate, obstacles, dt, refinement, 0.0, 0.0, corner);
+    FlowScheme scheme(plate, obstacles, law(dt), refinement, corner);
     scheme.initialize(0.0, 8600.0);
     scheme.setLoadAtStart(0.0);
     CornerRun run;
@@ -538,7 +547,7 @@ TEST(FlowTolerance, TheHorizonSaysWhenAndHowManySubsteps) {
     auto plate = std::make_shared<const CondensedPlate>(s.c);
     Obstacles obstacles;
     obstacles.lower = -0.08;
-    FlowScheme scheme(plate, obstacles, 2e-5, ContactRefinement{12, 1e-12});
+    FlowScheme scheme(plate, obstacles, law(2e-5), ContactRefinement{12, 1e-12});
     scheme.initialize(0.0, 8600.0);
     scheme.setLoadAtStart(0.0);
     EXPECT_EQ(scheme.toleranceHorizon().substeps, 8);
@@ -549,7 +558,7 @@ TEST(FlowTolerance, TheHorizonSaysWhenAndHowManySubsteps) {
     }
     EXPECT_EQ(scheme.toleranceHorizon().lostAt, scheme.flowState().lostAt);
     EXPECT_EQ(scheme.toleranceHorizon().lostAt, double(scheme.stepCount()) * 2e-5);  // lost at this step
-    EXPECT_EQ(FlowScheme(plate, obstacles, 2e-5, ContactRefinement{12}).toleranceHorizon().substeps, 0);
+    EXPECT_EQ(FlowScheme(plate, obstacles, law(2e-5), ContactRefinement{12}).toleranceHorizon().substeps, 0);
 }
 
 namespace {
@@ -565,7 +574,7 @@ struct ToleranceRelease {
         return o;
     }();
     ContactRefinement refinement{16, 1e-5};
-    FlowScheme a{plate, obstacles, 2e-5, refinement}, b{plate, obstacles, 2e-5, refinement};
+    FlowScheme a{plate, obstacles, law(2e-5), refinement}, b{plate, obstacles, law(2e-5), refinement};
     ToleranceRelease() {
         a.initialize(0.0, 8600.0);
         a.setLoadAtStart(0.0);
@@ -613,7 +622,7 @@ TEST(FlowTolerance, SavedStateContinuesBitForBit) {
     EXPECT_GT(a.flowState().eventError2.maxCoeff(), 0.0);
     std::vector<double> damaged = a.saveState();
     damaged.back() = -1e-12;
-    FlowScheme c(run.plate, run.obstacles, 2e-5, run.refinement);
+    FlowScheme c(run.plate, run.obstacles, law(2e-5), run.refinement);
     try {
         c.restoreState(damaged);
         ADD_FAILURE() << "a negative squared amplitude was accepted";

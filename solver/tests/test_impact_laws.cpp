@@ -21,6 +21,17 @@ using namespace plate;
 
 namespace {
 
+// The Newmark step's Δt, β, Rayleigh damping a M + b K and restitution e.
+LawParameters law(double dt, double beta, double a = 0.0, double b = 0.0, double e = 0.0) {
+    LawParameters l;
+    l.dt = dt;
+    l.beta = beta;
+    l.restitution = e;
+    l.dampingMass = a;
+    l.dampingStiffness = b;
+    return l;
+}
+
 // The pieces PlateSimulation builds, kept in reach: the plate of the default scene (or another
 // mesh), its consistent mass, and the singular mass with its coupling B.
 struct Rig {
@@ -160,7 +171,7 @@ TEST(SingularMass, MasslessPartStaysInEquilibriumThroughImpacts) {
     const double dt = 1e-5, beta = 0.5, g = -0.1;
     Obstacles obstacles;
     obstacles.lower = g;
-    auto discrete = std::make_shared<const FullOrderPlate>(rig.space, rig.withSingular, dt, beta);
+    auto discrete = std::make_shared<const FullOrderPlate>(rig.space, rig.withSingular, law(dt, beta));
     Eigen::VectorXd force;
     const Eigen::VectorXd w0 = staticEquilibrium(*discrete, obstacles, 0.0, 8600.0, &force);
     double worst[2] = {0, 0};
@@ -205,12 +216,9 @@ TEST(ImpactLaws, PerStepEnergyIdentityWithContact) {
     for (const Case c : {Case{false, 0.0, 0, 0}, Case{false, 0.5, 0, 0}, Case{true, 0.0, 0, 0}, Case{true, 0.5, 0, 0},
                          Case{false, 0.0, 3.0, 1e-5}, Case{true, 0.3, 3.0, 1e-5}}) {
         const auto& plate = c.singular ? rig.withSingular : rig.consistent;
-        auto discrete = std::make_shared<const FullOrderPlate>(rig.space, plate, dt, beta, c.a, c.b);
+        auto discrete = std::make_shared<const FullOrderPlate>(rig.space, plate, law(dt, beta, c.a, c.b, c.e));
         SchemeOptions options;
         options.singularMass = c.singular;
-        options.restitution = c.e;
-        options.dampingMass = c.a;
-        options.dampingStiffness = c.b;
         NewmarkScheme stepper(discrete, obstacles, options);
         const Eigen::VectorXd w0 = staticEquilibrium(*discrete, obstacles, 0.0, 8600.0);
         stepper.initialize(w0, 0.0, 0.0);
@@ -315,11 +323,8 @@ TEST(ImpactLaws, RayleighDampingDecaysEachModeAtItsRate) {
     lowestModes(*rig.consistent, 1, phi, omega2);
     const double omega = std::sqrt(omega2[0]), dt = 1e-5, beta = 0.5;
     const double a = 2.0, b = 2e-4;  // ζ = a/(2ω) + bω/2 ≈ 0.028 + 0.0036
-    auto discrete = std::make_shared<const FullOrderPlate>(rig.space, rig.consistent, dt, beta, a, b);
-    SchemeOptions options;
-    options.dampingMass = a;
-    options.dampingStiffness = b;
-    NewmarkScheme stepper(discrete, Obstacles{}, options);
+    auto discrete = std::make_shared<const FullOrderPlate>(rig.space, rig.consistent, law(dt, beta, a, b));
+    NewmarkScheme stepper(discrete, Obstacles{});
     const Eigen::VectorXd mode = phi.col(0);
     const double sigma = 0.5 * a + 0.5 * b * omega * omega, wd = std::sqrt(omega * omega - sigma * sigma);
     const auto exactAt = [&](double t) {

@@ -46,7 +46,10 @@ TEST(Port, ClampForceAndMomentAreTheClampedRowsResidual) {
     Obstacles obstacles;
     obstacles.lower = -0.02;
     obstacles.upper = 0.02;
-    auto plate = std::make_shared<const FullOrderPlate>(space, clamped, dt, beta);
+    LawParameters law;
+    law.dt = dt;
+    law.beta = beta;
+    auto plate = std::make_shared<const FullOrderPlate>(space, clamped, law);
     NewmarkScheme stepper(plate, obstacles);
     stepper.initialize(Eigen::VectorXd::Zero(plate->size()), 0.0, 0.0);
     Eigen::VectorXd uPrev = fullField(*clamped, full.constant, stepper.state().w, 0.0), u = uPrev;

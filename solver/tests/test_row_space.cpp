@@ -55,8 +55,11 @@ FlowRun run(const std::shared_ptr<const CondensedPlate>& plate, const Case& k, b
     Obstacles obstacles;
     obstacles.lower = k.gap > 0 ? -k.gap : k.gap;
     if (k.gap > 0) obstacles.upper = k.gap;
-    FlowScheme scheme(plate, obstacles, k.dt, ContactRefinement{substeps, 0.0, 128, rowSpace}, k.damping,
-                      1e-6 * k.damping);
+    LawParameters law;
+    law.dt = k.dt;
+    law.dampingMass = k.damping;
+    law.dampingStiffness = 1e-6 * k.damping;
+    FlowScheme scheme(plate, obstacles, law, ContactRefinement{substeps, 0.0, 128, rowSpace});
     scheme.initialize(0.0, 8600.0);  // held on the lower obstacle by the initial load, then released
     scheme.setLoadAtStart(0.0);
     FlowRun r;
