@@ -10,7 +10,8 @@ uncertainty.
     nice -n 5 python tools/unseen_scenes.py [--fmu build/PlateImpact.fmu] [--scenes velocity,shock,...]
                                             [--json unseen_scenes.json]
 
-One process, the runs one after the other (a shared machine): about 35 min for every scene.
+One process, the runs one after the other (a shared machine): about 25 min for every scene. The
+numbers of docs/theory.md §26 ("Eleven scenes more") are docs/unseen_scenes.json, written by --json.
 """
 
 from __future__ import annotations
