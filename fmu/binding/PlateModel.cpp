@@ -94,15 +94,8 @@ public:
     }
     double fixedInternalStepSize() const override { return plate::PlateParameters{}.law.dt; }
     bool doStepUntilEvent(double t, double h) override {
-        stopAtContactChange_ = true;
         endedAtEvent_ = false;
-        try {
-            doStep(t, h);
-        } catch (...) {
-            stopAtContactChange_ = false;
-            throw;
-        }
-        stopAtContactChange_ = false;
+        step(t, h, /*untilEvent=*/true);
         if (endedAtEvent_)
             trace(std::string(values_.outputs.contactVertices > 0 ? "contact onset" : "contact release") +
                   format(" at t = %.17g", simulation_->time(), 0.0));
@@ -171,7 +164,9 @@ public:
     }
     double time() const override { return simulation_ ? simulation_->time() : 0.0; }
 
-    void doStep(double t, double h) override {
+    void doStep(double t, double h) override { step(t, h, false); }
+    // A communication step; untilEvent: FMI 3.0 early return, up to the first contact onset or release.
+    void step(double t, double h, bool untilEvent) {
         if (!simulation_) throw fmu::ModelError("internal error: no simulation in state stepComplete");
         plate::StepPlan plan;
         try {
@@ -200,7 +195,7 @@ public:
             const plate::InputSignal base = clampSignal(now, plan.span);
             if (sample) advisor_.onDriveSample(*sample, base.value, h, values_.parameters.law.dt, driveName());
             const plate::InputSignal load = values_.load.stepSignal(now, plan.span, -plate::kMaxLoad, plate::kMaxLoad);
-            advanceClamp(base, communicate(plan, base, load));
+            advanceClamp(base, communicate(plan, base, load, untilEvent));
         } catch (const plate::StepError& e) {
             refreshOutputs();  // the simulation stays at its last good step (for debugging)
             // The failed internal step's time, from the scheme's clock onto the master's (NaN: refused before a step).
@@ -332,10 +327,7 @@ private:
     void refreshOutputs() {
         values_.outputs = simulation_ ? simulation_->outputs() : plate::PlateOutputs{};
         values_.simulation = simulation_.get();
-        values_.portValid = false;
-        values_.fieldValid = false;
-        values_.plateFieldValid = false;
-        values_.probesValid = false;
+        values_.forgetReads();
     }
 
     std::array<InputPort*, 6> ports() {
@@ -429,10 +421,11 @@ private:
         const double upper = std::min(obstacles.clampUpper(), plate::kMaxDisplacement);
         return mode().path(values_, {clampPosition_, clampVelocity_}, now, span, lower, upper);
     }
-    // simulation_->communicate, or with stopAtContactChange_ (FMI 3.0 early return) up to the
-    // first contact onset or release on the grid. Returns the span of the step as taken; after
-    // an early end, every input ends the step where its signal stands then.
-    double communicate(const plate::StepPlan& plan, const plate::InputSignal& base, const plate::InputSignal& load) {
+    // simulation_->communicate, or untilEvent (FMI 3.0 early return) up to the first contact onset or
+    // release on the grid. Returns the span of the step as taken; after an early end, every input ends
+    // the step where its signal stands then.
+    double communicate(const plate::StepPlan& plan, const plate::InputSignal& base, const plate::InputSignal& load,
+                       bool untilEvent) {
         // FMI 3.0 intermediate update: the outputs at every grid point inside the step, and the
         // master's wish to end the step early (honoured where early return is granted).
         plate::PlateSimulation::GridPointObserver observer;
@@ -459,7 +452,7 @@ private:
             };
         }
         simulation_->setInputSampler(std::move(sampler));
-        if (!stopAtContactChange_ || carried()) {  // a carried clamp: no early return (§18)
+        if (!untilEvent || carried()) {  // a carried clamp: no early return (§18)
             simulation_->communicate(plan, base, load, observer);
             return plan.span;
         }
@@ -489,7 +482,6 @@ private:
     const char* otherMotionSet_ = nullptr;  // the first motion input of another drive set during the run
     // The advice said once per build (PlateAdvice.h); mutable: a read may say it.
     mutable PlateAdvisor advisor_{warn};
-    bool stopAtContactChange_ = false;  // inside doStepUntilEvent
     bool endedAtEvent_ = false;  // the last step of doStepUntilEvent ended at a contact change
     bool returnRequested_ = false;  // ... or where the master's intermediate update asked
     double returnAt_ = HUGE_VAL;  // the earliest early return time the master asked for in this step

@@ -15,8 +15,6 @@ using fmu::Causality;
 using fmu::VariableType;
 using plate::ElementType;
 using plate::InputMode;
-using plate::MassModel;
-using plate::TimeScheme;
 
 using Get = double (*)(const PlateValues&);
 using Set = void (*)(PlateValues&, double);
@@ -93,10 +91,6 @@ void setBaseInputMode(PlateValues& v, double x) {
 }
 double getLoadInputMode(const PlateValues& v) { return double(static_cast<int>(v.load.mode)); }
 void setLoadInputMode(PlateValues& v, double x) { v.load.mode = static_cast<InputMode>(int(x)); }
-double getMass(const PlateValues& v) { return double(static_cast<int>(v.parameters.law.mass)); }
-void setMass(PlateValues& v, double x) { v.parameters.law.mass = static_cast<MassModel>(int(x)); }
-double getTimeScheme(const PlateValues& v) { return double(static_cast<int>(v.parameters.law.timeScheme)); }
-void setTimeScheme(PlateValues& v, double x) { v.parameters.law.timeScheme = static_cast<TimeScheme>(int(x)); }
 double getBaseDrive(const PlateValues& v) { return double(static_cast<int>(v.baseDrive)); }
 void setBaseDrive(PlateValues& v, double x) {
     v.baseDrive = static_cast<BaseDrive>(int(x));
@@ -198,10 +192,10 @@ const Row kRows[] = {
     choice(kVrLoadInputMode, "load_input_mode", inputMode(),   getLoadInputMode, setLoadInputMode,
         "How load moves inside a communication step{fmi2: when the master gives no input derivatives}: held (a load "
         "may step; extrapolating a step overshoots) or extrapolated"),
-    choice(kVrMass,          "mass",            massModel(),   getMass,          setMass,
+    choice(kVrMass,          "mass",            massModel(),   PARAMETER(law.mass),
         "Mass matrix: consistent (the paper's scheme; impacts lose energy at every mesh vertex), singular_p0 "
         "(energy-consistent impacts, results converge after impact) or singular_p1dg"),
-    choice(kVrTimeScheme,    "time_scheme",     timeScheme(),  getTimeScheme,    setTimeScheme,
+    choice(kVrTimeScheme,    "time_scheme",     timeScheme(),  PARAMETER(law.timeScheme),
         "Time scheme: newmark (the paper's scheme, default), conserving (needs a singular mass: the energy balance "
         "closes exactly through impacts at any dt and every reported displacement stays within the obstacles; modes "
         "= m keeps the m lowest massive modes, damping acts on them; beta and restitution do not apply) or flow (the "

@@ -116,42 +116,42 @@ struct PlateValues {
     InputPort driveForce{plate::InputMode::Quadratic};  // base_drive = force (§18)
     InputPort tlmWaveIn{plate::InputMode::Hold};  // base_drive = tlm: always held (§19)
     BaseDrive baseDrive = BaseDrive::Displacement;
-    // The outputs after each change; the port's fields only once one of them is read (they cost
-    // probe and rotation products nobody else needs): port() fills them in.
+    // The outputs after each change; the port's fields (port()), the probes and the root's stress
+    // (field()), the plate's largest stress (plateField(): rows at every vertex) and the probes' motion
+    // only once one of them is read: they cost probe and rotation products nobody else needs
+    // (docs/theory.md §23). Without a simulation each reads as none was computed.
     plate::PlateOutputs outputs;
     const plate::PlateSimulation* simulation = nullptr;
-    mutable plate::PlateOutputs portOutputs;
-    mutable bool portValid = false;
-    const plate::PlateOutputs& port() const {
-        if (!portValid && simulation) portOutputs = simulation->outputs(true);
-        portValid = simulation != nullptr;
-        return simulation ? portOutputs : outputs;
+    template <class T>
+    struct OnFirstRead {
+        mutable T value;
+        mutable bool valid = false;
+        template <class Compute>
+        const T& get(const plate::PlateSimulation* s, Compute compute) const {
+            if (!valid) value = s ? compute(*s) : T{};
+            valid = true;
+            return value;
+        }
+    };
+    OnFirstRead<plate::PlateOutputs> portOutputs, fieldOutputs, plateFieldOutputs;
+    OnFirstRead<plate::ProbeOutputs> probeOutputs;
+    void forgetReads() {
+        portOutputs.valid = fieldOutputs.valid = plateFieldOutputs.valid = probeOutputs.valid = false;
     }
-    // Likewise the probes and the root's stress (field()), and the plate's largest stress
-    // (plateField(): rows at every vertex), docs/theory.md §23, each on its first read.
-    mutable plate::PlateOutputs fieldOutputs, plateFieldOutputs;
-    mutable bool fieldValid = false, plateFieldValid = false;
+    const plate::PlateOutputs& port() const {
+        return portOutputs.get(simulation, [](const auto& s) { return s.outputs(true); });
+    }
     const plate::PlateOutputs& field() const {
-        if (!fieldValid && simulation) fieldOutputs = simulation->outputs(false, plate::FieldOutputs::Points);
-        fieldValid = simulation != nullptr;
-        return simulation ? fieldOutputs : outputs;
+        return fieldOutputs.get(simulation,
+                                [](const auto& s) { return s.outputs(false, plate::FieldOutputs::Points); });
     }
     const plate::PlateOutputs& plateField() const {
-        if (!plateFieldValid && simulation) plateFieldOutputs = simulation->outputs(false, plate::FieldOutputs::Plate);
-        plateFieldValid = simulation != nullptr;
-        return simulation ? plateFieldOutputs : outputs;
+        return plateFieldOutputs.get(simulation,
+                                     [](const auto& s) { return s.outputs(false, plate::FieldOutputs::Plate); });
     }
-    // The probes' motion likewise; probe k's displacement, velocity or acceleration (0: not computed).
-    mutable plate::ProbeOutputs probeOutputs;
-    mutable bool probesValid = false;
-    const plate::ProbeOutputs& probeMotion() const {
-        if (!probesValid && simulation) probeOutputs = simulation->probes();
-        if (!simulation) probeOutputs.resize(0);
-        probesValid = simulation != nullptr;
-        return probeOutputs;
-    }
+    // Probe k's displacement, velocity or acceleration (0: not computed).
     double probe(Eigen::VectorXd plate::ProbeOutputs::*quantity, std::size_t k) const {
-        const Eigen::VectorXd& v = probeMotion().*quantity;
+        const Eigen::VectorXd& v = probeOutputs.get(simulation, [](const auto& s) { return s.probes(); }).*quantity;
         return Eigen::Index(k) < v.size() ? v[Eigen::Index(k)] : 0.0;
     }
     InputPort* inputPort(fmu::ValueReference vr);  // nullptr: not an input

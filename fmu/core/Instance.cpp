@@ -125,49 +125,43 @@ Instance::Instance(Logger logger, bool loggingOn, ApiNames names)
 Instance::~Instance() = default;
 
 void Instance::attachTrace() {
-    model_->trace = [this](const std::string& message) {
-        log(Status::OK, LogAll, "%s: %s", function_, message.c_str());
-    };
-    model_->inform = [this](const std::string& message) {
-        log(Status::OK, LogInfo, "%s: %s", function_, message.c_str());
-    };
-    model_->warn = [this](const std::string& message) {
-        log(Status::Warning, LogStatusWarning, "%s: %s", function_, message.c_str());
-    };
-    if (intermediateInputs_) {
-        // As below, with the inputs that take intermediate values settable while it runs.
-        model_->intermediateInputs = [this](double time) {
-            const State running = state_;
-            const char* function = function_;
-            state_ = IntermediateUpdateMode;
-            inputsRequested_ = true;
-            intermediateInputs_(startTime_ + time);
-            inputsRequested_ = false;
-            const bool failed = state_ & (Error | Fatal);
-            function_ = function;
-            if (failed) throw std::runtime_error("a call of the master inside its intermediate update callback failed");
-            state_ = running;
+    const auto sink = [this](Status status, LogCategory category) {
+        return [this, status, category](const std::string& message) {
+            log(status, category, "%s: %s", function_, message.c_str());
         };
-    } else {
-        model_->intermediateInputs = nullptr;
-    }
-    if (!intermediateUpdate_) {
-        model_->intermediateUpdate = nullptr;
-        return;
-    }
-    // The master's callback may call back into this instance (to get outputs): it does so in
-    // IntermediateUpdateMode, and the running function's name is restored for the messages after.
-    model_->intermediateUpdate = [this](double time) {
+    };
+    model_->trace = sink(Status::OK, LogAll);
+    model_->inform = sink(Status::OK, LogInfo);
+    model_->warn = sink(Status::Warning, LogStatusWarning);
+    // The master's callbacks may call back into this instance (to get outputs, to set the inputs that
+    // take intermediate values): they do so in IntermediateUpdateMode, and the running function's name
+    // is restored for the messages after.
+    const auto insideCallback = [this](const auto& call) {
         const State running = state_;
         const char* function = function_;
         state_ = IntermediateUpdateMode;
-        const double at = intermediateUpdate_(startTime_ + time);
+        const double result = call();
         const bool failed = state_ & (Error | Fatal);
         function_ = function;
         if (failed) throw std::runtime_error("a call of the master inside its intermediate update callback failed");
         state_ = running;
-        return at - startTime_;
+        return result;
     };
+    model_->intermediateInputs = nullptr;
+    if (intermediateInputs_)
+        model_->intermediateInputs = [this, insideCallback](double time) {
+            insideCallback([&] {
+                inputsRequested_ = true;
+                intermediateInputs_(startTime_ + time);
+                inputsRequested_ = false;
+                return 0.0;
+            });
+        };
+    model_->intermediateUpdate = nullptr;
+    if (intermediateUpdate_)
+        model_->intermediateUpdate = [this, insideCallback](double time) {
+            return insideCallback([&] { return intermediateUpdate_(startTime_ + time); }) - startTime_;
+        };
 }
 
 void Instance::setIntermediateUpdate(std::function<double(double)> callback) {

@@ -29,22 +29,12 @@ std::string EnumerationType::itemList() const {
     return text;
 }
 
-int EnumerationType::lowest() const {
-    int low = items.front().value;
-    for (const EnumerationItem& item : items) low = std::min(low, item.value);
-    return low;
-}
-
-int EnumerationType::highest() const {
-    int high = items.front().value;
-    for (const EnumerationItem& item : items) high = std::max(high, item.value);
-    return high;
-}
-
 Variable integerSwitch(ValueReference vr, const char* name, const char* description, const EnumerationType& items) {
     Variable v{vr, name, VariableType::Integer, Causality::Parameter, description, nullptr, &items, true, false};
-    v.min = items.lowest();
-    v.max = items.highest();
+    const auto [low, high] = std::minmax_element(items.items.begin(), items.items.end(),
+                                                 [](const auto& a, const auto& b) { return a.value < b.value; });
+    v.min = low->value;
+    v.max = high->value;
     return v;
 }
 

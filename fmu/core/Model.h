@@ -38,8 +38,6 @@ struct EnumerationType {
     std::vector<EnumerationItem> items;
     bool contains(int value) const;
     std::string itemList() const;  // "1 = argyris, 2 = fvs"
-    int lowest() const;
-    int highest() const;
 };
 
 // One row of a model's table of variables.

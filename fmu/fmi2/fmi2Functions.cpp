@@ -72,9 +72,10 @@ fmi2Status run(fmi2Component c, const char* function, unsigned allowed, Body&& b
     return toFmi2(instance->call(function, allowed, [&]() { return body(*instance); }));
 }
 
-// fmi2Get/SetInteger and fmi2Get/SetBoolean through the layer's double values.
+// fmi2Get/Set<Real, Integer, Boolean> through the layer's double values (a Real's as they are).
 template <class T>
 Status getAs(Instance& i, VariableType type, const fmi2ValueReference vr[], size_t nvr, T value[]) {
+    if constexpr (std::is_same_v<T, double>) return i.getValues(type, vr, nvr, value);
     std::vector<double> values(nvr);
     const Status status = i.getValues(type, vr, nvr, value ? values.data() : nullptr);
     if (status == Status::OK && value)
@@ -84,6 +85,7 @@ Status getAs(Instance& i, VariableType type, const fmi2ValueReference vr[], size
 
 template <class T>
 Status setAs(Instance& i, VariableType type, const fmi2ValueReference vr[], size_t nvr, const T value[]) {
+    if constexpr (std::is_same_v<T, double>) return i.setValues(type, vr, nvr, value);
     std::vector<double> values(value ? nvr : 0);
     for (size_t k = 0; k < values.size(); ++k) values[k] = type == VariableType::Boolean ? (value[k] != 0) : value[k];
     return i.setValues(type, vr, nvr, value ? values.data() : nullptr);
@@ -211,40 +213,24 @@ fmi2Status fmi2Reset(fmi2Component c) {
 // ---------------------------------------------------------------------------------------------
 // Variables
 
-fmi2Status fmi2GetReal(fmi2Component c, const fmi2ValueReference vr[], size_t nvr, fmi2Real value[]) {
-    return run(c, "fmi2GetReal", kGetStates,
-               [&](Instance& i) { return i.getValues(VariableType::Real, vr, nvr, value); });
-}
-
-fmi2Status fmi2GetInteger(fmi2Component c, const fmi2ValueReference vr[], size_t nvr, fmi2Integer value[]) {
-    return run(c, "fmi2GetInteger", kGetStates,
-               [&](Instance& i) { return getAs(i, VariableType::Integer, vr, nvr, value); });
-}
-
-fmi2Status fmi2GetBoolean(fmi2Component c, const fmi2ValueReference vr[], size_t nvr, fmi2Boolean value[]) {
-    return run(c, "fmi2GetBoolean", kGetStates,
-               [&](Instance& i) { return getAs(i, VariableType::Boolean, vr, nvr, value); });
-}
+#define PLATEIMPACT_FMI2_VALUES(Name, T)                                                                    \
+    fmi2Status fmi2Get##Name(fmi2Component c, const fmi2ValueReference vr[], size_t nvr, T value[]) {       \
+        return run(c, "fmi2Get" #Name, kGetStates,                                                          \
+                   [&](Instance& i) { return getAs(i, VariableType::Name, vr, nvr, value); });              \
+    }                                                                                                       \
+    fmi2Status fmi2Set##Name(fmi2Component c, const fmi2ValueReference vr[], size_t nvr, const T value[]) { \
+        return run(c, "fmi2Set" #Name, kSetStates,                                                          \
+                   [&](Instance& i) { return setAs(i, VariableType::Name, vr, nvr, value); });              \
+    }
+PLATEIMPACT_FMI2_VALUES(Real, fmi2Real)
+PLATEIMPACT_FMI2_VALUES(Integer, fmi2Integer)
+PLATEIMPACT_FMI2_VALUES(Boolean, fmi2Boolean)
+#undef PLATEIMPACT_FMI2_VALUES
 
 fmi2Status fmi2GetString(fmi2Component c, const fmi2ValueReference vr[], size_t nvr, fmi2String[]) {
     return run(c, "fmi2GetString", kGetStates, [&](Instance& i) {
         return nvr == 0 ? Status::OK : i.fail("this FMU has no String variables (value reference %u)", vr ? vr[0] : 0u);
     });
-}
-
-fmi2Status fmi2SetReal(fmi2Component c, const fmi2ValueReference vr[], size_t nvr, const fmi2Real value[]) {
-    return run(c, "fmi2SetReal", kSetStates,
-               [&](Instance& i) { return i.setValues(VariableType::Real, vr, nvr, value); });
-}
-
-fmi2Status fmi2SetInteger(fmi2Component c, const fmi2ValueReference vr[], size_t nvr, const fmi2Integer value[]) {
-    return run(c, "fmi2SetInteger", kSetStates,
-               [&](Instance& i) { return setAs(i, VariableType::Integer, vr, nvr, value); });
-}
-
-fmi2Status fmi2SetBoolean(fmi2Component c, const fmi2ValueReference vr[], size_t nvr, const fmi2Boolean value[]) {
-    return run(c, "fmi2SetBoolean", kSetStates,
-               [&](Instance& i) { return setAs(i, VariableType::Boolean, vr, nvr, value); });
 }
 
 fmi2Status fmi2SetString(fmi2Component c, const fmi2ValueReference vr[], size_t nvr, const fmi2String[]) {

@@ -73,23 +73,18 @@ bool requiredVariablesAllowed(const fmu::Model& model, const fmu::Logger& logger
 // The master's callback as the core's two hooks: before each internal step when an input is
 // required (the master sets it), after each one (the master reads, may ask for an early return).
 void connectIntermediateUpdate(Fmi3Instance* raw, bool inputsRequired) {
-    if (inputsRequired)
-        raw->instance->setIntermediateInputs([raw](double time) {
-            fmi3Boolean requested = fmi3False;
-            fmi3Float64 at = time;
-            raw->intermediateUpdate(raw->environment, time, /*intermediateVariableSetRequested=*/fmi3True,
-                                    /*intermediateVariableGetAllowed=*/fmi3False,
-                                    /*intermediateStepFinished=*/fmi3False, /*canReturnEarly=*/fmi3False, &requested,
-                                    &at);
-        });
-    raw->instance->setIntermediateUpdate([raw](double time) {
+    // One call of the master's callback at `time`, before the step (set) or after it: when to end.
+    const auto call = [raw](double time, bool set) {
         fmi3Boolean requested = fmi3False;
         fmi3Float64 at = time;
-        raw->intermediateUpdate(raw->environment, time, /*intermediateVariableSetRequested=*/fmi3False,
-                                /*intermediateVariableGetAllowed=*/fmi3True,
-                                /*intermediateStepFinished=*/fmi3True, raw->earlyReturnAllowed, &requested, &at);
-        return requested && raw->earlyReturnAllowed ? at : HUGE_VAL;
-    });
+        const fmi3Boolean canReturnEarly = set ? fmi3False : raw->earlyReturnAllowed;
+        raw->intermediateUpdate(raw->environment, time, /*intermediateVariableSetRequested=*/set,
+                                /*intermediateVariableGetAllowed=*/!set, /*intermediateStepFinished=*/!set,
+                                canReturnEarly, &requested, &at);
+        return requested && canReturnEarly ? at : HUGE_VAL;
+    };
+    if (inputsRequired) raw->instance->setIntermediateInputs([call](double time) { call(time, true); });
+    raw->instance->setIntermediateUpdate([call](double time) { return call(time, false); });
 }
 
 }  // namespace

@@ -403,13 +403,10 @@ def simulate(fmu, start, stop, step, parameters: dict, stimuli, outputs, fmu_sta
     from .driver import unzipped
 
     unzipdir, md = unzipped(fmu)
-    if uses_probes(parameters, outputs) and md.fmiVersion.startswith("3"):
-        printed = io.StringIO()
-        with contextlib.redirect_stdout(printed):
-            return simulate_probe_arrays(fmu, start, stop, step, parameters, stimuli, outputs, fmu_state)
-
     printed = io.StringIO()
     with contextlib.redirect_stdout(printed):  # fmpy prints a warning per input the CSV leaves out
+        if uses_probes(parameters, outputs) and md.fmiVersion.startswith("3"):
+            return simulate_probe_arrays(fmu, start, stop, step, parameters, stimuli, outputs, fmu_state)
         result = simulate_fmu(
             unzipdir,
             model_description=md,

@@ -86,42 +86,41 @@ public:
           saddle_(saddlePoint(k, root), saddleOrder(stiffnessOrder, root)),
           at_(saddle_.positions()) {}
 
-    using RowBlock = SparseCholesky::RowBlock;
-    // The responses to a block of functionals as loads: F (rows of `loads` listed in `which`) in,
-    // f Q0 S⁻¹ Q0ᵀ Fᵀ out for each functional set f in `read` (results[i]: read[i].rows() × block),
-    // all in the saddle factor's order, so that only the rows the functionals touch are filled and
-    // read (no permutation of the whole block, no n × block displacement).
-    void respond(const SparseRows& loads, const std::vector<Eigen::Index>& which,
-                 const std::vector<const SparseRows*>& read, std::vector<RowBlock>& results) const {
+    // A block of functionals as loads: F (rows `which` of `loads`) in, Q0 S⁻¹ Q0ᵀ Fᵀ solved in the
+    // saddle factor's order from row `from` on (SparseCholesky::solveInOrder), read by response().
+    void solve(const SparseRows& loads, const std::vector<Eigen::Index>& which, Eigen::Index from = 0) const {
         const auto k = static_cast<Eigen::Index>(which.size());
         w_.setZero(n_ + q_, k);
         for (Eigen::Index j = 0; j < k; ++j)
             for (SparseRows::InnerIterator it(loads, which[std::size_t(j)]); it; ++it)
                 w_(at_[std::size_t(it.col())], j) += it.value();
-        saddle_.solveInOrder(w_);
-        results.resize(read.size());
-        for (std::size_t f = 0; f < read.size(); ++f) {
-            const SparseRows& rows = *read[f];
-            results[f].setZero(rows.rows(), k);
-            for (Eigen::Index i = 0; i < rows.rows(); ++i)
-                for (SparseRows::InnerIterator it(rows, i); it; ++it)
-                    results[f].row(i) += it.value() * w_.row(at_[std::size_t(it.col())]);
-        }
+        saddle_.solveInOrder(w_, from);
+    }
+    // f_i Q0 S⁻¹ Q0ᵀ Fᵀ for the block last solved (1 × block): row i of the functionals f, whose dofs
+    // must all be eliminated from the solve's `from` on. Only the rows f_i touches are read: no
+    // permutation of the whole block, no n × block displacement.
+    template <class Row>
+    void response(const SparseRows& f, Eigen::Index i, Row&& out) const {
+        out.setZero();
+        for (SparseRows::InnerIterator it(f, i); it; ++it) out += it.value() * w_.row(at_[std::size_t(it.col())]);
     }
 
-    // The functionals (rows over the dofs) by where their first dof is eliminated: blocks of
-    // neighbours in this order share most of their forward sweeps' paths.
-    std::vector<Eigen::Index> byElimination(const SparseRows& f) const {
-        const std::vector<int>& at = at_;
-        std::vector<std::pair<int, Eigen::Index>> key;
+    // The functionals (rows over the dofs) by where their first dof is eliminated, with that place:
+    // blocks of neighbours in this order share most of their forward sweeps' paths, and every later
+    // functional lies wholly after an earlier one's first place.
+    struct Eliminated {
+        int first;
+        Eigen::Index row;
+        bool operator<(const Eliminated& o) const { return first != o.first ? first < o.first : row < o.row; }
+    };
+    std::vector<Eliminated> byElimination(const SparseRows& f) const {
+        std::vector<Eliminated> order;
         for (Eigen::Index i = 0; i < f.rows(); ++i) {
             int first = static_cast<int>(n_ + q_);
-            for (SparseRows::InnerIterator it(f, i); it; ++it) first = std::min(first, at[std::size_t(it.col())]);
-            key.emplace_back(first, i);
+            for (SparseRows::InnerIterator it(f, i); it; ++it) first = std::min(first, at_[std::size_t(it.col())]);
+            order.push_back({first, i});
         }
-        std::sort(key.begin(), key.end());
-        std::vector<Eigen::Index> order;
-        for (const auto& k : key) order.push_back(k.second);
+        std::sort(order.begin(), order.end());
         return order;
     }
 
@@ -165,7 +164,7 @@ private:
     Eigen::Index n_, q_;
     SparseCholesky saddle_;
     std::vector<int> at_;  // where each row of the saddle point is eliminated
-    mutable RowBlock w_;  // the block being solved (one instance, one thread: the condensation's)
+    mutable SparseCholesky::RowBlock w_;  // the block being solved (one instance, one thread: the condensation's)
 };
 
 // Right-hand sides per block: one pass over the factor each, (n + q) × kBlock doubles at a time
@@ -210,38 +209,69 @@ void condenseSparse(const ClampedPlate& plate, const Eigen::SparseMatrix<double>
         c.modalRotationInertia = modes.transpose() * plate.rotationInertia;
         if (nl > 0) c.recoveryModes = recovery * modes;
     }
-    // The massless part, every massive mode excluded: D = C Q0 S⁻¹ Q0ᵀ Cᵀ block by block (rows
-    // eliminated near each other together), the recovery functionals on the same solves, then the load.
+    // The massless part, every massive mode excluded: D = C Q0 S⁻¹ Q0ᵀ Cᵀ block by block, rows
+    // eliminated near each other together (docs/theory.md §17).
     const MasslessFlexibility massless(stiffnessOrder, plate.stiffness, root);
-    c.delassus.resize(r, r);
+    const std::vector<MasslessFlexibility::Eliminated> order = massless.byElimination(rows);
+    // Few recovery functionals (no stress_outputs): D's triangle alone — block b's solve stops at its
+    // first row's place, since every later block's rows lie after it (60 % of the full sweeps' work on
+    // 112x40, measured) — and the functionals on solves of their own, D being symmetric. Many: they
+    // ride on the rows' full solves.
+    const bool triangle = 4 * nl <= r;
+    Eigen::MatrixXd sortedT(r, r);  // sortedT(j, i) = D(order[i], order[j]) (the triangle: j ≤ i's block)
     if (nl > 0) c.recoveryRows.resize(nl, r);
-    const std::vector<Eigen::Index> order = massless.byElimination(rows);
-    std::vector<const SparseRows*> read{&rows};
-    if (nl > 0) read.push_back(&recovery);
-    std::vector<MasslessFlexibility::RowBlock> y;
+    std::vector<Eigen::Index> block;
     for (Eigen::Index first = 0; first < r; first += kBlock) {
-        const std::vector<Eigen::Index> block(order.begin() + first, order.begin() + std::min(r, first + kBlock));
-        massless.respond(rows, block, read, y);
-        for (std::size_t j = 0; j < block.size(); ++j) c.delassus.col(block[j]) = y[0].col(Eigen::Index(j));
-        // L's rows are stored row-major: written in the blocks' order, each row permuted below
-        // (a column at a time would miss the cache at every entry: ~1 s on 112x40).
-        if (nl > 0) c.recoveryRows.middleCols(first, Eigen::Index(block.size())) = y[1];
+        const Eigen::Index k = std::min(r - first, kBlock);
+        block.clear();
+        for (Eigen::Index j = first; j < first + k; ++j) block.push_back(order[std::size_t(j)].row);
+        massless.solve(rows, block, triangle ? order[std::size_t(first)].first : 0);
+        for (Eigen::Index i = triangle ? first : 0; i < r; ++i)
+            massless.response(rows, order[std::size_t(i)].row, sortedT.col(i).segment(first, k).transpose());
+        // L's rows are stored row-major: written in the blocks' order, each row permuted below.
+        if (!triangle)
+            for (Eigen::Index l = 0; l < nl; ++l)
+                massless.response(recovery, l, c.recoveryRows.row(l).segment(first, k));
     }
-    if (nl > 0) {
+    if (triangle) {
+        for (Eigen::Index j = 0; j < r; ++j) sortedT.col(j).tail(r - j - 1) = sortedT.row(j).tail(r - j - 1);
+    } else {
+        sortedT = 0.5 * (sortedT + sortedT.transpose()).eval();
         Eigen::RowVectorXd sorted;
-        for (Eigen::Index i = 0; i < nl; ++i) {
-            sorted = c.recoveryRows.row(i);
-            for (Eigen::Index j = 0; j < r; ++j) c.recoveryRows(i, order[std::size_t(j)]) = sorted[j];
+        for (Eigen::Index l = 0; l < nl; ++l) {
+            sorted = c.recoveryRows.row(l);
+            for (Eigen::Index j = 0; j < r; ++j) c.recoveryRows(l, order[std::size_t(j)].row) = sorted[j];
         }
     }
-    c.delassus = 0.5 * (c.delassus + c.delassus.transpose()).eval();
+    c.delassus.resize(r, r);
+    for (Eigen::Index j = 0; j < r; ++j)
+        for (Eigen::Index i = 0; i < r; ++i)
+            c.delassus(order[std::size_t(i)].row, order[std::size_t(j)].row) = sortedT(j, i);
+    if (triangle)  // L Q0 S⁻¹ Q0ᵀ Cᵀ = (C Q0 S⁻¹ Q0ᵀ Lᵀ)ᵀ: the functionals as loads, read at the rows
+        for (Eigen::Index first = 0; first < nl; first += kBlock) {
+            const Eigen::Index k = std::min(nl - first, kBlock);
+            block.clear();
+            for (Eigen::Index l = first; l < first + k; ++l) block.push_back(l);
+            massless.solve(recovery, block);
+            for (Eigen::Index i = 0; i < r; ++i)
+                massless.response(rows, i, c.recoveryRows.col(i).segment(first, k).transpose());
+        }
     // The load: F as a one-row functional, read by C, by F itself and by the recovery functionals.
-    SparseRows load = plate.pressureLoad.sparseView().transpose();
-    read.insert(read.begin() + 1, &load);
-    massless.respond(load, {0}, read, y);
-    c.rowLoad = y[0].col(0);
-    c.loadFlexibility = y[1](0, 0);
-    if (nl > 0) c.recoveryLoad = y[2].col(0);
+    const SparseRows load = plate.pressureLoad.sparseView().transpose();
+    massless.solve(load, {0});
+    Eigen::RowVectorXd one(1);
+    c.rowLoad.resize(r);
+    for (Eigen::Index i = 0; i < r; ++i) {
+        massless.response(rows, i, one);
+        c.rowLoad[i] = one[0];
+    }
+    massless.response(load, 0, one);
+    c.loadFlexibility = one[0];
+    c.recoveryLoad.resize(nl);
+    for (Eigen::Index l = 0; l < nl; ++l) {
+        massless.response(recovery, l, one);
+        c.recoveryLoad[l] = one[0];
+    }
 }
 
 }  // namespace plate

@@ -83,11 +83,11 @@ CacheKey modalBasisKey(const PlateParameters& p, bool completeEngine) {
 }
 
 // condense(clamped, R, the output rows, modes, the recovery functionals): the functionals are the
-// probes' points (their count, then each) and samples the space fixes.
+// probes' points (their count, then each) and, with stress_outputs, samples the space fixes.
 CacheKey condensedPlateKey(const PlateParameters& p) {
     CacheKey key("condensed plate");
     const OutputParameters& o = p.outputs;
-    addPlate(key, p).add(p.law.modes).add(double(o.probeCount()));
+    addPlate(key, p).add(p.law.modes).add(o.stressOutputs ? 1 : 0).add(double(o.probeCount()));
     for (std::size_t k = 0; k < o.probeCount(); ++k) key.add(o.probeX[k]).add(o.probeY[k]);
     return key;
 }

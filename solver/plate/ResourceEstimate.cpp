@@ -53,11 +53,14 @@ constexpr double kSaddleFlops = 2.5;
 // perf of plate_bench init_only=1 (flow, 100 modes): 56x20, the saddle's solves ~0.9 s for 9 GFlop;
 // 112x40, ~15 s for 218 GFlop and ~2.9 s of dense kernels (r = 4593).
 constexpr double kPerSolveFlop = 0.08e-9;
+// The rows' solves without stress_outputs (D's triangle alone, CondensedSparse.cpp) against full
+// ones: 112x40, the forward sweeps 16 % of a full solve's work, the backward ones cut at each
+// block's first row 60 % of theirs (0.16 + 0.84 · 0.6).
+constexpr double kTriangleWork = 0.66;
 // Per flop of a Lanczos product's solve, one right-hand side (Spectra, CondensedSparse.cpp): 56x20,
 // 201 products of 4 nnz(L) = 4.5 MFlop in 0.37 s; 112x40, 26.8 MFlop each in 3.0 s.
 constexpr double kPerLanczosFlop = 0.5e-9;
 constexpr double kPerRowCube = 0.3e-10;
-constexpr int kSubspaceIterations = 60;  // typical subspace iterations (Spectrum.cpp, up to 300)
 constexpr int kPowerIterations = 300;  // typical power iterations for κ_h (up to 2000)
 
 // dof → elements containing it, in compressed rows.
@@ -202,20 +205,24 @@ namespace {
 bool sparseCondensation(const PlateParameters& p, double massive) {
     return !denseCondensationServes(static_cast<Eigen::Index>(massive), p.law.modes);
 }
-// Lanczos' products for m modes (CondensedSparse.cpp: the kept ones and as many more, at least 80).
+// Lanczos' products for m modes (CondensedSparse.cpp, Spectrum.cpp: the kept ones and as many more, at
+// least 80).
 double lanczosSteps(double kept) { return kept + std::max(80.0, kept); }
 
 // The modal engines' memory beyond the clamped matrices (bytes) and their spectrum time (s).
 void modalCost(const PlateParameters& p, const ProblemSize& s, EngineKind engine, double& bytes, double& seconds) {
     const double n = double(s.dofs), c = double(s.contactVertices);
     const double m = engine == EngineKind::CompleteModal ? n : double(p.law.modes);
-    const bool subspace = engine == EngineKind::ReducedModal && ((4 * m <= n && n > 1200) || n > 3000);
-    if (subspace) {
-        const double q = std::min(n, std::max(2 * m, m + 16));  // Spectrum.cpp's block size
-        bytes = factorBytes(s) + kDouble * (5 * n * q + 4 * q * q);
-        seconds = s.factorFlops * kPerFactorFlop + kSubspaceIterations * q *
-                                                       (4.0 * double(s.factorNonZeros) + 4.0 * double(s.nonZeros)) *
-                                                       kPerFactorFlop;
+    const bool lanczos = engine == EngineKind::ReducedModal && ((4 * m <= n && n > 1200) || n > 3000);
+    if (lanczos) {
+        // Spectrum.cpp's Lanczos: per step a solve with the factor of K, a product with M and the
+        // basis' reorthogonalization (n × steps, twice: measured 56x20 on 60 modes 1.64 s, 112x40 on
+        // 100 modes 11.9 s through fmpy); the basis, the Ritz vectors and the factor kept.
+        const double steps = std::min(n, lanczosSteps(m));
+        bytes = factorBytes(s) + kDouble * (2 * n * steps + steps * steps);
+        seconds = s.factorFlops * kPerFactorFlop +
+                  steps * ((4.0 * double(s.factorNonZeros) + 2.0 * double(s.nonZeros)) * kPerLanczosFlop +
+                           4.0 * n * steps * kPerFactorFlop);
     } else {
         bytes = kDenseEigenMatrices * kDouble * n * n;
         seconds = kPerDenseEigenCube * n * n * n;
@@ -223,17 +230,20 @@ void modalCost(const PlateParameters& p, const ProblemSize& s, EngineKind engine
     bytes += kDouble * (n * m + m * c);  // Φ and (CΦ)ᵀ kept for the run
 }
 
-// Stress and probes (docs/theory.md §23): about three functionals per vertex (the vertices'
-// curvatures; the root's and the probes' are a few more), sparse rows over an element's dofs, then
+// Stress and probes (docs/theory.md §23): with stress_outputs about three functionals per vertex
+// (the vertices' curvatures; the root's are a few more), else the probes' alone; sparse rows over an element's dofs, then
 // in the engine's coordinates: dense over the modes (modal), over the massive modes and the
 // constraint rows with the temporaries of their condensation (conserving), or a sparse copy.
-double recoveryBytes(const PlateParameters& p, const ProblemSize& s, EngineKind engine, double massive, double rows) {
+double recoveryBytes(const PlateParameters& p, const ProblemSize& s, EngineKind engine, bool sparse, double massive,
+                     double rows) {
     const double n = double(s.dofs);
-    const double recoveryRows = 3.0 * double(s.contactVertices + p.mesh.ny + 1) + 2.0 * p.mesh.ny + 5.0;
+    const double recoveryRows = p.outputs.stressOutputs
+                                    ? 3.0 * double(s.contactVertices + p.mesh.ny + 1) + 2.0 * p.mesh.ny + 5.0
+                                    : double(p.outputs.probeCount()) + 5.0;
     const double perRow = p.mesh.element == ElementType::Fvs ? 12.0 : 21.0;
     double recovery = (kTriplet + kEntry) * recoveryRows * perRow;
     if (engine == EngineKind::Condensed)
-        recovery += kDouble * recoveryRows * (3.0 * massive + 2.0 * rows);
+        recovery += kDouble * recoveryRows * (3.0 * massive + (sparse ? 1.0 : 2.0) * rows);  // sparse: in place
     else if (engine == EngineKind::Sparse)
         recovery += kEntry * recoveryRows * perRow;
     else
@@ -256,7 +266,8 @@ void estimateTimes(const PlateParameters& p, const ProblemSize& s, double massiv
         const double kept = p.law.modes;
         e.factorSeconds = 2 * kPerAnalysisEntry * z + (1.0 + kSaddleFlops) * kPerFactorFlop * s.factorFlops;
         e.spectrumSeconds = lanczosSteps(kept) * 4.0 * l * kPerLanczosFlop +
-                            (kept + kSaddleFill * (rows + 1)) * 4.0 * l * kPerSolveFlop +
+                            (kept + kSaddleFill * (rows * (p.outputs.stressOutputs ? 1.0 : kTriangleWork) + 1)) * 4.0 *
+                                l * kPerSolveFlop +
                             kPerRowCube * rows * rows * rows;
     } else if (e.engine == EngineKind::Condensed) {
         // One factor of K; a solve per massive coordinate and per row; the dense eigen solution of T.
@@ -314,9 +325,10 @@ ResourceEstimate estimateResources(const PlateParameters& p, const ProblemSize& 
         // sides, the massless solves' block ((n + q) × 64) and its rows read, the rows' matrices.
         const double kept = p.law.modes;
         e.factorsMB = kSaddleFill * factorBytes(s) / kMB;
-        // (three r × r matrices, not sixteen as below: measured 174 MB at 56x20, 1978 MB at 112x40, flow)
+        // (six r × r matrices, not sixteen as below: D sorted and in place, then the schemes'; measured
+        // 1484 MB at 112x40 on 100 modes, flow)
         engineBytes = kDouble * (massive * lanczosSteps(kept) + 2 * n * kept + 64 * (n + massive) + 2 * 64 * rows +
-                                 rows * kept + 3 * rows * rows) +
+                                 rows * kept + 6 * rows * rows) +
                       kSaddleFill * factorBytes(s);
         if (p.law.timeScheme == TimeScheme::Flow && p.refinement.tolerance > 0.0)
             engineBytes += kDouble * (3 * std::log2(double(p.refinement.maxSubsteps)) * rows * rows + rows * kept);
@@ -347,7 +359,7 @@ ResourceEstimate estimateResources(const PlateParameters& p, const ProblemSize& 
     }
     // (the sparse condensation's recovery rows reach the kept modes only, not every massive one)
     const bool sparse = e.engine == EngineKind::Condensed && sparseCondensation(p, massive);
-    const double recovery = recoveryBytes(p, s, e.engine, sparse ? double(p.law.modes) : massive, rows);
+    const double recovery = recoveryBytes(p, s, e.engine, sparse, sparse ? double(p.law.modes) : massive, rows);
     engineBytes += recovery;
     phases += recovery;
     e.engineMB = engineBytes / kMB;

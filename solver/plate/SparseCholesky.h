@@ -36,10 +36,8 @@ public:
 
     Eigen::Index size() const { return n_; }
     long long factorNonZeros() const;
-    bool supernodal() const;
     std::vector<int> ordering() const;  // the fill-reducing order: row ordering()[k] eliminated k-th
     std::vector<int> positions() const;  // its inverse: row i eliminated positions()[i]-th
-    static const char* backend();  // "CHOLMOD" or "Eigen"
 
     // The symbolic analysis alone of a symmetric pattern given by its lower triangle in
     // compressed columns (columnStart has n + 1 entries; rows sorted within each column, the
@@ -57,9 +55,11 @@ public:
     // Allocates: for the setup, not the step.
     void solve(const Eigen::MatrixXd& b, Eigen::MatrixXd& x) const;
     // The same in the factor's order, without the permutations: row k of w is row ordering()[k]
-    // of B and X (for callers that fill and read a few rows of many, positions()).
+    // of B and X (for callers that fill and read a few rows of many, positions()). Only the rows
+    // from `from` on are solved (a row's solution needs only the rows eliminated after it); the
+    // ones before are left as the forward sweep made them.
     using RowBlock = Eigen::Matrix<double, Eigen::Dynamic, Eigen::Dynamic, Eigen::RowMajor>;
-    void solveInOrder(RowBlock& w) const;
+    void solveInOrder(RowBlock& w, Eigen::Index from = 0) const;
 
 private:
     struct Workspace;

@@ -94,8 +94,6 @@ long long SparseCholesky::factorNonZeros() const {
     return nnz;
 }
 
-bool SparseCholesky::supernodal() const { return ws_->factor->is_super != 0; }
-
 std::vector<int> SparseCholesky::ordering() const {
     const auto* perm = static_cast<const int*>(ws_->factor->Perm);
     return std::vector<int>(perm, perm + n_);
@@ -107,8 +105,6 @@ std::vector<int> SparseCholesky::positions() const {
     for (Eigen::Index k = 0; k < n_; ++k) at[std::size_t(perm[k])] = static_cast<int>(k);
     return at;
 }
-
-const char* SparseCholesky::backend() { return "CHOLMOD"; }
 
 SymbolicFactor SparseCholesky::analyze(Eigen::Index n, const std::vector<int>& columnStart,
                                        const std::vector<int>& rowIndex) {
@@ -176,8 +172,9 @@ inline void divide(double* y, double d, Eigen::Index k) {
 // w (n × k, row-major, in the factor's order) ← (L Lᵀ)⁻¹ w, or (L Δ Lᵀ)⁻¹ w with Δ in L's diagonal
 // slots; the diagonal first in each column of L. A column whose row of the block is still zero in
 // the forward sweep changes nothing: skipped, so that unit right-hand sides cost only their paths
-// up the elimination tree there.
-PLATE_WIDE_CLONES void sweeps(const cholmod_factor& f, Eigen::Index n, Eigen::Index k, double* w) {
+// up the elimination tree there. The backward sweep stops at row `from`: a row's solution needs
+// only those eliminated after it, so rows from `from` on are exact and the ones before unsolved.
+PLATE_WIDE_CLONES void sweeps(const cholmod_factor& f, Eigen::Index n, Eigen::Index k, double* w, Eigen::Index from) {
     const auto* start = static_cast<const int*>(f.p);
     const auto* count = static_cast<const int*>(f.nz);
     const auto* row = static_cast<const int*>(f.i);
@@ -191,8 +188,8 @@ PLATE_WIDE_CLONES void sweeps(const cholmod_factor& f, Eigen::Index n, Eigen::In
             subtractScaled(w + Eigen::Index(row[t]) * k, wj, value[t], k);
     }
     if (!ll)
-        for (Eigen::Index j = 0; j < n; ++j) divide(w + j * k, value[start[j]], k);  // z ← Δ⁻¹ z
-    for (Eigen::Index j = n - 1; j >= 0; --j) {  // Lᵀ y = z
+        for (Eigen::Index j = from; j < n; ++j) divide(w + j * k, value[start[j]], k);  // z ← Δ⁻¹ z
+    for (Eigen::Index j = n - 1; j >= from; --j) {  // Lᵀ y = z
         double* wj = w + j * k;
         for (int t = start[j] + 1; t < start[j] + count[j]; ++t)
             subtractScaled(wj, w + Eigen::Index(row[t]) * k, value[t], k);
@@ -205,13 +202,15 @@ PLATE_WIDE_CLONES void sweeps(const cholmod_factor& f, Eigen::Index n, Eigen::In
 // The block's rows are dofs with their right-hand sides side by side (row-major): each column of
 // the simplicial L is read once for the whole block and applied as a vectorized row update, where
 // cholmod_solve2 reads L once per four right-hand sides (CondensedSparse.cpp's massless solves).
-void SparseCholesky::solveInOrder(RowBlock& w) const { sweeps(*ws_->factor, n_, w.cols(), w.data()); }
+void SparseCholesky::solveInOrder(RowBlock& w, Eigen::Index from) const {
+    sweeps(*ws_->factor, n_, w.cols(), w.data(), from);
+}
 
 void SparseCholesky::solve(const Eigen::MatrixXd& b, Eigen::MatrixXd& x) const {
     const auto* perm = static_cast<const int*>(ws_->factor->Perm);
     RowBlock w(n_, b.cols());
     for (Eigen::Index r = 0; r < n_; ++r) w.row(r) = b.row(perm[r]);
-    sweeps(*ws_->factor, n_, b.cols(), w.data());
+    sweeps(*ws_->factor, n_, b.cols(), w.data(), 0);
     x.resize(n_, b.cols());
     for (Eigen::Index r = 0; r < n_; ++r) x.row(perm[r]) = w.row(r);
 }

@@ -8,8 +8,8 @@
 namespace plate {
 
 // The m lowest modes, M-orthonormal, ascending (modes ≤ 0 or ≥ the dof count: all of them).
-// Dense generalized eigensolver for small spaces, subspace iteration with the CHOLMOD factor
-// of K for large ones. Throws std::runtime_error if it fails.
+// Dense generalized eigensolver for small spaces, Spectra's shift-invert Lanczos with the CHOLMOD
+// factor of K for a few modes of large ones. Throws std::runtime_error if it fails.
 void lowestModes(const ClampedPlate& plate, int modes, Eigen::MatrixXd& phi, Eigen::VectorXd& omega2);
 
 // Does lowestModes(plate, modes) take the dense path (of a space of `dofs`)? There it solves for every
@@ -20,8 +20,8 @@ bool denseSolutionServes(Eigen::Index dofs, int modes);
 void leadingModes(const Eigen::MatrixXd& allPhi, const Eigen::VectorXd& allOmega2, int modes, Eigen::MatrixXd& phi,
                   Eigen::VectorXd& omega2);
 
-// Entry i of start vector j of the iterative eigensolvers (subspace iteration, power iteration,
-// CondensedSparse.cpp's Lanczos): deterministic, bit for bit the same on every CPU.
+// Entry i of start vector j of the iterative eigensolvers (Lanczos here and in CondensedSparse.cpp,
+// power iteration): deterministic, bit for bit the same on every CPU.
 double startEntry(Eigen::Index i, Eigen::Index j);
 
 // κ_h = λ_max(M⁻¹K), s⁻² (docs/theory.md).

@@ -21,7 +21,8 @@ class FieldRecovery {
 public:
     FieldRecovery(const FiniteElementSpace& space, const ClampedPlate& clamped, const PlateParameters& p);
 
-    // Every functional over the free dofs: the probes, the root's samples, then 3 per vertex sample.
+    // Every functional over the free dofs: the probes, with stress_outputs the root's samples and 3 per
+    // vertex sample, then w at the vertices that are no contact row.
     const SparseRows& functionals() const { return functionals_; }
 
     // The largest |w_xx| over the clamped edge's samples at the output level: the root's peak, tracked

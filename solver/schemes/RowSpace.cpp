@@ -51,23 +51,18 @@ void RowSpace::select(const CondensedState& s, const Eigen::VectorXd& rowsStart,
     const Eigen::Index n = Eigen::Index(index_.size());
     if (index_ == gathered_) return;
     gathered_.assign(index_.begin(), index_.end());  // within the reserved capacity
-    for (Eigen::Index k = 0; k < n; ++k) {
-        const int i = index_[std::size_t(k)];
-        modes_.col(k) = c.rowModesT.col(i);
-        load_[k] = c.rowLoad[i];
-        x_[std::size_t(k)] = c.rowAbscissae[std::size_t(i)];
-        for (Eigen::Index a = 0; a < n; ++a) delassus_(a, k) = c.delassus(index_[std::size_t(a)], i);
-    }
+    modes_.leftCols(n) = c.rowModesT(Eigen::all, indices());
+    delassus_.topLeftCorner(n, n) = c.delassus(indices(), indices());
+    load_.head(n) = c.rowLoad(indices());
     load_.tail(c.rows() - n).setZero();
     std::fill(x_.begin() + n, x_.end(), 0.0);
+    for (Eigen::Index k = 0; k < n; ++k) x_[std::size_t(k)] = c.rowAbscissae[std::size_t(index_[std::size_t(k)])];
     // C's bounds; past C they are ∓∞: those entries never bind (StepSpace).
     constexpr double infinity = std::numeric_limits<double>::infinity();
     lower_.setConstant(-infinity);
     upper_.setConstant(infinity);
-    for (Eigen::Index k = 0; k < n; ++k) {
-        lower_[k] = lowerAll_[index_[std::size_t(k)]];
-        upper_[k] = upperAll_[index_[std::size_t(k)]];
-    }
+    lower_.head(n) = lowerAll_(indices());
+    upper_.head(n) = upperAll_(indices());
     endColumns_->useLeading(int(n));
     endQP_->forgetFactor();
     from_ = nullptr;
@@ -80,13 +75,8 @@ StepSpace RowSpace::space(const MidpointOperator& op) {
         from_ = &op;
         op_.h = op.h;
         op_.inverseH = op.inverseH;
-        for (Eigen::Index b = 0; b < n; ++b) {
-            const int j = index_[std::size_t(b)];
-            for (Eigen::Index a = 0; a < n; ++a) {
-                op_.w2(a, b) = op.w2(index_[std::size_t(a)], j);
-                op_.midpointMatrix(a, b) = 0.5 * op_.w2(a, b) + delassus_(a, b);
-            }
-        }
+        op_.w2.topLeftCorner(n, n) = op.w2(indices(), indices());
+        op_.midpointMatrix.topLeftCorner(n, n) = 0.5 * op_.w2.topLeftCorner(n, n) + delassus_.topLeftCorner(n, n);
         op_.midColumns->useLeading(int(n));
         op_.midQP->forgetFactor();
     }
@@ -110,15 +100,13 @@ StepState& RowSpace::enter(const StepState& from) {
     b.multiplierUsed = false;
     for (Eigen::VectorXd* v : {&in.s.force, &in.s.forcePrev, &in.s.forcePrev2}) v->tail(rest).setZero();
     for (auto* v : {&in.s.rowState, &in.s.midState}) std::fill(v->begin() + n, v->end(), 0);
+    in.s.force.head(n) = from.s.force(indices());
+    in.s.forcePrev.head(n) = from.s.forcePrev(indices());
+    in.s.forcePrev2.head(n) = from.s.forcePrev2(indices());
+    if (from.rowsKnown) in.rows.head(n) = from.rows(indices());
     for (std::size_t k = 0; k < index_.size(); ++k) {
-        const auto i = index_[k];
-        const auto j = Eigen::Index(k);
-        in.s.force[j] = from.s.force[i];
-        in.s.forcePrev[j] = from.s.forcePrev[i];
-        in.s.forcePrev2[j] = from.s.forcePrev2[i];
-        in.s.rowState[k] = from.s.rowState[std::size_t(i)];
-        in.s.midState[k] = from.s.midState[std::size_t(i)];
-        if (from.rowsKnown) in.rows[j] = from.rows[i];
+        in.s.rowState[k] = from.s.rowState[std::size_t(index_[k])];
+        in.s.midState[k] = from.s.midState[std::size_t(index_[k])];
     }
     return in;
 }
@@ -128,9 +116,9 @@ void RowSpace::leave(StepState& end, StepState& to) const {
     to.s.force.setZero();
     std::fill(to.s.rowState.begin(), to.s.rowState.end(), 0);
     std::fill(to.s.midState.begin(), to.s.midState.end(), 0);
+    to.s.force(indices()) = end.s.force.head(Eigen::Index(index_.size()));
     for (std::size_t k = 0; k < index_.size(); ++k) {
         const auto i = index_[k];
-        to.s.force[i] = end.s.force[Eigen::Index(k)];
         to.s.rowState[std::size_t(i)] = end.s.rowState[k];
         to.s.midState[std::size_t(i)] = end.s.midState[k];
     }

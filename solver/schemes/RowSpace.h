@@ -39,6 +39,9 @@ public:
     bool stayFree(const Eigen::VectorXd& rows, const Eigen::VectorXd& force) const;
 
 private:
+    // C as Eigen's index (a view of index_: an indexed view holds its index by value, and a copy allocates).
+    Eigen::Map<const Eigen::ArrayXi> indices() const { return {index_.data(), Eigen::Index(index_.size())}; }
+
     const CondensedPlate& plate_;
     const Eigen::VectorXd &lowerAll_, &upperAll_;
     std::vector<int> index_, gathered_;  // C: the rows that can touch, ascending; the C the data hold

@@ -89,7 +89,6 @@ public:
     }
 
     long long stepCount() const { return shared().step; }
-    double baseDisplacement() const { return shared().z; }  // z(t_n)
     double clampHeight(int level) const {  // z at the output level (0) or one of the two before it
         const SchemeState& s = shared();
         return atLevel(level, s.z, s.zPrev, s.zPrev2);
@@ -115,7 +114,6 @@ public:
     virtual double firstFrequency() const = 0;  // Hz, lowest mode of the plate as stepped
     virtual double kappa() const = 0;  // largest ω² of the plate as stepped, s⁻²
     double dt() const { return dt_; }
-    const Obstacles& obstacles() const { return obstacles_; }
 
     // The clamp's carrier (docs/theory.md §18–19), where the scheme carries the clamp: none by default.
     virtual Armature* carrier() { return nullptr; }
