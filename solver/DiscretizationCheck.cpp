@@ -32,15 +32,18 @@ PlateParameters DiscretizationCheck::companionParameters(const PlateParameters& 
     // §26; 4 sub-steps instead of 16 moved 28×10 on 40 modes by less than its distance from the
     // plate, docs/performance.md), and on a modal basis, whose free step costs the same on either
     // mesh, and in contact steps, whose sub-steps cost more than their rows, it costs a fraction of
-    // the plate's steps (the check ≤ 1.5× the plate's CPU). A dt at the edge of its range keeps the
-    // plate's.
+    // the plate's steps (on the complete basis the check 0.9–1.3× the plate's CPU; on a modal basis,
+    // whose companion is a complete coarse plate, 1.1–1.9× on 40 modes and up to 3.5× on two:
+    // docs/plate_front.json). A dt at the edge of its range keeps the plate's.
     c.refinement.tolerance = 0.0;
-    // Half the plate's modes, or every mode where that would leave fewer than two: on a truncated
-    // modal basis the truncation is the error, and a companion on the same `modes` makes the same one
-    // (theory §26: 7 × 3 and 14 × 5 on one mode 3e-4 m apart, both 3e-2 m from the plate); one mode
-    // against two cannot see it either where a symmetric drive leaves the second (the first torsion)
-    // at rest.
-    c.law.modes = plate.law.modes / 2 >= 2 ? plate.law.modes / 2 : 0;
+    // Every mode of the coarser mesh (the complete basis), whatever the plate's `modes`: on a truncated
+    // modal basis the truncation is part of the error, and only a companion that keeps the modes the
+    // plate drops sees it wherever the drive puts its energy (theory §26, "A truncated modal basis").
+    // A companion on the same `modes` makes the same truncation (7 × 3 and 14 × 5 on one mode 3e-4 m
+    // apart, both 3e-2 m from the plate); one on half of them misses every mode above the plate's own:
+    // 14 × 5 on 4 modes driven at the fourth bending mode (205 Hz) was 1.2e-3 m from the plate where the
+    // companion on 2 modes read 4e-4 m, and at 360 Hz 4.6e-3 m against 4.2e-4 m (tools/unseen_scenes.py).
+    c.law.modes = 0;
     c.refinement.substeps =
         (plate.refinement.substeps + 3) / 4;  // 16 → 4: on §5.2 28×10 on 40 modes is as near the plate
     c.law.dt = 2.0 * plate.law.dt;

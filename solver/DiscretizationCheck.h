@@ -1,9 +1,10 @@
 #pragma once
 // discretization_check (docs/theory.md §26): the run-time estimate of the error the mesh and the
 // modal basis make at the reported points. A companion plate on the mesh coarsened by two
-// (ceil(nx/2) × ceil(ny/2) cells, 2 Δt, every other parameter the same) is fed the same inputs and
-// follows the plate to each communication point; the largest difference of the reported points so
-// far, scaled by Richardson's factor for the refinement between the two meshes, is the estimate;
+// (ceil(nx/2) × ceil(ny/2) cells on every mode of that mesh, 2 Δt, every other parameter the
+// same) is fed the same inputs and follows the plate to each communication point; the largest
+// difference of the reported points so far, scaled by Richardson's factor for the refinement
+// between the two meshes, is the estimate;
 // past the mesh's horizon (the paper's law after its first impact, the meshes parted) a bound.
 // The plate itself never sees the companion: its results are the same bits with the check or
 // without it.
@@ -28,8 +29,8 @@ public:
     // it converges at all (2.41 at r = 2, 2.83 at the default mesh's r = 1.83).
     static constexpr double kAssumedOrder = 0.5;
     // The companion's parameters: the mesh coarsened by two in each direction (validate() has
-    // refused meshes of one cell and carried clamps), twice the step, no tolerance, no probes, no
-    // stress, no check of its own.
+    // refused meshes of one cell and carried clamps) on its complete basis whatever the plate's
+    // `modes`, twice the step, no tolerance, no probes, no stress, no check of its own.
     static PlateParameters companionParameters(const PlateParameters& plate);
     // Builds the companion of `plate` at its start (ParameterError when it cannot be: a stop its mesh
     // cannot resolve) and compares the two there.
