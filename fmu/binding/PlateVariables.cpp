@@ -272,7 +272,7 @@ const Row kRows[] = {
         "tolerance at max_contact_substeps sub-steps (the cap bounded their work; error_estimate includes them)"),
     booleanParameter(kVrDiscretizationCheck, "discretization_check", PARAMETER(outputs.discretizationCheck),
         "Estimate the error the mesh and the modal basis make (discretization_error) while the run goes: a companion "
-        "plate on the mesh coarsened by two (ceil(nx/2) x ceil(ny/2) cells, on half the modes) is fed the same "
+        "plate on the mesh coarsened by two (ceil(nx/2) x ceil(ny/2) cells, on every mode of that mesh) is fed the same "
         "inputs; the outputs stay "
         "the same bits; needs nx, ny >= 2 and base_drive displacement, velocity or acceleration (the theory, "
         "section 26)"),
