@@ -196,8 +196,6 @@ def run(fmu, parameters, drives, config, until, step, check=False):
     if check:
         params["discretization_check"] = True
     n = round(until / step)
-    points = np.empty((n, len(cv.REPORTED)))
-    estimate = np.empty(n)
     start = {name: signal(0.0)[0] for name, signal in drives}
     with PlateImpactFMU(
         fmu,
@@ -209,22 +207,8 @@ def run(fmu, parameters, drives, config, until, step, check=False):
         refs = [plate.vars[name].valueReference for name in cv.REPORTED]
         if check:
             refs.append(plate.vars["discretization_error"].valueReference)
-        vrs = [plate.vars[name].valueReference for name, _ in drives]
-        f = plate.fmu
-        cpu0 = time.process_time()
-        for k in range(n):
-            t = k * step
-            values = [signal(t) for _, signal in drives]
-            f.setReal(vrs, [v[0] for v in values])
-            f.setRealInputDerivatives(
-                [r for r in vrs for _ in (1, 2)], [1, 2] * len(vrs), [d for v in values for d in v[1:]]
-            )
-            f.doStep(currentCommunicationPoint=t, communicationStepSize=step)
-            out = f.getReal(refs)
-            points[k] = out[:3]
-            if check:
-                estimate[k] = out[3]
-        cpu = time.process_time() - cpu0
+        values, cpu = cv.communicate(plate, drives, n, step, refs)
+        points, estimate = values[:, :3], values[:, 3] if check else np.empty(n)
         said = [m for s, _, m in plate.log if s == 1 and "discretization_error is a bound" in m]
     warned_at = float(said[0].split("from t = ")[1].split(" s")[0]) if said else None
     return points, (estimate if check else None), warned_at, cpu
@@ -249,14 +233,7 @@ def measure(fmu, key, scene, log=print):
         n = round(w / step)
         p = cv.converged_plate(*(h[:n] for h in ladder))
         plates[w] = p.points
-        references[f"{w:g}"] = {
-            "order": p.order,
-            "d1": p.d1,
-            "d2": p.d2,
-            "converges": p.converges,
-            "uncertainty": p.uncertainty,
-            "verdict": p.verdict,
-        }
+        references[f"{w:g}"] = p.summary()
         log(f"   plate over {w:g} s: {p.verdict}; d1 {p.d1:.3g} d2 {p.d2:.3g}, uncertainty {p.uncertainty:.3g} m")
     configs = checked_configs(nx, ny) + scene["extra"](nx, ny)
     runs = []

@@ -109,6 +109,26 @@ class Run:
     warned_at: float | None = None  # when the FMU said discretization_error became a bound
 
 
+def communicate(plate, drives, n: int, step: float, refs):
+    """n communication steps of `step` s from t = 0, each drive (input name, signal(t) -> value and its
+    first two derivatives) set with its derivatives at the step's start; the values of `refs` after
+    each step (n × len(refs)) and the process CPU time of the loop."""
+    vrs = [plate.vars[name].valueReference for name, _ in drives]
+    f = plate.fmu
+    out = np.empty((n, len(refs)))
+    cpu0 = time.process_time()
+    for k in range(n):
+        t = k * step
+        values = [signal(t) for _, signal in drives]
+        f.setReal(vrs, [v[0] for v in values])
+        f.setRealInputDerivatives(
+            [r for r in vrs for _ in (1, 2)], [1, 2] * len(vrs), [d for v in values for d in v[1:]]
+        )
+        f.doStep(currentCommunicationPoint=t, communicationStepSize=step)
+        out[k] = f.getReal(refs)
+    return out, time.process_time() - cpu0
+
+
 def run(fmu, scene: Scene, config: dict, until: float, check=False) -> Run:
     """The scene on one configuration through the FMU, sampled every SAMPLE s up to `until`."""
     params = dict(scene.parameters, **config)
@@ -116,27 +136,13 @@ def run(fmu, scene: Scene, config: dict, until: float, check=False) -> Run:
         params["discretization_check"] = True
     t0 = time.perf_counter()
     n = round(until / SAMPLE)
-    points = np.empty((n, len(REPORTED)))
-    estimate = np.empty(n) if check else None
     with PlateImpactFMU(fmu, base0=scene.base(0.0)[0], load0=scene.load, logger=lambda *a: None, **params) as plate:
         setup = time.perf_counter() - t0
         refs = [plate.vars[name].valueReference for name in REPORTED]
         if check:
             refs.append(plate.vars["discretization_error"].valueReference)
-        vr_base = plate.vars["base_displacement"].valueReference
-        fmu_ = plate.fmu
-        cpu0 = time.process_time()
-        for k in range(n):
-            t = k * SAMPLE
-            z, zd, zdd = scene.base(t)
-            fmu_.setReal([vr_base], [z])
-            fmu_.setRealInputDerivatives([vr_base, vr_base], [1, 2], [zd, zdd])
-            fmu_.doStep(currentCommunicationPoint=t, communicationStepSize=SAMPLE)
-            values = fmu_.getReal(refs)
-            points[k] = values[:3]
-            if check:
-                estimate[k] = values[3]
-        cpu = time.process_time() - cpu0
+        values, cpu = communicate(plate, [("base_displacement", scene.base)], n, SAMPLE, refs)
+        points, estimate = values[:, :3], (values[:, 3] if check else None)
         said = [m for s, _, m in plate.log if s == 1 and "discretization_error is a bound" in m]
     warned_at = float(said[0].split("from t = ")[1].split(" s")[0]) if said else None
     return Run(dict(config), points, cpu / until, setup, estimate, warned_at)
@@ -153,6 +159,10 @@ class Plate:
     converges: bool
     uncertainty: float  # of the extrapolated plate: d2 / (2^p - 1), or d2 when it does not converge
     verdict: str
+
+    def summary(self) -> dict:
+        """What a report keeps of it: everything but the points."""
+        return {k: getattr(self, k) for k in ("order", "d1", "d2", "converges", "uncertainty", "verdict")}
 
 
 # Richardson's extrapolation is trusted only for a measured order in this range: below it the

@@ -90,14 +90,7 @@ def analyse(results, until, accuracy, windows=()):
         n = round(w / cv.SAMPLE)
         plate = cv.converged_plate(h[:n], h2[:n], h4[:n])
         plates[w] = plate.points
-        references[f"{w:g}"] = {
-            "order": plate.order,
-            "d1": plate.d1,
-            "d2": plate.d2,
-            "converges": plate.converges,
-            "verdict": plate.verdict,
-            "uncertainty": plate.uncertainty,
-        }
+        references[f"{w:g}"] = plate.summary()
     rows = []
     for name, r in results:
         if name.startswith("h"):
