@@ -259,19 +259,13 @@ void condenseSparse(const ClampedPlate& plate, const Eigen::SparseMatrix<double>
     // The load: F as a one-row functional, read by C, by F itself and by the recovery functionals.
     const SparseRows load = plate.pressureLoad.sparseView().transpose();
     massless.solve(load, {0});
-    Eigen::RowVectorXd one(1);
     c.rowLoad.resize(r);
-    for (Eigen::Index i = 0; i < r; ++i) {
-        massless.response(rows, i, one);
-        c.rowLoad[i] = one[0];
-    }
-    massless.response(load, 0, one);
-    c.loadFlexibility = one[0];
     c.recoveryLoad.resize(nl);
-    for (Eigen::Index l = 0; l < nl; ++l) {
-        massless.response(recovery, l, one);
-        c.recoveryLoad[l] = one[0];
-    }
+    for (Eigen::Index i = 0; i < r; ++i) massless.response(rows, i, c.rowLoad.segment(i, 1));
+    for (Eigen::Index l = 0; l < nl; ++l) massless.response(recovery, l, c.recoveryLoad.segment(l, 1));
+    Eigen::Matrix<double, 1, 1> flexibility;
+    massless.response(load, 0, flexibility);
+    c.loadFlexibility = flexibility[0];
 }
 
 }  // namespace plate
