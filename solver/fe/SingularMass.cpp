@@ -90,14 +90,17 @@ Eigen::Index numericalRank(const Eigen::SparseMatrix<double>& a) {
 }
 
 // Full column rank of A shown cheaply: A's columns of unit norm, the sparse Cholesky factor of AᵀA
-// (= RᵀR, R of A's QR in the same column order) with every pivot |R_kk| ≥ 1e-4, far above
-// numericalRank's threshold (1e-10 ‖A‖) and the Gram matrix's roundoff (1e-16 against R_kk² ≥ 1e-8).
-// Where it does not show it, the QR decides (the 56x20 plate: 0.1 s against 24 s).
+// (= RᵀR, R of A's QR in the same column order) with every pivot |R_kk| ≥ 1e-6: 100× numericalRank's
+// threshold (1e-10 ‖A‖_F, ‖A‖_F below 1e3 up to 1e6 columns), and R_kk² ≥ 1e-12 100× the Gram
+// matrix's roundoff (ε ‖A‖₂², ‖A‖₂² at most 1 + the ~60 columns one column meets). So the QR would
+// decide the same, at its cost: the 56x20 plate with singular_p0 0.1 s against 24 s; singular_p1dg,
+// whose smallest pivot falls like h³ (2.8e-4 on 14x5, 3.3e-5 on 28x10: under 1e-4, the bound before),
+// 28x20 0.3 s against 24 s. Where it does not show it, the QR decides.
 bool clearlyFullColumnRank(const Eigen::SparseMatrix<double>& a) {
     const Eigen::SparseMatrix<double> gram = a.transpose() * a;
     const Eigen::SimplicialLLT<Eigen::SparseMatrix<double>> llt(gram);
     return llt.info() == Eigen::Success &&
-           Eigen::VectorXd(llt.matrixL().nestedExpression().diagonal()).minCoeff() >= 1e-4;
+           Eigen::VectorXd(llt.matrixL().nestedExpression().diagonal()).minCoeff() >= 1e-6;
 }
 
 }  // namespace
