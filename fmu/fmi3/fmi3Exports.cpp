@@ -7,6 +7,18 @@
 #include "core/PrimaryCopy.h"
 #include "fmi3Functions.h"
 
+// The typed accessors, one shape each (fmi3GetBinary and fmi3SetBinary, with their sizes, stand alone).
+#define FMI3_GET(X, Name, T)                                                                                   \
+    X(fmi3Status, fmi3Get##Name,                                                                               \
+      (fmi3Instance instance, const fmi3ValueReference valueReferences[], size_t nValueReferences, T values[], \
+       size_t nValues),                                                                                        \
+      (instance, valueReferences, nValueReferences, values, nValues))
+#define FMI3_SET(X, Name, T)                                                                                         \
+    X(fmi3Status, fmi3Set##Name,                                                                                     \
+      (fmi3Instance instance, const fmi3ValueReference valueReferences[], size_t nValueReferences, const T values[], \
+       size_t nValues),                                                                                              \
+      (instance, valueReferences, nValueReferences, values, nValues))
+
 // X(return type, name, (parameters), (arguments))
 #define FMI3_FUNCTIONS(X)                                                                                              \
     X(const char*, fmi3GetVersion, (), ())                                                                             \
@@ -42,54 +54,18 @@
     X(fmi3Status, fmi3EnterEventMode, (fmi3Instance instance), (instance))                                             \
     X(fmi3Status, fmi3Terminate, (fmi3Instance instance), (instance))                                                  \
     X(fmi3Status, fmi3Reset, (fmi3Instance instance), (instance))                                                      \
-    X(fmi3Status, fmi3GetFloat32,                                                                                      \
-      (fmi3Instance instance, const fmi3ValueReference valueReferences[], size_t nValueReferences,                     \
-       fmi3Float32 values[], size_t nValues),                                                                          \
-      (instance, valueReferences, nValueReferences, values, nValues))                                                  \
-    X(fmi3Status, fmi3GetFloat64,                                                                                      \
-      (fmi3Instance instance, const fmi3ValueReference valueReferences[], size_t nValueReferences,                     \
-       fmi3Float64 values[], size_t nValues),                                                                          \
-      (instance, valueReferences, nValueReferences, values, nValues))                                                  \
-    X(fmi3Status, fmi3GetInt8,                                                                                         \
-      (fmi3Instance instance, const fmi3ValueReference valueReferences[], size_t nValueReferences, fmi3Int8 values[],  \
-       size_t nValues),                                                                                                \
-      (instance, valueReferences, nValueReferences, values, nValues))                                                  \
-    X(fmi3Status, fmi3GetUInt8,                                                                                        \
-      (fmi3Instance instance, const fmi3ValueReference valueReferences[], size_t nValueReferences, fmi3UInt8 values[], \
-       size_t nValues),                                                                                                \
-      (instance, valueReferences, nValueReferences, values, nValues))                                                  \
-    X(fmi3Status, fmi3GetInt16,                                                                                        \
-      (fmi3Instance instance, const fmi3ValueReference valueReferences[], size_t nValueReferences, fmi3Int16 values[], \
-       size_t nValues),                                                                                                \
-      (instance, valueReferences, nValueReferences, values, nValues))                                                  \
-    X(fmi3Status, fmi3GetUInt16,                                                                                       \
-      (fmi3Instance instance, const fmi3ValueReference valueReferences[], size_t nValueReferences,                     \
-       fmi3UInt16 values[], size_t nValues),                                                                           \
-      (instance, valueReferences, nValueReferences, values, nValues))                                                  \
-    X(fmi3Status, fmi3GetInt32,                                                                                        \
-      (fmi3Instance instance, const fmi3ValueReference valueReferences[], size_t nValueReferences, fmi3Int32 values[], \
-       size_t nValues),                                                                                                \
-      (instance, valueReferences, nValueReferences, values, nValues))                                                  \
-    X(fmi3Status, fmi3GetUInt32,                                                                                       \
-      (fmi3Instance instance, const fmi3ValueReference valueReferences[], size_t nValueReferences,                     \
-       fmi3UInt32 values[], size_t nValues),                                                                           \
-      (instance, valueReferences, nValueReferences, values, nValues))                                                  \
-    X(fmi3Status, fmi3GetInt64,                                                                                        \
-      (fmi3Instance instance, const fmi3ValueReference valueReferences[], size_t nValueReferences, fmi3Int64 values[], \
-       size_t nValues),                                                                                                \
-      (instance, valueReferences, nValueReferences, values, nValues))                                                  \
-    X(fmi3Status, fmi3GetUInt64,                                                                                       \
-      (fmi3Instance instance, const fmi3ValueReference valueReferences[], size_t nValueReferences,                     \
-       fmi3UInt64 values[], size_t nValues),                                                                           \
-      (instance, valueReferences, nValueReferences, values, nValues))                                                  \
-    X(fmi3Status, fmi3GetBoolean,                                                                                      \
-      (fmi3Instance instance, const fmi3ValueReference valueReferences[], size_t nValueReferences,                     \
-       fmi3Boolean values[], size_t nValues),                                                                          \
-      (instance, valueReferences, nValueReferences, values, nValues))                                                  \
-    X(fmi3Status, fmi3GetString,                                                                                       \
-      (fmi3Instance instance, const fmi3ValueReference valueReferences[], size_t nValueReferences,                     \
-       fmi3String values[], size_t nValues),                                                                           \
-      (instance, valueReferences, nValueReferences, values, nValues))                                                  \
+    FMI3_GET(X, Float32, fmi3Float32)                                                                                  \
+    FMI3_GET(X, Float64, fmi3Float64)                                                                                  \
+    FMI3_GET(X, Int8, fmi3Int8)                                                                                        \
+    FMI3_GET(X, UInt8, fmi3UInt8)                                                                                      \
+    FMI3_GET(X, Int16, fmi3Int16)                                                                                      \
+    FMI3_GET(X, UInt16, fmi3UInt16)                                                                                    \
+    FMI3_GET(X, Int32, fmi3Int32)                                                                                      \
+    FMI3_GET(X, UInt32, fmi3UInt32)                                                                                    \
+    FMI3_GET(X, Int64, fmi3Int64)                                                                                      \
+    FMI3_GET(X, UInt64, fmi3UInt64)                                                                                    \
+    FMI3_GET(X, Boolean, fmi3Boolean)                                                                                  \
+    FMI3_GET(X, String, fmi3String)                                                                                    \
     X(fmi3Status, fmi3GetBinary,                                                                                       \
       (fmi3Instance instance, const fmi3ValueReference valueReferences[], size_t nValueReferences,                     \
        size_t valueSizes[], fmi3Binary values[], size_t nValues),                                                      \
@@ -98,54 +74,18 @@
       (fmi3Instance instance, const fmi3ValueReference valueReferences[], size_t nValueReferences,                     \
        fmi3Clock values[]),                                                                                            \
       (instance, valueReferences, nValueReferences, values))                                                           \
-    X(fmi3Status, fmi3SetFloat32,                                                                                      \
-      (fmi3Instance instance, const fmi3ValueReference valueReferences[], size_t nValueReferences,                     \
-       const fmi3Float32 values[], size_t nValues),                                                                    \
-      (instance, valueReferences, nValueReferences, values, nValues))                                                  \
-    X(fmi3Status, fmi3SetFloat64,                                                                                      \
-      (fmi3Instance instance, const fmi3ValueReference valueReferences[], size_t nValueReferences,                     \
-       const fmi3Float64 values[], size_t nValues),                                                                    \
-      (instance, valueReferences, nValueReferences, values, nValues))                                                  \
-    X(fmi3Status, fmi3SetInt8,                                                                                         \
-      (fmi3Instance instance, const fmi3ValueReference valueReferences[], size_t nValueReferences,                     \
-       const fmi3Int8 values[], size_t nValues),                                                                       \
-      (instance, valueReferences, nValueReferences, values, nValues))                                                  \
-    X(fmi3Status, fmi3SetUInt8,                                                                                        \
-      (fmi3Instance instance, const fmi3ValueReference valueReferences[], size_t nValueReferences,                     \
-       const fmi3UInt8 values[], size_t nValues),                                                                      \
-      (instance, valueReferences, nValueReferences, values, nValues))                                                  \
-    X(fmi3Status, fmi3SetInt16,                                                                                        \
-      (fmi3Instance instance, const fmi3ValueReference valueReferences[], size_t nValueReferences,                     \
-       const fmi3Int16 values[], size_t nValues),                                                                      \
-      (instance, valueReferences, nValueReferences, values, nValues))                                                  \
-    X(fmi3Status, fmi3SetUInt16,                                                                                       \
-      (fmi3Instance instance, const fmi3ValueReference valueReferences[], size_t nValueReferences,                     \
-       const fmi3UInt16 values[], size_t nValues),                                                                     \
-      (instance, valueReferences, nValueReferences, values, nValues))                                                  \
-    X(fmi3Status, fmi3SetInt32,                                                                                        \
-      (fmi3Instance instance, const fmi3ValueReference valueReferences[], size_t nValueReferences,                     \
-       const fmi3Int32 values[], size_t nValues),                                                                      \
-      (instance, valueReferences, nValueReferences, values, nValues))                                                  \
-    X(fmi3Status, fmi3SetUInt32,                                                                                       \
-      (fmi3Instance instance, const fmi3ValueReference valueReferences[], size_t nValueReferences,                     \
-       const fmi3UInt32 values[], size_t nValues),                                                                     \
-      (instance, valueReferences, nValueReferences, values, nValues))                                                  \
-    X(fmi3Status, fmi3SetInt64,                                                                                        \
-      (fmi3Instance instance, const fmi3ValueReference valueReferences[], size_t nValueReferences,                     \
-       const fmi3Int64 values[], size_t nValues),                                                                      \
-      (instance, valueReferences, nValueReferences, values, nValues))                                                  \
-    X(fmi3Status, fmi3SetUInt64,                                                                                       \
-      (fmi3Instance instance, const fmi3ValueReference valueReferences[], size_t nValueReferences,                     \
-       const fmi3UInt64 values[], size_t nValues),                                                                     \
-      (instance, valueReferences, nValueReferences, values, nValues))                                                  \
-    X(fmi3Status, fmi3SetBoolean,                                                                                      \
-      (fmi3Instance instance, const fmi3ValueReference valueReferences[], size_t nValueReferences,                     \
-       const fmi3Boolean values[], size_t nValues),                                                                    \
-      (instance, valueReferences, nValueReferences, values, nValues))                                                  \
-    X(fmi3Status, fmi3SetString,                                                                                       \
-      (fmi3Instance instance, const fmi3ValueReference valueReferences[], size_t nValueReferences,                     \
-       const fmi3String values[], size_t nValues),                                                                     \
-      (instance, valueReferences, nValueReferences, values, nValues))                                                  \
+    FMI3_SET(X, Float32, fmi3Float32)                                                                                  \
+    FMI3_SET(X, Float64, fmi3Float64)                                                                                  \
+    FMI3_SET(X, Int8, fmi3Int8)                                                                                        \
+    FMI3_SET(X, UInt8, fmi3UInt8)                                                                                      \
+    FMI3_SET(X, Int16, fmi3Int16)                                                                                      \
+    FMI3_SET(X, UInt16, fmi3UInt16)                                                                                    \
+    FMI3_SET(X, Int32, fmi3Int32)                                                                                      \
+    FMI3_SET(X, UInt32, fmi3UInt32)                                                                                    \
+    FMI3_SET(X, Int64, fmi3Int64)                                                                                      \
+    FMI3_SET(X, UInt64, fmi3UInt64)                                                                                    \
+    FMI3_SET(X, Boolean, fmi3Boolean)                                                                                  \
+    FMI3_SET(X, String, fmi3String)                                                                                    \
     X(fmi3Status, fmi3SetBinary,                                                                                       \
       (fmi3Instance instance, const fmi3ValueReference valueReferences[], size_t nValueReferences,                     \
        const size_t valueSizes[], const fmi3Binary values[], size_t nValues),                                          \
